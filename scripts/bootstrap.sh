@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Install everything SignStudy needs: Debian packages (as root) and a project-local .venv.
+# Re-running is cheap: each step is skipped when already done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PYTHON=${PYTHON:-python3.11}
+VENV=.venv
+
+# --- Debian packages -------------------------------------------------------------
+wanted=$(grep -vE '^[[:space:]]*(#|$)' scripts/system-packages.txt)
+missing=()
+if command -v dpkg-query >/dev/null 2>&1; then
+  for package in $wanted; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$package")
+    fi
+  done
+else
+  echo "bootstrap: not a Debian system; make sure these are installed: $wanted" >&2
+fi
+if [ ${#missing[@]} -gt 0 ]; then
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "bootstrap: installing Debian packages: ${missing[*]}"
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    echo "bootstrap: these Debian packages are missing: ${missing[*]}" >&2
+    echo "bootstrap: install them with: sudo apt-get install ${missing[*]}" >&2
+    echo "bootstrap: (browser tests are skipped without them; everything else works)" >&2
+  fi
+fi
+
+# --- Python virtual environment --------------------------------------------------
+if ! command -v "$PYTHON" >/dev/null 2>&1; then
+  echo "bootstrap: $PYTHON not found; SignStudy needs Python 3.11 (set PYTHON=/path/to/python3.11)." >&2
+  exit 1
+fi
+if [ ! -x "$VENV/bin/python" ]; then
+  "$PYTHON" -m venv "$VENV" || {
+    echo "bootstrap: '$PYTHON -m venv' failed; on Debian install the python3-venv package." >&2
+    exit 1
+  }
+fi
+stamp="$VENV/.installed-$(cat pyproject.toml requirements/lock.txt | sha256sum | cut -c1-16)"
+if [ ! -f "$stamp" ]; then
+  echo "bootstrap: installing Python packages into $VENV"
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -c requirements/lock.txt pip
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -c requirements/lock.txt -e ".[dev]"
+  rm -f "$VENV"/.installed-*
+  touch "$stamp"
+fi

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Lint, then run the test suite on SQLite and, when PostgreSQL answers, on PostgreSQL too.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY=.venv/bin/python
+DEFAULT_PG_URL=postgres://postgres@127.0.0.1:5432/signstudy
+
+echo "== ruff"
+.venv/bin/ruff check .
+.venv/bin/ruff format --check .
+
+echo "== migrations are up to date"
+env -u DATABASE_URL "$PY" manage.py makemigrations --check --dry-run >/dev/null || {
+  echo "Models changed without a migration: run 'python manage.py makemigrations'." >&2
+  exit 1
+}
+
+pg_url=${DATABASE_URL:-}
+if [ -z "$pg_url" ] && "$PY" scripts/port_open.py 127.0.0.1 5432; then
+  pg_url=$DEFAULT_PG_URL
+fi
+
+echo "== tests on SQLite"
+env -u DATABASE_URL "$PY" -m pytest "$@"
+
+if [ -n "$pg_url" ]; then
+  echo "== tests on PostgreSQL ($pg_url)"
+  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "$PY" -m pytest "$@"
+else
+  echo "!! PostgreSQL is not answering on 127.0.0.1:5432 and DATABASE_URL is unset:"
+  echo "!! the PostgreSQL run is SKIPPED. CI must not skip it."
+fi

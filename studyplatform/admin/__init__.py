@@ -1,0 +1,9 @@
+"""Register the researcher's admin pages; every one is limited to the user's own studies."""
+
+from django.contrib import admin
+
+from studyplatform.admin import design, participants, stimuli, studies  # noqa: F401
+
+admin.site.site_header = "SignStudy"
+admin.site.site_title = "SignStudy admin"
+admin.site.index_title = "Studies, stimuli and responses"

@@ -1,0 +1,122 @@
+"""Let researchers read who took part and what they answered (read-only)."""
+
+from django.contrib import admin
+from django.http import HttpRequest
+
+from studyplatform.admin.design import OwnStudyFilter
+from studyplatform.admin.permissions import StudyScopedMixin
+from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Response
+
+
+class ReadOnlyMixin:
+    """Show data collected from participants without letting anyone alter it."""
+
+    def has_add_permission(self, request: HttpRequest, obj=None) -> bool:
+        return False
+
+    def has_change_permission(self, request: HttpRequest, obj=None) -> bool:
+        return False
+
+
+class ResponseInline(ReadOnlyMixin, admin.TabularInline):
+    model = Response
+    extra = 0
+    fields = ("trial", "question", "chosen", "chosen_position", "rating", "text", "rt_ms")
+    readonly_fields = fields
+    can_delete = False
+
+
+@admin.register(Participant)
+class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
+    list_display = (
+        "pk",
+        "study",
+        "started_at",
+        "finished_at",
+        "is_pilot",
+        "language",
+        "position",
+    )
+    list_filter = (("study", OwnStudyFilter), "is_pilot", "language", "finished_at")
+    date_hierarchy = "started_at"
+    readonly_fields = (
+        "study",
+        "token",
+        "recruitment_params",
+        "seed",
+        "schedule",
+        "language",
+        "is_pilot",
+        "position",
+        "user_agent",
+        "started_at",
+        "consented_at",
+        "last_seen_at",
+        "finished_at",
+    )
+    inlines = (ResponseInline,)
+
+
+@admin.register(PersonalAnswer)
+class PersonalAnswerAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
+    study_path = "participant__study"
+    list_display = ("participant", "question", "value")
+    readonly_fields = ("participant", "question", "value")
+
+
+@admin.register(Response)
+class ResponseAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
+    study_path = "participant__study"
+    list_display = (
+        "participant",
+        "trial",
+        "question",
+        "chosen",
+        "chosen_position",
+        "rating",
+        "rt_ms",
+        "revision",
+        "answered_at",
+    )
+    list_filter = (
+        ("participant__study", OwnStudyFilter),
+        "question__kind",
+        "participant__is_pilot",
+    )
+    search_fields = ("trial__key", "question__key", "text")
+    list_select_related = ("participant", "trial", "question")
+    readonly_fields = (
+        "participant",
+        "trial",
+        "question",
+        "chosen",
+        "chosen_position",
+        "rating",
+        "number",
+        "text",
+        "video",
+        "score",
+        "rt_ms",
+        "revision",
+        "answered_at",
+        "updated_at",
+    )
+
+
+@admin.register(MediaEvent)
+class MediaEventAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
+    study_path = "participant__study"
+    list_display = ("participant", "trial", "clip_position", "kind", "media_time_s", "created_at")
+    list_filter = (("participant__study", OwnStudyFilter), "kind")
+    list_select_related = ("participant", "trial")
+    readonly_fields = (
+        "participant",
+        "trial",
+        "stimulus",
+        "clip_position",
+        "kind",
+        "media_time_s",
+        "client_time_ms",
+        "detail",
+        "created_at",
+    )

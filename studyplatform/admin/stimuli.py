@@ -1,0 +1,36 @@
+"""List the rendered clips of each study, with their parameters and a player."""
+
+from django.contrib import admin
+from django.utils.html import format_html
+
+from studyplatform.admin.design import OwnStudyFilter
+from studyplatform.admin.permissions import StudyScopedMixin
+from studyplatform.models import Stimulus
+
+
+@admin.register(Stimulus)
+class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
+    study_path = "condition__study"
+    list_display = (
+        "item",
+        "condition",
+        "status",
+        "duration_ms",
+        "frame_count",
+        "engine_version",
+        "rendered_at",
+    )
+    list_filter = (("condition__study", OwnStudyFilter), "status", "condition__is_simulated")
+    search_fields = ("item__key", "condition__key", "content_hash")
+    list_select_related = ("item", "condition")
+    readonly_fields = ("player", "created_at")
+
+    @admin.display(description="clip")
+    def player(self, stimulus: Stimulus) -> str:
+        if not stimulus.video:
+            return "Not rendered yet."
+        return format_html(
+            '<video src="{}" poster="{}" controls preload="metadata" width="480"></video>',
+            stimulus.video.url,
+            stimulus.poster.url if stimulus.poster else "",
+        )

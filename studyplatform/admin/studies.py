@@ -1,0 +1,263 @@
+"""The researcher's main page: a study with its conditions, items, questions, blocks and trials."""
+
+import io
+import json
+import zipfile
+
+from django.contrib import admin, messages
+from django.db import models
+from django.db.models import Count
+from django.http import Http404, HttpRequest, HttpResponse
+from django.shortcuts import redirect
+from django.template.response import TemplateResponse
+from django.urls import path, reverse
+from django.utils.html import format_html
+
+from studyplatform import exchange
+from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
+from studyplatform.admin.forms import StudyImportForm, TrialForm
+from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
+from studyplatform.admin.prompts import AslVideoInline
+from studyplatform.models import Block, Condition, Item, Question, Study, Trial
+from studyplatform.preview import build_preview
+
+
+class ConditionInline(StudyInline):
+    model = Condition
+    fields = ("position", "key", "label", "is_simulated", "description")
+
+
+class ItemInline(StudyInline):
+    model = Item
+    fields = ("position", "key", "kind", "text", "target_text", "is_practice")
+
+
+class QuestionInline(StudyInline):
+    model = Question
+    fields = ("position", "key", "kind", "text", "required", "allow_no_difference")
+
+
+class BlockInline(StudyInline):
+    model = Block
+    fields = ("position", "key", "kind", "title", "randomize_order")
+
+
+class TrialInline(StudyInline):
+    model = Trial
+    form = TrialForm
+    fields = (
+        "block",
+        "position",
+        "key",
+        "kind",
+        "item",
+        "condition_a",
+        "condition_b",
+        "questions",
+        "is_attention_check",
+    )
+    classes = ("collapse",)
+
+
+def _definition_filename(study: Study) -> str:
+    return f"{study.slug}.study.json"
+
+
+def _definition_json(study: Study) -> str:
+    return json.dumps(exchange.export_study(study), indent=2, ensure_ascii=False) + "\n"
+
+
+@admin.register(Study)
+class StudyAdmin(StudyScopedMixin, admin.ModelAdmin):
+    study_path = ""
+    list_display = (
+        "title",
+        "slug",
+        "status",
+        "asl_first",
+        "condition_count",
+        "trial_count",
+        "participant_count",
+        "created_at",
+    )
+    list_filter = ("status", "asl_first", "one_sitting")
+    search_fields = ("title", "slug", "description")
+    prepopulated_fields = {"slug": ("title",)}
+    date_hierarchy = "created_at"
+    # A redirect URL typed without a scheme means https (Django 6's default already).
+    formfield_overrides = {models.URLField: {"assume_scheme": "https"}}
+    inlines = (
+        ConditionInline,
+        ItemInline,
+        QuestionInline,
+        BlockInline,
+        TrialInline,
+        AslVideoInline,
+    )
+    actions = ("duplicate_studies", "export_studies")
+    fieldsets = (
+        (None, {"fields": ("title", "slug", "status", "owner")}),
+        ("Language", {"fields": ("asl_first", "allow_english_only")}),
+        (
+            "What participants read",
+            {"fields": ("description", "consent_text", "consent_mode", "thank_you_text")},
+        ),
+        ("Completion", {"fields": ("completion_code", "redirect_url")}),
+        (
+            "Rules",
+            {
+                "fields": (
+                    "allowed_devices",
+                    "one_sitting",
+                    "time_limit_minutes",
+                    "target_n",
+                    "allow_back",
+                    "replay_limit",
+                    "require_full_view",
+                    "randomize_positions",
+                )
+            },
+        ),
+    )
+
+    def get_queryset(self, request: HttpRequest):
+        return (
+            super()
+            .get_queryset(request)
+            .annotate(
+                _conditions=Count("conditions", distinct=True),
+                _trials=Count("trials", distinct=True),
+                _participants=Count("participants", distinct=True),
+            )
+        )
+
+    @admin.display(description="conditions", ordering="_conditions")
+    def condition_count(self, study: Study) -> int:
+        return study._conditions
+
+    @admin.display(description="trials", ordering="_trials")
+    def trial_count(self, study: Study) -> int:
+        return study._trials
+
+    @admin.display(description="participants", ordering="_participants")
+    def participant_count(self, study: Study) -> int:
+        return study._participants
+
+    def get_list_display(self, request: HttpRequest):
+        if request.user.is_superuser:
+            return (*self.list_display, "owner")
+        return self.list_display
+
+    def get_list_filter(self, request: HttpRequest):
+        if request.user.is_superuser:
+            return (*self.list_filter, "owner")
+        return self.list_filter
+
+    def get_readonly_fields(self, request: HttpRequest, obj: Study | None = None):
+        return () if request.user.is_superuser else ("owner",)
+
+    def get_changeform_initial_data(self, request: HttpRequest):
+        return {**super().get_changeform_initial_data(request), "owner": request.user.pk}
+
+    def save_model(self, request: HttpRequest, obj: Study, form, change: bool) -> None:
+        if not change and not request.user.is_superuser:
+            obj.owner = request.user
+        super().save_model(request, obj, form, change)
+
+    def get_urls(self):
+        own = [
+            path(
+                "import/",
+                self.admin_site.admin_view(self.import_view),
+                name="studyplatform_study_import",
+            ),
+            path(
+                "<path:object_id>/export/",
+                self.admin_site.admin_view(self.export_view),
+                name="studyplatform_study_export",
+            ),
+            path(
+                "<path:object_id>/preview/",
+                self.admin_site.admin_view(self.preview_view),
+                name="studyplatform_study_preview",
+            ),
+        ]
+        return own + super().get_urls()
+
+    def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
+        study = self.get_object(request, object_id)
+        if study is None or not self.has_view_permission(request, study):
+            raise Http404("No such study.")
+        return study
+
+    def export_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """Download the study's definition as JSON."""
+        study = self._get_visible_study(request, object_id)
+        response = HttpResponse(_definition_json(study), content_type="application/json")
+        response["Content-Disposition"] = f'attachment; filename="{_definition_filename(study)}"'
+        return response
+
+    def preview_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
+        """Show every page of the study as a participant would see it, answers disabled."""
+        study = self._get_visible_study(request, object_id)
+        context = {
+            **self.admin_site.each_context(request),
+            "opts": self.opts,
+            "study": study,
+            "title": f"Preview of “{study.title}”",
+            "preview": build_preview(study),
+        }
+        return TemplateResponse(request, "admin/studyplatform/study/preview.html", context)
+
+    def import_view(self, request: HttpRequest) -> HttpResponse:
+        """Create a study from an uploaded definition file."""
+        if not self.has_add_permission(request):
+            raise Http404("You cannot add studies.")
+        form = StudyImportForm(request.POST or None, request.FILES or None)
+        if request.method == "POST" and form.is_valid():
+            try:
+                result = do_import_study(
+                    form.cleaned_data["definition"],
+                    owner=request.user,
+                    slug=form.cleaned_data["slug"] or None,
+                )
+            except StudyImportError as error:
+                form.add_error("definition", f"Not imported: {error}")
+            else:
+                messages.success(request, f"Imported “{result.study.title}”.")
+                for warning in result.warnings:
+                    messages.warning(request, warning)
+                return redirect(reverse("admin:studyplatform_study_change", args=[result.study.pk]))
+        context = {
+            **self.admin_site.each_context(request),
+            "opts": self.opts,
+            "form": form,
+            "title": "Import a study definition",
+        }
+        return TemplateResponse(request, "admin/studyplatform/study/import.html", context)
+
+    @admin.action(description="Duplicate the selected studies (as drafts)")
+    def duplicate_studies(self, request: HttpRequest, queryset) -> None:
+        for study in queryset:
+            copy = do_duplicate_study(study, owner=request.user)
+            messages.success(
+                request,
+                format_html(
+                    "Created <a href='{}'>{}</a>.",
+                    reverse("admin:studyplatform_study_change", args=[copy.pk]),
+                    copy.title,
+                ),
+            )
+
+    @admin.action(description="Export the selected studies as JSON")
+    def export_studies(self, request: HttpRequest, queryset) -> HttpResponse:
+        studies = list(queryset)
+        if len(studies) == 1:
+            return self.export_view(request, str(studies[0].pk))
+        buffer = io.BytesIO()
+        with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
+            for study in studies:
+                archive.writestr(_definition_filename(study), _definition_json(study))
+        response = HttpResponse(buffer.getvalue(), content_type="application/zip")
+        response["Content-Disposition"] = 'attachment; filename="studies.zip"'
+        return response

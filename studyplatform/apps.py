@@ -1,0 +1,15 @@
+"""Declare the study platform's Django app."""
+
+from django.apps import AppConfig
+
+
+class StudyPlatformConfig(AppConfig):
+    """Configure the ``studyplatform`` app."""
+
+    name = "studyplatform"
+    verbose_name = "SignStudy"
+    default_auto_field = "django.db.models.BigAutoField"
+
+    def ready(self) -> None:
+        """Connect the signal handlers that keep researcher permissions in place."""
+        from studyplatform import signals  # noqa: F401

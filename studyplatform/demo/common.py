@@ -1,0 +1,35 @@
+"""Pieces shared by the demo study definitions."""
+
+from typing import Any
+
+from studyplatform import exchange
+
+
+def definition(study: dict[str, Any], **parts: list[dict[str, Any]]) -> dict[str, Any]:
+    """Wrap the parts of a study in the exchange format's envelope."""
+    return {
+        "format": exchange.FORMAT,
+        "version": exchange.VERSION,
+        "study": study,
+        "conditions": parts.get("conditions", []),
+        "items": parts.get("items", []),
+        "questions": parts.get("questions", []),
+        "blocks": parts.get("blocks", []),
+        "trials": parts.get("trials", []),
+        "asl_videos": [],
+    }
+
+
+def numbered(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Give each row its position in the list."""
+    return [{**row, "position": index} for index, row in enumerate(rows)]
+
+
+def scale(labels: list[str]) -> list[dict[str, Any]]:
+    """Return answer options valued 1..n with the given labels."""
+    return numbered([{"value": value, "label": label} for value, label in enumerate(labels, 1)])
+
+
+def likert5(low: str, high: str) -> list[dict[str, Any]]:
+    """Return a 5-point scale labelled only at its ends (seed 003 Table 2)."""
+    return scale([low, "", "", "", high])

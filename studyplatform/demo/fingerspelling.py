@@ -1,0 +1,202 @@
+"""Define the fingerspelling timing study of seed 000 ch. 5 (spec 02 "The study")."""
+
+from typing import Any
+
+from stimuli import balanced_pair_assignment
+from studyplatform.demo.common import definition, numbered, scale
+
+WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
+# A word the signer also recorded (seed 000 App. B, objective 4) for the example clip.
+EXAMPLE_WORD = "DOOR"
+
+CONDITIONS = (
+    {
+        "key": "mocap",
+        "label": "Motion capture",
+        "is_simulated": True,
+        "description": (
+            "No recording ships with SignStudy: a simulated reference performance stands in "
+            "for motion capture until recordings are imported (spec 02)."
+        ),
+        "parameters": {"timing": "mocap", "source": "simulated"},
+    },
+    {
+        "key": "variable",
+        "label": "Variable",
+        "description": "Data-driven timing: naive Bayes holds, regression transitions.",
+        "parameters": {"timing": "variable"},
+    },
+    {
+        "key": "constant",
+        "label": "Constant",
+        "description": "243 ms holds, last letter 800 ms, 250 ms transitions.",
+        "parameters": {
+            "timing": "constant",
+            "hold_ms": 243,
+            "last_hold_ms": 800,
+            "transition_ms": 250,
+        },
+    },
+    {
+        "key": "normalized",
+        "label": "Normalized constant",
+        "description": "Constant timing scaled to the Variable model's total duration.",
+        "parameters": {"timing": "normalized"},
+    },
+)
+
+OPEN_QUESTIONS = (
+    (
+        "what-made-you-select",
+        "What made you select an animation as most similar to actual fingerspelling?",
+    ),
+    ("words-identified", "Which words were you able to identify?"),
+    (
+        "features-easier",
+        "If there were certain features that made some clips easier to understand than "
+        "others, please describe them.",
+    ),
+    (
+        "features-missing",
+        "If there were certain features missing that would have made these animations "
+        "better, please describe them.",
+    ),
+    ("further-comments", "Please write any further comments you have here:"),
+)
+
+
+def fingerspelling_timing_study() -> dict[str, Any]:
+    """Return the definition of the 4 conditions × 8 words, 48-comparison study."""
+    questions = numbered(
+        [
+            {
+                "key": "age",
+                "kind": "choice",
+                "text": "What is your age?",
+                "options": scale(["18–25", "26–35", "36–45", "46–55", "56–65", "66+"]),
+            },
+            {
+                "key": "asl-fluency",
+                "kind": "choice",
+                "text": "How fluent are you in ASL?",
+                "options": scale(
+                    [
+                        "Completely fluent (native or primary language)",
+                        "Completely fluent (ASL expert)",
+                        "Somewhat fluent (studied ASL)",
+                        "Know some ASL, but not fluent",
+                        "Do not know ASL",
+                    ]
+                ),
+            },
+            {
+                "key": "name",
+                "kind": "short_text",
+                "text": "Your name (optional)",
+                "required": False,
+                "is_personal": True,
+            },
+            {
+                "key": "email",
+                "kind": "short_text",
+                "text": "Your e-mail address (optional)",
+                "required": False,
+                "is_personal": True,
+            },
+            {
+                "key": "most-natural",
+                "kind": "pairwise",
+                "text": (
+                    "Which animation is the most similar to actual fingerspelling (most natural)?"
+                ),
+                "allow_no_difference": False,
+            },
+            *(
+                {"key": key, "kind": "open", "text": text, "required": False}
+                for key, text in OPEN_QUESTIONS
+            ),
+        ]
+    )
+    blocks = numbered(
+        [
+            {"key": "demographics", "kind": "demographics", "title": "About you"},
+            {"key": "instructions", "kind": "instructions", "title": "Instructions"},
+            {
+                "key": "comparisons",
+                "kind": "trials",
+                "title": "Comparisons",
+                "randomize_order": True,
+            },
+            {"key": "closing", "kind": "closing", "title": "Closing questions"},
+        ]
+    )
+    trials = [
+        {
+            "key": "demographics",
+            "block": "demographics",
+            "kind": "demographic",
+            "questions": ["age", "asl-fluency", "name", "email"],
+        },
+        {
+            "key": "instructions",
+            "block": "instructions",
+            "kind": "info",
+            "title": "Instructions",
+            "text": (
+                "On each page, you will see two video clips and will be asked to choose which "
+                "clip is most similar to actual fingerspelling by a fluent ASL signer. An "
+                "example clip is presented below. Please watch each video, first Clip 1 and "
+                "then Clip 2. This study must be completed in one sitting.\n\n"
+                "The study will take approximately 15–20 minutes."
+            ),
+            "item": EXAMPLE_WORD,
+            "condition_a": "variable",
+        },
+    ]
+    keys = [condition["key"] for condition in CONDITIONS]
+    for index, (word, first, second) in enumerate(balanced_pair_assignment(keys, WORDS), 1):
+        trials.append(
+            {
+                "key": f"cmp-{index:02d}",
+                "block": "comparisons",
+                "kind": "pairwise",
+                "item": word,
+                "condition_a": first,
+                "condition_b": second,
+                "questions": ["most-natural"],
+            }
+        )
+    trials.append(
+        {
+            "key": "closing",
+            "block": "closing",
+            "kind": "open",
+            "questions": [key for key, _ in OPEN_QUESTIONS],
+        }
+    )
+    items = [{"key": word, "kind": "word", "text": word} for word in WORDS]
+    items.append({"key": EXAMPLE_WORD, "kind": "word", "text": EXAMPLE_WORD, "is_practice": True})
+    return definition(
+        {
+            "slug": "fingerspelling-timing",
+            "title": "ASL fingerspelling timing (demo)",
+            "description": (
+                "Which fingerspelling animation looks most like a fluent signer? Four timing "
+                "models compared on eight words (after Wheatland 2016, ch. 5)."
+            ),
+            "status": "open",
+            "consent_text": (
+                "This study shows short animations of ASL fingerspelling and asks which looks "
+                "most natural. It takes about 15–20 minutes. Your answers are anonymous; you "
+                "may stop at any time. Continuing means you agree to take part."
+            ),
+            "one_sitting": True,
+            "allow_back": True,
+            "completion_code": "FSPELL-DEMO",
+        },
+        conditions=numbered(list(CONDITIONS)),
+        items=numbered(items),
+        questions=questions,
+        blocks=blocks,
+        trials=numbered(trials),
+    )

@@ -1,0 +1,136 @@
+"""Serialize a complete study definition to plain JSON data, and read it back.
+
+The format is versioned (``format``/``version`` keys) and refers to objects by their
+keys, never by database ids, so a file moves between installations. Stimuli are not
+part of a definition: they are rendered again from it. ASL prompt videos are
+referenced by their media file names. :func:`studyplatform.actions.do_import_study`
+writes a definition to the database.
+"""
+
+from typing import Any
+
+from studyplatform.models import Study
+
+FORMAT = "signstudy.study"
+VERSION = 1
+
+STUDY_FIELDS = (
+    "slug",
+    "title",
+    "description",
+    "status",
+    "asl_first",
+    "allow_english_only",
+    "consent_text",
+    "consent_mode",
+    "thank_you_text",
+    "completion_code",
+    "redirect_url",
+    "allowed_devices",
+    "one_sitting",
+    "time_limit_minutes",
+    "target_n",
+    "allow_back",
+    "replay_limit",
+    "require_full_view",
+    "randomize_positions",
+)
+CONDITION_FIELDS = ("key", "label", "description", "is_simulated", "parameters", "position")
+ITEM_FIELDS = ("key", "kind", "text", "target_text", "is_practice", "parameters", "position")
+QUESTION_FIELDS = (
+    "key",
+    "kind",
+    "text",
+    "help_text",
+    "required",
+    "allow_no_difference",
+    "no_difference_label",
+    "allow_signed_answer",
+    "is_personal",
+    "min_value",
+    "max_value",
+    "position",
+)
+OPTION_FIELDS = ("value", "label", "position")
+BLOCK_FIELDS = ("key", "kind", "title", "intro_text", "randomize_order", "position")
+TRIAL_FIELDS = (
+    "key",
+    "kind",
+    "title",
+    "text",
+    "is_attention_check",
+    "expected_answer",
+    "position",
+)
+# Foreign keys of a trial, exported as the key of the object they point to.
+TRIAL_REFERENCES = ("block", "item", "condition_a", "condition_b")
+ASL_VIDEO_FIELDS = ("field_name", "transcript")
+
+
+def _values(obj: Any, fields: tuple[str, ...]) -> dict[str, Any]:
+    return {name: getattr(obj, name) for name in fields}
+
+
+def _asl_target(video) -> list[str | int | None]:
+    """Name an ASL video's target as [model, key] (key None for the study itself)."""
+    target = video.target
+    model = video.content_type.model
+    if model == "study":
+        return [model, None]
+    if model == "answeroption":
+        return [model, f"{target.question.key}:{target.value}"]
+    return [model, target.key]
+
+
+def export_study(study: Study) -> dict[str, Any]:
+    """Return the complete definition of *study* as JSON-compatible data."""
+    questions = list(study.questions.prefetch_related("options"))
+    trials = study.trials.select_related("block", "item", "condition_a", "condition_b")
+    trials = trials.prefetch_related("questions")
+    question_order = {q.key: index for index, q in enumerate(questions)}
+
+    asl_videos = list(study.asl_videos.all())
+    for related in (study.blocks.all(), study.trials.all(), questions):
+        for obj in related:
+            asl_videos.extend(obj.asl_videos.all())
+    for question in questions:
+        for option in question.options.all():
+            asl_videos.extend(option.asl_videos.all())
+
+    return {
+        "format": FORMAT,
+        "version": VERSION,
+        "study": _values(study, STUDY_FIELDS),
+        "conditions": [_values(c, CONDITION_FIELDS) for c in study.conditions.all()],
+        "items": [_values(i, ITEM_FIELDS) for i in study.items.all()],
+        "questions": [
+            {
+                **_values(q, QUESTION_FIELDS),
+                "options": [_values(o, OPTION_FIELDS) for o in q.options.all()],
+            }
+            for q in questions
+        ],
+        "blocks": [_values(b, BLOCK_FIELDS) for b in study.blocks.all()],
+        "trials": [
+            {
+                **_values(t, TRIAL_FIELDS),
+                **{
+                    ref: (getattr(t, ref).key if getattr(t, ref) is not None else None)
+                    for ref in TRIAL_REFERENCES
+                },
+                "questions": sorted(
+                    (q.key for q in t.questions.all()), key=question_order.__getitem__
+                ),
+            }
+            for t in trials
+        ],
+        "asl_videos": [
+            {
+                "target": _asl_target(v),
+                **_values(v, ASL_VIDEO_FIELDS),
+                "video": v.video.name,
+                "poster": v.poster.name,
+            }
+            for v in asl_videos
+        ],
+    }

@@ -1,0 +1,270 @@
+"""Define what participants are asked: questions, blocks and trials (spec 06 "Trial templates").
+
+A *trial* is what one page shows: optionally a clip or a pair of clips, and one or more
+questions about it (a comparison page asks one question about a pair; a rating page
+asks several Likert questions about one clip; a demographics page asks several
+questions about the participant). Responses are keyed by participant × trial × question.
+"""
+
+from collections.abc import Iterable
+
+from django.contrib.contenttypes.fields import GenericRelation
+from django.core.exceptions import ValidationError
+from django.db import models
+
+from studyplatform.models.studies import Condition, Item, Study
+
+
+class Question(models.Model):
+    """A reusable question within a study; its answer options hold per-point labels."""
+
+    class Kind(models.TextChoices):
+        PAIRWISE = "pairwise", "Pairwise forced choice (Clip 1 / Clip 2)"
+        COMPARATIVE = "comparative", "Comparative scale between two clips"
+        LIKERT = "likert", "Likert rating"
+        INTELLIGIBILITY = "intelligibility", "Intelligibility (free text, scored)"
+        OPEN = "open", "Open question"
+        CHOICE = "choice", "Single choice (demographic)"
+        NUMBER = "number", "Number (demographic)"
+        SHORT_TEXT = "short_text", "Short text (demographic)"
+
+    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="questions")
+    key = models.SlugField(
+        max_length=60, help_text="Name used in exported data, e.g. 'naturalness' or 'age'."
+    )
+    kind = models.CharField(max_length=20, choices=Kind.choices)
+    text = models.TextField(help_text="The question as participants read it.")
+    help_text = models.TextField(blank=True)
+    required = models.BooleanField(default=True)
+    allow_no_difference = models.BooleanField(
+        "allow 'Cannot see a difference'",
+        default=False,
+        help_text="Pairwise questions: offer a third answer, 'Cannot see a difference'.",
+    )
+    no_difference_label = models.CharField(
+        max_length=100, blank=True, default="Cannot see a difference"
+    )
+    allow_signed_answer = models.BooleanField(
+        default=False, help_text="Open questions: participants may record a signed answer."
+    )
+    is_personal = models.BooleanField(
+        default=False,
+        help_text="Identifying data (name, e-mail): stored apart from responses, never exported.",
+    )
+    min_value = models.FloatField(null=True, blank=True, help_text="Number questions: minimum.")
+    max_value = models.FloatField(null=True, blank=True, help_text="Number questions: maximum.")
+    position = models.PositiveSmallIntegerField(default=0)
+
+    asl_videos = GenericRelation("studyplatform.AslVideo")
+
+    class Meta:
+        ordering = ["study", "position", "pk"]
+        constraints = [
+            models.UniqueConstraint(fields=["study", "key"], name="question_key_unique_in_study")
+        ]
+
+    def __str__(self) -> str:
+        return self.key
+
+    @property
+    def uses_options(self) -> bool:
+        """Return whether answers are one of this question's answer options."""
+        return self.kind in {self.Kind.COMPARATIVE, self.Kind.LIKERT, self.Kind.CHOICE}
+
+    def clean(self) -> None:
+        """Reject settings that do not apply to this kind of question."""
+        errors = {}
+        if self.allow_no_difference and self.kind != self.Kind.PAIRWISE:
+            errors["allow_no_difference"] = "Only pairwise questions have this answer."
+        if self.allow_signed_answer and self.kind not in {
+            self.Kind.OPEN,
+            self.Kind.INTELLIGIBILITY,
+        }:
+            errors["allow_signed_answer"] = "Only open and intelligibility questions take videos."
+        if self.is_personal and self.kind != self.Kind.SHORT_TEXT:
+            errors["is_personal"] = "Only short-text questions can hold identifying data."
+        if (
+            self.min_value is not None
+            and self.max_value is not None
+            and self.min_value > self.max_value
+        ):
+            errors["max_value"] = "The maximum is below the minimum."
+        if errors:
+            raise ValidationError(errors)
+
+
+class AnswerOption(models.Model):
+    """One point of a scale or one option of a choice, with its label."""
+
+    question = models.ForeignKey(Question, on_delete=models.CASCADE, related_name="options")
+    value = models.SmallIntegerField(help_text="Stored and analysed value, e.g. 1–5.")
+    label = models.CharField(max_length=200, blank=True)
+    position = models.PositiveSmallIntegerField(default=0)
+
+    asl_videos = GenericRelation("studyplatform.AslVideo")
+
+    class Meta:
+        ordering = ["question", "position", "value"]
+        constraints = [
+            models.UniqueConstraint(
+                fields=["question", "value"], name="option_value_unique_in_question"
+            )
+        ]
+
+    def __str__(self) -> str:
+        return f"{self.value}: {self.label}" if self.label else str(self.value)
+
+
+class Block(models.Model):
+    """A section of the study, shown in order between consent and thank-you."""
+
+    class Kind(models.TextChoices):
+        DEMOGRAPHICS = "demographics", "Demographics"
+        INSTRUCTIONS = "instructions", "Instructions"
+        PRACTICE = "practice", "Practice"
+        TRIALS = "trials", "Trials"
+        CLOSING = "closing", "Closing questions"
+
+    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="blocks")
+    key = models.SlugField(max_length=60, help_text="Name used in exported data.")
+    kind = models.CharField(max_length=20, choices=Kind.choices, default=Kind.TRIALS)
+    title = models.CharField(max_length=200, blank=True)
+    intro_text = models.TextField(blank=True, help_text="Shown before the block's first page.")
+    randomize_order = models.BooleanField(
+        default=False, help_text="Shuffle the block's pages per participant (seeded)."
+    )
+    position = models.PositiveSmallIntegerField(default=0)
+
+    asl_videos = GenericRelation("studyplatform.AslVideo")
+
+    class Meta:
+        ordering = ["study", "position", "pk"]
+        constraints = [
+            models.UniqueConstraint(fields=["study", "key"], name="block_key_unique_in_study")
+        ]
+
+    def __str__(self) -> str:
+        return self.title or self.key
+
+
+# The question kinds each trial kind may ask.
+TRIAL_QUESTION_KINDS: dict[str, frozenset[str]] = {
+    "info": frozenset(),
+    "pairwise": frozenset({Question.Kind.PAIRWISE}),
+    "comparative": frozenset({Question.Kind.COMPARATIVE}),
+    "rating": frozenset({Question.Kind.LIKERT}),
+    "intelligibility": frozenset({Question.Kind.INTELLIGIBILITY}),
+    "open": frozenset({Question.Kind.OPEN}),
+    "demographic": frozenset(
+        {Question.Kind.CHOICE, Question.Kind.NUMBER, Question.Kind.SHORT_TEXT}
+    ),
+}
+
+
+class Trial(models.Model):
+    """What one page shows: an optional clip or pair of clips and the questions about it."""
+
+    class Kind(models.TextChoices):
+        INFO = "info", "Information or instructions (no questions)"
+        PAIRWISE = "pairwise", "Pairwise forced choice"
+        COMPARATIVE = "comparative", "Comparative scale"
+        RATING = "rating", "Likert ratings of one clip"
+        INTELLIGIBILITY = "intelligibility", "Intelligibility"
+        OPEN = "open", "Open questions"
+        DEMOGRAPHIC = "demographic", "Demographic questions"
+
+    TWO_CLIP_KINDS = frozenset({Kind.PAIRWISE, Kind.COMPARATIVE})
+    ONE_CLIP_KINDS = frozenset({Kind.RATING, Kind.INTELLIGIBILITY})
+
+    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="trials")
+    block = models.ForeignKey(Block, on_delete=models.CASCADE, related_name="trials")
+    key = models.SlugField(max_length=80, help_text="Name used in exported data.")
+    kind = models.CharField(max_length=20, choices=Kind.choices)
+    title = models.CharField(max_length=200, blank=True)
+    text = models.TextField(blank=True, help_text="Text shown on the page above the clips.")
+    item = models.ForeignKey(
+        Item, on_delete=models.RESTRICT, null=True, blank=True, related_name="trials"
+    )
+    condition_a = models.ForeignKey(
+        Condition,
+        on_delete=models.RESTRICT,
+        null=True,
+        blank=True,
+        related_name="+",
+        help_text="Clip 1 (the only clip of a rating trial; an example clip on an info page).",
+    )
+    condition_b = models.ForeignKey(
+        Condition,
+        on_delete=models.RESTRICT,
+        null=True,
+        blank=True,
+        related_name="+",
+        help_text="Clip 2 of a pairwise or comparative trial.",
+    )
+    questions = models.ManyToManyField(Question, blank=True, related_name="trials")
+    is_attention_check = models.BooleanField(
+        default=False, help_text="Flag failures in the data (e.g. a pair of identical clips)."
+    )
+    expected_answer = models.CharField(
+        max_length=60,
+        blank=True,
+        help_text="Attention checks: the correct answer (a condition key, 'none', or a value).",
+    )
+    position = models.PositiveSmallIntegerField(default=0)
+
+    asl_videos = GenericRelation("studyplatform.AslVideo")
+
+    class Meta:
+        ordering = ["study", "block__position", "position", "pk"]
+        constraints = [
+            models.UniqueConstraint(fields=["study", "key"], name="trial_key_unique_in_study"),
+            models.CheckConstraint(
+                condition=models.Q(condition_b__isnull=True)
+                | models.Q(kind__in=["pairwise", "comparative"]),
+                name="trial_second_clip_only_in_comparisons",
+            ),
+        ]
+
+    def __str__(self) -> str:
+        return self.key
+
+    def clean(self) -> None:
+        """Check that the trial's clips suit its kind and belong to its study."""
+        errors: dict[str, str] = {}
+        if self.block_id and self.study_id and self.block.study_id != self.study_id:
+            errors["block"] = "The block belongs to another study."
+        for field in ("item", "condition_a", "condition_b"):
+            related = getattr(self, field)
+            if related is not None and related.study_id != self.study_id:
+                errors[field] = "This belongs to another study."
+        if self.kind in self.TWO_CLIP_KINDS:
+            for field in ("item", "condition_a", "condition_b"):
+                if getattr(self, field) is None:
+                    errors[field] = "A comparison needs an item and two conditions."
+            if (
+                self.condition_a_id
+                and self.condition_a_id == self.condition_b_id
+                and not self.is_attention_check
+            ):
+                errors["condition_b"] = "Identical clips are only allowed in attention checks."
+        elif self.kind in self.ONE_CLIP_KINDS and (self.item is None or self.condition_a is None):
+            errors["item"] = "This trial needs an item and the condition of its clip."
+        if self.condition_b is not None and self.kind not in self.TWO_CLIP_KINDS:
+            errors["condition_b"] = "Only pairwise and comparative trials show a second clip."
+        if errors:
+            raise ValidationError(errors)
+
+    def check_questions(self, questions: Iterable[Question]) -> None:
+        """Raise ValidationError unless *questions* may be asked on this trial."""
+        allowed = TRIAL_QUESTION_KINDS[self.kind]
+        questions = list(questions)
+        wrong = [q.key for q in questions if q.kind not in allowed]
+        if wrong:
+            raise ValidationError(
+                f"A {self.get_kind_display().lower()} trial cannot ask {', '.join(wrong)}."
+            )
+        foreign = [q.key for q in questions if q.study_id != self.study_id]
+        if foreign:
+            raise ValidationError(f"Questions of another study: {', '.join(foreign)}.")
+        if self.kind != self.Kind.INFO and not questions:
+            raise ValidationError("This trial asks no question.")

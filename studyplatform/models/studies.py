@@ -1,0 +1,180 @@
+"""Define a study and the conditions and items it compares.
+
+Source: spec 06 "What a researcher configures".
+"""
+
+from django.conf import settings
+from django.contrib.contenttypes.fields import GenericRelation
+from django.core.validators import MinValueValidator
+from django.db import models
+
+
+class Study(models.Model):
+    """A perceptual study: its settings, what participants see first and last."""
+
+    class Status(models.TextChoices):
+        DRAFT = "draft", "Draft"
+        PILOT = "pilot", "Pilot (responses flagged, excluded from analysis)"
+        OPEN = "open", "Open"
+        CLOSED = "closed", "Closed"
+
+    class ConsentMode(models.TextChoices):
+        IMPLICIT = "implicit", "Continuing means consent"
+        EXPLICIT = "explicit", "Explicit consent checkbox"
+
+    class Devices(models.TextChoices):
+        ANY = "any", "Any device"
+        DESKTOP = "desktop", "Desktop or laptop only"
+        MOBILE = "mobile", "Phone or tablet only"
+
+    owner = models.ForeignKey(
+        settings.AUTH_USER_MODEL,
+        on_delete=models.PROTECT,
+        related_name="studies",
+        help_text="The researcher who owns the study; only they (and superusers) see it.",
+    )
+    slug = models.SlugField(
+        max_length=80,
+        unique=True,
+        help_text="Short name used in the participant link (/s/<slug>/) and in exported data.",
+    )
+    title = models.CharField(max_length=200)
+    description = models.TextField(blank=True, help_text="Shown on the study's welcome page.")
+    status = models.CharField(
+        max_length=10, choices=Status.choices, default=Status.DRAFT, db_index=True
+    )
+    asl_first = models.BooleanField(
+        "ASL first",
+        default=False,
+        help_text="Show each prompt's ASL video first and large, with English text secondary.",
+    )
+    allow_english_only = models.BooleanField(
+        default=True, help_text="Let participants switch the study to English only."
+    )
+    consent_text = models.TextField(blank=True)
+    consent_mode = models.CharField(
+        max_length=10, choices=ConsentMode.choices, default=ConsentMode.IMPLICIT
+    )
+    thank_you_text = models.TextField(
+        blank=True, default="Thank you for taking part in this study."
+    )
+    completion_code = models.CharField(
+        max_length=64,
+        blank=True,
+        help_text="Code shown at the end, e.g. for a recruitment service.",
+    )
+    redirect_url = models.URLField(
+        blank=True,
+        max_length=500,
+        help_text=(
+            "Where to send participants at the end. Recruitment parameters kept from the "
+            "link can be inserted, e.g. https://example.org/done?pid={PROLIFIC_PID}."
+        ),
+    )
+    allowed_devices = models.CharField(max_length=10, choices=Devices.choices, default=Devices.ANY)
+    one_sitting = models.BooleanField(
+        default=False, help_text="The study must be completed in one sitting."
+    )
+    time_limit_minutes = models.PositiveIntegerField(
+        null=True, blank=True, validators=[MinValueValidator(1)], help_text="Empty: no limit."
+    )
+    target_n = models.PositiveIntegerField(
+        "target N", null=True, blank=True, help_text="Number of participants wanted."
+    )
+    allow_back = models.BooleanField(
+        default=True, help_text="Show a Prev button; answers can be changed until the end."
+    )
+    replay_limit = models.PositiveSmallIntegerField(
+        null=True, blank=True, help_text="Plays allowed per clip; empty means unlimited."
+    )
+    require_full_view = models.BooleanField(
+        default=False, help_text="Participants must watch every clip to its end before answering."
+    )
+    randomize_positions = models.BooleanField(
+        default=True,
+        help_text="Swap Clip 1 and Clip 2 at random per participant (seeded, reproducible).",
+    )
+    created_at = models.DateTimeField(auto_now_add=True)
+    updated_at = models.DateTimeField(auto_now=True)
+
+    asl_videos = GenericRelation("studyplatform.AslVideo")
+
+    class Meta:
+        verbose_name_plural = "studies"
+        ordering = ["-created_at", "pk"]
+
+    def __str__(self) -> str:
+        return self.title
+
+    @property
+    def is_accepting_participants(self) -> bool:
+        """Return whether the participant link works (pilot or open)."""
+        return self.status in {self.Status.PILOT, self.Status.OPEN}
+
+
+class Condition(models.Model):
+    """One animation technique compared in a study (e.g. the Variable timing model)."""
+
+    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="conditions")
+    key = models.SlugField(max_length=40, help_text="Name used in exported data, e.g. 'variable'.")
+    label = models.CharField(max_length=100, help_text="Name shown in the admin and reports.")
+    description = models.TextField(blank=True)
+    is_simulated = models.BooleanField(
+        default=False,
+        help_text=(
+            "A simulated stand-in (e.g. a simulated reference performance instead of a "
+            "motion capture recording); labelled 'simulated' everywhere it appears."
+        ),
+    )
+    parameters = models.JSONField(
+        default=dict, blank=True, help_text="Synthesis parameters for this condition (JSON)."
+    )
+    position = models.PositiveSmallIntegerField(default=0)
+
+    class Meta:
+        ordering = ["study", "position", "pk"]
+        constraints = [
+            models.UniqueConstraint(fields=["study", "key"], name="condition_key_unique_in_study")
+        ]
+
+    def __str__(self) -> str:
+        return f"{self.label} (simulated)" if self.is_simulated else self.label
+
+
+class Item(models.Model):
+    """The signed content shown in every condition: a word, a sentence or a sign pair."""
+
+    class Kind(models.TextChoices):
+        WORD = "word", "Fingerspelled word"
+        SENTENCE = "sentence", "Sentence"
+        SIGN_PAIR = "sign_pair", "Sign pair (transition)"
+
+    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="items")
+    key = models.SlugField(
+        max_length=60, help_text="Name used in exported data, e.g. 'GUITAR' or 'S3'."
+    )
+    kind = models.CharField(max_length=10, choices=Kind.choices, default=Kind.WORD)
+    text = models.TextField(help_text="The word, or the sentence as a gloss sequence.")
+    target_text = models.TextField(
+        blank=True,
+        help_text="What intelligibility answers are scored against; empty means the text.",
+    )
+    is_practice = models.BooleanField(default=False, help_text="Used only for practice trials.")
+    parameters = models.JSONField(
+        default=dict, blank=True, help_text="Item-specific synthesis parameters (JSON)."
+    )
+    position = models.PositiveSmallIntegerField(default=0)
+
+    class Meta:
+        ordering = ["study", "position", "pk"]
+        constraints = [
+            models.UniqueConstraint(fields=["study", "key"], name="item_key_unique_in_study")
+        ]
+
+    def __str__(self) -> str:
+        return self.key
+
+    @property
+    def scoring_target(self) -> str:
+        """Return the text intelligibility answers are scored against."""
+        return self.target_text or self.text

@@ -1,0 +1,131 @@
+"""Fixtures shared by the whole suite: researchers, studies, the database in use."""
+
+import os
+
+import pytest
+from django.contrib.auth.models import Group
+from django.db import connection
+
+from studyplatform.actions import do_import_study
+from studyplatform.demo import fingerspelling_timing_study, spine_study
+from studyplatform.signals import RESEARCHERS_GROUP
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _expected_database(django_db_setup, django_db_blocker):
+    """Fail at once when the PostgreSQL run has silently fallen back to SQLite."""
+    if os.environ.get("SIGNSTUDY_EXPECT_POSTGRES") and connection.vendor != "postgresql":
+        pytest.exit(f"Expected PostgreSQL, but the suite runs on {connection.vendor}.", 1)
+
+
+@pytest.fixture
+def make_researcher(django_user_model):
+    """Return a factory of staff users in the Researchers group."""
+
+    def make(username: str):
+        user = django_user_model.objects.create_user(username, password="pw-" + username)
+        user.is_staff = True
+        user.save()
+        user.groups.add(Group.objects.get(name=RESEARCHERS_GROUP))
+        return user
+
+    return make
+
+
+@pytest.fixture
+def alice(make_researcher):
+    return make_researcher("alice")
+
+
+@pytest.fixture
+def bob(make_researcher):
+    return make_researcher("bob")
+
+
+@pytest.fixture
+def fingerspelling(alice):
+    """The demo fingerspelling study, owned by alice."""
+    return do_import_study(fingerspelling_timing_study(), owner=alice).study
+
+
+@pytest.fixture
+def spine(bob):
+    """The demo spine study, owned by bob."""
+    return do_import_study(spine_study(), owner=bob).study
+
+
+@pytest.fixture(autouse=True)
+def _plain_static_storage(settings):
+    """Serve static files without the collected manifest, which tests do not build."""
+    settings.STORAGES = {
+        **settings.STORAGES,
+        "staticfiles": {"BACKEND": "django.contrib.staticfiles.storage.StaticFilesStorage"},
+    }
+
+
+@pytest.fixture(autouse=True)
+def _fast_password_hashing(settings):
+    """Hash test users' passwords cheaply; the real hasher takes ~0.3 s per user."""
+    settings.PASSWORD_HASHERS = ["django.contrib.auth.hashers.MD5PasswordHasher"]
+
+
+CHROMIUM = "/usr/bin/chromium"
+# Flags for a sandboxed, offline machine: no background traffic to Google's hosts.
+CHROMIUM_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """Headless Debian Chromium driven by Playwright; skipped loudly when not installed."""
+    if not os.path.exists(CHROMIUM):
+        message = f"BROWSER TESTS SKIPPED: {CHROMIUM} is missing (run `make test` as root)."
+        if os.environ.get("SIGNSTUDY_REQUIRE_BROWSER"):
+            pytest.fail(message)
+        pytest.skip(message)
+    from playwright.sync_api import sync_playwright
+
+    # Playwright's sync API runs an event loop in the test thread; the ORM calls the
+    # tests make there are still synchronous.
+    os.environ["DJANGO_ALLOW_ASYNC_UNSAFE"] = "true"
+    with sync_playwright() as playwright:
+        chromium = playwright.chromium.launch(
+            executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS
+        )
+        yield chromium
+        chromium.close()
+
+
+@pytest.fixture
+def page(browser):
+    """A fresh browser page; fails the test on any console error or page crash."""
+    context = browser.new_context(viewport={"width": 1280, "height": 900})
+    page = context.new_page()
+    errors = []
+    page.on(
+        "console",
+        lambda msg: (
+            errors.append(f"{msg.text} ({msg.location.get('url')})")
+            if msg.type == "error"
+            else None
+        ),
+    )
+    page.on("pageerror", lambda error: errors.append(str(error)))
+    page.on(
+        "response",
+        lambda response: (
+            errors.append(f"HTTP {response.status} {response.url}")
+            if response.status >= 400
+            else None
+        ),
+    )
+    yield page
+    context.close()
+    assert errors == [], f"browser console errors: {errors}"

@@ -1,0 +1,188 @@
+"""Test that every admin page a researcher uses renders, and the study tools work."""
+
+import json
+
+import pytest
+from django.core.files.uploadedfile import SimpleUploadedFile
+from django.urls import reverse
+
+from studyplatform.actions import Answer, do_enroll_participant, do_save_response
+from studyplatform.exchange import export_study
+from studyplatform.models import Study
+
+pytestmark = pytest.mark.django_db
+
+MODELS = (
+    "study",
+    "question",
+    "block",
+    "trial",
+    "stimulus",
+    "participant",
+    "personalanswer",
+    "response",
+    "mediaevent",
+)
+
+
+@pytest.fixture
+def alice_client(client, alice):
+    client.force_login(alice)
+    return client
+
+
+@pytest.fixture
+def with_data(fingerspelling):
+    participant = do_enroll_participant(fingerspelling)
+    trial = fingerspelling.trials.get(key="cmp-01")
+    do_save_response(participant, trial, trial.questions.get(), Answer(choice_position=1))
+    return participant
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_changelists_render(alice_client, with_data, model):
+    assert alice_client.get(reverse(f"admin:studyplatform_{model}_changelist")).status_code == 200
+
+
+def test_admin_index_lists_the_researchers_sections(alice_client):
+    page = alice_client.get(reverse("admin:index"))
+    assert page.status_code == 200
+    assert "Studies" in page.text and "Trials" in page.text and "Responses" in page.text
+
+
+def test_change_pages_render(alice_client, with_data, fingerspelling):
+    objects = {
+        "study": fingerspelling,
+        "trial": fingerspelling.trials.get(key="cmp-01"),
+        "question": fingerspelling.questions.get(key="age"),
+        "block": fingerspelling.blocks.get(key="comparisons"),
+        "answeroption": fingerspelling.questions.get(key="age").options.first(),
+        "participant": with_data,
+        "response": with_data.responses.get(),
+    }
+    for model, obj in objects.items():
+        page = alice_client.get(reverse(f"admin:studyplatform_{model}_change", args=[obj.pk]))
+        assert page.status_code == 200, model
+
+
+@pytest.mark.parametrize("model", ["study", "question", "block", "trial"])
+def test_add_pages_render(alice_client, fingerspelling, model):
+    assert alice_client.get(reverse(f"admin:studyplatform_{model}_add")).status_code == 200
+
+
+def test_collected_data_cannot_be_edited(alice_client, with_data):
+    url = reverse("admin:studyplatform_response_change", args=[with_data.responses.get().pk])
+    page = alice_client.get(url)
+    assert 'name="_save"' not in page.text
+    assert alice_client.get(reverse("admin:studyplatform_response_add")).status_code == 403
+
+
+def test_study_page_links_preview_and_export(alice_client, fingerspelling):
+    page = alice_client.get(reverse("admin:studyplatform_study_change", args=[fingerspelling.pk]))
+    assert reverse("admin:studyplatform_study_preview", args=[fingerspelling.pk]) in page.text
+    assert reverse("admin:studyplatform_study_export", args=[fingerspelling.pk]) in page.text
+
+
+def test_preview_shows_every_page_in_order(alice_client, fingerspelling):
+    page = alice_client.get(reverse("admin:studyplatform_study_preview", args=[fingerspelling.pk]))
+    assert page.status_code == 200
+    # consent + demographics + instructions + 48 comparisons + closing + thank-you
+    assert page.text.count('class="preview-page"') == 53
+    assert "Page 53 of 53" in page.text
+    assert "Which animation is the most similar to actual fingerspelling" in page.text
+    assert "Clip not rendered yet" in page.text
+    assert "simulated" in page.text
+
+
+def test_export_downloads_the_definition(alice_client, fingerspelling):
+    url = reverse("admin:studyplatform_study_export", args=[fingerspelling.pk])
+    download = alice_client.get(url)
+    assert download["Content-Disposition"] == (
+        'attachment; filename="fingerspelling-timing.study.json"'
+    )
+    assert json.loads(download.content) == json.loads(json.dumps(export_study(fingerspelling)))
+
+
+def test_import_through_the_admin(alice_client, fingerspelling):
+    upload = SimpleUploadedFile(
+        "study.json", json.dumps(export_study(fingerspelling)).encode(), "application/json"
+    )
+    response = alice_client.post(
+        reverse("admin:studyplatform_study_import"), {"definition": upload, "slug": "rerun"}
+    )
+    study = Study.objects.get(slug="rerun")
+    assert response.status_code == 302
+    assert response["Location"] == reverse("admin:studyplatform_study_change", args=[study.pk])
+    assert study.trials.count() == fingerspelling.trials.count()
+
+
+@pytest.mark.parametrize(
+    "content, message",
+    [
+        (
+            b"{not json",
+            "The file is not valid JSON: Expecting property name enclosed in double quotes "
+            "at line 1, column 2.",
+        ),
+        (b"\xff\xfe", "The file is not UTF-8 text."),
+        (
+            b'{"format": "signstudy.study", "version": 1, "study": {"slug": "x"}}',
+            "Not imported: study: title: This field cannot be blank.",
+        ),
+    ],
+)
+def test_import_of_a_bad_file_says_why(alice_client, content, message):
+    before = Study.objects.count()
+    page = alice_client.post(
+        reverse("admin:studyplatform_study_import"),
+        {"definition": SimpleUploadedFile("s.json", content)},
+    )
+    assert page.status_code == 200
+    assert message in page.text
+    assert Study.objects.count() == before
+
+
+def test_duplicate_action(alice_client, fingerspelling):
+    alice_client.post(
+        reverse("admin:studyplatform_study_changelist"),
+        {"action": "duplicate_studies", "_selected_action": [fingerspelling.pk]},
+    )
+    copy = Study.objects.get(slug="fingerspelling-timing-copy")
+    assert copy.status == "draft"
+    assert copy.trials.count() == 51
+
+
+def test_export_of_several_studies_is_a_zip(admin_client, fingerspelling, spine):
+    import io
+    import zipfile
+
+    response = admin_client.post(
+        reverse("admin:studyplatform_study_changelist"),
+        {"action": "export_studies", "_selected_action": [fingerspelling.pk, spine.pk]},
+    )
+    names = zipfile.ZipFile(io.BytesIO(response.content)).namelist()
+    assert sorted(names) == ["fingerspelling-timing.study.json", "spine-motion.study.json"]
+
+
+def test_trial_form_rejects_questions_of_the_wrong_kind(alice_client, fingerspelling):
+    trial = fingerspelling.trials.get(key="cmp-01")
+    age = fingerspelling.questions.get(key="age")
+    page = alice_client.post(
+        reverse("admin:studyplatform_trial_change", args=[trial.pk]),
+        {
+            "study": fingerspelling.pk,
+            "block": trial.block_id,
+            "key": trial.key,
+            "kind": "pairwise",
+            "item": trial.item_id,
+            "condition_a": trial.condition_a_id,
+            "condition_b": trial.condition_b_id,
+            "questions": [age.pk],
+            "position": 0,
+            "studyplatform-aslvideo-content_type-object_id-TOTAL_FORMS": 0,
+            "studyplatform-aslvideo-content_type-object_id-INITIAL_FORMS": 0,
+        },
+    )
+    assert page.status_code == 200
+    assert "A pairwise forced choice trial cannot ask age." in page.text
+    assert list(trial.questions.values_list("key", flat=True)) == ["most-natural"]

@@ -1,0 +1,89 @@
+"""Test the demo: seeding is idempotent, the studies match spec 02 and 03, pages are served."""
+
+import re
+import urllib.request
+from collections import Counter
+from http.cookiejar import CookieJar
+
+import pytest
+from django.core.management import call_command
+
+from studyplatform.models import Study
+
+pytestmark = pytest.mark.django_db
+
+
+@pytest.fixture
+def seeded(settings, tmp_path, capsys):
+    settings.VAR_DIR = tmp_path
+    call_command("seed_demo")
+    return capsys.readouterr().out
+
+
+def test_seed_prints_a_working_admin_login(seeded, client):
+    username = re.search(r"Username:\s+(\S+)", seeded).group(1)
+    password = re.search(r"Password:\s+(\S+)", seeded).group(1)
+    assert client.login(username=username, password=password)
+
+
+def test_seeding_again_changes_nothing_and_prints_the_same_login(seeded, capsys):
+    counts = Study.objects.count()
+    call_command("seed_demo")
+    again = capsys.readouterr().out
+    assert Study.objects.count() == counts == 2
+    assert re.search(r"Password:\s+(\S+)", again).group(1) == re.search(
+        r"Password:\s+(\S+)", seeded
+    ).group(1)
+
+
+def test_fingerspelling_demo_is_the_spec_02_design(seeded):
+    study = Study.objects.get(slug="fingerspelling-timing")
+    assert study.conditions.count() == 4
+    assert study.conditions.get(key="mocap").is_simulated
+    comparisons = study.trials.filter(kind="pairwise")
+    assert comparisons.count() == 48
+    ordered = Counter((t.condition_a.key, t.condition_b.key) for t in comparisons)
+    assert set(ordered.values()) == {4} and len(ordered) == 12
+    cells = Counter(
+        (t.item.key, frozenset((t.condition_a.key, t.condition_b.key))) for t in comparisons
+    )
+    assert len(cells) == 48 and set(cells.values()) == {1}
+    # Seed 000 Fig. 5.2: "2 / 51": demographics, instructions, 48 comparisons, closing.
+    assert study.trials.count() == 51
+
+
+def test_spine_demo_is_the_spec_03_design(seeded):
+    study = Study.objects.get(slug="spine-motion")
+    assert study.asl_first
+    assert study.trials.filter(kind="rating").count() == 5
+    assert study.trials.filter(kind="pairwise").count() == 5
+    naturalness = study.questions.get(key="naturalness")
+    labels = list(naturalness.options.values_list("label", flat=True))
+    assert labels[0] == "Robotic" and labels[-1] == "Very human-like"
+
+
+@pytest.mark.django_db(transaction=True)
+def test_demo_serves_home_and_admin_over_http(live_server, settings, tmp_path, capsys):
+    settings.VAR_DIR = tmp_path
+    call_command("seed_demo")
+    password = re.search(r"Password:\s+(\S+)", capsys.readouterr().out).group(1)
+
+    home = urllib.request.urlopen(live_server.url + "/")
+    assert home.status == 200
+    assert "Perceptual studies of sign-language animation" in home.read().decode()
+
+    opener = urllib.request.build_opener(urllib.request.HTTPCookieProcessor(CookieJar()))
+    login_page = opener.open(live_server.url + "/admin/login/").read().decode()
+    token = re.search(r'name="csrfmiddlewaretoken" value="([^"]+)"', login_page).group(1)
+    form = f"csrfmiddlewaretoken={token}&username=admin&password={password}&next=/admin/"
+    request = urllib.request.Request(
+        live_server.url + "/admin/login/",
+        data=form.encode(),
+        headers={"Referer": live_server.url + "/admin/login/"},
+    )
+    admin_index = opener.open(request)
+    assert admin_index.status == 200
+    assert admin_index.url.endswith("/admin/")
+    studies = opener.open(live_server.url + "/admin/studyplatform/study/").read().decode()
+    assert "ASL fingerspelling timing (demo)" in studies
+    assert "Automated spine motion in ASL sentences (demo)" in studies

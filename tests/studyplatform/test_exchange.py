@@ -1,0 +1,158 @@
+"""Test study definitions: export → import round trips, and bad files that change nothing."""
+
+import copy
+import json
+
+import pytest
+from django.core.files.base import ContentFile
+from django.core.files.storage import default_storage
+
+from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
+from studyplatform.exchange import export_study
+from studyplatform.models import AslVideo, Participant, Question, Study, Trial
+
+pytestmark = pytest.mark.django_db
+
+
+def _without_slug(data):
+    data = copy.deepcopy(data)
+    data["study"].pop("slug")
+    return data
+
+
+def test_export_import_export_is_identical(fingerspelling, bob):
+    exported = export_study(fingerspelling)
+    imported = do_import_study(json.loads(json.dumps(exported)), owner=bob).study
+    assert imported.pk != fingerspelling.pk
+    assert imported.owner == bob
+    assert _without_slug(export_study(imported)) == _without_slug(exported)
+
+
+def test_reimport_after_delete_gives_byte_identical_definition(alice):
+    from studyplatform.demo import spine_study
+
+    study = do_import_study(spine_study(), owner=alice).study
+    before = json.dumps(export_study(study), sort_keys=True)
+    study.delete()
+    again = do_import_study(json.loads(before), owner=alice).study
+    assert json.dumps(export_study(again), sort_keys=True) == before
+
+
+def test_export_keeps_every_part_of_the_demo(fingerspelling):
+    data = export_study(fingerspelling)
+    assert len(data["conditions"]) == 4
+    assert len(data["items"]) == 9
+    assert len([t for t in data["trials"] if t["kind"] == "pairwise"]) == 48
+    mocap = next(c for c in data["conditions"] if c["key"] == "mocap")
+    assert mocap["is_simulated"] is True
+    age = next(q for q in data["questions"] if q["key"] == "age")
+    assert [o["label"] for o in age["options"]][-1] == "66+"
+
+
+def test_asl_videos_travel_with_the_definition(fingerspelling, bob, settings, tmp_path):
+    settings.MEDIA_ROOT = tmp_path
+    question = fingerspelling.questions.get(key="most-natural")
+    name = default_storage.save("asl/most-natural.mp4", ContentFile(b"fake mp4 bytes"))
+    AslVideo.objects.create(target=question, field_name="text", video=name)
+    AslVideo.objects.create(target=fingerspelling, field_name="consent_text", video=name)
+    exported = export_study(fingerspelling)
+    imported = do_import_study(exported, owner=bob).study
+    assert imported.asl_videos.get().field_name == "consent_text"
+    copied = imported.questions.get(key="most-natural").asl_videos.get()
+    assert copied.video.name == name
+    assert _without_slug(export_study(imported)) == _without_slug(exported)
+
+
+def test_missing_asl_video_file_is_left_out_with_a_warning(fingerspelling, bob, settings, tmp_path):
+    settings.MEDIA_ROOT = tmp_path
+    data = export_study(fingerspelling)
+    data["asl_videos"] = [
+        {
+            "target": ["study", None],
+            "field_name": "consent_text",
+            "transcript": "",
+            "video": "asl/not-here.mp4",
+            "poster": "",
+        }
+    ]
+    result = do_import_study(data, owner=bob)
+    assert result.warnings == (
+        "asl_videos[0]: video file 'asl/not-here.mp4' is not in media; left out.",
+    )
+    assert not result.study.asl_videos.exists()
+
+
+def test_slug_taken_gets_a_free_variant(fingerspelling, bob):
+    copy_one = do_import_study(export_study(fingerspelling), owner=bob).study
+    copy_two = do_import_study(export_study(fingerspelling), owner=bob).study
+    assert copy_one.slug == "fingerspelling-timing-2"
+    assert copy_two.slug == "fingerspelling-timing-3"
+
+
+def test_explicit_slug_taken_is_an_error(fingerspelling, bob):
+    with pytest.raises(StudyImportError, match=r"study: slug: Study with this Slug already exists"):
+        do_import_study(export_study(fingerspelling), owner=bob, slug=fingerspelling.slug)
+
+
+def test_duplicate_is_a_draft_copy_owned_by_who_asked(fingerspelling, bob):
+    Participant.objects.create(study=fingerspelling)
+    copy_ = do_duplicate_study(fingerspelling, owner=bob)
+    assert copy_.status == Study.Status.DRAFT
+    assert copy_.owner == bob
+    assert copy_.slug == "fingerspelling-timing-copy"
+    assert copy_.title == "ASL fingerspelling timing (demo) (copy)"
+    assert copy_.trials.count() == fingerspelling.trials.count()
+    assert not copy_.participants.exists()
+
+
+BAD_DEFINITIONS = [
+    (lambda d: d.update(format="something-else"), "Not a study definition"),
+    (lambda d: d.update(version=99), "Unsupported study definition version 99"),
+    (lambda d: d["study"].update(colour="red"), r"study: unknown field\(s\) colour"),
+    (
+        lambda d: d["study"].update(status="maybe"),
+        "study: status: Value 'maybe' is not a valid choice",
+    ),
+    (
+        lambda d: d["conditions"].append(dict(d["conditions"][0])),
+        r"conditions\[4\]: __all__: .*already exists",
+    ),
+    (
+        lambda d: d["trials"][5].update(condition_a="telepathy"),
+        r"trials\[5\].condition_a: unknown condition 'telepathy'",
+    ),
+    (
+        lambda d: d["trials"][5].update(questions=["age"]),
+        r"trials\[5\].questions: A pairwise forced choice trial cannot ask age",
+    ),
+    (
+        lambda d: d["trials"][5].update(condition_b=None),
+        r"trials\[5\]: condition_b: A comparison needs",
+    ),
+    (
+        lambda d: d["trials"][5].update(block="nowhere"),
+        r"trials\[5\].block: unknown block 'nowhere'",
+    ),
+    (
+        lambda d: d["questions"][0]["options"].append({"value": 1, "label": "again"}),
+        r"questions\[0\].options\[6\]",
+    ),
+    (lambda d: d.update(items="GUITAR"), "items: expected a list"),
+]
+
+
+@pytest.mark.parametrize("break_it, message", BAD_DEFINITIONS)
+def test_bad_definition_names_the_problem_and_saves_nothing(alice, break_it, message):
+    from studyplatform.demo import fingerspelling_timing_study
+
+    data = fingerspelling_timing_study()
+    break_it(data)
+    counts = (Study.objects.count(), Trial.objects.count(), Question.objects.count())
+    with pytest.raises(StudyImportError, match=message):
+        do_import_study(data, owner=alice)
+    assert (Study.objects.count(), Trial.objects.count(), Question.objects.count()) == counts
+
+
+def test_not_an_object_is_rejected(alice):
+    with pytest.raises(StudyImportError, match="must be a JSON object"):
+        do_import_study(["a", "list"], owner=alice)

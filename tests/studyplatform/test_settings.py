@@ -1,0 +1,79 @@
+"""Test that settings come from the environment with safe defaults."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from django.db import connection
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _settings_in_subprocess(env: dict[str, str], expression: str) -> str:
+    code = (
+        "import django, os\n"
+        "os.environ['DJANGO_SETTINGS_MODULE'] = 'studyplatform.settings'\n"
+        "from django.conf import settings\n"
+        f"print({expression})\n"
+    )
+    clean_env = {
+        k: v for k, v in os.environ.items() if not k.startswith(("SIGNSTUDY_", "DATABASE_URL"))
+    }
+    result = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=ROOT,
+        env={**clean_env, **env},
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return result.stdout.strip()
+
+
+def test_defaults_are_safe(tmp_path):
+    env = {"SIGNSTUDY_VAR_DIR": str(tmp_path)}
+    assert _settings_in_subprocess(env, "settings.DEBUG") == "False"
+    assert _settings_in_subprocess(env, "settings.DATABASES['default']['ENGINE']") == (
+        "django.db.backends.sqlite3"
+    )
+
+
+def test_secret_key_is_generated_once_and_kept(tmp_path):
+    env = {"SIGNSTUDY_VAR_DIR": str(tmp_path)}
+    first = _settings_in_subprocess(env, "settings.SECRET_KEY")
+    second = _settings_in_subprocess(env, "settings.SECRET_KEY")
+    assert first == second and len(first) >= 50
+    key_file = tmp_path / "secret_key"
+    assert key_file.read_text() == first
+    assert oct(key_file.stat().st_mode & 0o777) == "0o600"
+
+
+def test_secret_key_file_is_never_committed():
+    ignored = subprocess.run(["git", "check-ignore", "-q", "var/secret_key"], cwd=ROOT, check=False)
+    assert ignored.returncode == 0
+
+
+def test_database_url_selects_postgresql(tmp_path):
+    env = {"SIGNSTUDY_VAR_DIR": str(tmp_path), "DATABASE_URL": "postgres://u@db.example:5433/x"}
+    assert (
+        _settings_in_subprocess(
+            env, "settings.DATABASES['default']['ENGINE'], settings.DATABASES['default']['PORT']"
+        )
+        == "django.db.backends.postgresql 5433"
+    )
+
+
+def test_debug_on_when_asked(tmp_path):
+    env = {"SIGNSTUDY_VAR_DIR": str(tmp_path), "SIGNSTUDY_DEBUG": "1"}
+    assert _settings_in_subprocess(env, "settings.DEBUG") == "True"
+
+
+@pytest.mark.django_db
+def test_sqlite_runs_in_wal_mode():
+    if connection.vendor != "sqlite":
+        pytest.skip("WAL mode concerns SQLite only; this run uses " + connection.vendor)
+    with connection.cursor() as cursor:
+        cursor.execute("PRAGMA journal_mode")
+        assert cursor.fetchone()[0] == "wal"
