@@ -81,7 +81,7 @@ class TrialAdmin(StudyScopedMixin, admin.ModelAdmin):
         "is_attention_check",
         "study",
     )
-    list_filter = (("study", OwnStudyFilter), "kind", "is_attention_check", "block__kind")
+    list_filter = (("study", OwnStudyFilter), "kind", "is_attention_check")
     search_fields = ("key", "title", "item__key")
     filter_horizontal = ("questions",)
     inlines = (AslVideoInline,)

@@ -36,7 +36,7 @@ class Study(models.Model):
     slug = models.SlugField(
         max_length=80,
         unique=True,
-        help_text="Short name used in the participant link (/s/<slug>/) and in exported data.",
+        help_text="Short name used in the participant link and in exported data.",
     )
     title = models.CharField(max_length=200)
     description = models.TextField(blank=True, help_text="Shown on the study's welcome page.")
@@ -49,7 +49,9 @@ class Study(models.Model):
         help_text="Show each prompt's ASL video first and large, with English text secondary.",
     )
     allow_english_only = models.BooleanField(
-        default=True, help_text="Let participants switch the study to English only."
+        "allow English only",
+        default=True,
+        help_text="Let participants switch the study to English only.",
     )
     consent_text = models.TextField(blank=True)
     consent_mode = models.CharField(
