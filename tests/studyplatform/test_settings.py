@@ -52,6 +52,8 @@ def test_secret_key_is_generated_once_and_kept(tmp_path):
 
 def test_secret_key_file_is_never_committed():
     ignored = subprocess.run(["git", "check-ignore", "-q", "var/secret_key"], cwd=ROOT, check=False)
+    if ignored.returncode == 128:
+        pytest.skip("not a git checkout")
     assert ignored.returncode == 0
 
 
