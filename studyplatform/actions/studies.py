@@ -70,6 +70,19 @@ def _lookup(table: dict[str, Any], key: Any, kind: str, where: str) -> Any:
         raise StudyImportError(f"{where}: unknown {kind} {key!r}.") from None
 
 
+def _create_keyed(
+    data: dict[str, Any], name: str, model: type[models.Model], fields: tuple[str, ...], study
+) -> dict[str, Any]:
+    """Create the study's *name* rows of *model*; return them by key."""
+    created = {}
+    for index, row in enumerate(_rows(data, name)):
+        where = f"{name}[{index}]"
+        obj = model(study=study, **_pick(row, fields, where))
+        _save(obj, where)
+        created[obj.key] = obj
+    return created
+
+
 def free_slug(base: str) -> str:
     """Return *base*, or *base*-2, -3 … whichever no study uses yet."""
     base = base[:72]
@@ -121,19 +134,8 @@ def do_import_study(
         study = Study(owner=owner, **values)
         _save(study, "study")
 
-        conditions: dict[str, Condition] = {}
-        for index, row in enumerate(_rows(data, "conditions")):
-            where = f"conditions[{index}]"
-            condition = Condition(study=study, **_pick(row, exchange.CONDITION_FIELDS, where))
-            _save(condition, where)
-            conditions[condition.key] = condition
-
-        items: dict[str, Item] = {}
-        for index, row in enumerate(_rows(data, "items")):
-            where = f"items[{index}]"
-            item = Item(study=study, **_pick(row, exchange.ITEM_FIELDS, where))
-            _save(item, where)
-            items[item.key] = item
+        conditions = _create_keyed(data, "conditions", Condition, exchange.CONDITION_FIELDS, study)
+        items = _create_keyed(data, "items", Item, exchange.ITEM_FIELDS, study)
 
         questions: dict[str, Question] = {}
         options: dict[str, AnswerOption] = {}
@@ -154,12 +156,7 @@ def do_import_study(
                 _save(option, option_where)
                 options[f"{question.key}:{option.value}"] = option
 
-        blocks: dict[str, Block] = {}
-        for index, row in enumerate(_rows(data, "blocks")):
-            where = f"blocks[{index}]"
-            block = Block(study=study, **_pick(row, exchange.BLOCK_FIELDS, where))
-            _save(block, where)
-            blocks[block.key] = block
+        blocks = _create_keyed(data, "blocks", Block, exchange.BLOCK_FIELDS, study)
 
         trials: dict[str, Trial] = {}
         tables = {
