@@ -1,0 +1,75 @@
+"""One-way repeated-measures ANOVA with Mauchly's test and Greenhouse–Geisser correction."""
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+from statsmodels.stats.anova import AnovaRM
+
+from analysis.results import RmAnovaResult
+
+
+def _orthonormal_contrasts(k: int) -> np.ndarray:
+    """Return a (k−1, k) matrix of orthonormal contrasts (rows orthogonal to ones)."""
+    # Helmert-style contrasts, normalized: any orthonormal basis of the contrast space
+    # gives the same sphericity statistics.
+    contrasts = np.zeros((k - 1, k))
+    for row in range(k - 1):
+        contrasts[row, : row + 1] = 1.0
+        contrasts[row, row + 1] = -(row + 1)
+        contrasts[row] /= np.linalg.norm(contrasts[row])
+    return contrasts
+
+
+def sphericity(scores: np.ndarray) -> tuple[float, float, float]:
+    """Return Mauchly's W, its p-value, and the Greenhouse–Geisser epsilon.
+
+    *scores* is (n_subjects, k_levels). Formulas: Mauchly (1940); Greenhouse & Geisser
+    (1959) ε = tr(S)² / ((k−1) tr(S²)) on the contrast covariance S.
+    """
+    n, k = scores.shape
+    if k < 3:
+        return 1.0, 1.0, 1.0  # two levels: sphericity holds trivially
+    contrasts = _orthonormal_contrasts(k)
+    covariance = contrasts @ np.cov(scores, rowvar=False, ddof=1) @ contrasts.T
+    p = k - 1
+    trace = np.trace(covariance)
+    epsilon = trace**2 / (p * np.trace(covariance @ covariance)) if trace > 0 else 1.0
+    determinant = np.linalg.det(covariance)
+    if trace <= 0 or determinant <= 0 or n - 1 < p:
+        return float("nan"), float("nan"), float(min(max(epsilon, 1 / p), 1.0))
+    w = determinant / (trace / p) ** p
+    factor = (n - 1) - (2 * p**2 + p + 2) / (6 * p)
+    chi2 = -factor * np.log(w)
+    dof = p * (p + 1) / 2 - 1
+    return float(w), float(stats.chi2.sf(chi2, dof)), float(min(max(epsilon, 1 / p), 1.0))
+
+
+def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
+    """Test whether the level means of a subjects × levels table differ.
+
+    The F test is statsmodels' ``AnovaRM``; sphericity and effect size are added:
+    ``eta_p2 = SS_effect / (SS_effect + SS_error) = F·df1 / (F·df1 + df2)``.
+    """
+    scores = scores.dropna()
+    n, k = scores.shape
+    if n < 2 or k < 2:
+        raise ValueError(f"A repeated-measures ANOVA needs ≥ 2 subjects and levels; got {n}×{k}.")
+    long = scores.rename_axis(index="subject", columns="level").stack().rename("value")
+    table = AnovaRM(long.reset_index(), "value", "subject", within=["level"]).fit().anova_table
+    f_value = float(table["F Value"].iloc[0])
+    df_num = float(table["Num DF"].iloc[0])
+    df_den = float(table["Den DF"].iloc[0])
+    w, w_p, epsilon = sphericity(scores.to_numpy(dtype=float))
+    return RmAnovaResult(
+        statistic=f_value,
+        df_num=df_num,
+        df_den=df_den,
+        pvalue=float(table["Pr > F"].iloc[0]),
+        epsilon_gg=epsilon,
+        pvalue_gg=float(stats.f.sf(f_value, epsilon * df_num, epsilon * df_den)),
+        eta_p2=f_value * df_num / (f_value * df_num + df_den),
+        mauchly_w=w,
+        mauchly_pvalue=w_p,
+        nobs=n,
+        levels=tuple(str(level) for level in scores.columns),
+    )

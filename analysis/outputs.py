@@ -1,0 +1,99 @@
+"""Write a Report to disk: results.json, tables (CSV, LaTeX, Markdown), figures, HTML."""
+
+import json
+from pathlib import Path
+
+import pandas as pd
+
+from analysis import figures
+from analysis.report import Report, results_json
+from analysis.results import format_p
+
+
+def tables(report: Report) -> dict[str, pd.DataFrame]:
+    """Return the report's tables as data frames, by file name stem."""
+    data = results_json(report)
+    found: dict[str, pd.DataFrame] = {}
+    pairwise = data["pairwise"]
+    if pairwise:
+        found["pairs"] = pd.DataFrame(pairwise["pairs"])
+        found["items"] = pd.DataFrame(pairwise["items"])
+        found["conditions"] = pd.DataFrame(pairwise["conditions"])
+        if pairwise["posthoc"]:
+            found["posthoc"] = pd.DataFrame(pairwise["posthoc"]).drop(columns=["ci", "apa"])
+    if data["ratings"]:
+        found["ratings"] = pd.DataFrame(data["ratings"])
+    if data["rating_comparisons"]:
+        found["rating_comparisons"] = pd.DataFrame(data["rating_comparisons"])
+    if data["intelligibility"]:
+        found["intelligibility"] = pd.DataFrame(data["intelligibility"])
+    return found
+
+
+def _latex(frame: pd.DataFrame, name: str) -> str:
+    """Return a booktabs table (pandas writes \\toprule, \\midrule and \\bottomrule)."""
+    latex = frame.to_latex(
+        index=False,
+        float_format=lambda value: f"{value:.4g}",
+        caption=name.replace("_", " ").capitalize(),
+        label=f"tab:{name}",
+        escape=True,
+    )
+    return latex.strip() + "\n"
+
+
+def write_report(
+    report: Report, frame: pd.DataFrame, out_dir: str | Path, *, draw_figures: bool = True
+) -> list[str]:
+    """Write every output of *report* into *out_dir*; return the file names written.
+
+    *frame* is the table after exclusions, for the figures that show raw ratings.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    data = results_json(report)
+    (out / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n")
+    written.append("results.json")
+    table_files = {}
+    for name, table in tables(report).items():
+        table.to_csv(out / f"{name}.csv", index=False)
+        (out / f"{name}.tex").write_text(_latex(table, name))
+        (out / f"{name}.md").write_text(table.to_markdown(index=False, floatfmt=".4g") + "\n")
+        table_files[name] = table
+        written += [f"{name}.csv", f"{name}.tex", f"{name}.md"]
+    figure_files = []
+    if draw_figures:
+        figure_files += figures.condition_rates_figure(report, out)
+        figure_files += figures.pairwise_matrix_figure(report, out)
+        figure_files += figures.ratings_figure(report, frame, out)
+        written += figure_files
+    (out / "report.html").write_text(render_html(report, data, table_files, figure_files))
+    written.append("report.html")
+    return written
+
+
+def render_html(report: Report, data: dict, table_files: dict, figure_files: list[str]) -> str:
+    """Render the one-page HTML report from the results (nothing is recomputed here)."""
+    from jinja2 import Environment, PackageLoader, select_autoescape
+
+    environment = Environment(
+        loader=PackageLoader("analysis", "templates"), autoescape=select_autoescape(["html"])
+    )
+    environment.filters["p"] = format_p
+    environment.filters["pct"] = lambda value: "–" if value is None else f"{100 * value:.2f} %"
+    environment.filters["num"] = lambda value, digits=3: (
+        "–" if value is None else f"{value:.{digits}f}"
+    )
+    template = environment.get_template("report.html.j2")
+    return template.render(
+        report=report,
+        data=data,
+        tables={
+            name: frame.to_html(
+                index=False, border=0, float_format=lambda v: f"{v:.4g}", na_rep="–"
+            )
+            for name, frame in table_files.items()
+        },
+        figures=[name for name in figure_files if name.endswith(".png")],
+    )

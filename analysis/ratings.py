@@ -1,0 +1,100 @@
+"""Summarize Likert ratings and compare conditions on them (spec 07 "Ratings")."""
+
+import dataclasses
+from itertools import combinations
+
+import numpy as np
+import pandas as pd
+
+from analysis.results import RatingComparison, RatingSummary
+from analysis.tidy import ROW_FLAGS, split_flags
+from analysis.within import adjust, paired_ttest, wilcoxon_test
+
+GROUP = ["item", "condition_a", "question"]
+
+
+def rating_rows(frame: pd.DataFrame) -> pd.DataFrame:
+    """Return the rating rows that enter the analysis (no practice or attention checks)."""
+    flagged = frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
+    return frame[frame["kind"].eq("rating") & ~flagged]
+
+
+def summarize_ratings(frame: pd.DataFrame) -> tuple[RatingSummary, ...]:
+    """Describe each item × condition × question: n, median, quartiles, mean, SD, % ≥ 3, % ≥ 4.
+
+    Quartiles use linear interpolation (numpy's default, R type 7). Seed 003 §5.5
+    reports "% rated 3 or above" and "% rated 4–5".
+    """
+    rows = rating_rows(frame)
+    if rows.empty:
+        return ()
+    grouped = rows.groupby(GROUP, sort=True)["rating"]
+    table = grouped.agg(
+        n="size",
+        median="median",
+        q1=lambda r: np.percentile(r, 25),
+        q3=lambda r: np.percentile(r, 75),
+        mean="mean",
+        sd=lambda r: r.std(ddof=1) if len(r) > 1 else float("nan"),
+        pct_ge3=lambda r: 100 * (r >= 3).mean(),
+        pct_ge4=lambda r: 100 * (r >= 4).mean(),
+    ).reset_index()
+    return tuple(
+        RatingSummary(
+            item=row.item,
+            condition=row.condition_a,
+            question=row.question,
+            n=int(row.n),
+            median=float(row.median),
+            q1=float(row.q1),
+            q3=float(row.q3),
+            mean=float(row.mean),
+            sd=float(row.sd),
+            pct_ge3=float(row.pct_ge3),
+            pct_ge4=float(row.pct_ge4),
+        )
+        for row in table.itertuples(index=False)
+    )
+
+
+def compare_ratings(frame: pd.DataFrame, correction: str = "holm") -> tuple[RatingComparison, ...]:
+    """Compare every two conditions that rated the same item and question, per participant.
+
+    Wilcoxon signed-rank and paired t on participants who rated both (e.g. spine on vs
+    off); p-values corrected across all comparisons.
+    """
+    rows = rating_rows(frame)
+    comparisons = []
+    for (item, question), group in rows.groupby(["item", "question"], sort=True):
+        # A participant's repeated ratings of one cell are averaged.
+        wide = group.pivot_table(
+            index="participant", columns="condition_a", values="rating", aggfunc="mean"
+        )
+        for a, b in combinations(sorted(wide.columns), 2):
+            paired = wide[[a, b]].dropna()
+            if len(paired) < 2:
+                continue
+            x, y = paired[a].to_numpy(), paired[b].to_numpy()
+            comparisons.append(
+                RatingComparison(
+                    item=item,
+                    question=question,
+                    a=a,
+                    b=b,
+                    nobs=len(paired),
+                    wilcoxon=wilcoxon_test(x, y, (a, b)),
+                    ttest=paired_ttest(x, y, (a, b)),
+                )
+            )
+    if not comparisons:
+        return ()
+    wilcoxon_adjusted = adjust([c.wilcoxon.pvalue for c in comparisons], correction)
+    ttest_adjusted = adjust([c.ttest.pvalue for c in comparisons], correction)
+    return tuple(
+        dataclasses.replace(
+            c,
+            wilcoxon=dataclasses.replace(c.wilcoxon, pvalue_adjusted=float(pw)),
+            ttest=dataclasses.replace(c.ttest, pvalue_adjusted=float(pt)),
+        )
+        for c, pw, pt in zip(comparisons, wilcoxon_adjusted, ttest_adjusted, strict=True)
+    )

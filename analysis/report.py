@@ -1,0 +1,231 @@
+"""Run every analysis on a tidy table and collect the results in one Report object."""
+
+import dataclasses
+import platform
+from collections.abc import Sequence
+from importlib import metadata
+from typing import Any
+
+import pandas as pd
+
+from analysis.exclusions import ExclusionRules, apply_exclusions
+from analysis.intelligibility import score_intelligibility
+from analysis.pairwise import analyze_pairwise
+from analysis.ratings import compare_ratings, summarize_ratings
+from analysis.results import (
+    ExclusionReport,
+    IntelligibilityScore,
+    PairwiseAnalysis,
+    RatingComparison,
+    RatingSummary,
+    Result,
+    plain,
+)
+from analysis.tidy import check_conditions
+
+SOFTWARE = ("numpy", "scipy", "pandas", "statsmodels", "matplotlib")
+
+
+@dataclasses.dataclass(frozen=True)
+class ReportOptions(Result):
+    """How to analyse: condition order, ties, correction, exclusions."""
+
+    conditions: tuple[str, ...] | None = None
+    tie_handling: str = "exclude"
+    correction: str = "holm"
+    comparative_points: int = 5
+    fuzzy_scoring: bool = True
+    exclusions: ExclusionRules = dataclasses.field(default_factory=ExclusionRules)
+
+
+@dataclasses.dataclass(frozen=True)
+class Report(Result):
+    """All results of one analysis run, with what is needed to reproduce it."""
+
+    source: str
+    studies: tuple[str, ...]
+    design: dict[str, Any]
+    exclusions: ExclusionReport
+    pairwise: PairwiseAnalysis | None
+    ratings: tuple[RatingSummary, ...]
+    rating_comparisons: tuple[RatingComparison, ...]
+    intelligibility: tuple[IntelligibilityScore, ...]
+    options: ReportOptions
+    software: dict[str, str]
+
+
+def software_versions() -> dict[str, str]:
+    """Return the versions of Python and the libraries the numbers come from."""
+    versions = {"python": platform.python_version()}
+    for package in SOFTWARE:
+        versions[package] = metadata.version(package)
+    return versions
+
+
+def _design(frame: pd.DataFrame) -> dict[str, Any]:
+    conditions = sorted((set(frame["condition_a"]) | set(frame["condition_b"])) - {""})
+    return {
+        "participants": int(frame["participant"].nunique()),
+        "rows": len(frame),
+        "rows_by_kind": {k: int(v) for k, v in frame["kind"].value_counts().sort_index().items()},
+        "conditions": conditions,
+        "items": sorted(set(frame["item"]) - {""}),
+        "questions": sorted(set(frame.loc[frame["kind"] == "rating", "question"]) - {""}),
+    }
+
+
+def build_report(
+    frame: pd.DataFrame, options: ReportOptions = ReportOptions(), source: str = "responses"
+) -> Report:
+    """Apply the exclusions, then run the pairwise, rating and intelligibility analyses."""
+    if options.conditions:
+        check_conditions(frame, options.conditions, source)
+    kept, exclusions = apply_exclusions(frame, options.exclusions)
+    pairwise = ratings = comparisons = scores = None
+    if not kept.empty:
+        pairwise = analyze_pairwise(
+            kept,
+            conditions=options.conditions,
+            tie_handling=options.tie_handling,
+            correction=options.correction,
+            comparative_points=options.comparative_points,
+        )
+        ratings = summarize_ratings(kept)
+        comparisons = compare_ratings(kept, options.correction)
+        scores = score_intelligibility(kept, options.fuzzy_scoring)
+    return Report(
+        source=source,
+        studies=tuple(sorted(set(frame["study"]) - {""})),
+        design=_design(kept) if not kept.empty else {"participants": 0, "rows": 0},
+        exclusions=exclusions,
+        pairwise=pairwise,
+        ratings=ratings or (),
+        rating_comparisons=comparisons or (),
+        intelligibility=scores or (),
+        options=options,
+        software=software_versions(),
+    )
+
+
+def _pair_row(pair) -> dict[str, Any]:
+    return {
+        **({"item": pair.item} if pair.item is not None else {}),
+        "a": pair.a,
+        "b": pair.b,
+        "a_wins": pair.a_wins,
+        "b_wins": pair.b_wins,
+        "ties": pair.ties,
+        "n": pair.nobs,
+        "pct_a": None if pair.nobs == 0 else 100 * pair.statistic,
+        "p_two_sided": pair.pvalue,
+        "p_one_sided_majority": pair.pvalue_one_sided_majority,
+        "majority": pair.majority,
+        "p_adjusted": pair.pvalue_adjusted,
+    }
+
+
+def results_json(report: Report) -> dict[str, Any]:
+    """Render *report* in the documented results.json layout (docs/tidy-format.md)."""
+    pairwise = report.pairwise
+    correction = report.options.correction
+    data: dict[str, Any] = {
+        "source": report.source,
+        "studies": list(report.studies),
+        "design": report.design,
+        "exclusions": report.exclusions.to_dict(),
+        "options": report.options.to_dict(),
+        "software": report.software,
+        "pairwise": None,
+        "ratings": [r.to_dict() for r in report.ratings],
+        "rating_comparisons": [
+            {
+                "item": c.item,
+                "question": c.question,
+                "a": c.a,
+                "b": c.b,
+                "n": c.nobs,
+                "wilcoxon_W": c.wilcoxon.statistic,
+                "wilcoxon_p": c.wilcoxon.pvalue,
+                "wilcoxon_p_adjusted": c.wilcoxon.pvalue_adjusted,
+                "rank_biserial": c.wilcoxon.rank_biserial,
+                "t": c.ttest.statistic,
+                "df": c.ttest.df,
+                "t_p": c.ttest.pvalue,
+                "t_p_adjusted": c.ttest.pvalue_adjusted,
+                "dz": c.ttest.dz,
+            }
+            for c in report.rating_comparisons
+        ],
+        "intelligibility": [s.to_dict() for s in report.intelligibility],
+    }
+    if pairwise is not None:
+        anova = pairwise.rm_anova
+        data["pairwise"] = {
+            "participants": pairwise.participants,
+            "judgements": pairwise.judgements,
+            "ties": pairwise.ties,
+            "tie_handling": pairwise.tie_handling,
+            "correction": correction,
+            "notes": list(pairwise.notes),
+            "pairs": [_pair_row(p) for p in pairwise.pairs],
+            "items": [_pair_row(p) for p in pairwise.items],
+            "conditions": [
+                {
+                    "condition": c.condition,
+                    "shown": c.shown,
+                    "chosen": c.chosen,
+                    "win_rate": c.win_rate,
+                    "share": c.share,
+                    "mean_participant_rate": c.mean_participant_rate,
+                    "sem": c.sem,
+                    "n_participants": c.nobs,
+                }
+                for c in pairwise.conditions
+            ],
+            "rm_anova": None
+            if anova is None
+            else {
+                "F": anova.statistic,
+                "df_num": anova.df_num,
+                "df_den": anova.df_den,
+                "p": anova.pvalue,
+                "p_gg": anova.pvalue_gg,
+                "epsilon_gg": anova.epsilon_gg,
+                "eta_p2": anova.eta_p2,
+                "mauchly_W": anova.mauchly_w,
+                "mauchly_p": anova.mauchly_pvalue,
+                "n": anova.nobs,
+                "apa": anova.apa(),
+            },
+            "posthoc": [
+                {
+                    "a": t.a,
+                    "b": t.b,
+                    "t": t.statistic,
+                    "df": t.df,
+                    "p": t.pvalue,
+                    f"p_{correction}": t.pvalue_adjusted,
+                    "dz": t.dz,
+                    "mean_difference": t.mean_difference,
+                    "ci": list(t.ci),
+                    "apa": t.apa(),
+                }
+                for t in pairwise.posthoc
+            ],
+            "friedman": None if pairwise.friedman is None else pairwise.friedman.to_dict(),
+            "wilcoxon": [w.to_dict() for w in pairwise.wilcoxon],
+            "bradley_terry": None
+            if pairwise.bradley_terry is None
+            else pairwise.bradley_terry.to_dict(),
+            "position_bias": None
+            if pairwise.position_bias is None
+            else {**pairwise.position_bias.to_dict(), "apa": pairwise.position_bias.apa()},
+        }
+    return plain(data)
+
+
+def condition_names(report: Report) -> Sequence[str]:
+    """Return the conditions of the pairwise analysis in report order."""
+    if report.pairwise is None:
+        return ()
+    return [c.condition for c in report.pairwise.conditions]

@@ -1,0 +1,296 @@
+"""Frozen result objects returned by every analysis; reports render them, never recompute.
+
+Each has ``to_dict()`` (JSON-ready) and, where a test is involved, ``apa()`` giving the
+APA-style sentence fragment a paper uses.
+"""
+
+import dataclasses
+import math
+from decimal import ROUND_HALF_UP, Decimal
+from typing import Any
+
+
+def plain(value: Any) -> Any:
+    """Convert numpy scalars, tuples and NaN to JSON-ready Python values."""
+    if isinstance(value, dict):
+        return {key: plain(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [plain(item) for item in value]
+    if hasattr(value, "item") and not isinstance(value, str):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+class Result:
+    """Mixin giving dataclass results a JSON-ready ``to_dict``."""
+
+    def to_dict(self) -> dict[str, Any]:
+        return plain(dataclasses.asdict(self))
+
+
+def format_p(pvalue: float) -> str:
+    """Format a p-value the APA way: "p = .043", "p < .001" (no leading zero)."""
+    if pvalue is None or not math.isfinite(pvalue):
+        return "p = n/a"
+    if pvalue < 0.001:
+        return "p < .001"
+    return "p = " + f"{pvalue:.3f}".lstrip("0")
+
+
+def round_half_up(value: float, digits: int = 2) -> float:
+    """Round like published tables do (15.625 → 15.63), not to even like round()."""
+    quantum = Decimal(1).scaleb(-digits)
+    return float(Decimal(repr(value)).quantize(quantum, rounding=ROUND_HALF_UP))
+
+
+def _two(value: float) -> str:
+    return f"{value:.2f}".replace("-0.00", "0.00")
+
+
+def _df(value: float) -> str:
+    return f"{value:g}" if float(value).is_integer() else f"{value:.2f}"
+
+
+@dataclasses.dataclass(frozen=True)
+class PairComparison(Result):
+    """Exact binomial test of one unordered pair (opposite orders tallied together).
+
+    ``statistic`` is a's share of the decisive judgements; ties ("none") are
+    excluded from the test, or split when the analysis was asked to.
+    """
+
+    a: str
+    b: str
+    a_wins: int
+    b_wins: int
+    ties: int
+    nobs: int
+    statistic: float
+    pvalue: float
+    pvalue_one_sided_majority: float
+    majority: str | None
+    pvalue_adjusted: float
+    ci: tuple[float, float]
+    item: str | None = None
+
+    def apa(self) -> str:
+        return (
+            f"{self.a} vs {self.b}: {self.a_wins}/{self.nobs} "
+            f"({100 * self.statistic:.1f} %), exact binomial {format_p(self.pvalue)} two-sided, "
+            f"{format_p(self.pvalue_one_sided_majority)} one-sided"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
+class ConditionRate(Result):
+    """How often one condition was chosen: per appearance and as a share of choices."""
+
+    condition: str
+    shown: int
+    chosen: int
+    win_rate: float
+    share: float
+    mean_participant_rate: float
+    sem: float
+    nobs: int
+
+
+@dataclasses.dataclass(frozen=True)
+class RmAnovaResult(Result):
+    """One-way repeated-measures ANOVA with sphericity test and correction.
+
+    ``pvalue_gg`` uses the Greenhouse–Geisser epsilon; ``eta_p2`` is partial η².
+    """
+
+    statistic: float
+    df_num: float
+    df_den: float
+    pvalue: float
+    epsilon_gg: float
+    pvalue_gg: float
+    eta_p2: float
+    mauchly_w: float
+    mauchly_pvalue: float
+    nobs: int
+    levels: tuple[str, ...]
+
+    def apa(self) -> str:
+        text = (
+            f"F({_df(self.df_num)}, {_df(self.df_den)}) = {self.statistic:.2f}, "
+            f"{format_p(self.pvalue)}, η²p = {_two(self.eta_p2).lstrip('0')}"
+        )
+        if self.mauchly_pvalue is not None and self.mauchly_pvalue < 0.05:
+            text += f" (Greenhouse–Geisser ε = {self.epsilon_gg:.2f}, {format_p(self.pvalue_gg)})"
+        return text
+
+
+@dataclasses.dataclass(frozen=True)
+class PairedTTest(Result):
+    """Paired t-test of a − b with Cohen's d_z and a CI of the mean difference."""
+
+    a: str
+    b: str
+    statistic: float
+    df: int
+    pvalue: float
+    pvalue_adjusted: float
+    mean_difference: float
+    ci: tuple[float, float]
+    dz: float
+    nobs: int
+
+    def apa(self) -> str:
+        return (
+            f"{self.a} vs {self.b}: t({self.df}) = {self.statistic:.2f}, "
+            f"{format_p(self.pvalue)} ({format_p(self.pvalue_adjusted).replace('p', 'p_adj', 1)}),"
+            f" d_z = {_two(self.dz)}"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
+class FriedmanResult(Result):
+    """Friedman test over conditions, with Kendall's W as the effect size."""
+
+    statistic: float
+    df: int
+    pvalue: float
+    kendall_w: float
+    nobs: int
+
+    def apa(self) -> str:
+        return (
+            f"χ²({self.df}) = {self.statistic:.2f}, {format_p(self.pvalue)}, "
+            f"W = {_two(self.kendall_w)}"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
+class WilcoxonTest(Result):
+    """Wilcoxon signed-rank test of a − b; effect size is the matched rank-biserial r."""
+
+    a: str
+    b: str
+    statistic: float
+    pvalue: float
+    pvalue_adjusted: float
+    rank_biserial: float
+    nobs: int
+
+    def apa(self) -> str:
+        return (
+            f"{self.a} vs {self.b}: W = {self.statistic:g}, {format_p(self.pvalue)}, "
+            f"r = {_two(self.rank_biserial)}"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
+class Strength(Result):
+    """One condition's Bradley–Terry log-worth relative to the reference condition."""
+
+    condition: str
+    log_worth: float
+    se: float
+    ci: tuple[float, float]
+    worth: float
+
+
+@dataclasses.dataclass(frozen=True)
+class BradleyTerryResult(Result):
+    """Bradley–Terry model fitted by logistic regression; strengths with Wald 95 % CIs."""
+
+    reference: str
+    strengths: tuple[Strength, ...]
+    nobs: int
+    log_likelihood: float
+
+
+@dataclasses.dataclass(frozen=True)
+class PositionBias(Result):
+    """Whether Clip 1 was chosen more or less than half the time (two-sided binomial)."""
+
+    clip1: int
+    clip2: int
+    nobs: int
+    statistic: float
+    pvalue: float
+    ci: tuple[float, float]
+
+    def apa(self) -> str:
+        return (
+            f"Clip 1 chosen in {self.clip1} of {self.nobs} decisive judgements "
+            f"({100 * self.statistic:.1f} %), exact binomial {format_p(self.pvalue)}"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
+class PairwiseAnalysis(Result):
+    """Everything computed from the pairwise (and comparative) judgements of a study."""
+
+    conditions: tuple[ConditionRate, ...]
+    pairs: tuple[PairComparison, ...]
+    items: tuple[PairComparison, ...]
+    rm_anova: RmAnovaResult | None
+    posthoc: tuple[PairedTTest, ...]
+    friedman: FriedmanResult | None
+    wilcoxon: tuple[WilcoxonTest, ...]
+    bradley_terry: BradleyTerryResult | None
+    position_bias: PositionBias | None
+    ties: int
+    judgements: int
+    participants: int
+    tie_handling: str
+    correction: str
+    notes: tuple[str, ...] = ()
+
+
+@dataclasses.dataclass(frozen=True)
+class RatingSummary(Result):
+    """Descriptive statistics of one question's ratings of one item in one condition."""
+
+    item: str
+    condition: str
+    question: str
+    n: int
+    median: float
+    q1: float
+    q3: float
+    mean: float
+    sd: float
+    pct_ge3: float
+    pct_ge4: float
+
+
+@dataclasses.dataclass(frozen=True)
+class RatingComparison(Result):
+    """Paired comparison of two conditions' ratings of one item on one question."""
+
+    item: str
+    question: str
+    a: str
+    b: str
+    nobs: int
+    wilcoxon: WilcoxonTest
+    ttest: PairedTTest
+
+
+@dataclasses.dataclass(frozen=True)
+class IntelligibilityScore(Result):
+    """Mean word-level accuracy of typed answers for one condition and item."""
+
+    condition: str
+    item: str
+    n: int
+    mean_accuracy: float
+    sem: float
+
+
+@dataclasses.dataclass(frozen=True)
+class ExclusionReport(Result):
+    """Who was left out before analysis, and why (a participant counts once per reason)."""
+
+    participants_total: int
+    participants_included: int
+    excluded_by_reason: dict[str, int]
+    rules: dict[str, Any]

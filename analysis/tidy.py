@@ -1,0 +1,193 @@
+"""Read and check the tidy response table: one row per participant × trial (× question).
+
+The format is documented in docs/tidy-format.md. Every problem is reported as one
+:class:`TidyFormatError` whose message names the file, row and column.
+"""
+
+from collections.abc import Iterable
+from pathlib import Path
+from typing import IO
+
+import numpy as np
+import pandas as pd
+
+REQUIRED_COLUMNS = (
+    "participant",
+    "study",
+    "block",
+    "trial",
+    "item",
+    "kind",
+    "condition_a",
+    "condition_b",
+    "chosen",
+    "question",
+    "rating",
+    "text",
+    "rt_ms",
+    "flags",
+)
+# Optional columns with a meaning of their own; any other column is a participant
+# attribute (a demographic answer) and must be constant within a participant.
+OPTIONAL_COLUMNS = ("target",)
+KINDS = ("pairwise", "comparative", "rating", "text")
+NO_DIFFERENCE = "none"
+# Flags that exclude a participant, and flags that take a row out of the analyses.
+PARTICIPANT_FLAGS = ("pilot", "attention_failed", "incomplete", "excluded")
+ROW_FLAGS = ("practice", "attention_check")
+KNOWN_FLAGS = PARTICIPANT_FLAGS + ROW_FLAGS
+
+
+class TidyFormatError(ValueError):
+    """A response table that does not follow the tidy format; the message says where."""
+
+
+def _row_label(index: int) -> str:
+    # Data row 1 is line 2 of the file, after the header.
+    return f"row {index + 1} (line {index + 2})"
+
+
+def _numeric(frame: pd.DataFrame, column: str, source: str) -> pd.Series:
+    raw = frame[column]
+    values = pd.to_numeric(raw, errors="coerce")
+    bad = values.isna() & raw.ne("")
+    if bad.any():
+        index = int(np.flatnonzero(bad.to_numpy())[0])
+        raise TidyFormatError(
+            f"{source}: {_row_label(index)}: {column} {raw.iloc[index]!r} is not a number."
+        )
+    return values
+
+
+def check_responses(frame: pd.DataFrame, source: str = "responses") -> pd.DataFrame:
+    """Validate a raw table and return it typed: strings stripped, numbers as floats.
+
+    Raise TidyFormatError naming the first problem found.
+    """
+    missing = [column for column in REQUIRED_COLUMNS if column not in frame.columns]
+    if missing:
+        raise TidyFormatError(
+            f"{source}: missing column(s) {', '.join(missing)}; the tidy format needs "
+            f"{', '.join(REQUIRED_COLUMNS)} (see docs/tidy-format.md)."
+        )
+    if frame.empty:
+        raise TidyFormatError(f"{source}: no response rows.")
+    frame = frame.copy()
+    for column in frame.columns:
+        frame[column] = frame[column].fillna("").astype(str).str.strip()
+    frame["rating"] = _numeric(frame, "rating", source)
+    frame["rt_ms"] = _numeric(frame, "rt_ms", source)
+
+    for column in ("participant", "kind"):
+        empty = frame[column].eq("")
+        if empty.any():
+            index = int(np.flatnonzero(empty.to_numpy())[0])
+            raise TidyFormatError(f"{source}: {_row_label(index)}: {column} is empty.")
+    unknown_kind = ~frame["kind"].isin(KINDS)
+    if unknown_kind.any():
+        index = int(np.flatnonzero(unknown_kind.to_numpy())[0])
+        raise TidyFormatError(
+            f"{source}: {_row_label(index)}: kind {frame['kind'].iloc[index]!r} is not one of "
+            f"{', '.join(KINDS)}."
+        )
+    _check_flags(frame, source)
+    _check_pairwise(frame, source)
+    _check_ratings(frame, source)
+    return frame
+
+
+def _check_flags(frame: pd.DataFrame, source: str) -> None:
+    for index, flags in enumerate(frame["flags"]):
+        for flag in split_flags(flags):
+            if flag not in KNOWN_FLAGS:
+                raise TidyFormatError(
+                    f"{source}: {_row_label(index)}: unknown flag {flag!r} "
+                    f"(known: {', '.join(KNOWN_FLAGS)})."
+                )
+
+
+def _check_pairwise(frame: pd.DataFrame, source: str) -> None:
+    pairs = frame["kind"].isin(("pairwise", "comparative"))
+    for column in ("condition_a", "condition_b"):
+        empty = pairs & frame[column].eq("")
+        if empty.any():
+            index = int(np.flatnonzero(empty.to_numpy())[0])
+            raise TidyFormatError(
+                f"{source}: {_row_label(index)}: a {frame['kind'].iloc[index]} row needs {column}."
+            )
+    choice = frame["kind"].eq("pairwise")
+    valid = (
+        frame["chosen"].eq(frame["condition_a"])
+        | frame["chosen"].eq(frame["condition_b"])
+        | frame["chosen"].eq(NO_DIFFERENCE)
+    )
+    bad = choice & ~valid
+    if bad.any():
+        index = int(np.flatnonzero(bad.to_numpy())[0])
+        row = frame.iloc[index]
+        raise TidyFormatError(
+            f"{source}: {_row_label(index)}: chosen {row['chosen']!r} is neither condition_a "
+            f"{row['condition_a']!r}, condition_b {row['condition_b']!r} nor 'none'."
+        )
+    unrated = frame["kind"].eq("comparative") & frame["rating"].isna()
+    if unrated.any():
+        index = int(np.flatnonzero(unrated.to_numpy())[0])
+        raise TidyFormatError(f"{source}: {_row_label(index)}: a comparative row needs a rating.")
+
+
+def _check_ratings(frame: pd.DataFrame, source: str) -> None:
+    ratings = frame["kind"].eq("rating")
+    for column in ("condition_a", "question"):
+        empty = ratings & frame[column].eq("")
+        if empty.any():
+            index = int(np.flatnonzero(empty.to_numpy())[0])
+            raise TidyFormatError(f"{source}: {_row_label(index)}: a rating row needs {column}.")
+    unrated = ratings & frame["rating"].isna()
+    if unrated.any():
+        index = int(np.flatnonzero(unrated.to_numpy())[0])
+        raise TidyFormatError(f"{source}: {_row_label(index)}: a rating row needs a rating.")
+
+
+def split_flags(flags: str) -> list[str]:
+    """Return the flags of a ``flags`` cell ("pilot;practice" → ["pilot", "practice"])."""
+    return [flag.strip() for flag in flags.replace(",", ";").split(";") if flag.strip()]
+
+
+def read_responses(path_or_file: str | Path | IO[str]) -> pd.DataFrame:
+    """Read a tidy CSV and return the checked table (see :func:`check_responses`)."""
+    source = str(getattr(path_or_file, "name", path_or_file))
+    try:
+        frame = pd.read_csv(path_or_file, dtype=str, keep_default_na=False)
+    except FileNotFoundError:
+        raise TidyFormatError(f"{source}: no such file.") from None
+    except pd.errors.EmptyDataError:
+        raise TidyFormatError(f"{source}: the file is empty.") from None
+    except (pd.errors.ParserError, UnicodeDecodeError) as error:
+        first_line = str(error).strip().splitlines()[0]
+        raise TidyFormatError(f"{source}: not a readable CSV file ({first_line}).") from None
+    return check_responses(frame, source)
+
+
+def participant_attributes(frame: pd.DataFrame) -> list[str]:
+    """Return the demographic columns: every column the format does not define."""
+    return [
+        column
+        for column in frame.columns
+        if column not in REQUIRED_COLUMNS and column not in OPTIONAL_COLUMNS
+    ]
+
+
+def check_conditions(frame: pd.DataFrame, conditions: Iterable[str], source: str) -> None:
+    """Raise TidyFormatError if a listed condition is never shown or an unlisted one is."""
+    conditions = list(conditions)
+    pairs = frame[frame["kind"].isin(("pairwise", "comparative", "rating"))]
+    shown = (set(pairs["condition_a"]) | set(pairs["condition_b"])) - {""}
+    unknown = sorted(shown - set(conditions))
+    if unknown:
+        raise TidyFormatError(
+            f"{source}: unknown condition(s) {', '.join(unknown)}; expected "
+            f"{', '.join(conditions)}."
+        )
+    never = [condition for condition in conditions if condition not in shown]
+    if never:
+        raise TidyFormatError(f"{source}: condition(s) {', '.join(never)} never shown.")

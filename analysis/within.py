@@ -1,0 +1,100 @@
+"""Pairwise within-subject tests on a subjects × levels table, with multiplicity correction."""
+
+import dataclasses
+from itertools import combinations
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+from statsmodels.stats.multitest import multipletests
+
+from analysis.results import FriedmanResult, PairedTTest, WilcoxonTest
+
+CORRECTIONS = {"holm": "holm", "bonferroni": "bonferroni", "fdr_bh": "fdr_bh", "none": None}
+
+
+def adjust(pvalues: list[float], method: str) -> list[float]:
+    """Correct *pvalues* for multiple comparisons (holm, bonferroni, fdr_bh or none)."""
+    if method not in CORRECTIONS:
+        raise ValueError(f"Unknown correction {method!r}; use one of {', '.join(CORRECTIONS)}.")
+    if not pvalues or CORRECTIONS[method] is None:
+        return list(pvalues)
+    return list(multipletests(pvalues, method=CORRECTIONS[method])[1])
+
+
+def paired_ttest(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> PairedTTest:
+    """Test the mean of a − b against zero; d_z = mean(diff) / sd(diff)."""
+    difference = np.asarray(a, float) - np.asarray(b, float)
+    n = difference.size
+    result = stats.ttest_rel(a, b)
+    sd = difference.std(ddof=1)
+    ci = result.confidence_interval(0.95)
+    return PairedTTest(
+        a=names[0],
+        b=names[1],
+        statistic=float(result.statistic),
+        df=n - 1,
+        pvalue=float(result.pvalue),
+        pvalue_adjusted=float(result.pvalue),
+        mean_difference=float(difference.mean()),
+        ci=(float(ci.low), float(ci.high)),
+        dz=float(difference.mean() / sd) if sd > 0 else float("nan"),
+        nobs=n,
+    )
+
+
+def wilcoxon_test(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> WilcoxonTest:
+    """Wilcoxon signed-rank test of a − b; r = (W⁺ − W⁻) / (W⁺ + W⁻) (Kerby 2014)."""
+    difference = np.asarray(a, float) - np.asarray(b, float)
+    nonzero = difference[difference != 0]
+    if nonzero.size == 0:
+        return WilcoxonTest(names[0], names[1], 0.0, 1.0, 1.0, 0.0, int(difference.size))
+    result = stats.wilcoxon(difference, zero_method="wilcox")
+    ranks = stats.rankdata(np.abs(nonzero))
+    positive, negative = ranks[nonzero > 0].sum(), ranks[nonzero < 0].sum()
+    return WilcoxonTest(
+        a=names[0],
+        b=names[1],
+        statistic=float(result.statistic),
+        pvalue=float(result.pvalue),
+        pvalue_adjusted=float(result.pvalue),
+        rank_biserial=float((positive - negative) / (positive + negative)),
+        nobs=int(difference.size),
+    )
+
+
+def _pairwise(scores: pd.DataFrame, test, correction: str) -> tuple:
+    scores = scores.dropna()
+    results = [
+        test(scores[a].to_numpy(), scores[b].to_numpy(), (str(a), str(b)))
+        for a, b in combinations(scores.columns, 2)
+    ]
+    adjusted = adjust([r.pvalue for r in results], correction)
+    return tuple(
+        dataclasses.replace(r, pvalue_adjusted=float(p))
+        for r, p in zip(results, adjusted, strict=True)
+    )
+
+
+def paired_ttests(scores: pd.DataFrame, correction: str = "holm") -> tuple[PairedTTest, ...]:
+    """Run a paired t-test for every pair of levels, correcting across pairs."""
+    return _pairwise(scores, paired_ttest, correction)
+
+
+def wilcoxon_tests(scores: pd.DataFrame, correction: str = "holm") -> tuple[WilcoxonTest, ...]:
+    """Run a Wilcoxon signed-rank test for every pair of levels, correcting across pairs."""
+    return _pairwise(scores, wilcoxon_test, correction)
+
+
+def friedman(scores: pd.DataFrame) -> FriedmanResult:
+    """Friedman test over the levels; Kendall's W = χ² / (n (k − 1))."""
+    scores = scores.dropna()
+    n, k = scores.shape
+    result = stats.friedmanchisquare(*(scores[column].to_numpy() for column in scores.columns))
+    return FriedmanResult(
+        statistic=float(result.statistic),
+        df=k - 1,
+        pvalue=float(result.pvalue),
+        kendall_w=float(result.statistic / (n * (k - 1))),
+        nobs=n,
+    )
