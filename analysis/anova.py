@@ -23,8 +23,9 @@ def _orthonormal_contrasts(k: int) -> np.ndarray:
 def sphericity(scores: np.ndarray) -> tuple[float, float, float]:
     """Return Mauchly's W, its p-value, and the Greenhouse–Geisser epsilon.
 
-    *scores* is (n_subjects, k_levels). Formulas: Mauchly (1940); Greenhouse & Geisser
-    (1959) ε = tr(S)² / ((k−1) tr(S²)) on the contrast covariance S.
+    *scores* is (n_subjects, k_levels). Formulas: Mauchly (1940) W = det(S) / (tr(S)/p)^p
+    with p = k − 1 and S the covariance of orthonormal contrasts; Greenhouse & Geisser
+    (1959) ε = tr(S)² / (p tr(S²)), bounded to [1/p, 1].
     """
     n, k = scores.shape
     if k < 3:
@@ -38,10 +39,22 @@ def sphericity(scores: np.ndarray) -> tuple[float, float, float]:
     if trace <= 0 or determinant <= 0 or n - 1 < p:
         return float("nan"), float("nan"), float(min(max(epsilon, 1 / p), 1.0))
     w = determinant / (trace / p) ** p
-    factor = (n - 1) - (2 * p**2 + p + 2) / (6 * p)
-    chi2 = -factor * np.log(w)
+    # χ² approximation with the second-order term of Anderson (2003) §10.7, as in R's
+    # mauchly.test (which uses the number of levels k in the w2 term).
+    df_resid = n - 1
+    rho = 1 - (2 * p**2 + p + 2) / (6 * p * df_resid)
+    w2 = (
+        (p + 2)
+        * (p - 1)
+        * (p - 2)
+        * (2 * p**3 + 6 * p**2 + 3 * k + 2)
+        / (288 * (df_resid * p * rho) ** 2)
+    )
+    chi2 = -df_resid * rho * np.log(w)
     dof = p * (p + 1) / 2 - 1
-    return float(w), float(stats.chi2.sf(chi2, dof)), float(min(max(epsilon, 1 / p), 1.0))
+    first, second = stats.chi2.sf(chi2, dof), stats.chi2.sf(chi2, dof + 4)
+    pvalue = first + w2 * (second - first)
+    return float(w), float(pvalue), float(min(max(epsilon, 1 / p), 1.0))
 
 
 def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:

@@ -10,8 +10,20 @@ from itertools import combinations
 import pandas as pd
 
 COLUMNS = [
-    "participant", "study", "block", "trial", "item", "kind", "condition_a", "condition_b",
-    "chosen", "question", "rating", "text", "rt_ms", "flags",
+    "participant",
+    "study",
+    "block",
+    "trial",
+    "item",
+    "kind",
+    "condition_a",
+    "condition_b",
+    "chosen",
+    "question",
+    "rating",
+    "text",
+    "rt_ms",
+    "flags",
 ]
 
 # Seed 000 Table 5.2: (type 1, type 2) → (# type 1, # type 2), 80 judgements per pair.
@@ -52,10 +64,16 @@ def table_5_2_rows(participants: int = 10) -> pd.DataFrame:
                 clip1, clip2 = (a, b) if (index + participant) % 2 == 0 else (b, a)
                 rows.append(
                     _row(
-                        participant=f"P{participant + 1:02d}", study="fingerspelling",
-                        block="comparisons", trial=f"{word}-{a}-{b}", item=word,
-                        kind="pairwise", condition_a=clip1, condition_b=clip2,
-                        chosen=a if next(outcome) else b, question="most-natural",
+                        participant=f"P{participant + 1:02d}",
+                        study="fingerspelling",
+                        block="comparisons",
+                        trial=f"{word}-{a}-{b}",
+                        item=word,
+                        kind="pairwise",
+                        condition_a=clip1,
+                        condition_b=clip2,
+                        chosen=a if next(outcome) else b,
+                        question="most-natural",
                         rt_ms="1500",
                     )
                 )
@@ -70,10 +88,16 @@ def table_3_rows() -> pd.DataFrame:
             clip1, clip2 = ("control", "spine") if participant % 2 else ("spine", "control")
             rows.append(
                 _row(
-                    participant=f"P{participant + 1:02d}", study="spine", block="part2",
-                    trial=f"prefer-{sentence}", item=sentence, kind="pairwise",
-                    condition_a=clip1, condition_b=clip2,
-                    chosen="control" if prefers_control else "spine", question="preferred",
+                    participant=f"P{participant + 1:02d}",
+                    study="spine",
+                    block="part2",
+                    trial=f"prefer-{sentence}",
+                    item=sentence,
+                    kind="pairwise",
+                    condition_a=clip1,
+                    condition_b=clip2,
+                    chosen="control" if prefers_control else "spine",
+                    question="preferred",
                 )
             )
     return pd.DataFrame(rows, columns=COLUMNS)

@@ -25,11 +25,22 @@ def test_table_5_2_pair_counts_and_percentages(fingerspelling):
 def test_table_5_2_shares_and_win_rates(fingerspelling):
     # Seed 000 §5.4: shares 15.63/28.96/24.79/30.63 %, win rates 31.25/57.92/49.58/61.25 %.
     rates = {c.condition: c for c in fingerspelling.conditions}
-    assert [round_half_up(100 * rates[c].share) for c in ("Constant", "Mocap", "Normalized", "Variable")] == [
-        15.63, 28.96, 24.79, 30.63,
+    assert [
+        round_half_up(100 * rates[c].share) for c in ("Constant", "Mocap", "Normalized", "Variable")
+    ] == [
+        15.63,
+        28.96,
+        24.79,
+        30.63,
     ]
-    assert [round_half_up(100 * rates[c].win_rate) for c in ("Constant", "Mocap", "Normalized", "Variable")] == [
-        31.25, 57.92, 49.58, 61.25,
+    assert [
+        round_half_up(100 * rates[c].win_rate)
+        for c in ("Constant", "Mocap", "Normalized", "Variable")
+    ] == [
+        31.25,
+        57.92,
+        49.58,
+        61.25,
     ]
     assert all(rates[c].shown == 240 for c in rates)
     assert sum(rates[c].chosen for c in rates) == 480
@@ -40,7 +51,11 @@ def test_table_3_one_sided_p_values():
     result = analyze_pairwise(check_responses(table_3_rows()))
     by_item = {p.item: p for p in result.items}
     assert [round_half_up(by_item[s].pvalue_one_sided_majority, 4) for s in TABLE_3] == [
-        0.5841, 0.0022, 0.0262, 0.0004, 0.2617,
+        0.5841,
+        0.0022,
+        0.0262,
+        0.0004,
+        0.2617,
     ]
     assert [(by_item[s].a_wins, by_item[s].b_wins) for s in TABLE_3] == list(TABLE_3.values())
     assert by_item["S1"].majority is None and by_item["S4"].majority == "spine"
@@ -98,7 +113,9 @@ def test_comparative_scale_answers_count_as_choices():
     frame = table_3_rows()
     frame["kind"] = "comparative"
     # 1–2 favour clip 1, 3 is "no difference", 4–5 favour clip 2.
-    frame["rating"] = [1 if c == a else 5 for c, a in zip(frame["chosen"], frame["condition_a"])]
+    frame["rating"] = [
+        1 if c == a else 5 for c, a in zip(frame["chosen"], frame["condition_a"], strict=True)
+    ]
     frame.loc[0, "rating"] = 3
     result = analyze_pairwise(check_responses(frame.astype(str)))
     assert result.ties == 1
