@@ -39,7 +39,7 @@ def condition_rates_figure(report: Report, out_dir: Path, formats=("png", "pdf")
     errors = [100 * c.sem if np.isfinite(c.sem) else 0 for c in conditions]
     axes.bar([c.condition for c in conditions], means, yerr=errors, capsize=4, color="#4a7ab5")
     axes.set_ylabel("Win rate: chosen / shown (%)")
-    axes.set_title("Chosen as more natural, mean ± SEM over participants", fontsize=10)
+    axes.set_title("Win rate per condition, mean ± SEM over participants", fontsize=10)
     axes.axhline(50, color="grey", linewidth=0.8, linestyle="--")
     axes.set_ylim(0, 100)
     return _save(figure, out_dir, "condition_rates", formats)

@@ -205,6 +205,7 @@ def results_json(report: Report) -> dict[str, Any]:
                     "df": t.df,
                     "p": t.pvalue,
                     f"p_{correction}": t.pvalue_adjusted,
+                    "p_adjusted": t.pvalue_adjusted,
                     "dz": t.dz,
                     "mean_difference": t.mean_difference,
                     "ci": list(t.ci),

@@ -68,3 +68,76 @@ class StudyImportForm(forms.Form):
                 f"The file is not valid JSON: {error.msg} at line {error.lineno}, "
                 f"column {error.colno}."
             ) from None
+
+
+class ResultsForm(forms.Form):
+    """Choose exclusions and test options for a study's results page (a GET form)."""
+
+    applied = forms.BooleanField(widget=forms.HiddenInput, initial=True, required=False)
+    exclude_pilot = forms.BooleanField(required=False, initial=True, label="Exclude pilot")
+    exclude_failed_attention = forms.BooleanField(
+        required=False, initial=True, label="Exclude failed attention checks"
+    )
+    exclude_incomplete = forms.BooleanField(
+        required=False, initial=True, label="Exclude incomplete sessions"
+    )
+    ties = forms.ChoiceField(
+        choices=[("exclude", "excluded from tests"), ("split", "split across the pair")],
+        initial="exclude",
+        label="“Cannot see a difference”",
+    )
+    correction = forms.ChoiceField(
+        choices=[
+            ("holm", "Holm"),
+            ("bonferroni", "Bonferroni"),
+            ("fdr_bh", "Benjamini–Hochberg"),
+            ("none", "none"),
+        ],
+        initial="holm",
+        label="Multiple comparisons",
+    )
+
+    def __init__(self, data, *, demographic_questions):
+        # Unsubmitted: start from the initial values (a GET form has no "unchecked").
+        if not data or "applied" not in data:
+            data = None
+        super().__init__(data)
+        self.demographic_fields = []
+        for question in demographic_questions:
+            options = [o.label or str(o.value) for o in question.options.all()]
+            if not options:
+                continue
+            name = f"only_{question.key}"
+            self.fields[name] = forms.MultipleChoiceField(
+                choices=[(label, label) for label in options],
+                required=False,
+                widget=forms.CheckboxSelectMultiple,
+                label=f"Only participants whose {question.key} is",
+                help_text="None ticked: no filter.",
+            )
+            self.demographic_fields.append((name, question.key))
+
+    def options(self):
+        """Return the ReportOptions the form describes (its initial values if unbound)."""
+        from analysis import ExclusionRules, ReportOptions
+
+        values = (
+            self.cleaned_data
+            if self.is_bound and self.is_valid()
+            else {name: field.initial for name, field in self.fields.items()}
+        )
+        keep_only = {
+            key: tuple(values.get(name) or ())
+            for name, key in self.demographic_fields
+            if values.get(name)
+        }
+        return ReportOptions(
+            tie_handling=values["ties"],
+            correction=values["correction"],
+            exclusions=ExclusionRules(
+                pilot=bool(values["exclude_pilot"]),
+                failed_attention=bool(values["exclude_failed_attention"]),
+                incomplete=bool(values["exclude_incomplete"]),
+                keep_only=keep_only,
+            ),
+        )

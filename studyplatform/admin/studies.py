@@ -18,6 +18,7 @@ from studyplatform.actions import StudyImportError, do_duplicate_study, do_impor
 from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline
+from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
 
@@ -68,7 +69,7 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyScopedMixin, admin.ModelAdmin):
+class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
     study_path = ""
     list_display = (
         "title",
@@ -182,7 +183,7 @@ class StudyAdmin(StudyScopedMixin, admin.ModelAdmin):
                 name="studyplatform_study_preview",
             ),
         ]
-        return own + super().get_urls()
+        return own + self.results_urls() + super().get_urls()
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
         study = self.get_object(request, object_id)

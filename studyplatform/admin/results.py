@@ -1,0 +1,99 @@
+"""The study's results page in the admin: live analysis, exclusions, downloads."""
+
+from django.http import HttpRequest, HttpResponse
+from django.template.response import TemplateResponse
+from django.urls import path
+
+from analysis import TidyFormatError, results_json
+from studyplatform.admin.forms import ResultsForm
+from studyplatform.models import Block, Question, Study
+from studyplatform.results import StudyResults, analyse_study, figure_images, report_archive
+
+
+class StudyResultsMixin:
+    """Add results, CSV and report download pages to the study admin."""
+
+    def results_urls(self):
+        view = self.admin_site.admin_view
+        return [
+            path(
+                "<path:object_id>/results/",
+                view(self.results_view),
+                name="studyplatform_study_results",
+            ),
+            path(
+                "<path:object_id>/results/responses.csv",
+                view(self.results_csv_view),
+                name="studyplatform_study_results_csv",
+            ),
+            path(
+                "<path:object_id>/results/report.zip",
+                view(self.results_zip_view),
+                {"everything": False},
+                name="studyplatform_study_results_report",
+            ),
+            path(
+                "<path:object_id>/results/everything.zip",
+                view(self.results_zip_view),
+                {"everything": True},
+                name="studyplatform_study_results_everything",
+            ),
+        ]
+
+    def _results(self, request: HttpRequest, study: Study) -> tuple[ResultsForm, StudyResults]:
+        demographic = (
+            Question.objects.filter(
+                study=study, trials__block__kind=Block.Kind.DEMOGRAPHICS, is_personal=False
+            )
+            .distinct()
+            .prefetch_related("options")
+            .order_by("position", "pk")
+        )
+        form = ResultsForm(request.GET, demographic_questions=demographic)
+        return form, analyse_study(study, form.options())
+
+    def results_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
+        """Show the study's results as they stand, with exclusion controls."""
+        study = self._get_visible_study(request, object_id)
+        form, results = None, None
+        error = None
+        try:
+            form, results = self._results(request, study)
+        except TidyFormatError as problem:
+            error = str(problem)
+        context = {
+            **self.admin_site.each_context(request),
+            "opts": self.opts,
+            "study": study,
+            "title": f"Results of “{study.title}”",
+            "form": form,
+            "error": error,
+            "results": None
+            if results is None or results.report is None
+            else results_json(results.report),
+            "report": None if results is None else results.report,
+            "figures": {} if results is None else figure_images(results),
+            "query": request.GET.urlencode(),
+            "refresh": request.GET.get("refresh") == "1",
+        }
+        return TemplateResponse(request, "admin/studyplatform/study/results.html", context)
+
+    def results_csv_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """Download every response of the study as tidy CSV (flags included, nothing dropped)."""
+        from studyplatform.export import tidy_csv
+
+        study = self._get_visible_study(request, object_id)
+        response = HttpResponse(tidy_csv(study), content_type="text/csv; charset=utf-8")
+        response["Content-Disposition"] = f'attachment; filename="{study.slug}-responses.csv"'
+        return response
+
+    def results_zip_view(self, request: HttpRequest, object_id: str, everything: bool):
+        """Download the report (and with *everything*, the data and study definition)."""
+        study = self._get_visible_study(request, object_id)
+        _, results = self._results(request, study)
+        name = f"{study.slug}-{'everything' if everything else 'report'}.zip"
+        response = HttpResponse(
+            report_archive(study, results, everything=everything), content_type="application/zip"
+        )
+        response["Content-Disposition"] = f'attachment; filename="{name}"'
+        return response

@@ -1,0 +1,151 @@
+"""Export a study's responses in the tidy format that :mod:`analysis` reads.
+
+One row per participant × trial × question (docs/tidy-format.md). Demographic answers
+become participant columns; identifying answers (name, e-mail) are never exported.
+"""
+
+import csv
+import io
+from collections import defaultdict
+from collections.abc import Iterator
+
+from analysis import REQUIRED_COLUMNS
+from studyplatform.actions import presented_conditions
+from studyplatform.models import Block, Participant, Question, Response, Study, Trial
+
+KIND_BY_QUESTION = {
+    Question.Kind.PAIRWISE: "pairwise",
+    Question.Kind.COMPARATIVE: "comparative",
+    Question.Kind.LIKERT: "rating",
+    Question.Kind.INTELLIGIBILITY: "text",
+    Question.Kind.OPEN: "text",
+}
+
+
+def _answer_value(response: Response, question: Question, labels: dict) -> str:
+    if question.uses_options:
+        return labels.get((question.pk, response.rating), str(response.rating))
+    if question.kind == Question.Kind.NUMBER:
+        return "" if response.number is None else f"{response.number:g}"
+    return response.text
+
+
+def _failed_attention(response: Response, trial: Trial) -> bool:
+    expected = trial.expected_answer.strip()
+    if not expected:
+        return False
+    given = response.chosen if response.chosen else str(response.rating)
+    return given != expected
+
+
+def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
+    """Return the column names and the rows of *study*'s responses in the tidy format."""
+    demographic_questions = list(
+        Question.objects.filter(
+            study=study, trials__block__kind=Block.Kind.DEMOGRAPHICS, is_personal=False
+        )
+        .distinct()
+        .order_by("position", "pk")
+    )
+    labels = {
+        (option.question_id, option.value): option.label or str(option.value)
+        for question in demographic_questions
+        for option in question.options.all()
+    }
+    responses = list(
+        Response.objects.filter(participant__study=study)
+        .select_related(
+            "participant",
+            "question",
+            "trial__block",
+            "trial__item",
+            "trial__condition_a",
+            "trial__condition_b",
+        )
+        .order_by(
+            "participant__started_at", "participant_id", "trial__position", "question__position"
+        )
+    )
+    attributes: dict[int, dict[str, str]] = defaultdict(dict)
+    failed: set[int] = set()
+    demographic_keys = {q.pk for q in demographic_questions}
+    for response in responses:
+        if response.question_id in demographic_keys:
+            attributes[response.participant_id][response.question.key] = _answer_value(
+                response, response.question, labels
+            )
+        if response.trial.is_attention_check and _failed_attention(response, response.trial):
+            failed.add(response.participant_id)
+    attribute_columns = [q.key for q in demographic_questions]
+    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, "target"}
+    if clash:
+        attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
+    columns = [*REQUIRED_COLUMNS, "target", *attribute_columns]
+
+    def rows() -> Iterator[dict[str, str]]:
+        for response in responses:
+            question, trial, participant = response.question, response.trial, response.participant
+            kind = KIND_BY_QUESTION.get(question.kind)
+            if kind is None:
+                continue  # demographic answers are participant columns
+            flags = _flags(participant, trial, participant.pk in failed)
+            clip1 = clip2 = ""
+            if trial.condition_a is not None:
+                first, second = (
+                    presented_conditions(participant, trial)
+                    if trial.condition_b is not None
+                    else (trial.condition_a, None)
+                )
+                clip1, clip2 = first.key, second.key if second is not None else ""
+            row = {
+                "participant": str(participant.pk),
+                "study": study.slug,
+                "block": trial.block.key,
+                "trial": trial.key,
+                "item": trial.item.key if trial.item else "",
+                "kind": kind,
+                "condition_a": clip1,
+                "condition_b": clip2,
+                "chosen": response.chosen,
+                "question": question.key,
+                "rating": "" if response.rating is None else str(response.rating),
+                "text": response.text,
+                "rt_ms": "" if response.rt_ms is None else str(response.rt_ms),
+                "flags": ";".join(flags),
+                "target": trial.item.scoring_target
+                if question.kind == Question.Kind.INTELLIGIBILITY and trial.item
+                else "",
+            }
+            answers = attributes.get(participant.pk, {})
+            for key, column in zip(
+                [q.key for q in demographic_questions], attribute_columns, strict=True
+            ):
+                row[column] = answers.get(key, "")
+            yield row
+
+    return columns, rows()
+
+
+def _flags(participant: Participant, trial: Trial, failed_attention: bool) -> list[str]:
+    flags = []
+    if participant.is_pilot:
+        flags.append("pilot")
+    if participant.finished_at is None:
+        flags.append("incomplete")
+    if failed_attention:
+        flags.append("attention_failed")
+    if trial.block.kind == Block.Kind.PRACTICE:
+        flags.append("practice")
+    if trial.is_attention_check:
+        flags.append("attention_check")
+    return flags
+
+
+def tidy_csv(study: Study) -> str:
+    """Return *study*'s responses as tidy CSV text."""
+    columns, rows = tidy_rows(study)
+    buffer = io.StringIO()
+    writer = csv.DictWriter(buffer, fieldnames=columns, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return buffer.getvalue()

@@ -1,0 +1,83 @@
+"""Analyse a study's collected responses with :mod:`analysis`, for the admin's results page."""
+
+import base64
+import io
+import json
+import tempfile
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from analysis import (
+    Report,
+    ReportOptions,
+    apply_exclusions,
+    build_report,
+    check_responses,
+    write_report,
+)
+from analysis.figures import condition_rates_figure, pairwise_matrix_figure, ratings_figure
+from studyplatform.exchange import export_study
+from studyplatform.export import tidy_csv
+from studyplatform.models import Study
+
+
+@dataclass(frozen=True)
+class StudyResults:
+    """A study's report and the table it was computed from (after exclusions)."""
+
+    report: Report | None
+    analysed: pd.DataFrame | None
+    csv_text: str
+
+
+def analyse_study(study: Study, options: ReportOptions) -> StudyResults:
+    """Export *study*'s responses and run the report; report is None without responses."""
+    text = tidy_csv(study)
+    frame = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+    if frame.empty:
+        return StudyResults(report=None, analysed=None, csv_text=text)
+    table = check_responses(frame, source=f"{study.slug} responses")
+    report = build_report(table, options, source=f"{study.slug} (SignStudy export)")
+    analysed, _ = apply_exclusions(table, options.exclusions)
+    return StudyResults(report=report, analysed=analysed, csv_text=text)
+
+
+def figure_images(results: StudyResults) -> dict[str, str]:
+    """Draw the report's figures and return them as PNG data URIs, by name."""
+    if results.report is None:
+        return {}
+    images = {}
+    with tempfile.TemporaryDirectory() as folder:
+        out = Path(folder)
+        names = [
+            *condition_rates_figure(results.report, out, formats=("png",)),
+            *pairwise_matrix_figure(results.report, out, formats=("png",)),
+            *ratings_figure(results.report, results.analysed, out, formats=("png",)),
+        ]
+        for name in names:
+            encoded = base64.b64encode((out / name).read_bytes()).decode("ascii")
+            images[name.removesuffix(".png")] = f"data:image/png;base64,{encoded}"
+    return images
+
+
+def report_archive(study: Study, results: StudyResults, *, everything: bool) -> bytes:
+    """Zip the report files; with *everything*, add the data and the study definition."""
+    buffer = io.BytesIO()
+    with (
+        tempfile.TemporaryDirectory() as folder,
+        zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive,
+    ):
+        if results.report is not None:
+            out = Path(folder) / "report"
+            for name in write_report(results.report, results.analysed, out):
+                archive.write(out / name, f"report/{name}")
+        if everything:
+            archive.writestr("responses.csv", results.csv_text)
+            archive.writestr(
+                f"{study.slug}.study.json",
+                json.dumps(export_study(study), indent=2, ensure_ascii=False) + "\n",
+            )
+    return buffer.getvalue()

@@ -1,0 +1,188 @@
+"""Test the tidy export of collected responses and the admin results page."""
+
+import io
+import json
+import zipfile
+
+import pandas as pd
+import pytest
+from django.urls import reverse
+from django.utils import timezone
+
+from analysis import check_responses
+from studyplatform.actions import Answer, do_enroll_participant, do_save_response
+from studyplatform.export import tidy_csv
+
+pytestmark = pytest.mark.django_db
+
+# Seed 003 Table 3 counts (control, spine) per sentence, scaled down to 6 participants.
+PREFERS_SPINE = {"S1": 3, "S2": 5, "S3": 2, "S4": 6, "S5": 4}
+
+
+def _answer(participant, trial_key, question_key, answer):
+    trial = participant.study.trials.get(key=trial_key)
+    do_save_response(participant, trial, trial.questions.get(key=question_key), answer)
+
+
+def take_spine_study(study, participants=6):
+    """Have *participants* complete the spine demo: pre-test, ratings, preferences."""
+    taken = []
+    for number in range(participants):
+        participant = do_enroll_participant(
+            study, recruitment_params={"PROLIFIC_PID": f"p{number}"}
+        )
+        participant.schedule = [{"trial": "prefer-s2", "swap": number % 2 == 1}]
+        _answer(participant, "pretest", "hearing-status", Answer(rating=1 + number % 3))
+        _answer(participant, "pretest", "years-asl", Answer(number=10 + number))
+        for sentence in range(1, 6):
+            for question in ("clarity", "grammaticality", "understandability", "naturalness"):
+                _answer(
+                    participant,
+                    f"rate-s{sentence}",
+                    question,
+                    Answer(rating=1 + (number + sentence) % 5),
+                )
+            trial = study.trials.get(key=f"prefer-s{sentence}")
+            spine_first = trial.condition_a.key == "spine-on"
+            swapped = any(
+                e.get("trial") == trial.key and e.get("swap") for e in participant.schedule
+            )
+            if swapped:
+                spine_first = not spine_first
+            wants_spine = number < PREFERS_SPINE[f"S{sentence}"]
+            position = 1 if spine_first == wants_spine else 2
+            _answer(
+                participant, trial.key, "preferred", Answer(choice_position=position, rt_ms=1200)
+            )
+        participant.finished_at = timezone.now()
+        participant.save()
+        taken.append(participant)
+    return taken
+
+
+def test_export_is_valid_tidy_data(spine):
+    take_spine_study(spine)
+    frame = pd.read_csv(io.StringIO(tidy_csv(spine)), dtype=str, keep_default_na=False)
+    table = check_responses(frame)
+    assert len(table) == 6 * (5 * 4 + 5)  # demographics become columns, not rows
+    assert {"hearing-status", "years-asl"} <= set(table.columns)
+    assert set(table["hearing-status"]) == {"Deaf", "Hard of hearing", "Hearing"}
+    preferences = table[table["kind"] == "pairwise"]
+    spine_wins = preferences.groupby("item")["chosen"].apply(lambda c: (c == "spine-on").sum())
+    assert spine_wins.to_dict() == PREFERS_SPINE
+    # The swapped schedule shows Clip 1/Clip 2 as the participant saw them.
+    swapped = preferences[
+        (preferences["trial"] == "prefer-s2")
+        & (preferences["participant"] == str(spine.participants.order_by("pk")[1].pk))
+    ].iloc[0]
+    trial = spine.trials.get(key="prefer-s2")
+    assert (swapped["condition_a"], swapped["condition_b"]) == (
+        trial.condition_b.key,
+        trial.condition_a.key,
+    )
+    assert set(table["flags"]) == {""}
+
+
+def test_flags_mark_pilot_incomplete_and_attention_failures(spine):
+    participant = take_spine_study(spine, participants=1)[0]
+    participant.is_pilot = True
+    participant.finished_at = None
+    participant.save()
+    trial = spine.trials.get(key="prefer-s1")
+    trial.is_attention_check = True
+    trial.expected_answer = "spine-off"
+    trial.save()
+    frame = pd.read_csv(io.StringIO(tidy_csv(spine)), dtype=str, keep_default_na=False)
+    flags = set(";".join(frame["flags"]).split(";"))
+    assert {"pilot", "incomplete", "attention_check"} <= flags
+    chosen = frame[frame["trial"] == "prefer-s1"]["chosen"].iloc[0]
+    assert ("attention_failed" in flags) == (chosen != "spine-off")
+
+
+def test_personal_answers_are_never_exported(fingerspelling):
+    participant = do_enroll_participant(fingerspelling)
+    trial = fingerspelling.trials.get(key="demographics")
+    do_save_response(
+        participant, trial, trial.questions.get(key="email"), Answer(text="me@example.org")
+    )
+    do_save_response(participant, trial, trial.questions.get(key="age"), Answer(rating=2))
+    comparison = fingerspelling.trials.get(key="cmp-01")
+    do_save_response(participant, comparison, comparison.questions.get(), Answer(choice_position=1))
+    text = tidy_csv(fingerspelling)
+    assert "me@example.org" not in text and "email" not in text
+    assert "26–35" in text
+
+
+@pytest.fixture
+def bob_client(client, bob):
+    client.force_login(bob)
+    return client
+
+
+def test_results_page_shows_the_analysis(bob_client, spine):
+    take_spine_study(spine)
+    page = bob_client.get(reverse("admin:studyplatform_study_results", args=[spine.pk]))
+    assert page.status_code == 200
+    assert "6 of 6 participants analysed" in page.text
+    assert "Pairwise preferences" in page.text and "Ratings" in page.text
+    assert "data:image/png;base64," in page.text
+    assert "Only participants whose hearing-status is" in page.text
+
+
+def test_results_page_applies_exclusions_and_filters(bob_client, spine):
+    taken = take_spine_study(spine)
+    taken[0].is_pilot = True
+    taken[0].save()
+    url = reverse("admin:studyplatform_study_results", args=[spine.pk])
+    assert "5 of 6 participants analysed" in bob_client.get(url).text
+    kept = bob_client.get(url, {"applied": "1", "ties": "exclude", "correction": "holm"})
+    assert "6 of 6 participants analysed" in kept.text  # pilot box unticked
+    deaf_only = bob_client.get(
+        url,
+        {
+            "applied": "1",
+            "exclude_pilot": "on",
+            "ties": "exclude",
+            "correction": "holm",
+            "only_hearing-status": ["Deaf"],
+        },
+    )
+    assert "1 of 6 participants analysed" in deaf_only.text  # P0 is pilot, P3 deaf
+
+
+def test_results_page_without_responses(bob_client, spine):
+    page = bob_client.get(reverse("admin:studyplatform_study_results", args=[spine.pk]))
+    assert page.status_code == 200 and "No responses yet" in page.text
+
+
+def test_downloads(bob_client, spine):
+    take_spine_study(spine)
+    csv = bob_client.get(reverse("admin:studyplatform_study_results_csv", args=[spine.pk]))
+    assert csv["Content-Disposition"] == 'attachment; filename="spine-motion-responses.csv"'
+    report = bob_client.get(reverse("admin:studyplatform_study_results_report", args=[spine.pk]))
+    names = zipfile.ZipFile(io.BytesIO(report.content)).namelist()
+    assert "report/results.json" in names and "report/report.html" in names
+    assert "report/ratings_boxplots.png" in names
+    everything = bob_client.get(
+        reverse("admin:studyplatform_study_results_everything", args=[spine.pk])
+    )
+    archive = zipfile.ZipFile(io.BytesIO(everything.content))
+    assert {"responses.csv", "spine-motion.study.json"} <= set(archive.namelist())
+    results = json.loads(archive.read("report/results.json"))
+    assert results["exclusions"]["participants_included"] == 6
+
+
+@pytest.mark.parametrize(
+    "url_name",
+    [
+        "admin:studyplatform_study_results",
+        "admin:studyplatform_study_results_csv",
+        "admin:studyplatform_study_results_report",
+        "admin:studyplatform_study_results_everything",
+    ],
+)
+def test_another_researchers_results_are_hidden(client, alice, spine, url_name):
+    take_spine_study(spine, participants=1)
+    client.force_login(alice)
+    response = client.get(reverse(url_name, args=[spine.pk]))
+    assert response.status_code == 404
