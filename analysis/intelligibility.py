@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from analysis.results import IntelligibilityScore
-from analysis.tidy import ROW_FLAGS, split_flags
+from analysis.tidy import analysed
 
 # Fingerspelled words are glossed letter by letter (T-O-Y); both spellings mean one word.
 _SPELLED = re.compile(r"\b(?:[A-Za-z]-){1,}[A-Za-z]\b")
@@ -54,8 +54,7 @@ def score_intelligibility(
     """
     if "target" not in frame.columns:
         return ()
-    flagged = frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
-    rows = frame[frame["kind"].eq("text") & frame["target"].ne("") & ~flagged]
+    rows = frame[frame["kind"].eq("text") & frame["target"].ne("") & analysed(frame)]
     if rows.empty:
         return ()
     accuracy = [

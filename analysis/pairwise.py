@@ -11,7 +11,7 @@ from scipy import stats
 from analysis.anova import rm_anova
 from analysis.bradley_terry import bradley_terry
 from analysis.results import ConditionRate, PairComparison, PairwiseAnalysis, PositionBias
-from analysis.tidy import NO_DIFFERENCE, ROW_FLAGS, split_flags
+from analysis.tidy import NO_DIFFERENCE, analysed
 from analysis.within import adjust, friedman, paired_ttests, wilcoxon_tests
 
 TIE_HANDLING = ("exclude", "split")
@@ -24,8 +24,7 @@ def judgements(frame: pd.DataFrame, comparative_points: int = 5) -> pd.DataFrame
     a choice of the clip it favours, and as "none" at the scale's midpoint.
     ``position`` is 1 or 2 for the chosen clip, 0 for "none".
     """
-    flagged = frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
-    rows = frame[frame["kind"].isin(("pairwise", "comparative")) & ~flagged]
+    rows = frame[frame["kind"].isin(("pairwise", "comparative")) & analysed(frame)]
     chosen = rows["chosen"].copy()
     comparative = rows["kind"].eq("comparative")
     if comparative.any():

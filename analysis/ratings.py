@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from analysis.results import RatingComparison, RatingSummary
-from analysis.tidy import ROW_FLAGS, split_flags
+from analysis.tidy import analysed
 from analysis.within import adjust, paired_ttest, wilcoxon_test
 
 GROUP = ["item", "condition_a", "question"]
@@ -15,8 +15,7 @@ GROUP = ["item", "condition_a", "question"]
 
 def rating_rows(frame: pd.DataFrame) -> pd.DataFrame:
     """Return the rating rows that enter the analysis (no practice or attention checks)."""
-    flagged = frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
-    return frame[frame["kind"].eq("rating") & ~flagged]
+    return frame[frame["kind"].eq("rating") & analysed(frame)]
 
 
 def summarize_ratings(frame: pd.DataFrame) -> tuple[RatingSummary, ...]:

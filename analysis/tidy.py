@@ -153,6 +153,11 @@ def split_flags(flags: str) -> list[str]:
     return [flag.strip() for flag in flags.replace(",", ";").split(";") if flag.strip()]
 
 
+def analysed(frame: pd.DataFrame) -> pd.Series:
+    """Return a mask of the rows analyses use: not practice, not attention checks."""
+    return ~frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
+
+
 def read_responses(path_or_file: str | Path | IO[str]) -> pd.DataFrame:
     """Read a tidy CSV and return the checked table (see :func:`check_responses`)."""
     source = str(getattr(path_or_file, "name", path_or_file))

@@ -5,26 +5,11 @@ Only the counts are published; how wins spread over participants is not, so wins
 spread evenly over the judgement slots (Bresenham), which leaves the totals exact.
 """
 
-from itertools import combinations
-
 import pandas as pd
 
-COLUMNS = [
-    "participant",
-    "study",
-    "block",
-    "trial",
-    "item",
-    "kind",
-    "condition_a",
-    "condition_b",
-    "chosen",
-    "question",
-    "rating",
-    "text",
-    "rt_ms",
-    "flags",
-]
+from analysis.tidy import REQUIRED_COLUMNS
+
+COLUMNS = list(REQUIRED_COLUMNS)
 
 # Seed 000 Table 5.2: (type 1, type 2) → (# type 1, # type 2), 80 judgements per pair.
 TABLE_5_2 = {
@@ -101,7 +86,3 @@ def table_3_rows() -> pd.DataFrame:
                 )
             )
     return pd.DataFrame(rows, columns=COLUMNS)
-
-
-def all_pairs(conditions):
-    return list(combinations(conditions, 2))
