@@ -1,0 +1,240 @@
+"""The ASL manual alphabet: handshapes from the project's data file, with contacts enforced.
+
+``synthesis/data/asl_alphabet.yaml`` gives each letter's joint angles (degrees) and the
+contacts that define it (D: thumb tip on the middle fingertip; F: thumb and index tips;
+…). Authored angles are a starting point; a bounded least-squares solve then moves the
+listed DOFs, as little as possible and within their limits, until every contact holds
+(points at the stated distance, which accounts for the fingers' thickness: landmarks
+sit on the bones' axes). J and Z are motion paths: a sequence of keyed poses.
+"""
+
+from dataclasses import dataclass
+from functools import cache
+from importlib import resources
+
+import numpy as np
+import yaml
+from scipy.optimize import least_squares
+
+from synthesis.hand import DIGITS, FINGERS, HandModel
+from synthesis.rotations import quat_rotate
+
+LETTERS = tuple("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
+# Shorthand groups of the data file → DOF names.
+_FINGER_KEYS = ("mcp_flexion", "pip_flexion", "dip_flexion")
+_THUMB_KEYS = ("cmc_abduction", "cmc_rotation", "cmc_flexion", "mcp_flexion", "ip_flexion")
+
+
+class AlphabetError(ValueError):
+    """A letter that is not in the alphabet, or a malformed alphabet data file."""
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Two hand points that touch: each a joint, or a blend between two joints."""
+
+    a: tuple[tuple[str, float], ...]
+    b: tuple[tuple[str, float], ...]
+    distance_m: float
+    adjust: tuple[str, ...]
+    # Shift of point b in the wrist's frame (x thumb side, y fingers, z palm side), m:
+    # makes "in front of the fingers" a position, not just a distance.
+    offset_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Letter:
+    """One letter: its pose (DOF vector, radians) and, for J and Z, a keyed path."""
+
+    letter: str
+    description: str
+    dofs_rad: np.ndarray
+    path_rad: np.ndarray | None = None
+    path_times: np.ndarray | None = None
+    contacts: tuple[Contact, ...] = ()
+
+
+def _point(spec, where: str) -> tuple[tuple[str, float], ...]:
+    if isinstance(spec, str):
+        return ((spec, 1.0),)
+    if isinstance(spec, dict) and set(spec) == {"between", "t"}:
+        first, second = spec["between"]
+        t = float(spec["t"])
+        return ((first, 1.0 - t), (second, t))
+    raise AlphabetError(f"{where}: a contact point is a joint name or {{between: [a, b], t}}.")
+
+
+def _angles(entry: dict, model: HandModel, where: str) -> np.ndarray:
+    """Turn a letter's grouped angles (degrees) into a DOF vector (radians)."""
+    degrees: dict[str, float] = {}
+    for finger, values in (entry.get("fingers") or {}).items():
+        if finger not in FINGERS or len(values) != 3:
+            raise AlphabetError(f"{where}: fingers.{finger} must be [mcp, pip, dip] of a finger.")
+        degrees.update({f"{finger}_{key}": v for key, v in zip(_FINGER_KEYS, values, strict=True)})
+    for finger, value in (entry.get("spread") or {}).items():
+        degrees[f"{finger}_mcp_abduction"] = value
+    for finger, value in (entry.get("twist") or {}).items():
+        degrees[f"{finger}_mcp_twist"] = value
+    for key, value in (entry.get("thumb") or {}).items():
+        if key not in _THUMB_KEYS:
+            raise AlphabetError(f"{where}: unknown thumb angle {key!r}.")
+        degrees[f"thumb_{key}"] = value
+    for key, value in (entry.get("wrist") or {}).items():
+        degrees[f"wrist_{key}"] = value
+    for key, value in (entry.get("forearm") or {}).items():
+        degrees[f"forearm_{key}"] = value
+    try:
+        dofs = model.from_degrees(degrees)
+    except KeyError as error:
+        raise AlphabetError(f"{where}: {error.args[0]}") from None
+    low, high = model.limits_rad
+    outside = [
+        model.dof_names[i] for i in np.flatnonzero((dofs < low - 1e-9) | (dofs > high + 1e-9))
+    ]
+    if outside:
+        raise AlphabetError(f"{where}: outside the joint limits: {', '.join(outside)}.")
+    return dofs
+
+
+def _contact_points(model: HandModel, dofs: np.ndarray, contact: Contact):
+    """Return the two contact points' world positions (b shifted by the offset)."""
+    pose = model.pose(dofs)
+    positions = pose.positions_m[0]
+    a = sum(weight * positions[model.skeleton.index(name)] for name, weight in contact.a)
+    b = sum(weight * positions[model.skeleton.index(name)] for name, weight in contact.b)
+    if any(contact.offset_m):
+        wrist = pose.quaternions[0, model.skeleton.index("wrist")]
+        # Offsets are authored for the right hand: reflect them for a left hand.
+        b = b + quat_rotate(wrist, model.mirror @ np.asarray(contact.offset_m))
+    return a, b
+
+
+def solve_contacts(model: HandModel, dofs_rad: np.ndarray, contacts) -> np.ndarray:
+    """Move the contacts' adjustable DOFs, minimally and within limits, until they touch."""
+    if not contacts:
+        return dofs_rad
+    free = sorted(
+        {
+            i
+            for contact in contacts
+            for group in contact.adjust
+            for i, name in enumerate(model.dof_names)
+            if name.startswith(f"{group}_") or name == group
+        }
+    )
+    low, high = model.limits_rad
+    start = np.clip(dofs_rad[free], low[free] + 1e-9, high[free] - 1e-9)
+
+    def residuals(values: np.ndarray) -> np.ndarray:
+        dofs = dofs_rad.copy()
+        dofs[free] = values
+        gaps = np.concatenate([_residual_m(model, dofs, c) / 0.001 for c in contacts])
+        # 1 mm of contact error weighs like 19° away from the authored pose: contacts
+        # hold, and the rest of the hand keeps the authored, natural configuration.
+        return np.concatenate([gaps, 3.0 * (values - dofs_rad[free])])
+
+    result = least_squares(residuals, start, bounds=(low[free], high[free]), xtol=1e-9)
+    solved = dofs_rad.copy()
+    solved[free] = result.x
+    return solved
+
+
+def _residual_m(model: HandModel, dofs_rad: np.ndarray, contact: Contact) -> np.ndarray:
+    """Return a smooth residual: the difference vector for a position target (distance 0,
+    where ‖a − b‖ would have a kink at the solution), else ‖a − b‖ − distance."""
+    a, b = _contact_points(model, dofs_rad, contact)
+    if contact.distance_m == 0:
+        return a - b
+    return np.array([np.linalg.norm(a - b) - contact.distance_m])
+
+
+def contact_gap_m(model: HandModel, dofs_rad: np.ndarray, contact: Contact) -> float:
+    """Return how far a contact is from holding: distance minus the wanted distance (m)."""
+    a, b = _contact_points(model, dofs_rad, contact)
+    return float(np.linalg.norm(a - b) - contact.distance_m)
+
+
+def contact_gaps_m(model: HandModel, dofs_rad: np.ndarray, contacts) -> list[float]:
+    """Return :func:`contact_gap_m` for each contact."""
+    return [contact_gap_m(model, dofs_rad, c) for c in contacts]
+
+
+def _check_file(data) -> None:
+    if not isinstance(data, dict):
+        raise AlphabetError("The alphabet file must map letters to handshapes.")
+    missing = [letter for letter in LETTERS if letter not in data]
+    if missing:
+        raise AlphabetError(f"The alphabet file lacks {', '.join(missing)}.")
+
+
+def parse_letter(letter: str, entry: dict, model: HandModel) -> Letter:
+    """Build one letter from its data-file entry, solving its contacts."""
+    where = f"letter {letter}"
+    if not isinstance(entry, dict):
+        raise AlphabetError(f"{where}: expected a mapping of angles.")
+    dofs = _angles(entry, model, where)
+    contacts = tuple(
+        Contact(
+            a=_point(c["a"], where),
+            b=_point(c["b"], where),
+            distance_m=float(c.get("distance_mm", 0 if "offset_mm" in c else 10)) / 1000,
+            adjust=tuple(c.get("adjust", ["thumb"])),
+            offset_m=tuple(float(v) / 1000 for v in c.get("offset_mm", (0, 0, 0))),
+        )
+        for c in entry.get("contacts", [])
+    )
+    unknown = [
+        name
+        for c in contacts
+        for point in (c.a, c.b)
+        for name, _ in point
+        if name not in model.skeleton.names
+    ]
+    if unknown:
+        raise AlphabetError(f"{where}: unknown joint(s) {', '.join(unknown)} in contacts.")
+    dofs = solve_contacts(model, dofs, contacts)
+    path = times = None
+    if "path" in entry:
+        keys = entry["path"]
+        times = np.array([float(k["t"]) for k in keys])
+        path = np.stack(
+            [
+                solve_contacts(
+                    model, _angles({**entry, **k.get("pose", {})}, model, where), contacts
+                )
+                for k in keys
+            ]
+        )
+        path.setflags(write=False)
+    dofs.setflags(write=False)
+    return Letter(letter, entry.get("description", ""), dofs, path, times, contacts)
+
+
+@cache
+def _data() -> dict:
+    text = resources.files("synthesis").joinpath("data/asl_alphabet.yaml").read_text("utf-8")
+    data = yaml.safe_load(text)
+    _check_file(data)
+    return data
+
+
+@cache
+def letter(letter: str, side: str = "right") -> Letter:
+    """Return one letter of the alphabet (solved on first use, then cached)."""
+    key = letter.upper() if isinstance(letter, str) else letter
+    if key not in LETTERS:
+        raise AlphabetError(f"{letter!r} is not a letter of the ASL manual alphabet (A–Z).")
+    return parse_letter(key, _data()[key], HandModel(side))
+
+
+def alphabet(side: str = "right") -> dict[str, Letter]:
+    """Return all 26 letters for a right or left hand."""
+    return {key: letter(key, side) for key in LETTERS}
+
+
+def letter_pose(name: str, side: str = "right") -> np.ndarray:
+    """Return the DOF vector (radians) of one letter; AlphabetError for anything else."""
+    return letter(name, side).dofs_rad
+
+
+__all__ = ["DIGITS", "LETTERS", "AlphabetError", "Letter", "alphabet", "letter", "letter_pose"]
