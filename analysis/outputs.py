@@ -10,9 +10,12 @@ from analysis.report import Report, results_json
 from analysis.results import format_p
 
 
-def tables(report: Report) -> dict[str, pd.DataFrame]:
-    """Return the report's tables as data frames, by file name stem."""
-    data = results_json(report)
+def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
+    """Return the report's tables as data frames, by file name stem.
+
+    *data* is the report's :func:`results_json` when the caller already has it.
+    """
+    data = results_json(report) if data is None else data
     found: dict[str, pd.DataFrame] = {}
     pairwise = data["pairwise"]
     if pairwise:
@@ -56,7 +59,7 @@ def write_report(
     (out / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n")
     written.append("results.json")
     table_files = {}
-    for name, table in tables(report).items():
+    for name, table in tables(report, data).items():
         table.to_csv(out / f"{name}.csv", index=False)
         (out / f"{name}.tex").write_text(_latex(table, name))
         (out / f"{name}.md").write_text(table.to_markdown(index=False, floatfmt=".4g") + "\n")

@@ -20,7 +20,7 @@ from analysis import (
 )
 from analysis.figures import condition_rates_figure, pairwise_matrix_figure, ratings_figure
 from studyplatform.exchange import export_study
-from studyplatform.export import tidy_csv
+from studyplatform.export import tidy_csv, tidy_rows
 from studyplatform.models import Study
 
 
@@ -30,19 +30,18 @@ class StudyResults:
 
     report: Report | None
     analysed: pd.DataFrame | None
-    csv_text: str
 
 
 def analyse_study(study: Study, options: ReportOptions) -> StudyResults:
     """Export *study*'s responses and run the report; report is None without responses."""
-    text = tidy_csv(study)
-    frame = pd.read_csv(io.StringIO(text), dtype=str, keep_default_na=False)
+    columns, rows = tidy_rows(study)
+    frame = pd.DataFrame(list(rows), columns=columns, dtype=str)
     if frame.empty:
-        return StudyResults(report=None, analysed=None, csv_text=text)
+        return StudyResults(report=None, analysed=None)
     table = check_responses(frame, source=f"{study.slug} responses")
     report = build_report(table, options, source=f"{study.slug} (SignStudy export)")
     analysed, _ = apply_exclusions(table, options.exclusions)
-    return StudyResults(report=report, analysed=analysed, csv_text=text)
+    return StudyResults(report=report, analysed=analysed)
 
 
 def figure_images(results: StudyResults) -> dict[str, str]:
@@ -75,7 +74,7 @@ def report_archive(study: Study, results: StudyResults, *, everything: bool) -> 
             for name in write_report(results.report, results.analysed, out):
                 archive.write(out / name, f"report/{name}")
         if everything:
-            archive.writestr("responses.csv", results.csv_text)
+            archive.writestr("responses.csv", tidy_csv(study))
             archive.writestr(
                 f"{study.slug}.study.json",
                 json.dumps(export_study(study), indent=2, ensure_ascii=False) + "\n",
