@@ -81,6 +81,9 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
     columns = [*REQUIRED_COLUMNS, "target", *attribute_columns]
+    attribute_pairs = list(
+        zip((q.key for q in demographic_questions), attribute_columns, strict=True)
+    )
 
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
@@ -117,9 +120,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                 else "",
             }
             answers = attributes.get(participant.pk, {})
-            for key, column in zip(
-                [q.key for q in demographic_questions], attribute_columns, strict=True
-            ):
+            for key, column in attribute_pairs:
                 row[column] = answers.get(key, "")
             yield row
 

@@ -16,7 +16,7 @@ import numpy as np
 import yaml
 from scipy.optimize import least_squares
 
-from synthesis.hand import DIGITS, FINGERS, HandModel
+from synthesis.hand import FINGERS, HandModel
 from synthesis.rotations import quat_rotate
 
 LETTERS = tuple("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
@@ -96,9 +96,8 @@ def _angles(entry: dict, model: HandModel, where: str) -> np.ndarray:
     return dofs
 
 
-def _contact_points(model: HandModel, dofs: np.ndarray, contact: Contact):
-    """Return the two contact points' world positions (b shifted by the offset)."""
-    pose = model.pose(dofs)
+def _contact_points(model: HandModel, pose, contact: Contact):
+    """Return the two contact points' world positions in *pose* (b shifted by the offset)."""
     positions = pose.positions_m[0]
     a = sum(weight * positions[model.skeleton.index(name)] for name, weight in contact.a)
     b = sum(weight * positions[model.skeleton.index(name)] for name, weight in contact.b)
@@ -128,7 +127,8 @@ def solve_contacts(model: HandModel, dofs_rad: np.ndarray, contacts) -> np.ndarr
     def residuals(values: np.ndarray) -> np.ndarray:
         dofs = dofs_rad.copy()
         dofs[free] = values
-        gaps = np.concatenate([_residual_m(model, dofs, c) / 0.001 for c in contacts])
+        pose = model.pose(dofs)  # once per evaluation, shared by all contacts
+        gaps = np.concatenate([_residual_m(model, pose, c) / 0.001 for c in contacts])
         # 1 mm of contact error weighs like 19° away from the authored pose: contacts
         # hold, and the rest of the hand keeps the authored, natural configuration.
         return np.concatenate([gaps, 3.0 * (values - dofs_rad[free])])
@@ -139,10 +139,10 @@ def solve_contacts(model: HandModel, dofs_rad: np.ndarray, contacts) -> np.ndarr
     return solved
 
 
-def _residual_m(model: HandModel, dofs_rad: np.ndarray, contact: Contact) -> np.ndarray:
+def _residual_m(model: HandModel, pose, contact: Contact) -> np.ndarray:
     """Return a smooth residual: the difference vector for a position target (distance 0,
     where ‖a − b‖ would have a kink at the solution), else ‖a − b‖ − distance."""
-    a, b = _contact_points(model, dofs_rad, contact)
+    a, b = _contact_points(model, pose, contact)
     if contact.distance_m == 0:
         return a - b
     return np.array([np.linalg.norm(a - b) - contact.distance_m])
@@ -150,7 +150,7 @@ def _residual_m(model: HandModel, dofs_rad: np.ndarray, contact: Contact) -> np.
 
 def contact_gap_m(model: HandModel, dofs_rad: np.ndarray, contact: Contact) -> float:
     """Return how far a contact is from holding: distance minus the wanted distance (m)."""
-    a, b = _contact_points(model, dofs_rad, contact)
+    a, b = _contact_points(model, model.pose(dofs_rad), contact)
     return float(np.linalg.norm(a - b) - contact.distance_m)
 
 
@@ -237,4 +237,4 @@ def letter_pose(name: str, side: str = "right") -> np.ndarray:
     return letter(name, side).dofs_rad
 
 
-__all__ = ["DIGITS", "LETTERS", "AlphabetError", "Letter", "alphabet", "letter", "letter_pose"]
+__all__ = ["LETTERS", "AlphabetError", "Letter", "alphabet", "letter", "letter_pose"]

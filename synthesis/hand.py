@@ -225,33 +225,35 @@ class HandModel:
             values[lookup[name]] = np.radians(angle)
         return values
 
-    def local_quaternions(self, dofs_rad: np.ndarray) -> np.ndarray:
-        """Return each joint's local rotation, (..., n_dofs) → (..., n_joints, 4) quaternions."""
-        dofs_rad = np.asarray(dofs_rad, dtype=np.float64)
+    @cached_property
+    def _angle_map(self) -> tuple[np.ndarray, np.ndarray]:
+        """Return (n_dofs, n_joints·3) DOF → ZXY-angle matrix and (n_joints, 4) rest quaternions."""
         joints_spec, rest = self._structure
         names = [name for name, _, _ in joints_spec]
-        batch = dofs_rad.shape[:-1]
-        result = np.zeros((*batch, len(names), 4))
-        result[..., 3] = 1.0
-        mirror_sign = {"x": 1.0, "y": -1.0, "z": -1.0} if self.side == "left" else None
-        for number, name in enumerate(names):
-            members = [(i, dof) for i, dof in enumerate(self.dofs) if dof.joint == name]
-            if not members and name not in rest:
-                continue
-            angles = {"z": 0.0, "x": 0.0, "y": 0.0}
-            for i, dof in members:
-                sign = dof.sign * (mirror_sign[dof.axis] if mirror_sign else 1.0)
-                angles[dof.axis] = sign * dofs_rad[..., i]
-            zxy = np.stack(np.broadcast_arrays(angles["z"], angles["x"], angles["y"]), axis=-1)
-            if zxy.shape[:-1] != batch:
-                zxy = np.broadcast_to(zxy, (*batch, 3))
-            local = quat_from_euler(zxy, "ZXY")
-            if name in rest:
-                rest_matrix = self.mirror @ rest[name] @ self.mirror
-                rest_q = Rotation.from_matrix(rest_matrix).as_quat()
-                local = quat_multiply(rest_q, local)
-            result[..., number, :] = local
-        return result
+        column = {"z": 0, "x": 1, "y": 2}
+        # Mirroring x negates rotations about y and z (M R M with M = diag(−1, 1, 1)).
+        mirrored = {"x": 1.0, "y": -1.0, "z": -1.0} if self.side == "left" else None
+        matrix = np.zeros((len(self.dofs), len(names) * 3))
+        for i, dof in enumerate(self.dofs):
+            sign = dof.sign * (mirrored[dof.axis] if mirrored else 1.0)
+            matrix[i, names.index(dof.joint) * 3 + column[dof.axis]] = sign
+        rest_q = np.zeros((len(names), 4))
+        rest_q[:, 3] = 1.0
+        for name, rotation in rest.items():
+            rest_q[names.index(name)] = Rotation.from_matrix(
+                self.mirror @ rotation @ self.mirror
+            ).as_quat()
+        return matrix, rest_q
+
+    def local_quaternions(self, dofs_rad: np.ndarray) -> np.ndarray:
+        """Return each joint's local rotation, (..., n_dofs) → (..., n_joints, 4) quaternions.
+
+        A joint's rotation is its rest rotation followed by its DOFs as ZXY Euler angles.
+        """
+        dofs_rad = np.asarray(dofs_rad, dtype=np.float64)
+        matrix, rest_q = self._angle_map
+        angles = (dofs_rad @ matrix).reshape(*dofs_rad.shape[:-1], len(rest_q), 3)
+        return quat_multiply(rest_q, quat_from_euler(angles, "ZXY"))
 
     def pose(self, dofs_rad: np.ndarray) -> Pose:
         """Return global joint transforms for DOF vectors, shape (n_frames, n_dofs) or (n_dofs,)."""
