@@ -1,0 +1,76 @@
+"""An avatar: a rig (hand or upper body) and its skinned mesh parts, posed by DOF vectors."""
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+import trimesh
+from scipy import sparse
+
+from synthesis.avatar.skinning import (
+    SkinWeights,
+    linear_blend_skinning,
+    skin_transforms,
+)
+from synthesis.kinematics import Pose
+
+SKIN_RGB = (0.74, 0.55, 0.45)
+NAIL_RGB = (0.82, 0.64, 0.60)
+TOP_RGB = (0.11, 0.12, 0.15)
+
+
+@dataclass(frozen=True, eq=False)
+class SkinnedPart:
+    """One mesh of the avatar at the bind pose: vertices (n, 3) m, faces, colours, weights."""
+
+    name: str
+    vertices_m: np.ndarray
+    faces: np.ndarray
+    colors_rgb: np.ndarray
+    weights: SkinWeights
+    normals: np.ndarray = field(default=None)
+
+    def __post_init__(self) -> None:
+        if self.normals is None:
+            mesh = trimesh.Trimesh(self.vertices_m, self.faces, process=False)
+            object.__setattr__(self, "normals", np.asarray(mesh.vertex_normals, dtype=np.float64))
+
+    def trimesh(self, vertices_m: np.ndarray | None = None) -> trimesh.Trimesh:
+        """Return the part as a trimesh (at the bind pose unless *vertices_m* is given)."""
+        return trimesh.Trimesh(
+            self.vertices_m if vertices_m is None else vertices_m, self.faces, process=False
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class Avatar:
+    """A rig plus skinned parts; ``rig`` has ``skeleton``, ``pose(dofs)`` and ``neutral()``."""
+
+    name: str
+    rig: object
+    bind_dofs_rad: np.ndarray
+    parts: tuple[SkinnedPart, ...]
+
+    @cached_property
+    def bind_pose(self) -> Pose:
+        """Return the joints' global transforms at the bind pose (one frame)."""
+        return self.rig.pose(self.bind_dofs_rad)
+
+    @cached_property
+    def _weight_matrices(self) -> list[sparse.csr_matrix]:
+        n_joints = len(self.rig.skeleton)
+        return [part.weights.matrix(n_joints) for part in self.parts]
+
+    def deform(self, dofs_rad: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Return, per part, posed vertices and normals (n_frames, n, 3) for DOF vectors."""
+        pose = self.rig.pose(np.atleast_2d(dofs_rad))
+        transforms = skin_transforms(pose, self.bind_pose)
+        return [
+            linear_blend_skinning(part.vertices_m, part.normals, matrix, transforms)
+            for part, matrix in zip(self.parts, self._weight_matrices, strict=True)
+        ]
+
+    @property
+    def triangle_count(self) -> int:
+        """Return the number of triangles of all parts together."""
+        return sum(len(part.faces) for part in self.parts)

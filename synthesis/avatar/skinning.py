@@ -1,0 +1,94 @@
+"""Skinning: bone weights for a rest mesh, and linear blend skinning over frames.
+
+``v' = Σ_j w_ij · G_j · B_j⁻¹ · v`` (seed 004 §4.2.2), with at most four bones a vertex
+and weights that sum to one. ``B_j`` is joint j's global transform at the rest (bind)
+pose, ``G_j`` the posed one; both come from the engine's forward kinematics.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import sparse
+
+from synthesis.kinematics import Pose
+from synthesis.rotations import quat_to_matrix
+
+MAX_BONES = 4
+
+
+@dataclass(frozen=True)
+class SkinWeights:
+    """Per-vertex bone indices (n, 4) and weights (n, 4); unused slots have weight 0."""
+
+    joints: np.ndarray
+    weights: np.ndarray
+
+    def matrix(self, n_joints: int) -> sparse.csr_matrix:
+        """Return the weights as a sparse (n_vertices, n_joints) matrix."""
+        n = len(self.joints)
+        rows = np.repeat(np.arange(n), self.joints.shape[1])
+        return sparse.csr_matrix(
+            (self.weights.ravel(), (rows, self.joints.ravel())), shape=(n, n_joints)
+        )
+
+
+def skin_weights(
+    vertices_m: np.ndarray,
+    primitives,
+    joint_index: dict[str, int],
+    power: float = 8.0,
+) -> SkinWeights:
+    """Weight each vertex by its closeness to the bones, relative to each bone's thickness.
+
+    A bone's closeness is the distance to its axis divided by its largest radius, so a
+    vertex on a finger sits at about 1 from its own phalanx, and weights cross over at
+    the joint between two phalanges; ``power`` sets how quickly (8: over about one
+    finger radius either side of the joint). The four largest weights are kept.
+    """
+    owners = sorted({p.joint for p in primitives}, key=lambda name: joint_index[name])
+    scores = np.full((len(vertices_m), len(owners)), np.inf)
+    for primitive in primitives:
+        column = owners.index(primitive.joint)
+        scale = getattr(primitive, "half_thickness_m", None) or max(
+            primitive.radius_start_m, primitive.radius_end_m
+        )
+        scores[:, column] = np.minimum(
+            scores[:, column], primitive.axis_distance(vertices_m) / scale
+        )
+    raw = (scores + 0.05) ** -power
+    keep = min(MAX_BONES, len(owners))
+    top = np.argsort(-raw, axis=1)[:, :keep]
+    weights = np.take_along_axis(raw, top, axis=1)
+    weights /= weights.sum(axis=1, keepdims=True)
+    joints = np.array([joint_index[name] for name in owners])[top]
+    return SkinWeights(joints=joints.astype(np.intp), weights=weights)
+
+
+def skin_transforms(pose: Pose, bind: Pose) -> np.ndarray:
+    """Return per-joint skinning matrices ``G · B⁻¹`` as (n_frames, n_joints, 3, 4)."""
+    rotations = quat_to_matrix(pose.quaternions)
+    bind_rotations = quat_to_matrix(bind.quaternions)
+    linear = rotations @ np.swapaxes(bind_rotations, -1, -2)
+    translation = pose.positions_m - np.einsum("...ij,...j->...i", linear, bind.positions_m)
+    return np.concatenate((linear, translation[..., None]), axis=-1)
+
+
+def linear_blend_skinning(
+    rest_vertices_m: np.ndarray,
+    rest_normals: np.ndarray,
+    weights: sparse.csr_matrix,
+    transforms: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Deform a rest mesh: vertices and unit normals (n, 3) for each frame's transforms.
+
+    *transforms* is (n_frames, n_joints, 3, 4) from :func:`skin_transforms`; returns
+    (n_frames, n, 3) twice. Normals use the blended linear part, then are renormalised.
+    """
+    n_frames, n_joints = transforms.shape[:2]
+    flat = np.moveaxis(transforms.reshape(n_frames, n_joints, 12), 0, 1).reshape(n_joints, -1)
+    blended = np.moveaxis((weights @ flat).reshape(-1, n_frames, 3, 4), 1, 0)
+    linear, translation = blended[..., :3], blended[..., 3]
+    vertices = np.einsum("fnij,nj->fni", linear, rest_vertices_m) + translation
+    normals = np.einsum("fnij,nj->fni", linear, rest_normals)
+    normals /= np.linalg.norm(normals, axis=-1, keepdims=True)
+    return vertices, normals

@@ -1,0 +1,57 @@
+"""Render stills and clips of an avatar to PNG and MP4 files."""
+
+from pathlib import Path
+
+import numpy as np
+
+from synthesis.avatar.model import Avatar
+from synthesis.render.renderer import Progress, Renderer
+from synthesis.render.scene import CameraPreset
+from synthesis.render.video import VideoInfo, write_mp4, write_png
+
+
+def render_still(
+    avatar: Avatar,
+    dofs_rad: np.ndarray,
+    camera: CameraPreset,
+    out: str | Path,
+    width: int = 640,
+    height: int = 480,
+) -> Path:
+    """Render one pose to a PNG file."""
+    with Renderer(avatar, camera, width, height) as renderer:
+        return write_png(renderer.frame(dofs_rad), out)
+
+
+def render_clip(
+    avatar: Avatar,
+    dofs_rad: np.ndarray,
+    camera: CameraPreset,
+    out: str | Path,
+    rate_hz: float = 60.0,
+    poster: str | Path | None = None,
+    poster_frame: int = 0,
+    width: int = 640,
+    height: int = 480,
+    progress: Progress | None = None,
+) -> VideoInfo:
+    """Render a motion (n_frames, n_dofs) to an H.264 MP4, and a poster PNG if asked.
+
+    *progress* receives (frames done, total) as frames are rendered and encoded.
+    """
+    dofs_rad = np.atleast_2d(dofs_rad)
+    if not 0 <= poster_frame < len(dofs_rad):
+        raise ValueError(f"poster_frame must lie in 0…{len(dofs_rad) - 1}.")
+    with Renderer(avatar, camera, width, height) as renderer:
+        kept = {}
+
+        def frames():
+            for number, frame in enumerate(renderer.frames(dofs_rad)):
+                if number == poster_frame:
+                    kept["poster"] = frame
+                yield frame
+
+        info = write_mp4(frames(), out, rate_hz, progress=progress, total=len(dofs_rad))
+    if poster is not None:
+        write_png(kept["poster"], poster)
+    return info

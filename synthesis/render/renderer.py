@@ -1,0 +1,128 @@
+"""Offscreen rendering of a posed avatar with pyrender: DOF vectors in, RGB frames out."""
+
+from collections.abc import Callable, Iterator
+
+import numpy as np
+
+from synthesis.avatar.model import Avatar
+from synthesis.render.backend import import_pyrender
+from synthesis.render.scene import CameraPreset, Light, look_at, portrait_lighting
+
+BACKGROUND_RGB = (0.42, 0.47, 0.53)
+# Frames deformed together: large enough to vectorise skinning, small enough to keep
+# memory flat on long clips.
+BATCH_FRAMES = 32
+
+Progress = Callable[[int, int], None]
+
+
+class Renderer:
+    """Render an avatar through one camera; use as a context manager or call close()."""
+
+    def __init__(
+        self,
+        avatar: Avatar,
+        camera: CameraPreset,
+        width: int = 640,
+        height: int = 480,
+        lights: tuple[Light, ...] | None = None,
+        background_rgb=BACKGROUND_RGB,
+    ) -> None:
+        if width <= 0 or height <= 0 or width % 2 or height % 2:
+            raise ValueError(f"Frame size must be positive and even, not {width}×{height}.")
+        pyrender = import_pyrender()
+        self._pyrender = pyrender
+        self.avatar, self.width, self.height = avatar, width, height
+        self._fixed_lights = lights
+        self.scene = pyrender.Scene(bg_color=(*background_rgb, 1.0), ambient_light=(0.0,) * 3)
+        self._camera_node = self.scene.add(
+            pyrender.PerspectiveCamera(
+                yfov=np.radians(camera.yfov_deg), aspectRatio=width / height, znear=0.05
+            )
+        )
+        self._light_nodes: list = []
+        self.set_camera(camera)
+        self._materials = [
+            pyrender.MetallicRoughnessMaterial(
+                baseColorFactor=(1.0, 1.0, 1.0, 1.0),
+                metallicFactor=0.0,
+                roughnessFactor=0.55 if part.name == "nails" else 0.75,
+            )
+            for part in avatar.parts
+        ]
+        self._colors = [np.asarray(part.colors_rgb, dtype=np.float32) for part in avatar.parts]
+        self._nodes: list = []
+        self._flags = pyrender.RenderFlags.SHADOWS_DIRECTIONAL
+        self._renderer = pyrender.OffscreenRenderer(width, height)
+
+    def set_camera(self, camera: CameraPreset) -> None:
+        """Move the camera (and, unless lights were given, the portrait lights with it)."""
+        self.camera = camera
+        self._camera_node.camera.yfov = np.radians(camera.yfov_deg)
+        self.scene.set_pose(self._camera_node, camera.pose())
+        target = np.asarray(camera.target_m)
+        distance = float(np.linalg.norm(np.asarray(camera.eye_m) - target))
+        self.lights = self._fixed_lights or portrait_lighting(target, distance)
+        for node in self._light_nodes:
+            self.scene.remove_node(node)
+        self._light_nodes = [
+            self.scene.add(self._light(light), pose=look_at(np.asarray(light.position_m), target))
+            for light in self.lights
+        ]
+
+    def _light(self, light: Light):
+        pyrender = self._pyrender
+        if light.kind == "directional":
+            return pyrender.DirectionalLight(color=light.color_rgb, intensity=light.intensity)
+        if light.kind == "point":
+            return pyrender.PointLight(color=light.color_rgb, intensity=light.intensity)
+        raise ValueError(f"Unknown light kind {light.kind!r} for light {light.name!r}.")
+
+    def __enter__(self) -> "Renderer":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Release the OpenGL context."""
+        if self._renderer is not None:
+            self._renderer.delete()
+            self._renderer = None
+
+    def _show(self, meshes: list[tuple[np.ndarray, np.ndarray]]) -> None:
+        pyrender = self._pyrender
+        for node in self._nodes:
+            self.scene.remove_node(node)
+        self._nodes = []
+        for part, (vertices, normals), material, colors in zip(
+            self.avatar.parts, meshes, self._materials, self._colors, strict=True
+        ):
+            primitive = pyrender.Primitive(
+                positions=vertices.astype(np.float32),
+                normals=normals.astype(np.float32),
+                indices=part.faces,
+                color_0=colors,
+                material=material,
+            )
+            self._nodes.append(self.scene.add(pyrender.Mesh([primitive])))
+
+    def frame(self, dofs_rad: np.ndarray) -> np.ndarray:
+        """Return one frame (height, width, 3) uint8 of the avatar in a pose."""
+        meshes = self.avatar.deform(np.asarray(dofs_rad)[None])
+        self._show([(v[0], n[0]) for v, n in meshes])
+        color, _ = self._renderer.render(self.scene, flags=self._flags)
+        return np.ascontiguousarray(color[..., :3])
+
+    def frames(self, dofs_rad: np.ndarray, progress: Progress | None = None) -> Iterator[np.ndarray]:
+        """Yield one frame per row of *dofs_rad* (n_frames, n_dofs), reporting progress."""
+        dofs_rad = np.atleast_2d(dofs_rad)
+        total = len(dofs_rad)
+        for start in range(0, total, BATCH_FRAMES):
+            batch = self.avatar.deform(dofs_rad[start : start + BATCH_FRAMES])
+            for k in range(len(batch[0][0])):
+                self._show([(v[k], n[k]) for v, n in batch])
+                color, _ = self._renderer.render(self.scene, flags=self._flags)
+                yield np.ascontiguousarray(color[..., :3])
+                if progress is not None:
+                    progress(start + k + 1, total)

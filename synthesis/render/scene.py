@@ -1,0 +1,94 @@
+"""Cameras and lights of a rendered clip: presets in plain data, no OpenGL here.
+
+Lighting follows seed 003 §4.2: three-point portrait lighting (a key light in front of
+the signer, a fill to the side that softens the key's shadows, a rim light behind for
+the silhouette) plus one extra fill for the missing ambient; only the key casts shadows,
+which also spares the renderer three shadow passes a frame.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Light:
+    """One light: a directional key (its direction is from *position_m* to the target) or a
+    point light at *position_m*; intensity in pyrender's units (lux / candela)."""
+
+    name: str
+    kind: str
+    position_m: tuple[float, float, float]
+    intensity: float
+    color_rgb: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    casts_shadow: bool = False
+
+
+@dataclass(frozen=True)
+class CameraPreset:
+    """A camera looking from *eye_m* at *target_m*, vertical field of view in degrees."""
+
+    name: str
+    eye_m: tuple[float, float, float]
+    target_m: tuple[float, float, float]
+    yfov_deg: float
+
+    def pose(self) -> np.ndarray:
+        """Return the camera-to-world transform (4, 4); the camera looks along its −z."""
+        return look_at(np.asarray(self.eye_m), np.asarray(self.target_m))
+
+
+def look_at(eye_m: np.ndarray, target_m: np.ndarray, up=(0.0, 1.0, 0.0)) -> np.ndarray:
+    """Return the transform (4, 4) of an object at *eye_m* whose −z points at *target_m*."""
+    back = eye_m - target_m
+    back = back / np.linalg.norm(back)
+    right = np.cross(np.asarray(up, dtype=np.float64), back)
+    right = right / np.linalg.norm(right)
+    true_up = np.cross(back, right)
+    pose = np.eye(4)
+    pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = right, true_up, back, eye_m
+    return pose
+
+
+def portrait_lighting(target_m, distance_m: float) -> tuple[Light, ...]:
+    """Return key, fill, rim and extra fill placed around *target_m* (seed 003 §4.2).
+
+    The key sits high and to the camera's left at 45°, the fill low at the right, the
+    rim behind and above; point-light intensities scale with distance² so that every
+    preset is lit alike.
+    """
+    target = np.asarray(target_m, dtype=np.float64)
+    d = distance_m
+
+    def at(x: float, y: float, z: float) -> tuple[float, float, float]:
+        return tuple(float(v) for v in target + d * np.array([x, y, z]))
+
+    falloff = d * d
+    return (
+        Light("key", "directional", at(-0.7, 0.6, 1.0), 2.4, (1.0, 0.96, 0.9), casts_shadow=True),
+        Light("fill", "point", at(1.0, 0.1, 0.8), 1.3 * falloff, (0.9, 0.94, 1.0)),
+        Light("rim", "point", at(0.3, 0.9, -1.0), 2.5 * falloff),
+        Light("extra fill", "point", at(0.0, -0.4, 1.2), 0.7 * falloff),
+    )
+
+
+def hand_close_up(side: str = "right") -> CameraPreset:
+    """Return the fingerspelling camera: hand and lower forearm, front on (seed 000 §5.2).
+
+    Frames the hand avatar (forearm root at the origin, wrist 26 cm above it) with room
+    for letters that turn the hand (G, H, P, Q) or move it (J, Z, double letters).
+    """
+    x = 0.08 if side == "right" else -0.08
+    return CameraPreset("hand close-up", (x, 0.3, 0.8), (x, 0.28, 0.0), 30.0)
+
+
+def upper_body_front(side: str = "right") -> CameraPreset:
+    """Return the sentence camera: the signer from the hips to above the head, front on.
+
+    *side* names the dominant hand; the view is symmetric, as in signing videos.
+    """
+    del side
+    return CameraPreset("upper body", (0.0, 1.36, 2.1), (0.0, 1.33, 0.0), 30.0)
+
+
+CAMERA_PRESETS = {"hand": hand_close_up, "upper-body": upper_body_front}
