@@ -1,13 +1,23 @@
-"""Command line of the animation engine: ``python -m synthesis landmarks ABC``.
+"""Command line of the animation engine.
 
-Rendering commands (render-pose, spell, render-bvh) arrive with the avatar and renderer.
+    python -m synthesis landmarks ABC                  # MediaPipe landmarks as JSON
+    python -m synthesis render-pose --letter R --out r.png
+    python -m synthesis spell HEAVEN --out heaven.mp4
+    python -m synthesis render-bvh file.bvh --out clip.mp4
+
+Rendering commands take ``--view hand`` (the fingerspelling close-up) or ``--view
+upper-body``, ``--side left`` for a left-handed signer, and ``--size 640x480``.
 """
 
 import argparse
 import json
 import sys
+from pathlib import Path
+
+import numpy as np
 
 from synthesis.alphabet import AlphabetError, letter_pose
+from synthesis.bvh import BvhError
 from synthesis.hand import HandModel
 from synthesis.landmarks import landmarks
 
@@ -23,9 +33,103 @@ def _landmarks(args: argparse.Namespace) -> int:
     return 0
 
 
+def _size(text: str) -> tuple[int, int]:
+    try:
+        width, height = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"size must look like 640x480, not {text!r}") from None
+    if width <= 0 or height <= 0 or width % 2 or height % 2:
+        raise argparse.ArgumentTypeError(f"size must be positive and even, not {text!r}")
+    return width, height
+
+
+def _progress(label: str):
+    def report(done: int, total: int) -> None:
+        print(f"\r{label}: frame {done}/{total}", end="", file=sys.stderr, flush=True)
+        if done == total:
+            print(file=sys.stderr)
+
+    return report
+
+
+def _scene(view: str, side: str):
+    from synthesis.render.scene import hand_close_up, upper_body_front
+
+    if view == "hand":
+        from synthesis.avatar.hand import hand_avatar
+
+        return hand_avatar(side), hand_close_up(side)
+    from synthesis.avatar.body import body_avatar
+
+    return body_avatar(side), upper_body_front(side)
+
+
+def _hand_motion_for(avatar, side: str, hand_dofs: np.ndarray) -> np.ndarray:
+    """Return the avatar's DOFs for hand-model DOFs (a body holds the hand up to sign)."""
+    if isinstance(avatar.rig, HandModel):
+        return hand_dofs
+    from synthesis.posture import fingerspelling_posture
+
+    return fingerspelling_posture(avatar.rig, side, hand_dofs)
+
+
+def _render_pose(args: argparse.Namespace) -> int:
+    from synthesis.render.clip import render_still
+
+    avatar, camera = _scene(args.view, args.side)
+    dofs = _hand_motion_for(avatar, args.side, letter_pose(args.letter, args.side)[None])[0]
+    path = render_still(avatar, dofs, camera, args.out, *args.size)
+    print(f"wrote {path}")
+    return 0
+
+
+def _spell(args: argparse.Namespace) -> int:
+    from synthesis.render.clip import render_clip
+    from synthesis.spelling import spell
+
+    avatar, camera = _scene(args.view, args.side)
+    motion = _hand_motion_for(avatar, args.side, spell(args.word, args.side, args.rate))
+    info = render_clip(
+        avatar, motion, camera, args.out, args.rate, poster=args.poster,
+        width=args.size[0], height=args.size[1], progress=_progress(f"spelling {args.word}"),
+    )  # fmt: skip
+    print(f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s)")
+    return 0
+
+
+def _render_bvh(args: argparse.Namespace) -> int:
+    from synthesis.bvh import read_bvh
+    from synthesis.mapping import detect_mapping
+    from synthesis.render.clip import render_clip
+    from synthesis.retarget import retarget
+    from synthesis.retime import resample
+
+    motion = read_bvh(args.file)
+    if args.rate and abs(motion.rate_hz - args.rate) > 1e-9:
+        motion = resample(motion, args.rate)
+    mapping = detect_mapping(motion.skeleton)
+    view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
+    side = mapping.side() or args.side if mapping.is_single_hand else args.side
+    avatar, camera = _scene(view, side)
+    pose = retarget(motion, avatar.rig, mapping)
+    info = render_clip(
+        avatar, pose, camera, args.out, motion.rate_hz, poster=args.poster,
+        width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),
+    )  # fmt: skip
+    print(
+        f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; "
+        f"{mapping.convention} joint names, {len(mapping.to_canonical)} joints mapped)"
+    )
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """Build the command-line parser."""
-    main = argparse.ArgumentParser(prog="python -m synthesis", description=__doc__)
+    main = argparse.ArgumentParser(
+        prog="python -m synthesis",
+        description=__doc__.split("\n\n")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     commands = main.add_subparsers(dest="command", required=True)
     marks = commands.add_parser(
         "landmarks", help="print the 21 MediaPipe hand landmarks of letters as JSON (metres)"
@@ -34,6 +138,31 @@ def parser() -> argparse.ArgumentParser:
     marks.add_argument("--side", choices=("right", "left"), default="right")
     marks.add_argument("--indent", type=int, default=None)
     marks.set_defaults(run=_landmarks)
+
+    def rendering(name: str, help: str, view: str | None = "hand") -> argparse.ArgumentParser:
+        command = commands.add_parser(name, help=help)
+        command.add_argument("--out", required=True, type=Path, help="output file")
+        command.add_argument("--side", choices=("right", "left"), default="right",
+                             help="the signer's dominant hand")  # fmt: skip
+        command.add_argument("--view", choices=("hand", "upper-body"), default=view)
+        command.add_argument("--size", type=_size, default=(640, 480), help="WIDTHxHEIGHT")
+        return command
+
+    pose = rendering("render-pose", "render one letter's handshape to a PNG")
+    pose.add_argument("--letter", required=True)
+    pose.set_defaults(run=_render_pose)
+
+    spell = rendering("spell", "render a fingerspelled word to an MP4 (simple default timing)")
+    spell.add_argument("word")
+    spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
+    spell.add_argument("--poster", type=Path, help="also write the first frame as a PNG")
+    spell.set_defaults(run=_spell)
+
+    bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
+    bvh.add_argument("file", type=Path)
+    bvh.add_argument("--rate", type=float, default=None, help="resample to this frame rate")
+    bvh.add_argument("--poster", type=Path, help="also write the first frame as a PNG")
+    bvh.set_defaults(run=_render_bvh)
     return main
 
 
@@ -42,6 +171,9 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         return args.run(args)
-    except AlphabetError as error:
+    except (AlphabetError, BvhError, ValueError, OSError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
+    except ImportError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 3

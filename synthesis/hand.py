@@ -23,9 +23,7 @@ from functools import cached_property
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from synthesis.kinematics import Pose, forward_kinematics_arrays
-from synthesis.rotations import quat_from_euler, quat_multiply
-from synthesis.skeleton import Joint, Skeleton
+from synthesis.rig import MIRROR_X, Dof, JointSpec, Rig, mirror_dof
 
 FINGERS = ("index", "middle", "ring", "pinky")
 DIGITS = ("thumb", *FINGERS)
@@ -60,19 +58,6 @@ THUMB_LENGTHS_M = (0.046, 0.034, 0.028)
 # Thumb metacarpal direction at rest and the way its pad faces (hand frame).
 THUMB_DIRECTION = (0.64, 0.75, 0.14)
 THUMB_PAD_TOWARD = (-0.55, 0.1, 0.83)
-
-
-@dataclass(frozen=True)
-class Dof:
-    """One degree of freedom: which joint, which local axis, sign, limits (degrees)."""
-
-    name: str
-    joint: str
-    axis: str
-    sign: float
-    min_deg: float
-    max_deg: float
-    literature: str
 
 
 def _dofs(side: str) -> tuple[Dof, ...]:
@@ -123,10 +108,11 @@ def _thumb_rest_rotation() -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class HandModel:
+class HandModel(Rig):
     """A right or left hand with its forearm: skeleton, DOFs and limits."""
 
     side: str = "right"
+    kind = "hand"
 
     def __post_init__(self) -> None:
         if self.side not in ("right", "left"):
@@ -134,141 +120,46 @@ class HandModel:
 
     @cached_property
     def dofs(self) -> tuple[Dof, ...]:
-        return _dofs(self.side)
-
-    @cached_property
-    def dof_names(self) -> list[str]:
-        return [dof.name for dof in self.dofs]
-
-    @cached_property
-    def literature_names(self) -> list[str]:
-        return [dof.literature for dof in self.dofs]
-
-    @cached_property
-    def limits_rad(self) -> tuple[np.ndarray, np.ndarray]:
-        """Return the lower and upper limit of every DOF, radians."""
-        return (
-            np.radians([dof.min_deg for dof in self.dofs]),
-            np.radians([dof.max_deg for dof in self.dofs]),
-        )
+        table = _dofs(self.side)
+        return tuple(mirror_dof(d) for d in table) if self.side == "left" else table
 
     @cached_property
     def mirror(self) -> np.ndarray:
         """Return the reflection from right-hand to this hand's coordinates (identity or x ↦ −x)."""
-        return np.diag([-1.0 if self.side == "left" else 1.0, 1.0, 1.0])
+        return MIRROR_X if self.side == "left" else np.eye(3)
 
     @cached_property
-    def _structure(self) -> tuple[list[tuple[str, str, np.ndarray]], dict[str, np.ndarray]]:
-        """Return (joint, parent, offset) in the right-hand frame, and rest rotations."""
-        joints: list[tuple[str, str, np.ndarray]] = [
-            ("forearm", "", np.zeros(3)),
-            ("wrist", "forearm", np.array([0.0, FOREARM_LENGTH_M, 0.0])),
+    def joint_specs(self) -> tuple[JointSpec, ...]:
+        """Return the joints, parents first, offsets and rest rotations in this hand's frame."""
+        rest = {"thumb_cmc": _thumb_rest_rotation()}
+        joints = [
+            JointSpec("forearm", "", (0.0, 0.0, 0.0)),
+            JointSpec("wrist", "forearm", (0.0, FOREARM_LENGTH_M, 0.0)),
+            JointSpec("thumb_cmc", "wrist", THUMB_CMC_POSITION_M),
         ]
-        rest: dict[str, np.ndarray] = {}
-        thumb_rest = _thumb_rest_rotation()
-        rest["thumb_cmc"] = thumb_rest
-        joints.append(("thumb_cmc", "wrist", np.array(THUMB_CMC_POSITION_M)))
         parent = "thumb_cmc"
         for name, length in zip(
             ("thumb_mcp", "thumb_ip", "thumb_tip"), THUMB_LENGTHS_M, strict=True
         ):
-            joints.append((name, parent, np.array([0.0, length, 0.0])))
+            joints.append(JointSpec(name, parent, (0.0, length, 0.0), is_end=name == "thumb_tip"))
             parent = name
         for finger in FINGERS:
             fan = np.radians(FINGER_FAN_DEG[finger])
             rest[f"{finger}_mcp"] = Rotation.from_euler("z", -fan).as_matrix()
-            joints.append((f"{finger}_mcp", "wrist", np.array(MCP_POSITIONS_M[finger])))
+            joints.append(JointSpec(f"{finger}_mcp", "wrist", MCP_POSITIONS_M[finger]))
             parent = f"{finger}_mcp"
             for name, length in zip(("pip", "dip", "tip"), PHALANX_LENGTHS_M[finger], strict=True):
-                joints.append((f"{finger}_{name}", parent, np.array([0.0, length, 0.0])))
-                parent = f"{finger}_{name}"
-        return joints, rest
-
-    @cached_property
-    def skeleton(self) -> Skeleton:
-        """Return the hand as a BVH skeleton (metres; ZXY rotation channels)."""
-        joints_spec, _ = self._structure
-        names = [name for name, _, _ in joints_spec]
-        joints = []
-        for name, parent, offset in joints_spec:
-            end = name.endswith("_tip")
-            channels = () if end else ("Zrotation", "Xrotation", "Yrotation")
-            mirrored = tuple(float(v) for v in self.mirror @ offset)
-            joints.append(
-                Joint(
-                    name,
-                    names.index(parent) if parent else -1,
-                    mirrored,
-                    channels,
-                    is_end_site=end,
+                joints.append(
+                    JointSpec(f"{finger}_{name}", parent, (0.0, length, 0.0), is_end=name == "tip")
                 )
+                parent = f"{finger}_{name}"
+        return tuple(
+            JointSpec(
+                j.name,
+                j.parent,
+                tuple(float(v) for v in self.mirror @ np.asarray(j.offset_m)),
+                None if j.name not in rest else self.mirror @ rest[j.name] @ self.mirror,
+                j.is_end,
             )
-        return Skeleton(tuple(joints), length_unit="m")
-
-    def clip(self, dofs_rad: np.ndarray) -> np.ndarray:
-        """Return the DOF values clamped to the joint limits."""
-        low, high = self.limits_rad
-        return np.clip(dofs_rad, low, high)
-
-    def neutral(self) -> np.ndarray:
-        """Return the all-zero pose: fingers straight together, thumb at rest, palm forward."""
-        return np.zeros(len(self.dofs))
-
-    def from_degrees(self, angles_deg: dict[str, float]) -> np.ndarray:
-        """Return a DOF vector (radians) from DOF names (or literature names) in degrees."""
-        values = self.neutral()
-        lookup = {dof.name: i for i, dof in enumerate(self.dofs)}
-        lookup.update({dof.literature: i for i, dof in enumerate(self.dofs)})
-        for name, angle in angles_deg.items():
-            if name not in lookup:
-                raise KeyError(f"Unknown hand DOF {name!r}.")
-            values[lookup[name]] = np.radians(angle)
-        return values
-
-    @cached_property
-    def _angle_map(self) -> tuple[np.ndarray, np.ndarray]:
-        """Return (n_dofs, n_joints·3) DOF → ZXY-angle matrix and (n_joints, 4) rest quaternions."""
-        joints_spec, rest = self._structure
-        names = [name for name, _, _ in joints_spec]
-        column = {"z": 0, "x": 1, "y": 2}
-        # Mirroring x negates rotations about y and z (M R M with M = diag(−1, 1, 1)).
-        mirrored = {"x": 1.0, "y": -1.0, "z": -1.0} if self.side == "left" else None
-        matrix = np.zeros((len(self.dofs), len(names) * 3))
-        for i, dof in enumerate(self.dofs):
-            sign = dof.sign * (mirrored[dof.axis] if mirrored else 1.0)
-            matrix[i, names.index(dof.joint) * 3 + column[dof.axis]] = sign
-        rest_q = np.zeros((len(names), 4))
-        rest_q[:, 3] = 1.0
-        for name, rotation in rest.items():
-            rest_q[names.index(name)] = Rotation.from_matrix(
-                self.mirror @ rotation @ self.mirror
-            ).as_quat()
-        return matrix, rest_q
-
-    def local_quaternions(self, dofs_rad: np.ndarray) -> np.ndarray:
-        """Return each joint's local rotation, (..., n_dofs) → (..., n_joints, 4) quaternions.
-
-        A joint's rotation is its rest rotation followed by its DOFs as ZXY Euler angles.
-        """
-        dofs_rad = np.asarray(dofs_rad, dtype=np.float64)
-        matrix, rest_q = self._angle_map
-        angles = (dofs_rad @ matrix).reshape(*dofs_rad.shape[:-1], len(rest_q), 3)
-        return quat_multiply(rest_q, quat_from_euler(angles, "ZXY"))
-
-    def pose(self, dofs_rad: np.ndarray) -> Pose:
-        """Return global joint transforms for DOF vectors, shape (n_frames, n_dofs) or (n_dofs,)."""
-        dofs_rad = np.atleast_2d(dofs_rad)
-        skeleton = self.skeleton
-        translations = np.broadcast_to(
-            skeleton.offsets * skeleton.metres_per_unit, (dofs_rad.shape[0], len(skeleton), 3)
+            for j in joints
         )
-        return forward_kinematics_arrays(skeleton, self.local_quaternions(dofs_rad), translations)
-
-    def channel_values(self, dofs_rad: np.ndarray) -> np.ndarray:
-        """Return BVH channel values (degrees, ZXY per joint) for DOF vectors (n_frames, n_dofs)."""
-        quaternions = self.local_quaternions(np.atleast_2d(dofs_rad))
-        with_channels = [i for i, joint in enumerate(self.skeleton.joints) if joint.channels]
-        angles = Rotation.from_quat(quaternions[:, with_channels].reshape(-1, 4)).as_euler(
-            "ZXY", degrees=True
-        )
-        return angles.reshape(quaternions.shape[0], -1)

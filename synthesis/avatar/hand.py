@@ -6,15 +6,17 @@ Radii follow an adult hand of 19 cm (finger widths after Buchholz et al. 1992, n
 toward the tips); fingernails are separate small meshes carried by the distal phalanges.
 """
 
+import itertools
 from functools import cache
 
 import numpy as np
 import trimesh
 
-from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, Avatar, SkinnedPart
+from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, Avatar, SkinnedPart, rigid_part
 from synthesis.avatar.sdf import Primitive, RoundCone, RoundedPlate, mesh_primitives
-from synthesis.avatar.skinning import SkinWeights, skin_weights
+from synthesis.avatar.skinning import skin_weights
 from synthesis.hand import FINGERS, HandModel
+from synthesis.rig import MIRROR_X, Rig
 from synthesis.rotations import quat_rotate
 
 # Radii (m) at the MCP, PIP, DIP and tip of each finger.
@@ -51,31 +53,38 @@ def bind_dofs(model: HandModel) -> np.ndarray:
     return model.from_degrees(BIND_DEGREES)
 
 
-def hand_primitives(model: HandModel, dofs_rad: np.ndarray) -> tuple[Primitive, ...]:
-    """Return the skin's primitives for the hand model at a pose, in merge order."""
-    pose = model.pose(dofs_rad)
+def hand_primitives(
+    rig: Rig, dofs_rad: np.ndarray, side: str, prefix: str = ""
+) -> tuple[Primitive, ...]:
+    """Return the skin's primitives for a hand and forearm at a pose, in merge order.
+
+    *rig* is the hand model or a body whose hand joints are named *prefix* + the hand
+    model's names (``right_index_mcp``); the forearm runs from the joint ``forearm``.
+    """
+    pose = rig.pose(dofs_rad)
     positions = pose.positions_m[0]
     rotations = pose.quaternions[0]
+    mirror = MIRROR_X if side == "left" else np.eye(3)
 
     def at(name: str) -> np.ndarray:
-        return positions[model.skeleton.index(name)]
+        return positions[rig.skeleton.index(prefix + name)]
 
     def axis(name: str, local) -> tuple[float, float, float]:
-        vector = quat_rotate(rotations[model.skeleton.index(name)], model.mirror @ local)
+        vector = quat_rotate(rotations[rig.skeleton.index(prefix + name)], mirror @ local)
         return tuple(float(v) for v in vector)
 
     def point(name: str, local) -> tuple[float, float, float]:
-        rotated = quat_rotate(rotations[model.skeleton.index(name)], model.mirror @ local)
+        rotated = quat_rotate(rotations[rig.skeleton.index(prefix + name)], mirror @ local)
         return tuple(float(v) for v in at(name) + rotated)
 
     palm_normal = axis("wrist", (0.0, 0.0, 1.0))
     corners = PALM_CORNERS_M
-    if model.side == "left":
+    if side == "left":
         # Mirroring flips the polygon's winding: walk it the other way.
         corners = tuple((-x, y) for x, y in reversed(corners))
     primitives: list[Primitive] = [
         RoundCone(
-            "forearm",
+            prefix + "forearm",
             point("forearm", (0.0, 0.02, 0.0)),
             point("wrist", (0.0, -0.012, 0.0)),
             0.036,
@@ -84,7 +93,7 @@ def hand_primitives(model: HandModel, dofs_rad: np.ndarray) -> tuple[Primitive, 
             normal=palm_normal,
         ),
         RoundedPlate(
-            "wrist",
+            prefix + "wrist",
             point("wrist", (0.0, 0.0, 0.001)),
             axis("wrist", (1.0, 0.0, 0.0)),
             axis("wrist", (0.0, 1.0, 0.0)),
@@ -94,7 +103,7 @@ def hand_primitives(model: HandModel, dofs_rad: np.ndarray) -> tuple[Primitive, 
         ),
         # The thenar eminence rides on the thumb's metacarpal.
         RoundCone(
-            "thumb_cmc",
+            prefix + "thumb_cmc",
             point("wrist", (0.012, 0.018, 0.004)),
             tuple(at("thumb_mcp")),
             THUMB_RADII_M[0],
@@ -103,19 +112,20 @@ def hand_primitives(model: HandModel, dofs_rad: np.ndarray) -> tuple[Primitive, 
         ),
     ]
     thumb = ("thumb_mcp", "thumb_ip", "thumb_tip")
-    for k, (start, end) in enumerate(zip(thumb[:-1], thumb[1:], strict=True)):
-        primitives.append(_phalanx(start, at(start), at(end), THUMB_RADII_M[k + 1 : k + 3], k))
+    for k, (start, end) in enumerate(itertools.pairwise(thumb)):
+        radii = THUMB_RADII_M[k + 1 : k + 3]
+        primitives.append(_phalanx(prefix + start, at(start), at(end), radii, k))
     for finger in FINGERS:
         radii = FINGER_RADII_M[finger]
         joints = (f"{finger}_mcp", f"{finger}_pip", f"{finger}_dip", f"{finger}_tip")
-        for k, (start, end) in enumerate(zip(joints[:-1], joints[1:], strict=True)):
-            primitives.append(_phalanx(start, at(start), at(end), radii[k : k + 2], k))
+        for k, (start, end) in enumerate(itertools.pairwise(joints)):
+            primitives.append(_phalanx(prefix + start, at(start), at(end), radii[k : k + 2], k))
     return tuple(primitives)
 
 
 def _phalanx(joint: str, start, end, radii, k: int) -> RoundCone:
     start, end = np.asarray(start), np.asarray(end)
-    if k == 2 or joint == "thumb_ip":
+    if k == 2 or joint.endswith("thumb_ip"):
         # The fingertip's pad ends at the tip landmark, not a radius beyond it.
         direction = (end - start) / np.linalg.norm(end - start)
         end = end - 0.75 * radii[1] * direction
@@ -130,37 +140,41 @@ def _phalanx(joint: str, start, end, radii, k: int) -> RoundCone:
     )
 
 
-def _nails(model: HandModel, dofs_rad: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Return nail meshes (vertices, faces) and their bones, at a pose."""
-    pose = model.pose(dofs_rad)
+def hand_nails(
+    rig: Rig, dofs_rad: np.ndarray, side: str, prefix: str = ""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return nail meshes (vertices, faces) and each vertex's bone, at a pose."""
+    pose = rig.pose(dofs_rad)
+    mirror = MIRROR_X if side == "left" else np.eye(3)
     vertices, faces, owners = [], [], []
     offset = 0
     for finger, joint, tip, radius in [
         *((f, f"{f}_dip", f"{f}_tip", FINGER_RADII_M[f][3]) for f in FINGERS),
         ("thumb", "thumb_ip", "thumb_tip", THUMB_RADII_M[3]),
     ]:
-        index = model.skeleton.index(joint)
+        index = rig.skeleton.index(prefix + joint)
         rotation = pose.quaternions[0, index]
         base = pose.positions_m[0, index]
-        end = pose.positions_m[0, model.skeleton.index(tip)]
+        end = pose.positions_m[0, rig.skeleton.index(prefix + tip)]
         length = np.linalg.norm(end - base)
         nail = trimesh.creation.icosphere(subdivisions=2)
         scale = np.array([radius * 0.68, length * 0.3, radius * 0.16])
         local = nail.vertices * scale + np.array([0.0, length * 0.5, -radius * 0.9])
         if finger == "thumb":
             local[:, 1] -= length * 0.05
-        world = base + quat_rotate(rotation, local @ model.mirror.T)
+        world = base + quat_rotate(rotation, local @ mirror.T)
         vertices.append(world)
         faces.append(nail.faces + offset)
         owners.append(np.full(len(world), index))
         offset += len(world)
     faces_all = np.concatenate(faces)
-    if model.side == "left":
+    if side == "left":
         faces_all = faces_all[:, ::-1]
     return np.concatenate(vertices), faces_all, np.concatenate(owners)
 
 
-def _simplify(vertices, faces, target_faces: int):
+def simplify(vertices, faces, target_faces: int):
+    """Return the mesh decimated to about *target_faces* (quadric error, fast-simplification)."""
     if len(faces) <= target_faces:
         return vertices, faces
     import fast_simplification
@@ -175,9 +189,9 @@ def hand_avatar(side: str = "right", voxel_mm: float = 1.2, max_faces: int = 400
     """Build the hand-and-forearm avatar (built once per process, then cached)."""
     model = HandModel(side)
     bind = bind_dofs(model)
-    primitives = hand_primitives(model, bind)
+    primitives = hand_primitives(model, bind, side)
     vertices, faces = mesh_primitives(primitives, voxel_mm / 1000)
-    vertices, faces = _simplify(vertices, faces, max_faces)
+    vertices, faces = simplify(vertices, faces, max_faces)
     vertices = np.asarray(vertices, dtype=np.float64)
     index = {name: i for i, name in enumerate(model.skeleton.names)}
     skin = SkinnedPart(
@@ -187,14 +201,5 @@ def hand_avatar(side: str = "right", voxel_mm: float = 1.2, max_faces: int = 400
         np.broadcast_to(np.asarray(SKIN_RGB), vertices.shape),
         skin_weights(vertices, primitives, index),
     )
-    nail_vertices, nail_faces, owners = _nails(model, bind)
-    weights = np.zeros((len(owners), 4))
-    weights[:, 0] = 1.0
-    nails = SkinnedPart(
-        "nails",
-        nail_vertices,
-        nail_faces,
-        np.broadcast_to(np.asarray(NAIL_RGB), nail_vertices.shape),
-        SkinWeights(np.repeat(owners[:, None], 4, axis=1), weights),
-    )
+    nails = rigid_part("nails", *hand_nails(model, bind, side), NAIL_RGB)
     return Avatar(f"hand-{side}", model, bind, (skin, nails))

@@ -42,6 +42,19 @@ class SkinnedPart:
         )
 
 
+def rigid_part(name: str, vertices_m, faces, owners, color_rgb) -> SkinnedPart:
+    """Return a part whose every vertex follows one bone (*owners*: joint index per vertex)."""
+    weights = np.zeros((len(owners), 4))
+    weights[:, 0] = 1.0
+    return SkinnedPart(
+        name,
+        np.asarray(vertices_m, dtype=np.float64),
+        np.asarray(faces, dtype=np.int64),
+        np.broadcast_to(np.asarray(color_rgb, dtype=np.float64), (len(owners), 3)),
+        SkinWeights(np.repeat(np.asarray(owners)[:, None], 4, axis=1), weights),
+    )
+
+
 @dataclass(frozen=True, eq=False)
 class Avatar:
     """A rig plus skinned parts; ``rig`` has ``skeleton``, ``pose(dofs)`` and ``neutral()``."""
@@ -63,7 +76,10 @@ class Avatar:
 
     def deform(self, dofs_rad: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
         """Return, per part, posed vertices and normals (n_frames, n, 3) for DOF vectors."""
-        pose = self.rig.pose(np.atleast_2d(dofs_rad))
+        return self.deform_pose(self.rig.pose(np.atleast_2d(dofs_rad)))
+
+    def deform_pose(self, pose: Pose) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Return, per part, posed vertices and normals for joint transforms (n_frames, …)."""
         transforms = skin_transforms(pose, self.bind_pose)
         return [
             linear_blend_skinning(part.vertices_m, part.normals, matrix, transforms)

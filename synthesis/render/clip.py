@@ -5,6 +5,7 @@ from pathlib import Path
 import numpy as np
 
 from synthesis.avatar.model import Avatar
+from synthesis.kinematics import Pose
 from synthesis.render.renderer import Progress, Renderer
 from synthesis.render.scene import CameraPreset
 from synthesis.render.video import VideoInfo, write_mp4, write_png
@@ -25,7 +26,7 @@ def render_still(
 
 def render_clip(
     avatar: Avatar,
-    dofs_rad: np.ndarray,
+    motion: np.ndarray | Pose,
     camera: CameraPreset,
     out: str | Path,
     rate_hz: float = 60.0,
@@ -35,23 +36,26 @@ def render_clip(
     height: int = 480,
     progress: Progress | None = None,
 ) -> VideoInfo:
-    """Render a motion (n_frames, n_dofs) to an H.264 MP4, and a poster PNG if asked.
+    """Render a motion to an H.264 MP4, and a poster PNG if asked.
 
+    *motion* is DOF vectors (n_frames, n_dofs) or a Pose of the avatar's skeleton;
     *progress* receives (frames done, total) as frames are rendered and encoded.
     """
-    dofs_rad = np.atleast_2d(dofs_rad)
-    if not 0 <= poster_frame < len(dofs_rad):
-        raise ValueError(f"poster_frame must lie in 0…{len(dofs_rad) - 1}.")
+    if not isinstance(motion, Pose):
+        motion = np.atleast_2d(motion)
+    total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(motion)
+    if not 0 <= poster_frame < total:
+        raise ValueError(f"poster_frame must lie in 0…{total - 1}.")
     with Renderer(avatar, camera, width, height) as renderer:
         kept = {}
 
         def frames():
-            for number, frame in enumerate(renderer.frames(dofs_rad)):
+            for number, frame in enumerate(renderer.frames(motion)):
                 if number == poster_frame:
                     kept["poster"] = frame
                 yield frame
 
-        info = write_mp4(frames(), out, rate_hz, progress=progress, total=len(dofs_rad))
+        info = write_mp4(frames(), out, rate_hz, progress=progress, total=total)
     if poster is not None:
         write_png(kept["poster"], poster)
     return info

@@ -114,7 +114,9 @@ class Renderer:
         color, _ = self._renderer.render(self.scene, flags=self._flags)
         return np.ascontiguousarray(color[..., :3])
 
-    def frames(self, dofs_rad: np.ndarray, progress: Progress | None = None) -> Iterator[np.ndarray]:
+    def frames(
+        self, dofs_rad: np.ndarray, progress: Progress | None = None
+    ) -> Iterator[np.ndarray]:
         """Yield one frame per row of *dofs_rad* (n_frames, n_dofs), reporting progress."""
         dofs_rad = np.atleast_2d(dofs_rad)
         total = len(dofs_rad)

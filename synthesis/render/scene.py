@@ -79,7 +79,7 @@ def hand_close_up(side: str = "right") -> CameraPreset:
     for letters that turn the hand (G, H, P, Q) or move it (J, Z, double letters).
     """
     x = 0.08 if side == "right" else -0.08
-    return CameraPreset("hand close-up", (x, 0.3, 0.8), (x, 0.28, 0.0), 30.0)
+    return CameraPreset("hand close-up", (x, 0.27, 0.9), (x, 0.25, 0.0), 30.0)
 
 
 def upper_body_front(side: str = "right") -> CameraPreset:
@@ -88,7 +88,7 @@ def upper_body_front(side: str = "right") -> CameraPreset:
     *side* names the dominant hand; the view is symmetric, as in signing videos.
     """
     del side
-    return CameraPreset("upper body", (0.0, 1.36, 2.1), (0.0, 1.33, 0.0), 30.0)
+    return CameraPreset("upper body", (0.0, 1.42, 1.6), (0.0, 1.40, 0.0), 30.0)
 
 
 CAMERA_PRESETS = {"hand": hand_close_up, "upper-body": upper_body_front}

@@ -1,0 +1,134 @@
+"""The default upper-body avatar: torso, neck, head, arms and both hands in one skin.
+
+A plain dark long-sleeved top against skin-coloured hands, neck and face, the signing
+video convention (spec 01), with simple eyes and a nose so that the head's orientation
+reads. The skin is meshed at the bind pose (arms lifted away from the torso, fingers
+apart) so that limbs do not fuse with the body, then decimated for rendering speed.
+"""
+
+from functools import cache
+
+import numpy as np
+import trimesh
+
+from synthesis.avatar.hand import BIND_DEGREES as HAND_BIND_DEGREES
+from synthesis.avatar.hand import hand_nails, hand_primitives, simplify
+from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, TOP_RGB, Avatar, SkinnedPart, rigid_part
+from synthesis.avatar.sdf import Primitive, RoundCone, mesh_primitives
+from synthesis.avatar.skinning import skin_weights
+from synthesis.body import SIDES, BodyModel
+from synthesis.rotations import quat_rotate
+
+EYE_RGB = (0.08, 0.06, 0.05)
+# Bones under the top; the forearm's sleeve ends this far from the wrist.
+CLOTHED = ("hips", "spine_lower", "spine_middle", "spine_upper", "clavicle", "shoulder", "elbow")
+CUFF_M = 0.065
+
+
+def bind_dofs(model: BodyModel) -> np.ndarray:
+    """Return the bind pose: arms 35° away from the body, elbows a little bent, hands apart."""
+    degrees = {}
+    for side in SIDES:
+        degrees[f"{side}_shoulder_abduction"] = 35.0
+        degrees[f"{side}_elbow_flexion"] = 20.0
+        degrees.update({f"{side}_{k}": v for k, v in HAND_BIND_DEGREES.items()})
+    return model.from_degrees(degrees)
+
+
+def body_primitives(model: BodyModel, dofs_rad: np.ndarray) -> tuple[Primitive, ...]:
+    """Return the skin's primitives for the upper body at a pose, in merge order."""
+    pose = model.pose(dofs_rad)
+
+    def point(joint: str, local=(0.0, 0.0, 0.0)) -> tuple[float, float, float]:
+        index = model.skeleton.index(joint)
+        moved = quat_rotate(pose.quaternions[0, index], np.asarray(local, dtype=np.float64))
+        return tuple(float(v) for v in pose.positions_m[0, index] + moved)
+
+    forward = (0.0, 0.0, 1.0)
+    primitives: list[Primitive] = [
+        RoundCone("hips", point("hips", (0, -0.06, 0)), point("spine_lower"), 0.145, 0.135,
+                  flatten=0.62, normal=forward),
+        RoundCone("spine_lower", point("spine_lower"), point("spine_middle"), 0.135, 0.14,
+                  blend_m=0.05, flatten=0.6, normal=forward),
+        RoundCone("spine_middle", point("spine_middle"), point("spine_upper"), 0.14, 0.15,
+                  blend_m=0.05, flatten=0.62, normal=forward),
+        RoundCone("spine_upper", point("spine_upper"), point("spine_upper", (0, 0.115, -0.01)),
+                  0.15, 0.11, blend_m=0.05, flatten=0.6, normal=forward),
+    ]  # fmt: skip
+    for side in SIDES:
+        p = side + "_"
+        primitives += [
+            RoundCone(p + "clavicle", point(p + "clavicle", (0, -0.01, -0.02)),
+                      point(p + "shoulder", (0, 0.015, 0)), 0.055, 0.052, blend_m=0.05),
+            RoundCone(p + "shoulder", point(p + "shoulder"), point(p + "elbow"), 0.05, 0.04,
+                      blend_m=0.04),
+        ]  # fmt: skip
+    primitives += [
+        RoundCone("neck", point("neck", (0, -0.02, 0)), point("head"), 0.054, 0.05, blend_m=0.03),
+        RoundCone("head", point("head", (0, 0.07, 0.0)), point("head", (0, 0.125, -0.005)),
+                  0.088, 0.09, blend_m=0.03, flatten=0.84, normal=(1.0, 0.0, 0.0)),
+        RoundCone("head", point("head", (0, 0.07, 0.02)), point("head", (0, 0.015, 0.062)),
+                  0.06, 0.03, blend_m=0.03, flatten=0.9, normal=(1.0, 0.0, 0.0)),
+        RoundCone("head", point("head", (0, 0.1, 0.085)), point("head", (0, 0.068, 0.1)),
+                  0.011, 0.013, blend_m=0.012),
+    ]  # fmt: skip
+    for side in SIDES:
+        primitives += hand_primitives(model, dofs_rad, side, prefix=side + "_")
+    return tuple(primitives)
+
+
+def _eyes(model: BodyModel, dofs_rad: np.ndarray):
+    pose = model.pose(dofs_rad)
+    head = model.skeleton.index("head")
+    sphere = trimesh.creation.icosphere(subdivisions=2, radius=0.011)
+    vertices, faces = [], []
+    for k, x in enumerate((-0.032, 0.032)):
+        local = sphere.vertices + np.array([x, 0.108, 0.068])
+        vertices.append(pose.positions_m[0, head] + quat_rotate(pose.quaternions[0, head], local))
+        faces.append(sphere.faces + k * len(sphere.vertices))
+    vertices = np.concatenate(vertices)
+    return vertices, np.concatenate(faces), np.full(len(vertices), head)
+
+
+def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad) -> np.ndarray:
+    """Return per-vertex colours: the top over the trunk and arms, skin elsewhere."""
+    names = model.skeleton.names
+    dominant = weights.joints[np.arange(len(vertices_m)), np.argmax(weights.weights, axis=1)]
+    clothed = np.array([any(name.endswith(c) for c in CLOTHED) for name in names])[dominant]
+    positions = model.pose(dofs_rad).positions_m[0]
+    for side in SIDES:
+        forearm = model.skeleton.index(f"{side}_forearm")
+        wrist = positions[model.skeleton.index(f"{side}_wrist")]
+        elbow = positions[forearm]
+        along = (vertices_m - wrist) @ (elbow - wrist) / np.linalg.norm(elbow - wrist)
+        clothed |= (dominant == forearm) & (along > CUFF_M)
+    colours = np.empty((len(vertices_m), 3))
+    colours[:] = SKIN_RGB
+    colours[clothed] = TOP_RGB
+    return colours
+
+
+@cache
+def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int = 70000) -> Avatar:
+    """Build the upper-body avatar (built once per process, then cached)."""
+    model = BodyModel(dominant)
+    bind = bind_dofs(model)
+    primitives = body_primitives(model, bind)
+    vertices, faces = mesh_primitives(primitives, voxel_mm / 1000)
+    vertices, faces = simplify(vertices, faces, max_faces)
+    vertices = np.asarray(vertices, dtype=np.float64)
+    index = {name: i for i, name in enumerate(model.skeleton.names)}
+    weights = skin_weights(vertices, primitives, index)
+    skin = SkinnedPart(
+        "skin",
+        vertices,
+        np.asarray(faces, dtype=np.int64),
+        _colours(model, vertices, weights, bind),
+        weights,
+    )
+    parts = [skin, rigid_part("eyes", *_eyes(model, bind), EYE_RGB)]
+    for side in SIDES:
+        parts.append(
+            rigid_part(f"{side} nails", *hand_nails(model, bind, side, side + "_"), NAIL_RGB)
+        )
+    return Avatar(f"upper-body-{dominant}", model, bind, tuple(parts))

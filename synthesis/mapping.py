@@ -1,0 +1,147 @@
+"""Joint-name mapping: recognise third-party skeletons and name their joints our way.
+
+Motion capture arrives from Vicon Blade, Xsens MVN, Rokoko, Mixamo and Blender, each with
+its own joint names (spec 01 "Motion data"). A table maps each convention's names to the
+engine's canonical names: the upper-body model's (``spine_lower``, ``right_shoulder``,
+``right_index_pip``…), which for one hand alone drop the side (``index_pip``). Names are
+compared without case, separators or a namespace prefix (``mixamorig:``), so
+``RightHandIndex1``, ``right_hand_index_1`` and ``mixamorig:RightHandIndex1`` all match.
+"""
+
+import re
+from dataclasses import dataclass
+
+from synthesis.skeleton import Skeleton
+
+_DIGITS_FINGERS = ("index", "middle", "ring", "pinky")
+_FINGER_JOINTS = ("mcp", "pip", "dip", "tip")
+_THUMB_JOINTS = ("cmc", "mcp", "ip", "tip")
+
+
+def _side_names(side: str, cap: str, short: str) -> dict[str, dict[str, str]]:
+    """Return, per convention, the name of each canonical joint of one side."""
+    s = side + "_"
+    tables: dict[str, dict[str, str]] = {
+        # Autodesk HumanIK naming, shared by Mixamo, Rokoko and Vicon Blade exports.
+        "humanik": {
+            s + "clavicle": f"{cap}Shoulder",
+            s + "shoulder": f"{cap}Arm",
+            s + "elbow": f"{cap}ForeArm",
+            s + "wrist": f"{cap}Hand",
+        },
+        "xsens": {
+            s + "clavicle": f"{cap}Shoulder",
+            s + "shoulder": f"{cap}UpperArm",
+            s + "elbow": f"{cap}ForeArm",
+            s + "wrist": f"{cap}Hand",
+        },
+        "blender": {
+            s + "clavicle": f"shoulder.{short}",
+            s + "shoulder": f"upper_arm.{short}",
+            s + "elbow": f"forearm.{short}",
+            s + "wrist": f"hand.{short}",
+        },
+    }
+    digit_names = {
+        "humanik": {"thumb": "Thumb", "index": "Index", "middle": "Middle", "ring": "Ring",
+                    "pinky": "Pinky"},
+        "xsens": {"thumb": "First", "index": "Second", "middle": "Third", "ring": "Fourth",
+                  "pinky": "Fifth"},
+        "blender": {"thumb": "thumb", "index": "f_index", "middle": "f_middle",
+                    "ring": "f_ring", "pinky": "f_pinky"},
+    }  # fmt: skip
+    xsens_segments = {"thumb": ("CMC", "MCP", "IP", "Tip"), "finger": ("MCP", "PIP", "DIP", "Tip")}
+    for digit in ("thumb", *_DIGITS_FINGERS):
+        joints = _THUMB_JOINTS if digit == "thumb" else _FINGER_JOINTS
+        for k, joint in enumerate(joints):
+            canonical = f"{s}{digit}_{joint}"
+            # HumanIK numbers a digit's joints 1–4 from the hand (4 is the end site).
+            tables["humanik"][canonical] = f"{cap}Hand{digit_names['humanik'][digit]}{k + 1}"
+            segment = xsens_segments["thumb" if digit == "thumb" else "finger"][k]
+            tables["xsens"][canonical] = f"{cap}{digit_names['xsens'][digit]}{segment}"
+            if k < 3:
+                tables["blender"][canonical] = f"{digit_names['blender'][digit]}.0{k + 1}.{short}"
+    return tables
+
+
+def _tables() -> dict[str, dict[str, str]]:
+    trunk = {
+        "humanik": {"hips": "Hips", "spine_lower": "Spine", "spine_middle": "Spine1",
+                    "spine_upper": "Spine2", "neck": "Neck", "head": "Head"},
+        "xsens": {"hips": "Pelvis", "spine_lower": "L3", "spine_middle": "T12",
+                  "spine_upper": "T8", "neck": "Neck", "head": "Head"},
+        "blender": {"hips": "spine", "spine_lower": "spine.001", "spine_middle": "spine.002",
+                    "spine_upper": "spine.003", "neck": "spine.004", "head": "spine.006"},
+    }  # fmt: skip
+    for side, cap, short in (("right", "Right", "R"), ("left", "Left", "L")):
+        for convention, names in _side_names(side, cap, short).items():
+            trunk[convention].update(names)
+    # Our own BVH files use the canonical names themselves.
+    trunk["signstudy"] = {name: name for name in trunk["humanik"]}
+    return {
+        name: {canonical: theirs for canonical, theirs in t.items()} for name, t in trunk.items()
+    }
+
+
+JOINT_NAME_TABLES: dict[str, dict[str, str]] = _tables()
+
+
+def normalise(name: str) -> str:
+    """Return a joint name without namespace, case or separators, for matching."""
+    name = name.rsplit(":", 1)[-1]
+    return re.sub(r"[\s_.\-]", "", name).lower()
+
+
+@dataclass(frozen=True)
+class JointMapping:
+    """Which convention a skeleton follows and its joint → canonical-name pairs."""
+
+    convention: str
+    to_canonical: dict[str, str]
+
+    @property
+    def is_single_hand(self) -> bool:
+        """Return True when the skeleton is one hand (no trunk, one side)."""
+        return not any(
+            c.startswith(("hips", "spine", "neck", "head")) for c in self.to_canonical.values()
+        )
+
+    def side(self) -> str | None:
+        """Return the only side this mapping covers, or None for both or neither."""
+        sides = {c.split("_", 1)[0] for c in self.to_canonical.values()} & {"right", "left"}
+        return sides.pop() if len(sides) == 1 else None
+
+
+def detect_mapping(skeleton: Skeleton, minimum: int = 4) -> JointMapping:
+    """Return the convention whose names match most of *skeleton*'s joints.
+
+    Raises ValueError naming the best candidates when fewer than *minimum* joints match,
+    so that a wrong file fails loudly instead of animating nothing.
+    """
+    ours = {normalise(name): name for name in skeleton.names}
+    scores = []
+    for convention, table in JOINT_NAME_TABLES.items():
+        matched = {
+            ours[normalise(theirs)]: canonical
+            for canonical, theirs in table.items()
+            if normalise(theirs) in ours
+        }
+        # A single-hand file named with side-less canonical names (our hand BVH).
+        if convention == "signstudy" and len(matched) < minimum:
+            matched = {
+                ours[normalise(theirs.split("_", 1)[1])]: canonical
+                for canonical, theirs in table.items()
+                if canonical.startswith("right_") and normalise(theirs.split("_", 1)[1]) in ours
+            }
+            matched = {k: v.split("_", 1)[1] for k, v in matched.items()}
+        scores.append((len(matched), convention, matched))
+    scores.sort(key=lambda s: -s[0])
+    count, convention, matched = scores[0]
+    if count < minimum:
+        sample = ", ".join(skeleton.names[:6])
+        raise ValueError(
+            f"Cannot map this skeleton's joints ({sample}, …) onto the hand or body model: "
+            f"at most {count} names match a known convention "
+            f"({', '.join(sorted(JOINT_NAME_TABLES))})."
+        )
+    return JointMapping(convention, matched)

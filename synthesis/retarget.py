@@ -1,0 +1,146 @@
+"""Retarget a third-party motion onto the hand or body model through a joint mapping.
+
+Each mapped joint copies the source joint's world rotation relative to the source's rest
+pose (BVH: all channels zero), applied on top of the model's own rest pose after turning
+the model's bone onto the source's rest bone direction; unmapped joints keep their rest
+rotation relative to their parent. Bone lengths stay the model's; the root travels as
+the source root does, scaled by the two skeletons' sizes.
+"""
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from synthesis.kinematics import Pose, forward_kinematics
+from synthesis.mapping import JointMapping, detect_mapping
+from synthesis.motion import Motion
+from synthesis.rig import Rig
+from synthesis.rotations import quat_multiply, quat_rotate
+
+
+def _conjugate(q: np.ndarray) -> np.ndarray:
+    return q * np.array([-1.0, -1.0, -1.0, 1.0])
+
+
+def _between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Return the shortest-arc quaternion turning direction *a* onto direction *b*."""
+    a = a / np.linalg.norm(a)
+    b = b / np.linalg.norm(b)
+    cross, dot = np.cross(a, b), float(a @ b)
+    if dot < -1 + 1e-9:
+        # Opposite: any perpendicular axis will do.
+        axis = np.cross(a, (1.0, 0.0, 0.0) if abs(a[0]) < 0.9 else (0.0, 1.0, 0.0))
+        return np.append(axis / np.linalg.norm(axis), 0.0)
+    q = np.append(cross, 1.0 + dot)
+    return q / np.linalg.norm(q)
+
+
+def target_names(mapping: JointMapping, rig: Rig) -> dict[str, str]:
+    """Return source joint → rig joint names, adapting sides between hand and body."""
+    names = set(rig.skeleton.names)
+    result = {}
+    single_side = mapping.side()
+    for source, canonical in mapping.to_canonical.items():
+        candidates = [canonical]
+        if "_" in canonical and canonical.split("_", 1)[0] in ("right", "left"):
+            side, bare = canonical.split("_", 1)
+            if getattr(rig, "side", side) == side or single_side:
+                candidates.append(bare)
+        else:
+            candidates.append(f"{getattr(rig, 'dominant', 'right')}_{canonical}")
+        for name in candidates:
+            if name in names:
+                result[source] = name
+                break
+    return result
+
+
+def _height(positions: np.ndarray) -> float:
+    return float(np.ptp(positions, axis=0).max())
+
+
+def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> Pose:
+    """Return the rig's global transforms, (n_frames, n_joints, …), following *motion*."""
+    source_skeleton = motion.skeleton
+    target = rig.skeleton
+    if source_skeleton.names == target.names and np.allclose(
+        source_skeleton.offsets * source_skeleton.metres_per_unit,
+        target.offsets * target.metres_per_unit,
+        atol=1e-6,
+    ):
+        return forward_kinematics(motion)
+    mapping = mapping or detect_mapping(source_skeleton)
+    pairs = {
+        target.index(t): source_skeleton.index(s) for s, t in target_names(mapping, rig).items()
+    }
+    if not pairs:
+        raise ValueError(
+            f"No joint of this {mapping.convention} skeleton maps onto the {rig.kind} model."
+        )
+    source = forward_kinematics(motion)
+    rest_values = np.zeros((1, source_skeleton.channel_count))
+    source_rest = forward_kinematics(Motion(source_skeleton, rest_values, 1.0))
+    source_rest_q = source_rest.quaternions[0]
+    source_rest_p = source_rest.positions_m[0]
+    neutral = rig.pose(rig.neutral())
+    neutral_q, neutral_p = neutral.quaternions[0], neutral.positions_m[0]
+    local_rest = rig.local_quaternions(rig.neutral())
+    offsets = target.offsets * target.metres_per_unit
+    parents = target.parents
+
+    n_frames = motion.n_frames
+    rotations = np.empty((n_frames, len(target), 4))
+    positions = np.empty((n_frames, len(target), 3))
+    scale = _height(neutral_p) / max(_height(source_rest_p), 1e-9)
+    for j in range(len(target)):
+        parent = parents[j]
+        if j in pairs:
+            s = pairs[j]
+            align = _alignment(j, s, pairs, parents, neutral_p, source_rest_p)
+            delta = quat_multiply(source.quaternions[:, s], _conjugate(source_rest_q[s]))
+            rotations[:, j] = quat_multiply(delta, quat_multiply(align, neutral_q[j]))
+        elif parent < 0:
+            rotations[:, j] = neutral_q[j]
+        else:
+            rotations[:, j] = quat_multiply(rotations[:, parent], local_rest[j])
+        if parent < 0:
+            positions[:, j] = neutral_p[j]
+            root_source = pairs.get(j)
+            if root_source is not None and source_skeleton.parents[root_source] < 0:
+                travel = source.positions_m[:, root_source] - source.positions_m[:1, root_source]
+                positions[:, j] += travel * scale
+        else:
+            positions[:, j] = positions[:, parent] + quat_rotate(rotations[:, parent], offsets[j])
+    return Pose(quaternions=rotations, positions_m=positions)
+
+
+def _alignment(j, s, pairs, parents, neutral_p, source_rest_p) -> np.ndarray:
+    """Return the rotation (quaternion) that best turns the model's rest limb onto the source's.
+
+    The limb is the direction to each nearest mapped descendant (a wrist's five digits, the
+    upper spine's neck and clavicles), and the rotation the
+    least-squares fit of one set onto the other (Wahba's problem, solved by scipy): a
+    bone's direction and its roll (where the thumb points, say) both come out of it.
+    """
+    identity = np.array([0.0, 0.0, 0.0, 1.0])
+    mapped = _nearest_mapped(parents, j, pairs)
+    model = np.array([neutral_p[c] - neutral_p[j] for c in mapped]).reshape(-1, 3)
+    source = np.array([source_rest_p[pairs[c]] - source_rest_p[s] for c in mapped]).reshape(-1, 3)
+    usable = (np.linalg.norm(model, axis=1) > 1e-9) & (np.linalg.norm(source, axis=1) > 1e-9)
+    if not usable.any():
+        return identity
+    model = model[usable] / np.linalg.norm(model[usable], axis=1, keepdims=True)
+    source = source[usable] / np.linalg.norm(source[usable], axis=1, keepdims=True)
+    if len(model) == 1 or np.allclose(model, model[0], atol=1e-6):
+        return _between(model[0], source[0])
+    rotation, _ = Rotation.align_vectors(source, model)
+    return rotation.as_quat()
+
+
+def _nearest_mapped(parents: np.ndarray, joint: int, pairs: dict) -> list[int]:
+    """Return the mapped descendants reached without passing another mapped joint."""
+    found, frontier = [], [joint]
+    while frontier:
+        children = [c for c in range(len(parents)) if parents[c] in frontier]
+        found += [c for c in children if c in pairs]
+        frontier = [c for c in children if c not in pairs]
+    return found
