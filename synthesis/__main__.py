@@ -4,4 +4,6 @@ import sys
 
 from synthesis.cli import main
 
-sys.exit(main())
+# Guarded: render worker processes are spawned, and re-import the main module.
+if __name__ == "__main__":
+    sys.exit(main())

@@ -44,10 +44,15 @@ def _size(text: str) -> tuple[int, int]:
 
 
 def _progress(label: str):
+    """Return a progress callback: one updating line on a terminal, else every tenth."""
+    interactive = sys.stderr.isatty()
+
     def report(done: int, total: int) -> None:
-        print(f"\r{label}: frame {done}/{total}", end="", file=sys.stderr, flush=True)
-        if done == total:
-            print(file=sys.stderr)
+        if interactive:
+            end = "\n" if done == total else ""
+            print(f"\r{label}: frame {done}/{total}", end=end, file=sys.stderr, flush=True)
+        elif done == total or done % max(1, total // 10) == 0:
+            print(f"{label}: frame {done}/{total}", file=sys.stderr, flush=True)
 
     return report
 
@@ -92,6 +97,7 @@ def _spell(args: argparse.Namespace) -> int:
     info = render_clip(
         avatar, motion, camera, args.out, args.rate, poster=args.poster,
         width=args.size[0], height=args.size[1], progress=_progress(f"spelling {args.word}"),
+        workers=args.workers,
     )  # fmt: skip
     print(f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s)")
     return 0
@@ -115,6 +121,7 @@ def _render_bvh(args: argparse.Namespace) -> int:
     info = render_clip(
         avatar, pose, camera, args.out, motion.rate_hz, poster=args.poster,
         width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),
+        workers=args.workers,
     )  # fmt: skip
     print(
         f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; "
@@ -148,6 +155,10 @@ def parser() -> argparse.ArgumentParser:
         command.add_argument("--size", type=_size, default=(640, 480), help="WIDTHxHEIGHT")
         return command
 
+    def clip_options(command: argparse.ArgumentParser) -> None:
+        command.add_argument("--poster", type=Path, help="also write the first frame as a PNG")
+        command.add_argument("--workers", type=int, default=1, help="render in this many processes")
+
     pose = rendering("render-pose", "render one letter's handshape to a PNG")
     pose.add_argument("--letter", required=True)
     pose.set_defaults(run=_render_pose)
@@ -155,13 +166,13 @@ def parser() -> argparse.ArgumentParser:
     spell = rendering("spell", "render a fingerspelled word to an MP4 (simple default timing)")
     spell.add_argument("word")
     spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
-    spell.add_argument("--poster", type=Path, help="also write the first frame as a PNG")
+    clip_options(spell)
     spell.set_defaults(run=_spell)
 
     bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
     bvh.add_argument("file", type=Path)
     bvh.add_argument("--rate", type=float, default=None, help="resample to this frame rate")
-    bvh.add_argument("--poster", type=Path, help="also write the first frame as a PNG")
+    clip_options(bvh)
     bvh.set_defaults(run=_render_bvh)
     return main
 

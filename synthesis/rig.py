@@ -6,6 +6,7 @@ Each joint's local rotation is its fixed rest rotation followed by its DOFs as Z
 Euler angles, so every bone can lie along its joint's local +y.
 """
 
+import warnings
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -137,9 +138,11 @@ class Rig:
         """Return BVH channel values (degrees, ZXY per joint) for DOF vectors (n_frames, n_dofs)."""
         quaternions = self.local_quaternions(np.atleast_2d(dofs_rad))
         with_channels = [i for i, joint in enumerate(self.skeleton.joints) if joint.channels]
-        angles = Rotation.from_quat(quaternions[:, with_channels].reshape(-1, 4)).as_euler(
-            "ZXY", degrees=True
-        )
+        rotations = Rotation.from_quat(quaternions[:, with_channels].reshape(-1, 4))
+        with warnings.catch_warnings():
+            # At ±90° the angles are not unique, but the ones chosen give the same rotation.
+            warnings.filterwarnings("ignore", "Gimbal lock detected", UserWarning)
+            angles = rotations.as_euler("ZXY", degrees=True)
         return angles.reshape(quaternions.shape[0], -1)
 
 

@@ -109,7 +109,7 @@ def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad) -> np.
 
 
 @cache
-def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int = 70000) -> Avatar:
+def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int = 35000) -> Avatar:
     """Build the upper-body avatar (built once per process, then cached)."""
     model = BodyModel(dominant)
     bind = bind_dofs(model)

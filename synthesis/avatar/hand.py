@@ -174,18 +174,30 @@ def hand_nails(
 
 
 def simplify(vertices, faces, target_faces: int):
-    """Return the mesh decimated to about *target_faces* (quadric error, fast-simplification)."""
+    """Return the mesh decimated to about *target_faces* (quadric error, fast-simplification).
+
+    Aggressive decimation can leave an edge shared by more than two triangles; the skin
+    must stay watertight, so gentler settings are tried in turn, and the full mesh is
+    kept if none holds.
+    """
     if len(faces) <= target_faces:
         return vertices, faces
     import fast_simplification
 
-    return fast_simplification.simplify(
-        vertices.astype(np.float32), faces.astype(np.int32), 1.0 - target_faces / len(faces)
-    )
+    for aggressiveness in (7.0, 4.0, 2.0, 1.0):
+        fewer_vertices, fewer_faces = fast_simplification.simplify(
+            np.asarray(vertices, dtype=np.float32),
+            np.asarray(faces, dtype=np.int32),
+            target_count=target_faces,
+            agg=aggressiveness,
+        )
+        if trimesh.Trimesh(fewer_vertices, fewer_faces, process=False).is_watertight:
+            return fewer_vertices, fewer_faces
+    return vertices, faces
 
 
 @cache
-def hand_avatar(side: str = "right", voxel_mm: float = 1.2, max_faces: int = 40000) -> Avatar:
+def hand_avatar(side: str = "right", voxel_mm: float = 1.2, max_faces: int = 20000) -> Avatar:
     """Build the hand-and-forearm avatar (built once per process, then cached)."""
     model = HandModel(side)
     bind = bind_dofs(model)

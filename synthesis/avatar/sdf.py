@@ -46,10 +46,18 @@ class RoundCone:
 
     def axis_distance(self, points_m: np.ndarray) -> np.ndarray:
         """Return the distance of points (..., 3) to the bone's axis segment, metres."""
+        return self._axis(points_m)[0]
+
+    def relative_axis_distance(self, points_m: np.ndarray) -> np.ndarray:
+        """Return the axis distance in units of the cone's radius where it is nearest."""
+        distance, t = self._axis(points_m)
+        return distance / (self.radius_start_m + t * (self.radius_end_m - self.radius_start_m))
+
+    def _axis(self, points_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         a, b = np.asarray(self.start_m), np.asarray(self.end_m)
         ab = b - a
         t = np.clip(((points_m - a) @ ab) / (ab @ ab), 0.0, 1.0)
-        return np.linalg.norm(points_m - a - np.multiply.outer(t, ab), axis=-1)
+        return np.linalg.norm(points_m - a - np.multiply.outer(t, ab), axis=-1), t
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Return the axis-aligned box (low, high) that holds the primitive."""
@@ -103,6 +111,10 @@ class RoundedPlate:
         in_plane, height = self._plane(points_m)
         outside = _polygon_distance(in_plane, np.asarray(self.corners_m))
         return np.hypot(np.maximum(outside, 0.0), height)
+
+    def relative_axis_distance(self, points_m: np.ndarray) -> np.ndarray:
+        """Return the distance to the polygon in units of the plate's half thickness."""
+        return self.axis_distance(points_m) / self.half_thickness_m
 
     def distance(self, points_m: np.ndarray) -> np.ndarray:
         """Return the signed distance of points (..., 3) to the plate's surface, metres."""
@@ -170,7 +182,9 @@ def sample_grid(
     """
     lows, highs = zip(*(p.bounds() for p in primitives), strict=True)
     margin = 3 * voxel_m + max(p.blend_m for p in primitives)
-    origin = np.min(lows, axis=0) - margin
+    # An odd fraction of a voxel off the round numbers of the primitives: a surface through
+    # a grid point exactly would give marching cubes degenerate, zero-area triangles.
+    origin = np.min(lows, axis=0) - margin + voxel_m * np.array([0.2137, 0.3161, 0.4271])
     shape = np.ceil((np.max(highs, axis=0) + margin - origin) / voxel_m).astype(int) + 1
     far = 4 * voxel_m
     volume = np.full(tuple(shape), far, dtype=np.float32)
@@ -206,6 +220,8 @@ def mesh_primitives(
     from skimage.measure import marching_cubes
 
     volume, origin = sample_grid(primitives, voxel_m)
+    # No sample may sit exactly on the level (same reason as the grid's offset).
+    volume[volume == 0.0] = np.float32(1e-9)
     vertices, faces, _, _ = marching_cubes(volume, level=0.0, spacing=(voxel_m,) * 3)
     # scikit-image's default "descent" winding faces outward for negative-inside fields.
     return vertices + origin, faces

@@ -40,7 +40,7 @@ def skin_weights(
 ) -> SkinWeights:
     """Weight each vertex by its closeness to the bones, relative to each bone's thickness.
 
-    A bone's closeness is the distance to its axis divided by its largest radius, so a
+    A bone's closeness is the distance to its axis divided by its radius there, so a
     vertex on a finger sits at about 1 from its own phalanx, and weights cross over at
     the joint between two phalanges; ``power`` sets how quickly (8: over about one
     finger radius either side of the joint). The four largest weights are kept.
@@ -49,11 +49,8 @@ def skin_weights(
     scores = np.full((len(vertices_m), len(owners)), np.inf)
     for primitive in primitives:
         column = owners.index(primitive.joint)
-        scale = getattr(primitive, "half_thickness_m", None) or max(
-            primitive.radius_start_m, primitive.radius_end_m
-        )
         scores[:, column] = np.minimum(
-            scores[:, column], primitive.axis_distance(vertices_m) / scale
+            scores[:, column], primitive.relative_axis_distance(vertices_m)
         )
     raw = (scores + 0.05) ** -power
     keep = min(MAX_BONES, len(owners))

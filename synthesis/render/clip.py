@@ -6,6 +6,7 @@ import numpy as np
 
 from synthesis.avatar.model import Avatar
 from synthesis.kinematics import Pose
+from synthesis.render.parallel import render_frames
 from synthesis.render.renderer import Progress, Renderer
 from synthesis.render.scene import CameraPreset
 from synthesis.render.video import VideoInfo, write_mp4, write_png
@@ -35,27 +36,29 @@ def render_clip(
     width: int = 640,
     height: int = 480,
     progress: Progress | None = None,
+    workers: int = 1,
 ) -> VideoInfo:
     """Render a motion to an H.264 MP4, and a poster PNG if asked.
 
     *motion* is DOF vectors (n_frames, n_dofs) or a Pose of the avatar's skeleton;
-    *progress* receives (frames done, total) as frames are rendered and encoded.
+    *progress* receives (frames done, total) as frames are rendered and encoded;
+    *workers* > 1 renders in that many processes (see :mod:`synthesis.render.parallel`).
     """
     if not isinstance(motion, Pose):
         motion = np.atleast_2d(motion)
     total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(motion)
     if not 0 <= poster_frame < total:
         raise ValueError(f"poster_frame must lie in 0…{total - 1}.")
-    with Renderer(avatar, camera, width, height) as renderer:
-        kept = {}
+    kept = {}
 
-        def frames():
-            for number, frame in enumerate(renderer.frames(motion)):
-                if number == poster_frame:
-                    kept["poster"] = frame
-                yield frame
+    def frames():
+        rendered = render_frames(avatar, camera, motion, width, height, workers)
+        for number, frame in enumerate(rendered):
+            if number == poster_frame:
+                kept["poster"] = frame
+            yield frame
 
-        info = write_mp4(frames(), out, rate_hz, progress=progress, total=total)
+    info = write_mp4(frames(), out, rate_hz, progress=progress, total=total)
     if poster is not None:
         write_png(kept["poster"], poster)
     return info

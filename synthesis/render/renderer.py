@@ -1,14 +1,17 @@
 """Offscreen rendering of a posed avatar with pyrender: DOF vectors in, RGB frames out."""
 
 from collections.abc import Callable, Iterator
+from pathlib import Path
 
 import numpy as np
 
 from synthesis.avatar.model import Avatar
+from synthesis.kinematics import Pose
 from synthesis.render.backend import import_pyrender
 from synthesis.render.scene import CameraPreset, Light, look_at, portrait_lighting
 
 BACKGROUND_RGB = (0.42, 0.47, 0.53)
+SHADERS = Path(__file__).with_name("shaders")
 # Frames deformed together: large enough to vectorise skinning, small enough to keep
 # memory flat on long clips.
 BATCH_FRAMES = 32
@@ -54,6 +57,12 @@ class Renderer:
         self._nodes: list = []
         self._flags = pyrender.RenderFlags.SHADOWS_DIRECTIONAL
         self._renderer = pyrender.OffscreenRenderer(width, height)
+        # pyrender looks its shaders up by file name in its program cache; pointing the
+        # cache at the project's own shaders swaps the PBR model for a much cheaper one
+        # (private attributes of the pinned pyrender-maintained 1.0.1).
+        self._renderer._renderer._program_cache = pyrender.shader_program.ShaderProgramCache(
+            shader_dir=str(SHADERS)
+        )
 
     def set_camera(self, camera: CameraPreset) -> None:
         """Move the camera (and, unless lights were given, the portrait lights with it)."""
@@ -94,37 +103,76 @@ class Renderer:
         pyrender = self._pyrender
         for node in self._nodes:
             self.scene.remove_node(node)
-        self._nodes = []
-        for part, (vertices, normals), material, colors in zip(
-            self.avatar.parts, meshes, self._materials, self._colors, strict=True
-        ):
-            primitive = pyrender.Primitive(
+        primitives = [
+            pyrender.Primitive(
                 positions=vertices.astype(np.float32),
                 normals=normals.astype(np.float32),
                 indices=part.faces,
                 color_0=colors,
                 material=material,
             )
-            self._nodes.append(self.scene.add(pyrender.Mesh([primitive])))
+            for part, (vertices, normals), material, colors in zip(
+                self.avatar.parts, meshes, self._materials, self._colors, strict=True
+            )
+        ]
+        # One mesh, so that the parts are drawn in list order: pyrender keeps a scene's
+        # meshes in a set, and an order that changes from run to run would change the
+        # pixels where two parts meet at equal depth (nails on fingertips).
+        self._nodes = [self.scene.add(pyrender.Mesh(primitives))]
 
     def frame(self, dofs_rad: np.ndarray) -> np.ndarray:
         """Return one frame (height, width, 3) uint8 of the avatar in a pose."""
         meshes = self.avatar.deform(np.asarray(dofs_rad)[None])
         self._show([(v[0], n[0]) for v, n in meshes])
-        color, _ = self._renderer.render(self.scene, flags=self._flags)
+        return self._draw()
+
+    def _draw(self) -> np.ndarray:
+        """Draw the scene and read back its colours, (height, width, 3) uint8.
+
+        ``OffscreenRenderer.render`` also reads and linearises the depth buffer, a tenth
+        of the frame time that clips never use; this is its colour-only path (pyrender's
+        own renderer object, as the pinned pyrender-maintained 1.0.1 lays it out).
+        """
+        offscreen = self._renderer
+        inner = offscreen._renderer
+        offscreen._platform.make_current()
+        try:
+            inner.viewport_width, inner.viewport_height = self.width, self.height
+            if offscreen._platform.supports_framebuffers():
+                offscreen_flag = self._pyrender.RenderFlags.OFFSCREEN
+                color, _ = inner.render(self.scene, self._flags | offscreen_flag)
+            else:
+                inner.render(self.scene, self._flags)
+                color = inner.read_color_buf()
+        finally:
+            offscreen._platform.make_uncurrent()
         return np.ascontiguousarray(color[..., :3])
 
     def frames(
-        self, dofs_rad: np.ndarray, progress: Progress | None = None
+        self, motion: np.ndarray | Pose, progress: Progress | None = None
     ) -> Iterator[np.ndarray]:
-        """Yield one frame per row of *dofs_rad* (n_frames, n_dofs), reporting progress."""
-        dofs_rad = np.atleast_2d(dofs_rad)
-        total = len(dofs_rad)
+        """Yield one frame per frame of *motion*, reporting (done, total) to *progress*.
+
+        *motion* is DOF vectors (n_frames, n_dofs) of the avatar's rig, or a
+        :class:`~synthesis.kinematics.Pose` of its skeleton (n_frames, n_joints, …).
+        """
+        if isinstance(motion, Pose):
+            total = motion.quaternions.shape[0]
+
+            def deform(start: int, stop: int):
+                part = Pose(motion.quaternions[start:stop], motion.positions_m[start:stop])
+                return self.avatar.deform_pose(part)
+        else:
+            motion = np.atleast_2d(motion)
+            total = len(motion)
+
+            def deform(start: int, stop: int):
+                return self.avatar.deform(motion[start:stop])
+
         for start in range(0, total, BATCH_FRAMES):
-            batch = self.avatar.deform(dofs_rad[start : start + BATCH_FRAMES])
+            batch = deform(start, start + BATCH_FRAMES)
             for k in range(len(batch[0][0])):
                 self._show([(v[k], n[k]) for v, n in batch])
-                color, _ = self._renderer.render(self.scene, flags=self._flags)
-                yield np.ascontiguousarray(color[..., :3])
+                yield self._draw()
                 if progress is not None:
                     progress(start + k + 1, total)

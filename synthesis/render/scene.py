@@ -65,10 +65,10 @@ def portrait_lighting(target_m, distance_m: float) -> tuple[Light, ...]:
 
     falloff = d * d
     return (
-        Light("key", "directional", at(-0.7, 0.6, 1.0), 2.4, (1.0, 0.96, 0.9), casts_shadow=True),
-        Light("fill", "point", at(1.0, 0.1, 0.8), 1.3 * falloff, (0.9, 0.94, 1.0)),
-        Light("rim", "point", at(0.3, 0.9, -1.0), 2.5 * falloff),
-        Light("extra fill", "point", at(0.0, -0.4, 1.2), 0.7 * falloff),
+        Light("key", "directional", at(-0.7, 0.6, 1.0), 0.75, (1.0, 0.96, 0.9), casts_shadow=True),
+        Light("fill", "point", at(1.0, 0.1, 0.8), 0.4 * falloff, (0.9, 0.94, 1.0)),
+        Light("rim", "point", at(0.3, 0.9, -1.0), 0.8 * falloff),
+        Light("extra fill", "point", at(0.0, -0.4, 1.2), 0.22 * falloff),
     )
 
 

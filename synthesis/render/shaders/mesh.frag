@@ -1,0 +1,107 @@
+#version 330 core
+// SignStudy's skin shader, fragment stage: Lambert diffuse plus a soft Blinn-Phong
+// highlight, directional lights (the key may carry a shadow map) and point lights with
+// inverse-square falloff. Much cheaper than a full PBR model on a software rasteriser,
+// which is where stimuli are rendered (Mesa llvmpipe), and enough for matte skin and
+// cloth. Colours arrive in sRGB, are lit in linear light and leave in sRGB.
+
+struct DirectionalLight {
+    vec3 color;
+    float intensity;
+    vec3 direction;
+#ifdef DIRECTIONAL_LIGHT_SHADOWS
+    sampler2D shadow_map;
+    mat4 light_matrix;
+#endif
+};
+
+struct PointLight {
+    vec3 color;
+    float intensity;
+    float range;
+    vec3 position;
+};
+
+struct Material {
+    vec4 base_color_factor;
+    float roughness_factor;
+};
+
+uniform DirectionalLight directional_lights[MAX_DIRECTIONAL_LIGHTS];
+uniform int n_directional_lights;
+uniform PointLight point_lights[MAX_POINT_LIGHTS];
+uniform int n_point_lights;
+uniform Material material;
+uniform vec3 cam_pos;
+uniform vec3 ambient_light;
+
+in vec3 world_position;
+in vec3 world_normal;
+in vec3 albedo_srgb;
+
+out vec4 frag_color;
+
+vec3 reflected(vec3 n, vec3 v, vec3 l, vec3 radiance, vec3 albedo)
+{
+    float lambert = max(dot(n, l), 0.0);
+    vec3 h = normalize(l + v);
+    // Rough surfaces spread a dim highlight; roughness 0.75 gives a shininess of ~10.
+    float shininess = 2.0 / max(material.roughness_factor * material.roughness_factor, 0.01);
+    float highlight = lambert > 0.0 ? pow(max(dot(n, h), 0.0), shininess) : 0.0;
+    return radiance * (albedo * lambert + 0.04 * highlight);
+}
+
+#ifdef DIRECTIONAL_LIGHT_SHADOWS
+float lit_fraction(mat4 light_matrix, sampler2D shadow_map, float facing)
+{
+    vec4 projected = light_matrix * vec4(world_position, 1.0);
+    vec3 coords = projected.xyz / projected.w * 0.5 + 0.5;
+    if (coords.z > 1.0) {
+        return 1.0;
+    }
+    float bias = max(0.0015 * (1.0 - facing), 0.0003);
+    vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
+    // Four taps on a 2×2 block: soft enough edges for a single cheap pass.
+    float lit = 0.0;
+    for (int k = 0; k < 4; k++) {
+        vec2 offset = (vec2(k % 2, k / 2) - 0.5) * 1.5 * texel;
+        lit += coords.z - bias > texture(shadow_map, coords.xy + offset).r ? 0.0 : 1.0;
+    }
+    return lit * 0.25;
+}
+#endif
+
+void main()
+{
+    vec3 albedo = pow(albedo_srgb * material.base_color_factor.rgb, vec3(2.2));
+    vec3 n = normalize(world_normal);
+    vec3 v = normalize(cam_pos - world_position);
+    if (dot(n, v) < 0.0) {
+        n = -n;  // the inside of a fold seen through a gap: light it like the outside
+    }
+    vec3 color = ambient_light * albedo;
+    for (int i = 0; i < MAX_DIRECTIONAL_LIGHTS; i++) {
+        if (i >= n_directional_lights) {
+            break;
+        }
+        vec3 l = normalize(-directional_lights[i].direction);
+        vec3 radiance = directional_lights[i].intensity * directional_lights[i].color;
+        vec3 light = reflected(n, v, l, radiance, albedo);
+#ifdef DIRECTIONAL_LIGHT_SHADOWS
+        light *= lit_fraction(directional_lights[i].light_matrix,
+                              directional_lights[i].shadow_map,
+                              clamp(dot(n, l), 0.0, 1.0));
+#endif
+        color += light;
+    }
+    for (int i = 0; i < MAX_POINT_LIGHTS; i++) {
+        if (i >= n_point_lights) {
+            break;
+        }
+        vec3 to_light = point_lights[i].position - world_position;
+        float falloff = 1.0 / max(dot(to_light, to_light), 1e-4);
+        vec3 radiance = point_lights[i].intensity * falloff * point_lights[i].color;
+        color += reflected(n, v, normalize(to_light), radiance, albedo);
+    }
+    frag_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}

@@ -1,0 +1,59 @@
+"""Test the rendering commands: render-pose, spell and render-bvh, and their errors."""
+
+import imageio.v3 as iio
+import numpy as np
+import pytest
+
+from synthesis.bvh import save_bvh
+from synthesis.cli import main
+from synthesis.hand import HandModel
+from synthesis.motion import Motion
+from synthesis.render.video import count_frames
+from synthesis.spelling import spell
+
+pytestmark = pytest.mark.usefixtures("renderable")
+
+
+def test_render_pose_writes_a_png(tmp_path, capsys):
+    out = tmp_path / "r.png"
+    assert main(["render-pose", "--letter", "R", "--out", str(out), "--size", "160x120"]) == 0
+    assert iio.imread(out).shape == (120, 160, 3)
+    assert "wrote" in capsys.readouterr().out
+
+
+def test_spell_writes_an_mp4_with_the_expected_frame_count(tmp_path):
+    out, poster = tmp_path / "ab.mp4", tmp_path / "ab.png"
+    code = main(
+        ["spell", "AB", "--out", str(out), "--poster", str(poster), "--size", "96x72",
+         "--rate", "30"]
+    )  # fmt: skip
+    assert code == 0
+    assert count_frames(out) == len(spell("AB", rate_hz=30))
+    assert iio.imread(poster).shape == (72, 96, 3)
+
+
+def test_unknown_letter_is_one_clear_error(tmp_path, capsys):
+    assert main(["spell", "HE7LO", "--out", str(tmp_path / "x.mp4")]) == 2
+    assert "'7' is not a letter of the ASL manual alphabet" in capsys.readouterr().err
+    assert not (tmp_path / "x.mp4").exists()
+
+
+def test_render_bvh_renders_a_hand_file(tmp_path):
+    model = HandModel()
+    dofs = spell("HI", rate_hz=30)[::3]
+    path = tmp_path / "hi.bvh"
+    save_bvh(Motion(model.skeleton, model.channel_values(dofs), 0.1), path)
+    out = tmp_path / "hi.mp4"
+    assert main(["render-bvh", str(path), "--out", str(out), "--size", "96x72"]) == 0
+    assert count_frames(out) == len(dofs)
+
+
+def test_render_bvh_reports_a_malformed_file_by_line(tmp_path, capsys):
+    path = tmp_path / "bad.bvh"
+    path.write_text(
+        "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 zero\n  CHANNELS 3 Xrotation Yrotation"
+        " Zrotation\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n"
+    )
+    assert main(["render-bvh", str(path), "--out", str(tmp_path / "bad.mp4")]) == 2
+    assert "line 4" in capsys.readouterr().err
+    assert np.all([p.suffix != ".mp4" for p in tmp_path.iterdir()])

@@ -1,0 +1,93 @@
+"""Test offscreen rendering: lights, cameras, determinism, left-handed signers, progress."""
+
+import numpy as np
+import pytest
+
+from synthesis.alphabet import letter_pose
+from synthesis.avatar.hand import hand_avatar
+from synthesis.render.renderer import BACKGROUND_RGB, Renderer
+from synthesis.render.scene import hand_close_up, portrait_lighting, upper_body_front
+
+pytestmark = pytest.mark.usefixtures("renderable")
+
+
+def _foreground(frame: np.ndarray) -> np.ndarray:
+    background = np.round(np.asarray(BACKGROUND_RGB) * 255)
+    return np.abs(frame.astype(float) - background).sum(axis=-1) > 12
+
+
+def test_portrait_lighting_has_four_lights_and_only_the_key_casts_shadows():
+    lights = portrait_lighting((0, 0, 0), 1.0)
+    assert [light.name for light in lights] == ["key", "fill", "rim", "extra fill"]
+    assert [light.name for light in lights if light.casts_shadow] == ["key"]
+    # The renderer shadows directional lights only, and the key is the only one.
+    assert [light.kind for light in lights].count("directional") == 1
+    rim = next(light for light in lights if light.name == "rim")
+    assert rim.position_m[2] < 0  # behind the signer
+
+
+def test_still_shows_the_hand_and_is_deterministic():
+    avatar = hand_avatar("right")
+    with Renderer(avatar, hand_close_up("right"), 160, 120) as renderer:
+        first = renderer.frame(letter_pose("B"))
+        second = renderer.frame(letter_pose("B"))
+        fist = renderer.frame(letter_pose("A"))
+    assert first.shape == (120, 160, 3) and first.dtype == np.uint8
+    covered = _foreground(first).mean()
+    assert 0.03 < covered < 0.6
+    assert np.array_equal(first, second)
+    assert _foreground(fist).sum() < _foreground(first).sum()  # a fist covers less than B
+
+
+def test_left_handed_signer_is_the_mirror_image():
+    masks = {}
+    for side in ("right", "left"):
+        with Renderer(hand_avatar(side), hand_close_up(side), 160, 120) as renderer:
+            masks[side] = _foreground(renderer.frame(letter_pose("L", side)))
+    mirrored = masks["right"][:, ::-1]
+    overlap = (mirrored & masks["left"]).sum() / (mirrored | masks["left"]).sum()
+    assert overlap > 0.9
+
+
+def test_frames_report_progress_and_accept_poses():
+    avatar = hand_avatar("right")
+    motion = np.stack([letter_pose(c) for c in "ABC"])
+    calls = []
+    with Renderer(avatar, hand_close_up(), 64, 48) as renderer:
+        from_dofs = list(renderer.frames(motion, progress=lambda d, t: calls.append((d, t))))
+        from_pose = list(renderer.frames(avatar.rig.pose(motion)))
+    assert calls == [(1, 3), (2, 3), (3, 3)]
+    assert all(np.array_equal(a, b) for a, b in zip(from_dofs, from_pose, strict=True))
+
+
+def test_upper_body_camera_frames_the_signer():
+    from synthesis.avatar.body import body_avatar
+
+    avatar = body_avatar("right")
+    with Renderer(avatar, upper_body_front(), 160, 120) as renderer:
+        mask = _foreground(renderer.frame(avatar.rig.neutral()))
+    rows = np.flatnonzero(mask.any(axis=1))
+    assert rows.min() < 20  # the head near the top
+    assert mask[:, 60:100].mean() > 0.3  # the torso fills the middle
+
+
+def test_odd_frame_sizes_are_refused():
+    with pytest.raises(ValueError, match="even"):
+        Renderer(hand_avatar("right"), hand_close_up(), 161, 120)
+
+
+def test_clips_are_byte_identical_across_runs_and_worker_counts(tmp_path):
+    """Same inputs, same bytes (spec 01): in one process, or split over two."""
+    from synthesis.render.clip import render_clip
+    from synthesis.spelling import spell
+
+    avatar = hand_avatar("right")
+    motion = spell("NAIL", rate_hz=30)
+    assert len(motion) >= 48  # enough frames for two workers
+    paths = [tmp_path / f"clip{k}.mp4" for k in range(3)]
+    for path, workers in zip(paths, (1, 1, 2), strict=True):
+        render_clip(avatar, motion, hand_close_up(), path, 30, width=96, height=72,
+                    workers=workers)  # fmt: skip
+    first = paths[0].read_bytes()
+    assert paths[1].read_bytes() == first
+    assert paths[2].read_bytes() == first
