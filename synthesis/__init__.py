@@ -4,9 +4,13 @@ Pure numpy/scipy code; never imports Django, :mod:`studyplatform`, :mod:`stimuli
 :mod:`analysis`.
 """
 
+from synthesis.body import BodyModel
 from synthesis.bvh import BvhError, parse_bvh, read_bvh, save_bvh, write_bvh
+from synthesis.hand import HandModel
 from synthesis.kinematics import Pose, forward_kinematics, forward_kinematics_arrays
+from synthesis.mapping import JOINT_NAME_TABLES, JointMapping, detect_mapping
 from synthesis.motion import Motion
+from synthesis.retarget import retarget
 from synthesis.retime import (
     interpolate_poses,
     monotone_spline_warp,
@@ -17,13 +21,20 @@ from synthesis.retime import (
     trim,
 )
 from synthesis.skeleton import Joint, Skeleton, guess_length_unit
+from synthesis.spelling import SpellingTiming, spell
 
 __all__ = [
+    "JOINT_NAME_TABLES",
+    "BodyModel",
     "BvhError",
+    "HandModel",
     "Joint",
+    "JointMapping",
     "Motion",
     "Pose",
     "Skeleton",
+    "SpellingTiming",
+    "detect_mapping",
     "forward_kinematics",
     "forward_kinematics_arrays",
     "guess_length_unit",
@@ -33,8 +44,10 @@ __all__ = [
     "piecewise_linear_warp",
     "read_bvh",
     "resample",
+    "retarget",
     "sample",
     "save_bvh",
+    "spell",
     "time_warp",
     "trim",
     "write_bvh",

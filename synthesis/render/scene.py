@@ -88,7 +88,7 @@ def upper_body_front(side: str = "right") -> CameraPreset:
     *side* names the dominant hand; the view is symmetric, as in signing videos.
     """
     del side
-    return CameraPreset("upper body", (0.0, 1.42, 1.6), (0.0, 1.40, 0.0), 30.0)
+    return CameraPreset("upper body", (0.0, 1.45, 1.7), (0.0, 1.43, 0.0), 30.0)
 
 
 CAMERA_PRESETS = {"hand": hand_close_up, "upper-body": upper_body_front}

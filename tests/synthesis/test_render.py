@@ -91,3 +91,11 @@ def test_clips_are_byte_identical_across_runs_and_worker_counts(tmp_path):
     first = paths[0].read_bytes()
     assert paths[1].read_bytes() == first
     assert paths[2].read_bytes() == first
+
+
+def test_a_bad_platform_setting_is_named(monkeypatch):
+    from synthesis.render.backend import RenderUnavailable, select_platform
+
+    monkeypatch.setenv("PYOPENGL_PLATFORM", "glx")
+    with pytest.raises(RenderUnavailable, match="PYOPENGL_PLATFORM='glx' cannot render"):
+        select_platform()

@@ -24,7 +24,9 @@ void main()
     vec4 world = model * vec4(position, 1.0);
     world_position = world.xyz;
 #ifdef NORMAL_LOC
-    world_normal = normalize(mat3(transpose(inverse(model))) * normal);
+    // Avatar meshes are placed by rigid transforms only, so the model matrix itself turns
+    // normals (no per-vertex inverse-transpose, which is costly on a software rasteriser).
+    world_normal = normalize(mat3(model) * normal);
 #else
     world_normal = vec3(0.0, 0.0, 1.0);
 #endif
