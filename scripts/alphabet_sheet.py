@@ -29,7 +29,8 @@ def _camera(avatar, pose) -> CameraPreset:
     """Frame the hand itself (wrist and digits), seen from the front like the video camera."""
     positions = avatar.rig.pose(np.asarray(pose)).positions_m[0]
     centre = positions[avatar.rig.skeleton.index("wrist") :].mean(axis=0)
-    return CameraPreset("letter", tuple(centre + (0.0, 0.02, 0.5)), tuple(centre), 27.0)
+    eye = centre + np.array([0.0, 0.02, 0.5])
+    return CameraPreset("letter", tuple(eye), tuple(centre), 27.0)
 
 
 def main() -> int:

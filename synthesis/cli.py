@@ -115,7 +115,7 @@ def _render_bvh(args: argparse.Namespace) -> int:
         motion = resample(motion, args.rate)
     mapping = detect_mapping(motion.skeleton)
     view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
-    side = mapping.side() or args.side if mapping.is_single_hand else args.side
+    side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
     avatar, camera = _scene(view, side)
     pose = retarget(motion, avatar.rig, mapping)
     info = render_clip(

@@ -16,8 +16,9 @@ FINGERSPELLING_DEGREES = {
     "shoulder_abduction": 12.0,
     "shoulder_rotation": 15.0,
     "elbow_flexion": 115.0,
-    "forearm_twist": 10.0,
 }
+# Added to the hand's own forearm twist: the palm turns a little toward the viewer.
+FOREARM_TWIST_DEG = 10.0
 
 
 def fingerspelling_posture(body: BodyModel, side: str, hand_dofs_rad: np.ndarray) -> np.ndarray:
@@ -25,10 +26,8 @@ def fingerspelling_posture(body: BodyModel, side: str, hand_dofs_rad: np.ndarray
     hand = HandModel(side)
     hand_dofs_rad = np.atleast_2d(hand_dofs_rad)
     base = body.from_degrees({f"{side}_{k}": v for k, v in FINGERSPELLING_DEGREES.items()})
-    base[body.dof_names.index(f"{side}_forearm_twist")] = 0.0
     dofs = body.with_hand(np.repeat(base[None], len(hand_dofs_rad), axis=0), side, hand_dofs_rad)
-    twist = body.dof_names.index(f"{side}_forearm_twist")
-    dofs[:, twist] += np.radians(FINGERSPELLING_DEGREES["forearm_twist"])
+    dofs[:, body.dof_names.index(f"{side}_forearm_twist")] += np.radians(FOREARM_TWIST_DEG)
     tilt_side = hand_dofs_rad[:, hand.dof_names.index("forearm_tilt_side")]
     tilt_forward = hand_dofs_rad[:, hand.dof_names.index("forearm_tilt_forward")]
     dofs[:, body.dof_names.index(f"{side}_shoulder_rotation")] -= tilt_side
