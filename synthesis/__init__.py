@@ -21,7 +21,8 @@ from synthesis.retime import (
     trim,
 )
 from synthesis.skeleton import Joint, Skeleton, guess_length_unit
-from synthesis.spelling import SpellingTiming, spell
+from synthesis.spelling import simple_timing, spell
+from synthesis.timing import WordTiming, constant_timing, normalized_constant_timing
 
 __all__ = [
     "JOINT_NAME_TABLES",
@@ -33,13 +34,15 @@ __all__ = [
     "Motion",
     "Pose",
     "Skeleton",
-    "SpellingTiming",
+    "WordTiming",
+    "constant_timing",
     "detect_mapping",
     "forward_kinematics",
     "forward_kinematics_arrays",
     "guess_length_unit",
     "interpolate_poses",
     "monotone_spline_warp",
+    "normalized_constant_timing",
     "parse_bvh",
     "piecewise_linear_warp",
     "read_bvh",
@@ -47,6 +50,7 @@ __all__ = [
     "retarget",
     "sample",
     "save_bvh",
+    "simple_timing",
     "spell",
     "time_warp",
     "trim",

@@ -88,18 +88,43 @@ def _render_pose(args: argparse.Namespace) -> int:
     return 0
 
 
+def _timing(args: argparse.Namespace):
+    """Return the word timing the spell command asks for."""
+    from synthesis.spelling import simple_timing, word_letters
+    from synthesis.timing import WordTiming, constant_timing
+
+    if args.timing_file is not None:
+        timing = WordTiming.from_dict(json.loads(args.timing_file.read_text("utf-8")))
+        if timing.word != "".join(word_letters(args.word)):
+            raise ValueError(f"{args.timing_file} times {timing.word}, not {args.word.upper()}.")
+        return timing
+    if args.condition == "constant":
+        return constant_timing("".join(word_letters(args.word)))
+    return simple_timing(args.word)
+
+
 def _spell(args: argparse.Namespace) -> int:
     from synthesis.render.clip import render_clip
     from synthesis.spelling import spell
 
+    timing = _timing(args)
+    if args.timing_only:
+        print(json.dumps(timing.to_dict(), indent=2))
+        return 0
+    if args.out is None:
+        raise ValueError("Give --out FILE.mp4 (or --timing-only to print the timing).")
     avatar, camera = _scene(args.view, args.side)
-    motion = _hand_motion_for(avatar, args.side, spell(args.word, args.side, args.rate))
+    hand_motion = spell(args.word, args.side, args.rate, timing=timing)
+    motion = _hand_motion_for(avatar, args.side, hand_motion)
     info = render_clip(
         avatar, motion, camera, args.out, args.rate, poster=args.poster,
         width=args.size[0], height=args.size[1], progress=_progress(f"spelling {args.word}"),
         workers=args.workers,
     )  # fmt: skip
-    print(f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s)")
+    print(
+        f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, "
+        f"{timing.condition} timing)"
+    )
     return 0
 
 
@@ -146,9 +171,11 @@ def parser() -> argparse.ArgumentParser:
     marks.add_argument("--indent", type=int, default=None)
     marks.set_defaults(run=_landmarks)
 
-    def rendering(name: str, help: str, view: str | None = "hand") -> argparse.ArgumentParser:
+    def rendering(
+        name: str, help: str, view: str | None = "hand", out_required: bool = True
+    ) -> argparse.ArgumentParser:
         command = commands.add_parser(name, help=help)
-        command.add_argument("--out", required=True, type=Path, help="output file")
+        command.add_argument("--out", required=out_required, type=Path, help="output file")
         command.add_argument("--side", choices=("right", "left"), default="right",
                              help="the signer's dominant hand")  # fmt: skip
         command.add_argument("--view", choices=("hand", "upper-body"), default=view)
@@ -163,9 +190,17 @@ def parser() -> argparse.ArgumentParser:
     pose.add_argument("--letter", required=True)
     pose.set_defaults(run=_render_pose)
 
-    spell = rendering("spell", "render a fingerspelled word to an MP4 (simple default timing)")
+    spell = rendering("spell", "render a fingerspelled word to an MP4", out_required=False)
     spell.add_argument("word")
     spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
+    spell.add_argument(
+        "--condition", choices=("simple", "constant"), default="simple",
+        help="timing: simple (equal holds) or constant (Huenerfauth: 243/800 ms holds)",
+    )  # fmt: skip
+    spell.add_argument("--timing-file", type=Path, help="a word timing saved as JSON")
+    spell.add_argument(
+        "--timing-only", action="store_true", help="print the timing as JSON, render nothing"
+    )
     clip_options(spell)
     spell.set_defaults(run=_spell)
 

@@ -1,20 +1,20 @@
-"""Spell a word with a simple default timing: equal holds, smooth transitions.
+"""Spell a word: letter poses from the alphabet, placed in time by a :class:`WordTiming`.
 
-This is the placeholder every clip can use before a study picks a timing model (motion
-capture, variable, constant, normalised constant: the timing issue builds those).
-Letters are held for ``hold_ms`` and joined by ``transition_ms`` of eased interpolation
-of the hand's DOFs; J and Z play their motion paths over ``path_ms``; a doubled letter
-(the LL of HELLO) slides outward and back while held twice (seed 000 §5.2 "the bounce
-between double letters").
+Letters are held for their hold time and joined by eased interpolation over their
+transition time; J and Z play their motion paths during their hold; a doubled letter
+(the LL of HELLO) slides outward for the repeat (seed 000 §5.2 "the bounce between
+double letters"). The clip starts and ends on a relaxed hand, ``lead_ms`` away.
+
+Without a timing, :func:`simple_timing` is used: equal holds and transitions, the
+placeholder every clip can use before a study picks a timing model.
 """
-
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from synthesis.alphabet import AlphabetError, letter
 from synthesis.hand import HandModel
+from synthesis.timing.word import WordTiming
 
 # A relaxed, slightly open hand between words.
 REST_DEGREES = {
@@ -24,16 +24,10 @@ REST_DEGREES = {
     "thumb_mcp_flexion": 10.0,
 }
 DOUBLE_SLIDE_DEG = 7.0
-
-
-@dataclass(frozen=True)
-class SpellingTiming:
-    """Durations of the simple timing, milliseconds."""
-
-    hold_ms: float = 200.0
-    transition_ms: float = 180.0
-    path_ms: float = 450.0
-    rest_ms: float = 250.0
+SIMPLE_HOLD_MS = 200.0
+SIMPLE_PATH_MS = 450.0
+SIMPLE_TRANSITION_MS = 180.0
+LEAD_MS = 250.0
 
 
 def word_letters(word: str) -> list[str]:
@@ -46,36 +40,45 @@ def word_letters(word: str) -> list[str]:
     return letters
 
 
+def simple_timing(word: str) -> WordTiming:
+    """Return the simple default timing: 200 ms holds (450 ms for J and Z), 180 ms moves."""
+    letters = word_letters(word)
+    holds = [SIMPLE_PATH_MS if c in "JZ" else SIMPLE_HOLD_MS for c in letters]
+    return WordTiming(
+        tuple(letters), tuple(holds), (SIMPLE_TRANSITION_MS,) * (len(letters) - 1), "simple"
+    )
+
+
 def spelling_keys(
-    word: str, side: str = "right", timing: SpellingTiming = SpellingTiming()
+    timing: WordTiming, side: str = "right", lead_ms: float = LEAD_MS
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Return key times (k,) in seconds and key poses (k, n_dofs) for spelling *word*."""
+    """Return key times (k,) in seconds and key poses (k, n_dofs) for a timed word."""
+    word_letters(timing.word)
     model = HandModel(side)
     rest = model.from_degrees(REST_DEGREES)
     slide = model.dof_names.index("forearm_tilt_side")
-    times, poses = [0.0], [rest]
-    t = timing.rest_ms / 1000
-    previous = None
-    for character in word_letters(word):
+    outward = np.radians(DOUBLE_SLIDE_DEG) * (1 if side == "right" else -1)
+    if lead_ms < 0:
+        raise ValueError(f"lead_ms must not be negative, not {lead_ms!r}.")
+    lead = lead_ms / 1000
+    # Without a lead the clip starts and ends on the letters themselves.
+    times, poses = ([0.0], [rest]) if lead else ([], [])
+    starts = lead + timing.hold_starts_ms() / 1000
+    for k, character in enumerate(timing.letters):
         shape = letter(character, side)
-        t += timing.transition_ms / 1000
+        start, hold = starts[k], timing.hold_ms[k] / 1000
         if shape.path_rad is not None:
-            for fraction, pose in zip(shape.path_times, shape.path_rad, strict=True):
-                times.append(t + fraction * timing.path_ms / 1000)
-                poses.append(np.array(pose))
-            t += timing.path_ms / 1000
-        else:
-            pose = np.array(shape.dofs_rad)
-            if character == previous:
-                # Slide away from the midline for the repeat: −x for a right hand.
-                pose[slide] += np.radians(DOUBLE_SLIDE_DEG) * (1 if side == "right" else -1)
-            times += [t, t + timing.hold_ms / 1000]
-            poses += [pose, pose]
-            t += timing.hold_ms / 1000
-        previous = character
-    t += timing.transition_ms / 1000 + timing.rest_ms / 1000
-    times.append(t)
-    poses.append(rest)
+            times += list(start + shape.path_times * hold)
+            poses += [np.array(pose) for pose in shape.path_rad]
+            continue
+        pose = np.array(shape.dofs_rad)
+        if k and character == timing.letters[k - 1]:
+            pose[slide] += outward
+        times += [start, start + hold]
+        poses += [pose, pose]
+    if lead:
+        times.append(times[-1] + lead)
+        poses.append(rest)
     return np.array(times), np.stack(poses)
 
 
@@ -83,14 +86,20 @@ def spell(
     word: str,
     side: str = "right",
     rate_hz: float = 60.0,
-    timing: SpellingTiming = SpellingTiming(),
+    timing: WordTiming | None = None,
+    lead_ms: float = LEAD_MS,
 ) -> np.ndarray:
     """Return the hand's DOF vectors (n_frames, n_dofs) spelling *word* at *rate_hz*.
 
     Keys are joined by a monotone cubic (PCHIP), which eases in and out of holds without
     overshooting a pose (no finger flexes past where either letter puts it).
     """
-    times, poses = spelling_keys(word, side, timing)
+    timing = timing or simple_timing(word)
+    if timing.word != "".join(word_letters(word)):
+        raise ValueError(f"The timing is for {timing.word}, not {word.upper()}.")
+    times, poses = spelling_keys(timing, side, lead_ms)
     count = int(np.floor(times[-1] * rate_hz + 1e-9)) + 1
+    if len(times) == 1:  # one letter, no lead: a still
+        return HandModel(side).clip(np.repeat(poses, count, axis=0))
     frames = PchipInterpolator(times, poses, axis=0)(np.arange(count) / rate_hz)
     return HandModel(side).clip(frames)

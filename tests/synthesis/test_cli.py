@@ -57,3 +57,22 @@ def test_render_bvh_reports_a_malformed_file_by_line(tmp_path, capsys):
     assert main(["render-bvh", str(path), "--out", str(tmp_path / "bad.mp4")]) == 2
     assert "line 4" in capsys.readouterr().err
     assert np.all([p.suffix != ".mp4" for p in tmp_path.iterdir()])
+
+
+def test_spell_prints_the_constant_timing_and_renders_a_saved_one(tmp_path, capsys):
+    import json
+
+    from synthesis.timing import WordTiming
+
+    assert main(["spell", "heaven", "--condition", "constant", "--timing-only"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["hold_ms"][-1] == 800.0 and printed["transition_ms"] == [250.0] * 5
+    saved = tmp_path / "fast.json"
+    fast = WordTiming(("O", "K"), (100, 100), (100,), "mine")
+    saved.write_text(json.dumps(fast.to_dict()))
+    out = tmp_path / "ok.mp4"
+    assert main(["spell", "OK", "--timing-file", str(saved), "--out", str(out), "--rate", "30",
+                 "--size", "64x48"]) == 0  # fmt: skip
+    assert count_frames(out) == len(spell("OK", rate_hz=30, timing=fast))
+    assert main(["spell", "NO", "--timing-file", str(saved), "--timing-only"]) == 2
+    assert "times OK, not NO" in capsys.readouterr().err

@@ -1,34 +1,35 @@
-"""Test the simple default spelling timing: holds, transitions, paths, doubled letters."""
+"""Test spelling a word with a timing: holds, transitions, paths, doubled letters."""
 
 import numpy as np
 import pytest
 
 from synthesis.alphabet import AlphabetError, letter_pose
 from synthesis.hand import HandModel
-from synthesis.spelling import SpellingTiming, spell, spelling_keys
+from synthesis.spelling import simple_timing, spell, spelling_keys
+from synthesis.timing import WordTiming, constant_timing
 
 
 def test_frame_count_follows_the_timing():
-    timing = SpellingTiming(hold_ms=200, transition_ms=100, path_ms=400, rest_ms=250)
-    frames = spell("AB", rate_hz=60, timing=timing)
-    # rest 250, (transition 100 + hold 200) × 2, transition 100, rest 250 = 1.2 s:
-    # 72 frame intervals, 73 frames.
-    assert len(frames) == 73
+    timing = WordTiming(("A", "B"), (200, 200), (100,))
+    frames = spell("AB", rate_hz=60, timing=timing, lead_ms=250)
+    # lead 250, hold 200, transition 100, hold 200, lead 250 = 1.0 s: 60 intervals.
+    assert len(frames) == 61
+    constant = spell("AB", rate_hz=60, timing=constant_timing("AB"), lead_ms=0)
+    assert len(constant) == int((243 + 250 + 800) * 60 / 1000) + 1  # 1.293 s: 77 intervals
 
 
 def test_holds_show_the_letters():
-    timing = SpellingTiming()
-    times, _ = spelling_keys("BC", timing=timing)
-    frames = spell("BC", rate_hz=100, timing=timing)
-    for k, letter in enumerate("BC"):
-        middle = times[1 + 2 * k] + timing.hold_ms / 2000
-        assert np.allclose(frames[round(middle * 100)], letter_pose(letter), atol=1e-9)
+    timing = WordTiming(("B", "C"), (300, 240), (150,))
+    frames = spell("BC", rate_hz=100, timing=timing, lead_ms=200)
+    for start_ms, hold_ms, name in ((200, 300, "B"), (650, 240, "C")):
+        middle = round((start_ms + hold_ms / 2) / 10)
+        assert np.allclose(frames[middle], letter_pose(name), atol=1e-9)
 
 
 def test_doubled_letters_slide_outward_and_paths_move():
     model = HandModel()
     slide = model.dof_names.index("forearm_tilt_side")
-    _, poses = spelling_keys("LL")  # keys: rest, L held (2 keys), L again (2 keys), rest
+    _, poses = spelling_keys(simple_timing("LL"))  # rest, L (2 keys), L again (2 keys), rest
     assert poses[3, slide] - poses[1, slide] == pytest.approx(np.radians(7.0))
     assert np.array_equal(np.delete(poses[3], slide), np.delete(poses[1], slide))
     twist = model.dof_names.index("forearm_twist")
@@ -36,7 +37,7 @@ def test_doubled_letters_slide_outward_and_paths_move():
     assert np.ptp(frames[:, twist]) > np.radians(60)  # J turns the forearm
 
 
-def test_stays_within_the_joint_limits_and_rejects_non_letters():
+def test_stays_within_the_joint_limits_and_rejects_bad_input():
     frames = spell("QUIZ")
     low, high = HandModel().limits_rad
     assert np.all(frames >= low - 1e-12) and np.all(frames <= high + 1e-12)
@@ -44,3 +45,5 @@ def test_stays_within_the_joint_limits_and_rejects_non_letters():
         spell("B3")
     with pytest.raises(AlphabetError, match="empty"):
         spell("  ")
+    with pytest.raises(ValueError, match="The timing is for AB, not BA"):
+        spell("BA", timing=constant_timing("AB"))
