@@ -91,15 +91,28 @@ def _render_pose(args: argparse.Namespace) -> int:
 def _timing(args: argparse.Namespace):
     """Return the word timing the spell command asks for."""
     from synthesis.spelling import simple_timing, word_letters
-    from synthesis.timing import WordTiming, constant_timing
+    from synthesis.timing import (
+        VariableModel,
+        WordTiming,
+        constant_timing,
+        normalized_constant_timing,
+        published_model,
+    )
 
     if args.timing_file is not None:
         timing = WordTiming.from_dict(json.loads(args.timing_file.read_text("utf-8")))
         if timing.word != "".join(word_letters(args.word)):
             raise ValueError(f"{args.timing_file} times {timing.word}, not {args.word.upper()}.")
         return timing
+    word = "".join(word_letters(args.word))
     if args.condition == "constant":
-        return constant_timing("".join(word_letters(args.word)))
+        return constant_timing(word)
+    if args.condition in ("variable", "normalized"):
+        model = VariableModel.load(args.model) if args.model else published_model()
+        variable = model.timing(word)
+        if args.condition == "variable":
+            return variable
+        return normalized_constant_timing(word, variable)
     return simple_timing(args.word)
 
 
@@ -194,8 +207,14 @@ def parser() -> argparse.ArgumentParser:
     spell.add_argument("word")
     spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
     spell.add_argument(
-        "--condition", choices=("simple", "constant"), default="simple",
-        help="timing: simple (equal holds) or constant (Huenerfauth: 243/800 ms holds)",
+        "--condition", choices=("simple", "constant", "variable", "normalized"),
+        default="simple",
+        help="timing: simple (equal holds), constant (Huenerfauth: 243/800 ms holds), "
+        "variable (naïve Bayes + pose distance), normalized (constant at variable's length)",
+    )  # fmt: skip
+    spell.add_argument(
+        "--model", type=Path,
+        help="a trained Variable model (JSON); default: built from published statistics",
     )  # fmt: skip
     spell.add_argument("--timing-file", type=Path, help="a word timing saved as JSON")
     spell.add_argument(

@@ -1,7 +1,27 @@
 """Fingerspelling timing: per-letter holds and per-pair transitions, and the models that
 predict them (spec 02; seed 000 ch. 4)."""
 
+from synthesis.timing.bayes import HoldClassifier, LeaveOneOut
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
+from synthesis.timing.defaults import published_model
+from synthesis.timing.features import DEFAULT_FEATURES, FEATURES, letter_features
+from synthesis.timing.transitions import TransitionModel, letter_distance, pose_distance
+from synthesis.timing.variable import VariableModel
 from synthesis.timing.word import TimingError, WordTiming
 
-__all__ = ["TimingError", "WordTiming", "constant_timing", "normalized_constant_timing"]
+__all__ = [
+    "DEFAULT_FEATURES",
+    "FEATURES",
+    "HoldClassifier",
+    "LeaveOneOut",
+    "TimingError",
+    "TransitionModel",
+    "VariableModel",
+    "WordTiming",
+    "constant_timing",
+    "letter_distance",
+    "letter_features",
+    "normalized_constant_timing",
+    "pose_distance",
+    "published_model",
+]

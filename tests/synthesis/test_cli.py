@@ -76,3 +76,14 @@ def test_spell_prints_the_constant_timing_and_renders_a_saved_one(tmp_path, caps
     assert count_frames(out) == len(spell("OK", rate_hz=30, timing=fast))
     assert main(["spell", "NO", "--timing-file", str(saved), "--timing-only"]) == 2
     assert "times OK, not NO" in capsys.readouterr().err
+
+
+def test_spell_variable_and_normalized_timings_last_equally_long(capsys):
+    import json
+
+    totals = {}
+    for condition in ("variable", "normalized", "constant"):
+        assert main(["spell", "DAVID", "--condition", condition, "--timing-only"]) == 0
+        totals[condition] = json.loads(capsys.readouterr().out)["total_ms"]
+    assert totals["normalized"] == pytest.approx(totals["variable"], abs=0.01)
+    assert totals["constant"] > totals["variable"]  # seed 000 Table 4.3: constant is slower

@@ -1,0 +1,48 @@
+"""Time the Variable timing model: one 10-letter word's timing and poses, and LOO.
+
+Targets (issue 4): timing + poses for a 10-letter word in < 10 ms (no rendering); naïve
+Bayes leave-one-out on 300 holds in < 2 s. Prints medians; asserts nothing.
+
+    .venv/bin/python bench/bench_timing.py
+"""
+
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from synthesis.spelling import spell
+from synthesis.timing import HoldClassifier, published_model
+from synthesis.timing.defaults import published_holds
+
+WORD = "PSYCHIATRY"
+
+
+def _median_ms(run, repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        run()
+        times.append((time.perf_counter() - started) * 1000)
+    return statistics.median(times)
+
+
+def main() -> None:
+    model = published_model()
+    spell(WORD, timing=model.timing(WORD))  # solve the letters' poses once (cached)
+    timing_ms = _median_ms(lambda: model.timing(WORD), 50)
+    both_ms = _median_ms(lambda: spell(WORD, timing=model.timing(WORD)), 50)
+    samples = published_holds(np.random.default_rng(0))[:300]
+    classifier = HoldClassifier.fit(samples)
+    loo_ms = _median_ms(lambda: classifier.leave_one_out(samples), 5)
+    print(f"{WORD}: timing {timing_ms:.2f} ms; timing + poses at 60 fps {both_ms:.2f} ms "
+          f"(target < 10 ms)")  # fmt: skip
+    print(f"naïve Bayes leave-one-out on {len(samples)} holds: {loo_ms:.0f} ms (target < 2 s)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,86 @@
+"""The Variable timing model: naïve Bayes holds plus pose-distance transitions (seed 000 §4.2).
+
+A saved model is one human-readable JSON file (format ``signstudy.timing-model``, versioned)
+holding the classifier's counts, the regression line and metadata that says where the
+numbers came from (trained on recordings, or built from published statistics).
+"""
+
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from synthesis.timing.bayes import HoldClassifier
+from synthesis.timing.features import word_features
+from synthesis.timing.transitions import TransitionModel
+from synthesis.timing.word import TimingError, WordTiming
+
+FORMAT = "signstudy.timing-model"
+FORMAT_VERSION = 1
+
+
+@dataclass(frozen=True, eq=False)
+class VariableModel:
+    """Predict a word's timing: a hold per letter, a transition per letter pair."""
+
+    holds: HoldClassifier
+    transitions: TransitionModel
+    metadata: dict = field(default_factory=dict)
+
+    def timing(self, word: str) -> WordTiming:
+        """Return the Variable timing of *word*."""
+        letters = "".join(c for c in word.upper() if not c.isspace())
+        if not letters:
+            raise TimingError("Nothing to time: the word is empty.")
+        holds = tuple(self.holds.predict_ms(values) for values in word_features(letters))
+        transitions = tuple(
+            self.transitions.predict_ms(a, b) for a, b in itertools.pairwise(letters)
+        )
+        return WordTiming(
+            tuple(letters),
+            holds,
+            transitions,
+            "variable",
+            {"model": self.metadata.get("name", "variable"), "source": self.metadata.get("source")},
+        )
+
+    def to_dict(self) -> dict:
+        """Return the whole model as plain data."""
+        return {
+            "format": FORMAT,
+            "version": FORMAT_VERSION,
+            "metadata": self.metadata,
+            "holds": self.holds.to_dict(),
+            "transitions": self.transitions.to_dict(),
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "VariableModel":
+        """Read a model written by :meth:`to_dict`; TimingError names what is wrong."""
+        if not isinstance(data, dict) or data.get("format") != FORMAT:
+            raise TimingError(f"Not a timing model: expected format {FORMAT!r}.")
+        if data.get("version") != FORMAT_VERSION:
+            raise TimingError(f"Unsupported timing-model version {data.get('version')!r}.")
+        try:
+            return cls(
+                HoldClassifier.from_dict(data["holds"]),
+                TransitionModel.from_dict(data["transitions"]),
+                dict(data.get("metadata") or {}),
+            )
+        except (KeyError, TypeError, ValueError) as error:
+            raise TimingError(f"Malformed timing model: {error}") from None
+
+    def save(self, path: str | Path) -> Path:
+        """Write the model as indented JSON."""
+        path = Path(path)
+        path.write_text(json.dumps(self.to_dict(), indent=1) + "\n", encoding="utf-8")
+        return path
+
+    @classmethod
+    def load(cls, path: str | Path) -> "VariableModel":
+        """Read a model file."""
+        try:
+            data = json.loads(Path(path).read_text(encoding="utf-8"))
+        except json.JSONDecodeError as error:
+            raise TimingError(f"{path}: not JSON ({error.msg}, line {error.lineno}).") from None
+        return cls.from_dict(data)
