@@ -1,0 +1,70 @@
+"""Test training the Variable model from annotated CSV files, end to end."""
+
+import csv
+import itertools
+
+import numpy as np
+import pytest
+
+from synthesis.timing import VariableModel, letter_distance
+from synthesis.timing.cli import main
+from synthesis.timing.defaults import VOCABULARY
+
+
+def _write_annotations(folder, rng):
+    """Write ≥ 300 holds and the words' transitions with known structure plus noise."""
+    holds, transitions = folder / "holds.csv", folder / "transitions.csv"
+    with holds.open("w", newline="") as h, transitions.open("w", newline="") as t:
+        hw, tw = csv.writer(h), csv.writer(t)
+        hw.writerow(["word", "index", "letter", "hold_ms"])
+        tw.writerow(["word", "index", "transition_ms"])
+        for _ in range(3):
+            for word in VOCABULARY:
+                for k, letter in enumerate(word):
+                    last = k == len(word) - 1
+                    hw.writerow([word, k, letter, round(rng.normal(150 if last else 80, 8), 2)])
+                for k, (a, b) in enumerate(itertools.pairwise(word)):
+                    d = letter_distance(a, b)
+                    tw.writerow([word, k, round(100 + 200 * d + rng.normal(0, 10), 2)])
+    return holds, transitions
+
+
+def test_train_end_to_end_reports_leave_one_out_and_fit(tmp_path, capsys):
+    holds, transitions = _write_annotations(tmp_path, np.random.default_rng(4))
+    out = tmp_path / "model.json"
+    assert main(["train", "--holds", str(holds), "--transitions", str(transitions),
+                 "--out", str(out)]) == 0  # fmt: skip
+    printed = capsys.readouterr().out
+    assert "leave-one-out accuracy" in printed and "mean error" in printed
+    model = VariableModel.load(out)
+    assert model.metadata["training_holds"] >= 300
+    assert model.transitions.slope_ms_per_rad == pytest.approx(200, rel=0.1)
+    assert model.transitions.r > 0.9
+    timing = model.timing("HEAVEN")
+    assert timing.hold_ms[-1] > max(timing.hold_ms[:-1])  # learned: the last letter is longer
+    assert model.metadata["leave_one_out"]["mean_abs_error_ms"] < 15
+
+
+def test_csv_problems_are_named_with_their_line(tmp_path, capsys):
+    holds, transitions = _write_annotations(tmp_path, np.random.default_rng(5))
+    lacking = tmp_path / "lacking.csv"
+    lacking.write_text("word,index\nCAT,0\n")
+    assert main(["train", "--holds", str(lacking), "--transitions", str(transitions),
+                 "--out", str(tmp_path / "m.json")]) == 2  # fmt: skip
+    assert "missing column(s) hold_ms" in capsys.readouterr().err
+    wrong = tmp_path / "wrong.csv"
+    wrong.write_text("word,index,letter,hold_ms\nCAT,0,C,80\nCAT,1,E,90\n")
+    assert main(["train", "--holds", str(wrong), "--transitions", str(transitions),
+                 "--out", str(tmp_path / "m.json")]) == 2  # fmt: skip
+    assert "line 3: letter 1 of CAT is A, not E" in capsys.readouterr().err
+    beyond = tmp_path / "beyond.csv"
+    beyond.write_text("word,index,transition_ms\nCAT,2,200\n")
+    assert main(["train", "--holds", str(holds), "--transitions", str(beyond),
+                 "--out", str(tmp_path / "m.json")]) == 2  # fmt: skip
+    assert "line 2: no letter 2 in 'CAT'" in capsys.readouterr().err
+    assert not (tmp_path / "m.json").exists()
+
+
+def test_predict_prints_a_timing(capsys):
+    assert main(["predict", "guitar"]) == 0
+    assert '"condition": "variable"' in capsys.readouterr().out
