@@ -4,6 +4,7 @@ predict them (spec 02; seed 000 ch. 4)."""
 from synthesis.timing.bayes import HoldClassifier, LeaveOneOut
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
 from synthesis.timing.defaults import published_model
+from synthesis.timing.extraction import Extraction, ExtractionError, extract
 from synthesis.timing.features import DEFAULT_FEATURES, FEATURES, letter_features
 from synthesis.timing.transitions import TransitionModel, letter_distance, pose_distance
 from synthesis.timing.variable import VariableModel
@@ -12,6 +13,8 @@ from synthesis.timing.word import TimingError, WordTiming
 __all__ = [
     "DEFAULT_FEATURES",
     "FEATURES",
+    "Extraction",
+    "ExtractionError",
     "HoldClassifier",
     "LeaveOneOut",
     "TimingError",
@@ -19,6 +22,7 @@ __all__ = [
     "VariableModel",
     "WordTiming",
     "constant_timing",
+    "extract",
     "letter_distance",
     "letter_features",
     "normalized_constant_timing",
