@@ -5,6 +5,7 @@ rotations interpolated on the sphere (slerp) and positions linearly. Times that 
 exactly on a frame return that frame's values unchanged.
 """
 
+import warnings
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -54,7 +55,10 @@ def sample(motion: Motion, times_s: np.ndarray) -> np.ndarray:
             step = (start.inv() * Rotation.from_euler(order, b)).as_rotvec()
             weights = np.repeat(fraction[between], k)[:, None]
             blended = start * Rotation.from_rotvec(step * weights)
-            angles = np.degrees(blended.as_euler(order)).reshape(-1, len(columns))
+            with warnings.catch_warnings():
+                # At ±90° the angles are not unique, but the ones chosen are exact.
+                warnings.filterwarnings("ignore", "Gimbal lock detected", UserWarning)
+                angles = np.degrees(blended.as_euler(order)).reshape(-1, len(columns))
             reference = linear[between][:, columns]
             angles += 360.0 * np.round((reference - angles) / 360.0)
             result[np.ix_(np.flatnonzero(between), columns)] = angles

@@ -1,7 +1,11 @@
 """Command line of the timing models.
 
-python -m synthesis.timing train --holds holds.csv --transitions moves.csv --out model.json
-python -m synthesis.timing predict ELEPHANT [--model model.json]
+    python -m synthesis.timing train HEAVEN.bvh GUITAR.bvh … --out model.json
+    python -m synthesis.timing train --holds holds.csv --transitions moves.csv --out model.json
+    python -m synthesis.timing predict ELEPHANT [--model model.json]
+    python -m synthesis.timing compare HEAVEN.bvh GUITAR.bvh … [--model model.json]
+
+A recording's word is its file name's letters unless --words gives them in order.
 """
 
 import argparse
@@ -9,6 +13,7 @@ import json
 import sys
 from pathlib import Path
 
+from synthesis.bvh import BvhError
 from synthesis.timing.defaults import published_model
 from synthesis.timing.training import (
     HOLD_COLUMNS,
@@ -20,16 +25,39 @@ from synthesis.timing.variable import VariableModel
 from synthesis.timing.word import TimingError
 
 
+def _recordings(args: argparse.Namespace) -> list:
+    from synthesis.timing.recordings import Recording
+
+    words = args.words.split(",") if args.words else [None] * len(args.recordings)
+    if len(words) != len(args.recordings):
+        raise TimingError(f"{len(args.recordings)} recordings but {len(words)} words.")
+    return [Recording.read(path, word) for path, word in zip(args.recordings, words, strict=True)]
+
+
 def _train(args: argparse.Namespace) -> int:
-    holds = read_annotations(args.holds, HOLD_COLUMNS)
-    transitions = read_annotations(args.transitions, TRANSITION_COLUMNS)
-    model, report = train(
-        holds, transitions, args.metric, source=f"{args.holds}, {args.transitions}"
-    )
+    if args.recordings:
+        from synthesis.timing.recordings import train_on_recordings
+
+        model, report = train_on_recordings(_recordings(args), args.metric)
+    elif args.holds and args.transitions:
+        holds = read_annotations(args.holds, HOLD_COLUMNS)
+        transitions = read_annotations(args.transitions, TRANSITION_COLUMNS)
+        source = f"{args.holds}, {args.transitions}"
+        model, report = train(holds, transitions, args.metric, source=source)
+    else:
+        raise TimingError("Give recordings (BVH files) or both --holds and --transitions.")
     for line in report.lines():
         print(line)
     model.save(args.out)
     print(f"wrote {args.out}")
+    return 0
+
+
+def _compare(args: argparse.Namespace) -> int:
+    from synthesis.timing.recordings import duration_table, format_table
+
+    model = VariableModel.load(args.model) if args.model else published_model()
+    print(format_table(duration_table(_recordings(args), model)))
     return 0
 
 
@@ -47,13 +75,23 @@ def parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     commands = main.add_subparsers(dest="command", required=True)
-    fit = commands.add_parser("train", help="train a Variable model from annotated CSV files")
-    fit.add_argument("--holds", type=Path, required=True, help="CSV: word, index, hold_ms")
-    fit.add_argument("--transitions", type=Path, required=True,
-                     help="CSV: word, index, transition_ms")  # fmt: skip
+    fit = commands.add_parser(
+        "train", help="train a Variable model from recordings or annotated CSV files"
+    )
+    fit.add_argument("recordings", nargs="*", type=Path, help="BVH recordings of words")
+    fit.add_argument("--words", help="the recordings' words, comma-separated, in order")
+    fit.add_argument("--holds", type=Path, help="CSV: word, index, hold_ms")
+    fit.add_argument("--transitions", type=Path, help="CSV: word, index, transition_ms")
     fit.add_argument("--metric", choices=("rmsd", "manhattan", "chebyshev"), default="rmsd")
     fit.add_argument("--out", type=Path, required=True)
     fit.set_defaults(run=_train)
+    compare = commands.add_parser(
+        "compare", help="whole-word durations: recordings against each model (Table 4.3)"
+    )
+    compare.add_argument("recordings", nargs="+", type=Path)
+    compare.add_argument("--words", help="the recordings' words, comma-separated, in order")
+    compare.add_argument("--model", type=Path)
+    compare.set_defaults(run=_compare)
     predict = commands.add_parser("predict", help="print a word's Variable timing as JSON")
     predict.add_argument("word")
     predict.add_argument("--model", type=Path)
@@ -66,6 +104,6 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         return args.run(args)
-    except (TimingError, ValueError, OSError) as error:
+    except (TimingError, BvhError, ValueError, OSError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2

@@ -33,6 +33,10 @@ from synthesis.timing.word import TimingError, WordTiming
 # times the capture's noise above it, whichever is higher.
 HOLD_LEVEL = 0.08
 NOISE_MARGIN = 3.0
+# A hold matches its letter when the letter's decomposition weight there is at least
+# this; most of a word's holds must match, or the recording is of something else.
+MATCH_WEIGHT = 0.5
+MATCH_SHARE = 0.75
 
 
 class ExtractionError(TimingError):
@@ -141,7 +145,14 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
         )
     columns = [unique.index(c) for c in letters]
     scores = np.stack([weights[candidates, col] for col in columns])
-    chosen = candidates[_assign(candidates, scores)]
+    picks = _assign(candidates, scores)
+    matched = np.mean([scores[k, m] >= MATCH_WEIGHT for k, m in enumerate(picks)])
+    if matched < MATCH_SHARE:
+        raise ExtractionError(
+            f"The hand's poses where it slows down do not look like the letters of "
+            f"{word.upper()} (only {100 * matched:.0f} % match): is this a recording of it?"
+        )
+    chosen = candidates[picks]
     bounds = np.concatenate([[0], chosen, [len(velocity) - 1]])
     quiet = velocity[velocity <= np.percentile(velocity, 25)]
     noise = NOISE_MARGIN * float(quiet.std()) if quiet.size > 1 else 0.0

@@ -47,3 +47,6 @@ def test_a_recording_of_another_word_is_a_clear_error():
         extract(motion, "PSYCHIATRY")
     with pytest.raises(ExtractionError, match="empty"):
         extract(motion, " ")
+    recording, _ = _recording("DAVID", np.random.default_rng(2))
+    with pytest.raises(ExtractionError, match="do not look like the letters of TAKEDAVID"):
+        extract(recording, "TAKEDAVID")

@@ -68,3 +68,26 @@ def test_csv_problems_are_named_with_their_line(tmp_path, capsys):
 def test_predict_prints_a_timing(capsys):
     assert main(["predict", "guitar"]) == 0
     assert '"condition": "variable"' in capsys.readouterr().out
+
+
+def test_train_and_compare_from_recordings(tmp_path, capsys):
+    from synthesis.bvh import save_bvh
+    from synthesis.hand import HandModel
+    from synthesis.motion import Motion
+    from synthesis.spelling import spell
+
+    model = HandModel()
+    paths = []
+    for word in ("DAVID", "VICTOR", "HEAVEN"):
+        dofs = spell(word, rate_hz=60, timing=None, lead_ms=300)
+        paths.append(tmp_path / f"take-{word.lower()}.bvh")
+        save_bvh(Motion(model.skeleton, model.channel_values(dofs), 1 / 60), paths[-1])
+    out = tmp_path / "model.json"
+    args = ["train", *map(str, paths), "--words", "DAVID,VICTOR,HEAVEN", "--out", str(out)]
+    assert main(args) == 0
+    assert "holds: 17" in capsys.readouterr().out
+    assert main(["compare", *map(str, paths), "--words", "DAVID,VICTOR,HEAVEN"]) == 0
+    table = capsys.readouterr().out
+    assert "| DAVID |" in table and "| mean |error| |" in table
+    assert main(["train", str(paths[0]), "--out", str(out)]) == 2  # "TAKEDAVID" is not it
+    assert "error:" in capsys.readouterr().err

@@ -1,0 +1,134 @@
+"""Recordings of fingerspelled words: retime them onto a model's timing, train on them,
+and compare whole-word durations (seed 000 §4.3, Table 4.3).
+
+The Motion capture condition is the recording itself; the other conditions are the same
+recording time-warped so that its holds and transitions land on the predicted timing:
+natural poses, new rhythm.
+"""
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from synthesis.bvh import read_bvh
+from synthesis.motion import Motion
+from synthesis.retime import piecewise_linear_warp, time_warp
+from synthesis.timing.constant import constant_timing, normalized_constant_timing
+from synthesis.timing.extraction import Extraction, extract
+from synthesis.timing.training import Annotation, train
+from synthesis.timing.variable import VariableModel
+from synthesis.timing.word import TimingError, WordTiming
+
+
+@dataclass(frozen=True)
+class Recording:
+    """A recorded word: the motion, its letters and what extraction found in it."""
+
+    word: str
+    motion: Motion
+    extraction: Extraction
+
+    @classmethod
+    def read(cls, path: str | Path, word: str | None = None, side: str = "right") -> "Recording":
+        """Read a BVH recording; the word defaults to the file name's letters (HEAVEN.bvh)."""
+        path = Path(path)
+        word = (word or "".join(c for c in path.stem if c.isalpha())).upper()
+        if not word:
+            raise TimingError(f"{path}: give the word it spells (its name has no letters).")
+        motion = read_bvh(path)
+        return cls(word, motion, extract(motion, word, side))
+
+    def hold_times_s(self) -> np.ndarray:
+        """Return each hold's (start, end) in seconds, shape (n_letters, 2)."""
+        return np.asarray(self.extraction.hold_frames, dtype=float) * self.motion.frame_time_s
+
+
+def retime(recording: Recording, timing: WordTiming) -> Motion:
+    """Return the recording time-warped so that its holds follow *timing*.
+
+    The lead-in before the first hold and the lead-out after the last keep their
+    recorded length; everything between moves linearly from key to key.
+    """
+    if timing.letters != recording.extraction.timing.letters:
+        raise TimingError(f"The timing is for {timing.word}, not {recording.word}.")
+    holds = recording.hold_times_s()
+    end_s = recording.motion.duration_s
+    source = [0.0]
+    target = [0.0]
+    start = holds[0, 0]
+    new_starts = start + timing.hold_starts_ms() / 1000
+    for k in range(len(holds)):
+        source += [holds[k, 0], holds[k, 1]]
+        target += [new_starts[k], new_starts[k] + timing.hold_ms[k] / 1000]
+    source.append(end_s)
+    target.append(target[-1] + max(end_s - holds[-1, 1], 0.0))
+    kept = [(target[0], source[0])]
+    for key in zip(target[1:], source[1:], strict=True):
+        # Keys that coincide (a hold that starts the clip) would make the warp ill-posed.
+        if key[0] > kept[-1][0] and key[1] >= kept[-1][1]:
+            kept.append(key)
+    warp = piecewise_linear_warp([k[0] for k in kept], [k[1] for k in kept])
+    return time_warp(recording.motion, warp, kept[-1][0])
+
+
+def condition_timings(word: str, model: VariableModel) -> dict[str, WordTiming]:
+    """Return the Variable, Constant and Normalized constant timings of *word*."""
+    variable = model.timing(word)
+    return {
+        "variable": variable,
+        "constant": constant_timing(word),
+        "normalized": normalized_constant_timing(word, variable),
+    }
+
+
+def annotations(recordings: list[Recording]) -> tuple[list[Annotation], list[Annotation]]:
+    """Return the holds and transitions extracted from recordings, as training data."""
+    holds, transitions = [], []
+    for recording in recordings:
+        timing = recording.extraction.timing
+        holds += [Annotation(recording.word, k, v) for k, v in enumerate(timing.hold_ms)]
+        transitions += [
+            Annotation(recording.word, k, v) for k, v in enumerate(timing.transition_ms)
+        ]
+    return holds, transitions
+
+
+def train_on_recordings(recordings: list[Recording], metric: str = "rmsd"):
+    """Train a Variable model on the holds and transitions found in recordings."""
+    holds, transitions = annotations(recordings)
+    words = ", ".join(sorted({r.word for r in recordings}))
+    return train(holds, transitions, metric, source=f"{len(recordings)} recordings: {words}")
+
+
+def duration_table(recordings: list[Recording], model: VariableModel) -> list[dict]:
+    """Return, per recording, the whole-word duration of mocap and each model (ms), and
+    each model's error against the recording (seed 000 Table 4.3); a final mean row."""
+    rows = []
+    for recording in recordings:
+        mocap = recording.extraction.timing.total_ms
+        row = {"word": recording.word, "mocap_ms": mocap}
+        for name, timing in condition_timings(recording.word, model).items():
+            row[f"{name}_ms"] = timing.total_ms
+            row[f"{name}_error_ms"] = timing.total_ms - mocap
+        rows.append(row)
+    if rows:
+        mean = {"word": "mean |error|", "mocap_ms": float(np.mean([r["mocap_ms"] for r in rows]))}
+        for name in ("variable", "constant", "normalized"):
+            mean[f"{name}_ms"] = float(np.mean([r[f"{name}_ms"] for r in rows]))
+            mean[f"{name}_error_ms"] = float(np.mean([abs(r[f"{name}_error_ms"]) for r in rows]))
+        rows.append(mean)
+    return rows
+
+
+def format_table(rows: list[dict]) -> str:
+    """Return the duration table as Markdown."""
+    names = ("variable", "constant", "normalized")
+    header = "| word | mocap (ms) | " + " | ".join(f"{n} (ms) | {n} error" for n in names) + " |"
+    lines = [header, "|" + "---|" * (2 + 2 * len(names))]
+    for row in rows:
+        cells = [row["word"], f"{row['mocap_ms']:.1f}"]
+        for name in names:
+            cells += [f"{row[f'{name}_ms']:.1f}", f"{row[f'{name}_error_ms']:+.1f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
