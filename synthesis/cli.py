@@ -88,8 +88,8 @@ def _render_pose(args: argparse.Namespace) -> int:
     return 0
 
 
-def _timing(args: argparse.Namespace):
-    """Return the word timing the spell command asks for."""
+def _timing(args: argparse.Namespace, recording=None):
+    """Return the word timing the spell command asks for (a recording's own for mocap)."""
     from synthesis.spelling import simple_timing, word_letters
     from synthesis.timing import (
         VariableModel,
@@ -105,6 +105,12 @@ def _timing(args: argparse.Namespace):
             raise ValueError(f"{args.timing_file} times {timing.word}, not {args.word.upper()}.")
         return timing
     word = "".join(word_letters(args.word))
+    if args.condition == "mocap":
+        if recording is None:
+            raise ValueError(
+                "The mocap condition plays a recording: give --recording FILE.bvh of the word."
+            )
+        return recording.extraction.timing
     if args.condition == "constant":
         return constant_timing(word)
     if args.condition in ("variable", "normalized"):
@@ -116,19 +122,45 @@ def _timing(args: argparse.Namespace):
     return simple_timing(args.word)
 
 
+def _recorded_motion(recording, timing, avatar, args: argparse.Namespace):
+    """Return the recording (retimed unless mocap) as the hand avatar's joint transforms.
+
+    Seed 000 §4.3: with a recording, every condition is the recording itself, its holds
+    and transitions moved onto the condition's timing.
+    """
+    from synthesis.retarget import retarget
+    from synthesis.retime import resample
+    from synthesis.timing.recordings import retime
+
+    if not isinstance(avatar.rig, HandModel):
+        raise ValueError("Recordings are rendered in the hand view for now: use --view hand.")
+    motion = recording.motion if args.condition == "mocap" else retime(recording, timing)
+    if abs(motion.rate_hz - args.rate) > 1e-9:
+        motion = resample(motion, args.rate)
+    return retarget(motion, avatar.rig)
+
+
 def _spell(args: argparse.Namespace) -> int:
     from synthesis.render.clip import render_clip
     from synthesis.spelling import spell
 
-    timing = _timing(args)
+    recording = None
+    if args.recording is not None:
+        from synthesis.timing.recordings import Recording
+
+        recording = Recording.read(args.recording, args.word, args.side)
+    timing = _timing(args, recording)
     if args.timing_only:
         print(json.dumps(timing.to_dict(), indent=2))
         return 0
     if args.out is None:
         raise ValueError("Give --out FILE.mp4 (or --timing-only to print the timing).")
     avatar, camera = _scene(args.view, args.side)
-    hand_motion = spell(args.word, args.side, args.rate, timing=timing)
-    motion = _hand_motion_for(avatar, args.side, hand_motion)
+    if recording is not None:
+        motion = _recorded_motion(recording, timing, avatar, args)
+    else:
+        hand_motion = spell(args.word, args.side, args.rate, timing=timing)
+        motion = _hand_motion_for(avatar, args.side, hand_motion)
     info = render_clip(
         avatar, motion, camera, args.out, args.rate, poster=args.poster,
         width=args.size[0], height=args.size[1], progress=_progress(f"spelling {args.word}"),
@@ -207,10 +239,15 @@ def parser() -> argparse.ArgumentParser:
     spell.add_argument("word")
     spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
     spell.add_argument(
-        "--condition", choices=("simple", "constant", "variable", "normalized"),
+        "--condition", choices=("simple", "constant", "variable", "normalized", "mocap"),
         default="simple",
         help="timing: simple (equal holds), constant (Huenerfauth: 243/800 ms holds), "
-        "variable (naïve Bayes + pose distance), normalized (constant at variable's length)",
+        "variable (naïve Bayes + pose distance), normalized (constant at variable's length), "
+        "mocap (the --recording as it is)",
+    )  # fmt: skip
+    spell.add_argument(
+        "--recording", type=Path,
+        help="a BVH recording of the word: conditions retime it instead of synthesising",
     )  # fmt: skip
     spell.add_argument(
         "--model", type=Path,

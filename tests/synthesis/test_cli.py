@@ -87,3 +87,25 @@ def test_spell_variable_and_normalized_timings_last_equally_long(capsys):
         totals[condition] = json.loads(capsys.readouterr().out)["total_ms"]
     assert totals["normalized"] == pytest.approx(totals["variable"], abs=0.01)
     assert totals["constant"] > totals["variable"]  # seed 000 Table 4.3: constant is slower
+
+
+def test_spell_retimes_a_recording_for_each_condition(tmp_path, capsys):
+    import json
+
+    from synthesis.timing import constant_timing
+
+    model = HandModel()
+    recording = tmp_path / "david.bvh"
+    save_bvh(Motion(model.skeleton, model.channel_values(spell("DAVID", lead_ms=300)), 1 / 60),
+             recording)  # fmt: skip
+    assert main(["spell", "DAVID", "--condition", "mocap", "--recording", str(recording),
+                 "--timing-only"]) == 0  # fmt: skip
+    assert json.loads(capsys.readouterr().out)["condition"] == "mocap"
+    out = tmp_path / "constant.mp4"
+    assert main(["spell", "DAVID", "--condition", "constant", "--recording", str(recording),
+                 "--out", str(out), "--size", "64x48"]) == 0  # fmt: skip
+    # The recording's lead-in and lead-out (300 ms each) framed the new timing.
+    expected_s = constant_timing("DAVID").total_ms / 1000 + 0.6
+    assert count_frames(out) == pytest.approx(expected_s * 60, abs=3)
+    assert main(["spell", "DAVID", "--condition", "mocap", "--out", str(out)]) == 2
+    assert "give --recording" in capsys.readouterr().err
