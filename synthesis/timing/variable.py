@@ -13,7 +13,7 @@ from pathlib import Path
 from synthesis.timing.bayes import HoldClassifier
 from synthesis.timing.features import word_features
 from synthesis.timing.transitions import TransitionModel
-from synthesis.timing.word import TimingError, WordTiming
+from synthesis.timing.word import TimingError, WordTiming, check_header
 
 FORMAT = "signstudy.timing-model"
 FORMAT_VERSION = 1
@@ -57,10 +57,7 @@ class VariableModel:
     @classmethod
     def from_dict(cls, data: dict) -> "VariableModel":
         """Read a model written by :meth:`to_dict`; TimingError names what is wrong."""
-        if not isinstance(data, dict) or data.get("format") != FORMAT:
-            raise TimingError(f"Not a timing model: expected format {FORMAT!r}.")
-        if data.get("version") != FORMAT_VERSION:
-            raise TimingError(f"Unsupported timing-model version {data.get('version')!r}.")
+        check_header(data, FORMAT, FORMAT_VERSION, "timing model")
         try:
             return cls(
                 HoldClassifier.from_dict(data["holds"]),

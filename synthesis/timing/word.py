@@ -17,6 +17,14 @@ class TimingError(ValueError):
     """A timing that does not fit its word, or a malformed timing file."""
 
 
+def check_header(data, expected_format: str, version: int, what: str) -> None:
+    """Raise TimingError unless *data* is a mapping of *expected_format* at *version*."""
+    if not isinstance(data, dict) or data.get("format") != expected_format:
+        raise TimingError(f"Not a {what}: expected format {expected_format!r}.")
+    if data.get("version") != version:
+        raise TimingError(f"Unsupported {what} version {data.get('version')!r}.")
+
+
 @dataclass(frozen=True)
 class WordTiming:
     """Holds (n,) and transitions (n − 1,) in ms for the *n* letters of a word.
@@ -93,10 +101,7 @@ class WordTiming:
     @classmethod
     def from_dict(cls, data: dict) -> "WordTiming":
         """Read a timing written by :meth:`to_dict`; TimingError names what is wrong."""
-        if not isinstance(data, dict) or data.get("format") != FORMAT:
-            raise TimingError(f"Not a word timing: expected format {FORMAT!r}.")
-        if data.get("version") != FORMAT_VERSION:
-            raise TimingError(f"Unsupported word-timing version {data.get('version')!r}.")
+        check_header(data, FORMAT, FORMAT_VERSION, "word timing")
         try:
             return cls(
                 tuple(data["word"]),
