@@ -156,25 +156,30 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
     bounds = np.concatenate([[0], chosen, [len(velocity) - 1]])
     quiet = velocity[velocity <= np.percentile(velocity, 25)]
     noise = NOISE_MARGIN * float(quiet.std()) if quiet.size > 1 else 0.0
-    holds = [
+    spans = [
         _hold_span(velocity, int(bounds[k + 1]), int(bounds[k]), int(bounds[k + 2]), noise)
         for k in range(len(chosen))
     ]
     frame_ms = 1000.0 / rate
-    hold_ms = tuple(max(end - start, 1) * frame_ms for start, end in holds)
-    transition_ms = tuple(max(b[0] - a[1], 1) * frame_ms for a, b in itertools.pairwise(holds))
+    # Durations from the sub-frame boundaries; at least a frame each.
+    hold_ms = tuple(max(end - start, 1.0) * frame_ms for start, end in spans)
+    transition_ms = tuple(max(b[0] - a[1], 1.0) * frame_ms for a, b in itertools.pairwise(spans))
     timing = WordTiming(letters, hold_ms, transition_ms, "mocap", {"rate_hz": rate})
-    return Extraction(timing, tuple(holds), velocity, weights)
+    frames = tuple((int(np.ceil(start)), max(int(np.ceil(end)), int(np.ceil(start)) + 1))
+                   for start, end in spans)  # fmt: skip
+    return Extraction(timing, frames, velocity, weights)
 
 
 def _hold_span(
     velocity: np.ndarray, at: int, before: int, after: int, noise: float
-) -> tuple[int, int]:
-    """Return [start, end) frames of the hold around the minimum at frame *at*.
+) -> tuple[float, float]:
+    """Return the start and end (in frames, sub-frame) of the hold around frame *at*.
 
     *before* and *after* are the neighbouring holds' minima (or the clip's ends): the
     transition peaks in between set how far the velocity may rise within this hold, and
-    a hold never reaches past them, so neighbouring holds cannot overlap.
+    a hold never reaches past them, so neighbouring holds cannot overlap. ``velocity[t]``
+    is the motion from frame t − 1 to t, so it belongs to time t − ½; the boundaries are
+    where it crosses the limit, interpolated linearly between those half frames.
     """
     floor = velocity[at]
     left_peak_at = before + int(np.argmax(velocity[before : at + 1]))
@@ -187,4 +192,14 @@ def _hold_span(
     end = at + 1
     while end < right_peak_at and velocity[end] <= limit_right:
         end += 1
-    return start, end
+    start_s = start - 0.5 - _crossing(velocity[start - 1], velocity[start], limit_left)
+    end_s = end - 1.5 + _crossing(velocity[end - 1], velocity[min(end, len(velocity) - 1)],
+                                  limit_right)  # fmt: skip
+    return start_s, max(end_s, start_s)
+
+
+def _crossing(inside: float, outside: float, limit: float) -> float:
+    """Return how far (0–1) from the *inside* sample toward *outside* the limit is crossed."""
+    if outside <= inside:
+        return 0.0
+    return float(np.clip((limit - inside) / (outside - inside), 0.0, 1.0))

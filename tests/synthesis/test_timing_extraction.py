@@ -24,9 +24,9 @@ def _recording(word: str, rng: np.random.Generator) -> tuple[Motion, WordTiming]
 
 
 def test_recovers_known_holds_of_the_study_words():
-    """Measured on these noise-free recordings: 46 of 54 holds (85 %) within one frame at
-    60 fps, median error 8 ms; the worst are the RR of ARREST (70 and 56 ms), whose only
-    movement is a small slide. (Issue 4 asks ≥ 90 % with capture noise: not reached yet.)"""
+    """Measured on these noise-free recordings: 50 of 54 holds (93 %) within one frame at
+    60 fps (sub-frame boundaries). Issue 4 asks ≥ 90 % with capture noise as well: with
+    0.3° of low-passed noise it is about 70 % so far."""
     rng = np.random.default_rng(0)
     errors = []
     for word in STUDY_WORDS:
@@ -37,8 +37,8 @@ def test_recovers_known_holds_of_the_study_words():
                                                  strict=False))  # fmt: skip
         errors.extend(np.abs(np.array(found.timing.hold_ms) - truth.hold_ms))
     errors = np.array(errors)
-    assert np.mean(errors <= FRAME_MS) >= 0.8
-    assert np.median(errors) < 10
+    assert np.mean(errors <= FRAME_MS) >= 0.9
+    assert np.median(errors) < 8
 
 
 def test_a_recording_of_another_word_is_a_clear_error():
