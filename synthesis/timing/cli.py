@@ -4,6 +4,7 @@
     python -m synthesis.timing train --holds holds.csv --transitions moves.csv --out model.json
     python -m synthesis.timing predict ELEPHANT [--model model.json]
     python -m synthesis.timing compare HEAVEN.bvh GUITAR.bvh … [--model model.json]
+    python -m synthesis.timing plot HEAVEN --out heaven.png [--trajectory heaven-angles.pdf]
 
 A recording's word is its file name's letters unless --words gives them in order.
 """
@@ -61,6 +62,22 @@ def _compare(args: argparse.Namespace) -> int:
     return 0
 
 
+def _plot(args: argparse.Namespace) -> int:
+    from synthesis.spelling import spell, word_letters
+    from synthesis.timing.plots import save_figure, timeline_figure, trajectory_figure
+    from synthesis.timing.recordings import condition_timings
+
+    word = "".join(word_letters(args.word))
+    model = VariableModel.load(args.model) if args.model else published_model()
+    timings = condition_timings(word, model)
+    print(f"wrote {save_figure(timeline_figure(timings), args.out)}")
+    if args.trajectory:
+        motions = {name: spell(word, timing=t) for name, t in timings.items()}
+        figure = trajectory_figure(motions, 60.0, word)
+        print(f"wrote {save_figure(figure, args.trajectory)}")
+    return 0
+
+
 def _predict(args: argparse.Namespace) -> int:
     model = VariableModel.load(args.model) if args.model else published_model()
     print(json.dumps(model.timing(args.word).to_dict(), indent=2))
@@ -92,6 +109,14 @@ def parser() -> argparse.ArgumentParser:
     compare.add_argument("--words", help="the recordings' words, comma-separated, in order")
     compare.add_argument("--model", type=Path)
     compare.set_defaults(run=_compare)
+    plot = commands.add_parser(
+        "plot", help="draw a word's timeline under each condition (PNG or PDF)"
+    )
+    plot.add_argument("word")
+    plot.add_argument("--out", type=Path, required=True, help="the timeline figure")
+    plot.add_argument("--trajectory", type=Path, help="also the average joint-angle figure")
+    plot.add_argument("--model", type=Path)
+    plot.set_defaults(run=_plot)
     predict = commands.add_parser("predict", help="print a word's Variable timing as JSON")
     predict.add_argument("word")
     predict.add_argument("--model", type=Path)

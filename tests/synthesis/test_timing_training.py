@@ -91,3 +91,17 @@ def test_train_and_compare_from_recordings(tmp_path, capsys):
     assert "| DAVID |" in table and "| mean |error| |" in table
     assert main(["train", str(paths[0]), "--out", str(out)]) == 2  # "TAKEDAVID" is not it
     assert "error:" in capsys.readouterr().err
+
+
+def test_plot_draws_the_timeline_and_the_trajectory(tmp_path, capsys):
+    import imageio.v3 as iio
+
+    png, pdf = tmp_path / "timeline.png", tmp_path / "angles.pdf"
+    assert main(["plot", "heaven", "--out", str(png), "--trajectory", str(pdf)]) == 0
+    assert iio.imread(png).shape[1] > 600
+    first = pdf.read_bytes()
+    assert first.startswith(b"%PDF")
+    assert main(["plot", "heaven", "--out", str(png), "--trajectory", str(pdf)]) == 0
+    assert pdf.read_bytes() == first  # byte-stable
+    assert main(["plot", "he7", "--out", str(png)]) == 2
+    assert "'7' is not a letter" in capsys.readouterr().err
