@@ -76,11 +76,14 @@ def _tables() -> dict[str, dict[str, str]]:
     for side, cap, short in (("right", "Right", "R"), ("left", "Left", "L")):
         for convention, names in _side_names(side, cap, short).items():
             trunk[convention].update(names)
-    # Our own BVH files use the canonical names themselves.
+    # Our own BVH files use the canonical names themselves; a hand alone drops the side.
     trunk["signstudy"] = {name: name for name in trunk["humanik"]}
-    return {
-        name: {canonical: theirs for canonical, theirs in t.items()} for name, t in trunk.items()
+    trunk["signstudy-hand"] = {
+        name.removeprefix("right_"): name.removeprefix("right_")
+        for name in trunk["humanik"]
+        if name.startswith("right_") and not name.endswith(("clavicle", "shoulder", "elbow"))
     }
+    return trunk
 
 
 JOINT_NAME_TABLES: dict[str, dict[str, str]] = _tables()
@@ -126,14 +129,6 @@ def detect_mapping(skeleton: Skeleton, minimum: int = 4) -> JointMapping:
             for canonical, theirs in table.items()
             if normalise(theirs) in ours
         }
-        # A single-hand file named with side-less canonical names (our hand BVH).
-        if convention == "signstudy" and len(matched) < minimum:
-            matched = {
-                ours[normalise(theirs.split("_", 1)[1])]: canonical
-                for canonical, theirs in table.items()
-                if canonical.startswith("right_") and normalise(theirs.split("_", 1)[1]) in ours
-            }
-            matched = {k: v.split("_", 1)[1] for k, v in matched.items()}
         scores.append((len(matched), convention, matched))
     scores.sort(key=lambda s: -s[0])
     count, convention, matched = scores[0]

@@ -5,7 +5,6 @@ rotations interpolated on the sphere (slerp) and positions linearly. Times that 
 exactly on a frame return that frame's values unchanged.
 """
 
-import warnings
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -13,6 +12,7 @@ from scipy.interpolate import PchipInterpolator
 from scipy.spatial.transform import Rotation
 
 from synthesis.motion import Motion
+from synthesis.rotations import euler_angles
 from synthesis.skeleton import Skeleton
 
 Warp = Callable[[np.ndarray], np.ndarray]
@@ -55,10 +55,7 @@ def sample(motion: Motion, times_s: np.ndarray) -> np.ndarray:
             step = (start.inv() * Rotation.from_euler(order, b)).as_rotvec()
             weights = np.repeat(fraction[between], k)[:, None]
             blended = start * Rotation.from_rotvec(step * weights)
-            with warnings.catch_warnings():
-                # At ±90° the angles are not unique, but the ones chosen are exact.
-                warnings.filterwarnings("ignore", "Gimbal lock detected", UserWarning)
-                angles = np.degrees(blended.as_euler(order)).reshape(-1, len(columns))
+            angles = euler_angles(blended, order, degrees=True).reshape(-1, len(columns))
             reference = linear[between][:, columns]
             angles += 360.0 * np.round((reference - angles) / 360.0)
             result[np.ix_(np.flatnonzero(between), columns)] = angles

@@ -6,7 +6,6 @@ Each joint's local rotation is its fixed rest rotation followed by its DOFs as Z
 Euler angles, so every bone can lie along its joint's local +y.
 """
 
-import warnings
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -14,7 +13,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from synthesis.kinematics import Pose, forward_kinematics_arrays
-from synthesis.rotations import quat_from_euler, quat_multiply
+from synthesis.rotations import euler_angles, quat_from_euler, quat_multiply
 from synthesis.skeleton import Joint, Skeleton
 
 _EULER_COLUMN = {"z": 0, "x": 1, "y": 2}
@@ -49,6 +48,8 @@ class Rig:
 
     dofs: tuple[Dof, ...]
     joint_specs: tuple[JointSpec, ...]
+    # What error messages call the rig ("Unknown hand DOF …").
+    kind = "rig"
 
     @cached_property
     def dof_names(self) -> list[str]:
@@ -102,8 +103,6 @@ class Rig:
             values[lookup[name]] = np.radians(angle)
         return values
 
-    kind = "rig"
-
     @cached_property
     def _angle_map(self) -> tuple[np.ndarray, np.ndarray]:
         """Return (n_dofs, n_joints·3) DOF → ZXY-angle matrix and (n_joints, 4) rest quaternions."""
@@ -139,10 +138,7 @@ class Rig:
         quaternions = self.local_quaternions(np.atleast_2d(dofs_rad))
         with_channels = [i for i, joint in enumerate(self.skeleton.joints) if joint.channels]
         rotations = Rotation.from_quat(quaternions[:, with_channels].reshape(-1, 4))
-        with warnings.catch_warnings():
-            # At ±90° the angles are not unique, but the ones chosen give the same rotation.
-            warnings.filterwarnings("ignore", "Gimbal lock detected", UserWarning)
-            angles = rotations.as_euler("ZXY", degrees=True)
+        angles = euler_angles(rotations, "ZXY", degrees=True)
         return angles.reshape(quaternions.shape[0], -1)
 
 

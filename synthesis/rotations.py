@@ -6,7 +6,10 @@ matter); these functions avoid its per-call overhead on (frames × joints) batch
 are tested against it.
 """
 
+import warnings
+
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 _AXES = {"X": 0, "Y": 1, "Z": 2}
 
@@ -88,3 +91,14 @@ def quat_to_matrix(q: np.ndarray) -> np.ndarray:
         axis=-1,
     )  # fmt: skip
     return matrix.reshape((*matrix.shape[:-1], 3, 3))
+
+
+def euler_angles(rotation: Rotation, order: str, degrees: bool = False) -> np.ndarray:
+    """Return *rotation*'s intrinsic Euler angles in *order*, without gimbal-lock warnings.
+
+    At ±90° the angles are not unique; scipy picks one set (third angle zero) that gives
+    the same rotation exactly, so the warning says nothing a caller must act on.
+    """
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "Gimbal lock detected", UserWarning)
+        return rotation.as_euler(order, degrees=degrees)

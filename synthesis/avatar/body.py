@@ -12,9 +12,9 @@ import numpy as np
 import trimesh
 
 from synthesis.avatar.hand import BIND_DEGREES as HAND_BIND_DEGREES
-from synthesis.avatar.hand import hand_nails, hand_primitives, simplify
+from synthesis.avatar.hand import hand_nails, hand_primitives
 from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, TOP_RGB, Avatar, SkinnedPart, rigid_part
-from synthesis.avatar.sdf import Primitive, RoundCone, mesh_primitives
+from synthesis.avatar.sdf import Primitive, RoundCone, mesh_primitives, simplify
 from synthesis.avatar.skinning import skin_weights
 from synthesis.body import SIDES, BodyModel
 from synthesis.rotations import quat_rotate

@@ -13,7 +13,7 @@ import numpy as np
 import trimesh
 
 from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, Avatar, SkinnedPart, rigid_part
-from synthesis.avatar.sdf import Primitive, RoundCone, RoundedPlate, mesh_primitives
+from synthesis.avatar.sdf import Primitive, RoundCone, RoundedPlate, mesh_primitives, simplify
 from synthesis.avatar.skinning import skin_weights
 from synthesis.hand import FINGERS, HandModel
 from synthesis.rig import MIRROR_X, Rig
@@ -171,29 +171,6 @@ def hand_nails(
     if side == "left":
         faces_all = faces_all[:, ::-1]
     return np.concatenate(vertices), faces_all, np.concatenate(owners)
-
-
-def simplify(vertices, faces, target_faces: int):
-    """Return the mesh decimated to about *target_faces* (quadric error, fast-simplification).
-
-    Aggressive decimation can leave an edge shared by more than two triangles; the skin
-    must stay watertight, so gentler settings are tried in turn, and the full mesh is
-    kept if none holds.
-    """
-    if len(faces) <= target_faces:
-        return vertices, faces
-    import fast_simplification
-
-    for aggressiveness in (7.0, 4.0, 2.0, 1.0):
-        fewer_vertices, fewer_faces = fast_simplification.simplify(
-            np.asarray(vertices, dtype=np.float32),
-            np.asarray(faces, dtype=np.int32),
-            target_count=target_faces,
-            agg=aggressiveness,
-        )
-        if trimesh.Trimesh(fewer_vertices, fewer_faces, process=False).is_watertight:
-            return fewer_vertices, fewer_faces
-    return vertices, faces
 
 
 @cache

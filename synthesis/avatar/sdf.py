@@ -6,12 +6,14 @@ polynomial smooth minimum so joints blend like flesh instead of meeting like a r
 capsules, and marching cubes (scikit-image) turns the zero level set into a single
 watertight triangle mesh at the rest pose (spec 01 "Avatar").
 
-Distances are in metres; negative inside.
+Distances are in metres; negative inside. :func:`simplify` then decimates the mesh,
+keeping it watertight.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
+import trimesh
 
 
 @dataclass(frozen=True)
@@ -225,3 +227,26 @@ def mesh_primitives(
     vertices, faces, _, _ = marching_cubes(volume, level=0.0, spacing=(voxel_m,) * 3)
     # scikit-image's default "descent" winding faces outward for negative-inside fields.
     return vertices + origin, faces
+
+
+def simplify(vertices, faces, target_faces: int):
+    """Return the mesh decimated to about *target_faces* (quadric error, fast-simplification).
+
+    Aggressive decimation can leave an edge shared by more than two triangles; the skin
+    must stay watertight, so gentler settings are tried in turn, and the full mesh is
+    kept if none holds.
+    """
+    if len(faces) <= target_faces:
+        return vertices, faces
+    import fast_simplification
+
+    for aggressiveness in (7.0, 4.0, 2.0, 1.0):
+        fewer_vertices, fewer_faces = fast_simplification.simplify(
+            np.asarray(vertices, dtype=np.float32),
+            np.asarray(faces, dtype=np.int32),
+            target_count=target_faces,
+            agg=aggressiveness,
+        )
+        if trimesh.Trimesh(fewer_vertices, fewer_faces, process=False).is_watertight:
+            return fewer_vertices, fewer_faces
+    return vertices, faces

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from synthesis.alphabet import letter
+from synthesis.alphabet import letter_pose
 
 METRICS = ("rmsd", "manhattan", "chebyshev")
 
@@ -27,20 +27,12 @@ def pose_distance(a_rad: np.ndarray, b_rad: np.ndarray, metric: str = "rmsd") ->
     raise ValueError(f"Unknown distance {metric!r}; use one of {', '.join(METRICS)}.")
 
 
-def letter_pose_for_timing(name: str) -> np.ndarray:
-    """Return the pose a letter's transitions start or end at (a path's end or start).
-
-    Uses the right hand: a mirror image changes no distance.
-    """
-    shape = letter(name, "right")
-    return np.asarray(shape.dofs_rad)
-
-
 def letter_distance(first: str, second: str, metric: str = "rmsd") -> float:
-    """Return the distance between two letters' poses (radians)."""
-    return float(
-        pose_distance(letter_pose_for_timing(first), letter_pose_for_timing(second), metric)
-    )
+    """Return the distance between two letters' poses (radians).
+
+    Right-hand poses (a mirror image changes no distance); J and Z by their base poses.
+    """
+    return float(pose_distance(letter_pose(first), letter_pose(second), metric))
 
 
 @dataclass(frozen=True)
