@@ -91,13 +91,7 @@ def _render_pose(args: argparse.Namespace) -> int:
 def _timing(args: argparse.Namespace, recording=None):
     """Return the word timing the spell command asks for (a recording's own for mocap)."""
     from synthesis.spelling import simple_timing, word_letters
-    from synthesis.timing import (
-        VariableModel,
-        WordTiming,
-        constant_timing,
-        normalized_constant_timing,
-        published_model,
-    )
+    from synthesis.timing import WordTiming, constant_timing, normalized_constant_timing
 
     if args.timing_file is not None:
         timing = WordTiming.from_dict(json.loads(args.timing_file.read_text("utf-8")))
@@ -108,18 +102,25 @@ def _timing(args: argparse.Namespace, recording=None):
     if args.condition == "mocap":
         if recording is None:
             raise ValueError(
-                "The mocap condition plays a recording: give --recording FILE.bvh of the word."
+                "The mocap condition plays a recording: give --recording FILE.bvh of the word "
+                "(or --simulate SEED for a simulated one)."
             )
         return recording.extraction.timing
     if args.condition == "constant":
         return constant_timing(word)
     if args.condition in ("variable", "normalized"):
-        model = VariableModel.load(args.model) if args.model else published_model()
-        variable = model.timing(word)
+        variable = _model(args).timing(word)
         if args.condition == "variable":
             return variable
         return normalized_constant_timing(word, variable)
     return simple_timing(args.word)
+
+
+def _model(args: argparse.Namespace):
+    """Return the Variable model the command asks for (the published one by default)."""
+    from synthesis.timing import VariableModel, published_model
+
+    return VariableModel.load(args.model) if args.model else published_model()
 
 
 def _recorded_motion(recording, timing, avatar, args: argparse.Namespace):
@@ -145,10 +146,17 @@ def _spell(args: argparse.Namespace) -> int:
     from synthesis.spelling import spell
 
     recording = None
+    if args.recording is not None and args.simulate is not None:
+        raise ValueError("Give either --recording or --simulate, not both.")
     if args.recording is not None:
         from synthesis.timing.recordings import Recording
 
         recording = Recording.read(args.recording, args.word, args.side)
+    elif args.simulate is not None:
+        from synthesis.timing.recordings import Recording
+
+        model = _model(args)
+        recording = Recording.simulate(args.word, args.simulate, model, args.side, args.rate)
     timing = _timing(args, recording)
     if args.timing_only:
         print(json.dumps(timing.to_dict(), indent=2))
@@ -248,6 +256,11 @@ def parser() -> argparse.ArgumentParser:
     spell.add_argument(
         "--recording", type=Path,
         help="a BVH recording of the word: conditions retime it instead of synthesising",
+    )  # fmt: skip
+    spell.add_argument(
+        "--simulate", type=int, metavar="SEED",
+        help="a simulated capture of the word (timing sampled from the model, capture noise "
+        "added) in place of --recording; labelled simulated in the timing",
     )  # fmt: skip
     spell.add_argument(
         "--model", type=Path,

@@ -3,7 +3,9 @@
 Letters are held for their hold time and joined by eased interpolation over their
 transition time; J and Z play their motion paths during their hold; a doubled letter
 (the LL of HELLO) slides outward for the repeat (seed 000 §5.2 "the bounce between
-double letters"). The clip starts and ends on a relaxed hand, ``lead_ms`` away.
+double letters"). The clip starts and ends on a relaxed hand held still for
+``REST_HOLD_MS``, ``lead_ms`` of eased movement away from the word, so neither the
+first frame nor the last gives away how the word is timed.
 
 Without a timing, :func:`simple_timing` is used: equal holds and transitions, the
 placeholder every clip can use before a study picks a timing model.
@@ -28,6 +30,7 @@ SIMPLE_HOLD_MS = 200.0
 SIMPLE_PATH_MS = 450.0
 SIMPLE_TRANSITION_MS = 180.0
 LEAD_MS = 250.0
+REST_HOLD_MS = 100.0
 
 
 def word_letters(word: str) -> list[str]:
@@ -61,9 +64,10 @@ def spelling_keys(
     if lead_ms < 0:
         raise ValueError(f"lead_ms must not be negative, not {lead_ms!r}.")
     lead = lead_ms / 1000
+    still = REST_HOLD_MS / 1000 if lead else 0.0
     # Without a lead the clip starts and ends on the letters themselves.
-    times, poses = ([0.0], [rest]) if lead else ([], [])
-    starts = lead + timing.hold_starts_ms() / 1000
+    times, poses = ([0.0, still], [rest, rest]) if lead else ([], [])
+    starts = still + lead + timing.hold_starts_ms() / 1000
     for k, character in enumerate(timing.letters):
         shape = letter(character, side)
         start, hold = starts[k], timing.hold_ms[k] / 1000
@@ -77,8 +81,8 @@ def spelling_keys(
         times += [start, start + hold]
         poses += [pose, pose]
     if lead:
-        times.append(times[-1] + lead)
-        poses.append(rest)
+        times += [times[-1] + lead, times[-1] + lead + still]
+        poses += [rest, rest]
     return np.array(times), np.stack(poses)
 
 

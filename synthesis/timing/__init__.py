@@ -6,6 +6,7 @@ from synthesis.timing.constant import constant_timing, normalized_constant_timin
 from synthesis.timing.defaults import published_model
 from synthesis.timing.extraction import Extraction, ExtractionError, extract
 from synthesis.timing.features import DEFAULT_FEATURES, FEATURES, letter_features
+from synthesis.timing.simulate import CaptureNoise, sample_timing, simulate_recording
 from synthesis.timing.transitions import TransitionModel, letter_distance, pose_distance
 from synthesis.timing.variable import VariableModel
 from synthesis.timing.word import TimingError, WordTiming
@@ -13,6 +14,7 @@ from synthesis.timing.word import TimingError, WordTiming
 __all__ = [
     "DEFAULT_FEATURES",
     "FEATURES",
+    "CaptureNoise",
     "Extraction",
     "ExtractionError",
     "HoldClassifier",
@@ -28,4 +30,6 @@ __all__ = [
     "normalized_constant_timing",
     "pose_distance",
     "published_model",
+    "sample_timing",
+    "simulate_recording",
 ]

@@ -1,14 +1,21 @@
 """Find the letter holds and transitions in a recording of a fingerspelled word (seed 000 §4.1).
 
-1. The hand's average angular velocity per frame: holds sit at its local minima (the
-   hand slows almost to a stop, except after the last letter, where it does stop).
+1. The hand's average angular velocity per frame, from joint angles smoothed with a
+   Savitzky–Golay filter: holds sit at its minima (the hand slows almost to a stop,
+   except after the last letter, where it does stop).
 2. Word decomposition: every frame's joint angles as a least-squares mix of the word's
    letter poses, ``J_i ≈ Σ_k w_ik L_k`` via the pseudo-inverse (seed 000 eqs. 4.1–4.2);
    a letter's weight peaks where it is formed.
-3. The minima are matched to the letters in order, choosing for each letter the minimum
-   where its weight is highest (dynamic programming keeps the order), and a hold spans
-   the frames around its minimum where the velocity stays near that minimum.
-4. Transitions are the times between consecutive holds.
+3. Each letter gets an anchor frame, in order, where its weight is high and the velocity
+   low (dynamic programming over the frames keeps the order). J and Z get two: where
+   their path starts and where it ends.
+4. Boundaries: between two anchors the hand travels from one recorded pose to the next.
+   Its progress along that way, ``s(t) = ⟨J(t) − P_a, P_b − P_a⟩ / |P_b − P_a|²``, is fitted
+   with a smoothstep ease by least squares: where the fit leaves 0 the hold before ends,
+   where it reaches 1 the next hold begins. A fit over the whole transition is far less
+   sensitive to capture noise than a threshold on a differentiated signal, and lands
+   between frames.
+5. Transitions are the times between consecutive holds.
 
 Joint angles are the rotation vectors of every joint's rotation relative to its parent,
 after retargeting the recording onto the hand model, so letter poses from the alphabet
@@ -19,7 +26,8 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import find_peaks, savgol_filter
+from scipy.optimize import least_squares
+from scipy.signal import savgol_filter
 
 from synthesis.alphabet import letter
 from synthesis.hand import HandModel
@@ -28,15 +36,21 @@ from synthesis.motion import Motion
 from synthesis.retarget import retarget
 from synthesis.timing.word import TimingError, WordTiming
 
-# A hold ends where the velocity has risen this far from its minimum toward the
-# neighbouring peak (low enough to stop at the first frames of motion), or three
-# times the capture's noise above it, whichever is higher.
-HOLD_LEVEL = 0.08
-NOISE_MARGIN = 3.0
-# A hold matches its letter when the letter's decomposition weight there is at least
-# this; most of a word's holds must match, or the recording is of something else.
+# Joint angles are smoothed over about this long before differentiating (5 frames at
+# 60 fps): long enough to quiet sensor noise, short against a letter's hold.
+SMOOTHING_S = 0.085
+# An anchor matches its letter when the letter's decomposition weight there is at least
+# this; most of a word's anchors must match, or the recording is of something else.
 MATCH_WEIGHT = 0.5
 MATCH_SHARE = 0.75
+# A clip starts (ends) on a rest pose rather than on its first (last) letter when the
+# hand is further from that letter than this share of the word's typical letter-to-
+# letter distance.
+LEAD_DISTANCE = 0.25
+# Between two letters the hand speeds up by at least this share of its velocity range,
+# and by this many times the velocity's spread while it is still (noise).
+RISE = 0.01
+NOISE_RISE = 3.0
 
 
 class ExtractionError(TimingError):
@@ -45,12 +59,26 @@ class ExtractionError(TimingError):
 
 @dataclass(frozen=True)
 class Extraction:
-    """What was found: per-letter hold frames and the resulting timing."""
+    """What was found: each letter's hold (start, end) in seconds and the timing.
+
+    *velocity_rad_s* (n_frames,) is the mean joint angular speed and *weights*
+    (n_frames, n_keys) the decomposition weights of the word's distinct key poses.
+    """
 
     timing: WordTiming
-    hold_frames: tuple[tuple[int, int], ...]
+    hold_bounds_s: np.ndarray
     velocity_rad_s: np.ndarray
     weights: np.ndarray
+
+    @property
+    def hold_frames(self) -> tuple[tuple[int, int], ...]:
+        """Return each hold as whole frames ``[first, past_last)`` at the recording's rate."""
+        rate = self.timing.metadata.get("rate_hz", 60.0)
+        frames = []
+        for start, end in self.hold_bounds_s * rate:
+            first = int(np.ceil(start - 1e-9))
+            frames.append((first, max(int(np.ceil(end - 1e-9)), first + 1)))
+        return tuple(frames)
 
 
 def joint_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
@@ -71,17 +99,33 @@ def joint_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
     return np.concatenate(columns, axis=1)
 
 
-def angular_velocity(pose: Pose, rate_hz: float, window: int = 5) -> np.ndarray:
-    """Return the hand joints' mean angular speed per frame (rad/s), lightly smoothed.
+def _window(rate_hz: float) -> int:
+    """Return the smoothing window in frames: odd, at least 5."""
+    return max(round(SMOOTHING_S * rate_hz) | 1, 5)
+
+
+def smooth_angles(angles: np.ndarray, rate_hz: float) -> np.ndarray:
+    """Return joint angles (n_frames, m) smoothed by a quadratic Savitzky–Golay filter."""
+    window = _window(rate_hz)
+    if len(angles) <= window:
+        return angles
+    return savgol_filter(angles, window, 2, axis=0)
+
+
+def angular_velocity(pose: Pose, rate_hz: float) -> np.ndarray:
+    """Return the hand joints' mean angular speed per frame (rad/s), smoothed.
 
     Speeds are of the joints' world orientations, so a movement of the whole hand (the
     slide between double letters, the turn of J) counts for every joint, as it does for
     markers on a real hand.
     """
     q = pose.quaternions
+    if len(q) < 2:
+        return np.zeros(len(q))
     dots = np.abs(np.sum(q[1:] * q[:-1], axis=-1))
     speed = 2.0 * np.arccos(np.clip(dots, 0.0, 1.0)).mean(axis=1) * rate_hz
     speed = np.concatenate([speed[:1], speed])
+    window = _window(rate_hz)
     if len(speed) > window:
         speed = np.maximum(savgol_filter(speed, window, 2), 0.0)
     return speed
@@ -92,27 +136,83 @@ def decompose(angles: np.ndarray, letter_angles: np.ndarray) -> np.ndarray:
     return angles @ np.linalg.pinv(letter_angles)
 
 
-def _assign(minima: np.ndarray, scores: np.ndarray) -> list[int]:
-    """Choose one minimum per letter, in order, maximising the summed letter weights.
+def smoothstep(u: np.ndarray) -> np.ndarray:
+    """Return the cubic ease ``3u² − 2u³`` of *u* clipped to [0, 1]."""
+    u = np.clip(u, 0.0, 1.0)
+    return u * u * (3.0 - 2.0 * u)
 
-    *scores* is (n_letters, n_minima); returns the chosen minima's positions in *minima*.
+
+def fit_transition(progress: np.ndarray) -> tuple[float, float]:
+    """Return where (in samples, sub-sample) a smoothstep fitted to *progress* leaves 0
+    and reaches 1.
+
+    *progress* (n,) runs from about 0 at its first sample to about 1 at its last; the fit
+    is ``s(t) = smoothstep((t − t0) / T)`` by least squares (scipy), so every sample of
+    the transition speaks, not only the few near its ends.
     """
-    n_letters, n_minima = scores.shape
-    best = np.full((n_letters, n_minima), -np.inf)
-    back = np.zeros((n_letters, n_minima), dtype=int)
-    best[0] = scores[0]
-    for k in range(1, n_letters):
-        running, where = -np.inf, -1
-        for m in range(n_minima):
-            if m >= 1 and best[k - 1, m - 1] > running:
-                running, where = best[k - 1, m - 1], m - 1
-            if where >= 0:
-                best[k, m] = running + scores[k, m]
-                back[k, m] = where
-    chosen = [int(np.argmax(best[-1]))]
-    for k in range(n_letters - 1, 0, -1):
+    n = len(progress)
+    t = np.arange(n, dtype=float)
+    if n < 3:
+        return 0.0, float(n - 1)
+    slope = float(np.max(np.gradient(progress)))
+    duration = float(np.clip(1.5 / max(slope, 1e-6), 1.0, n - 1))
+    half = float(np.argmax(progress >= 0.5)) if np.any(progress >= 0.5) else (n - 1) / 2
+    start = float(np.clip(half - duration / 2, 0.0, n - 1 - duration))
+    fit = least_squares(
+        lambda p: smoothstep((t - p[0]) / p[1]) - progress,
+        [start, duration],
+        bounds=([-(n - 1.0), 0.5], [n - 1.0, 2.0 * (n - 1)]),
+        x_scale=[1.0, 1.0],
+    )
+    t0, duration = fit.x
+    return float(t0), float(t0 + duration)
+
+
+def _assign(scores: np.ndarray, velocity: np.ndarray, rise: float) -> list[int]:
+    """Choose one frame per key, in increasing order, maximising the summed scores.
+
+    *scores* is (n_keys, n_frames). Two consecutive keys' frames must have the hand
+    speed up between them by at least *rise* (rad/s) over the faster of the two: each
+    key is a separate slowing down, so a doubled letter cannot put both its anchors
+    into one hold.
+    """
+    n_keys, n_frames = scores.shape
+    # between[i, j]: the highest velocity strictly between frames i and j (i < j).
+    between = np.full((n_frames, n_frames), -np.inf)
+    for i in range(n_frames - 2):
+        between[i, i + 2 :] = np.maximum.accumulate(velocity[i + 1 : -1])
+    allowed = between >= np.maximum.outer(velocity, velocity) + rise
+    best = scores[0].copy()
+    back = np.zeros((n_keys, n_frames), dtype=int)
+    for k in range(1, n_keys):
+        options = np.where(allowed, best[:, None], -np.inf)  # (from i, to j)
+        back[k] = np.argmax(options, axis=0)
+        best = options[back[k], np.arange(n_frames)] + scores[k]
+    if not np.isfinite(best).any():
+        raise ExtractionError(
+            f"The hand slows down fewer times than the word has letters ({n_keys}): "
+            "is this a recording of that word?"
+        )
+    chosen = [int(np.argmax(best))]
+    for k in range(n_keys - 1, 0, -1):
         chosen.append(int(back[k, chosen[-1]]))
     return chosen[::-1]
+
+
+def _keys(letters: tuple[str, ...], side: str) -> tuple[list[tuple[int, int, str]], dict]:
+    """Return the word's key poses in order as (letter index, 0 start | 1 end, name) and the
+    distinct poses by name: one key for a still letter, two for J and Z's path ends."""
+    keys, poses = [], {}
+    for k, character in enumerate(letters):
+        shape = letter(character, side)
+        if shape.path_rad is None:
+            keys.append((k, 0, character))
+            poses[character] = shape.dofs_rad
+        else:
+            keys += [(k, 0, character + "0"), (k, 1, character + "1")]
+            poses[character + "0"] = shape.path_rad[0]
+            poses[character + "1"] = shape.path_rad[-1]
+    return keys, poses
 
 
 def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
@@ -123,83 +223,82 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
     model = HandModel(side)
     parents = model.skeleton.parents
     rate = motion.rate_hz
+    keys, key_poses = _keys(letters, side)
+    if motion.n_frames < 2 * len(keys):
+        raise ExtractionError(
+            f"The recording has {motion.n_frames} frames, too few to hold the "
+            f"{len(letters)} letters of {''.join(letters)}: is this a recording of that word?"
+        )
     pose = retarget(motion, model)
-    angles = joint_angles(pose, parents)
-    unique = sorted(set(letters))
-    letter_angles = joint_angles(
-        model.pose(np.stack([letter(c, side).dofs_rad for c in unique])), parents
-    )
+    angles = smooth_angles(joint_angles(pose, parents), rate)
+    names = sorted(key_poses)
+    letter_angles = joint_angles(model.pose(np.stack([key_poses[n] for n in names])), parents)
     velocity = angular_velocity(pose, rate)
     weights = decompose(angles, letter_angles)
-    # Minima of the velocity: peaks of its negative, at least a frame apart.
-    minima, _ = find_peaks(-velocity, prominence=0.05 * float(np.ptp(velocity) or 1.0))
-    # A recording that stops on its last letter has no minimum after it: the clip's
-    # end then stands in for one.
-    candidates = minima
-    if len(candidates) < len(letters):
-        candidates = np.unique(np.concatenate([minima, [len(velocity) - 1]]))
-    if len(candidates) < len(letters):
-        raise ExtractionError(
-            f"Found {len(candidates)} places where the hand slows down, but {word.upper()} "
-            f"has {len(letters)} letters: is this a recording of that word?"
-        )
-    columns = [unique.index(c) for c in letters]
-    scores = np.stack([weights[candidates, col] for col in columns])
-    picks = _assign(candidates, scores)
-    matched = np.mean([scores[k, m] >= MATCH_WEIGHT for k, m in enumerate(picks)])
+    columns = [names.index(name) for _, _, name in keys]
+    key_weights = weights[:, columns].T
+    # Favour slow frames: of two frames where a letter is equally formed, the hold is
+    # where the hand is stillest.
+    scores = key_weights - velocity / max(float(velocity.max()), 1e-9)
+    quiet = velocity[velocity <= np.percentile(velocity, 25)]
+    rise = max(RISE * float(np.ptp(velocity)), NOISE_RISE * float(quiet.std()))
+    anchors = np.array(_assign(scores, velocity, rise))
+    matched = np.mean(key_weights[np.arange(len(keys)), anchors] >= MATCH_WEIGHT)
     if matched < MATCH_SHARE:
         raise ExtractionError(
             f"The hand's poses where it slows down do not look like the letters of "
-            f"{word.upper()} (only {100 * matched:.0f} % match): is this a recording of it?"
+            f"{''.join(letters)} (only {100 * matched:.0f} % match): is this a recording of it?"
         )
-    chosen = candidates[picks]
-    bounds = np.concatenate([[0], chosen, [len(velocity) - 1]])
-    quiet = velocity[velocity <= np.percentile(velocity, 25)]
-    noise = NOISE_MARGIN * float(quiet.std()) if quiet.size > 1 else 0.0
-    spans = [
-        _hold_span(velocity, int(bounds[k + 1]), int(bounds[k]), int(bounds[k + 2]), noise)
-        for k in range(len(chosen))
-    ]
+    # The hand moves in from a rest pose (and out to one) if it speeds up before the first
+    # anchor (after the last) and ends up far from the letter; otherwise the clip starts
+    # (ends) on the letter.
+    steps = np.linalg.norm(np.diff(angles[anchors], axis=0), axis=1)
+    far = LEAD_DISTANCE * (float(np.median(steps)) if len(steps) else 0.0)
+    moves_in = (velocity[: anchors[0] + 1].max() >= velocity[anchors[0]] + rise
+                and np.linalg.norm(angles[0] - angles[anchors[0]]) > far)  # fmt: skip
+    moves_out = (velocity[anchors[-1] :].max() >= velocity[anchors[-1]] + rise
+                 and np.linalg.norm(angles[-1] - angles[anchors[-1]]) > far)  # fmt: skip
+    bounds = _boundaries(angles, anchors, moves_in, moves_out)
+    hold_bounds = np.zeros((len(letters), 2))
+    for (k, end, _), (arrive, leave) in zip(keys, bounds, strict=True):
+        if end:
+            hold_bounds[k, 1] = leave
+        else:
+            hold_bounds[k] = arrive, leave
+    for k in range(len(letters) - 1):  # fits that overlap meet halfway
+        if hold_bounds[k, 1] > hold_bounds[k + 1, 0]:
+            hold_bounds[k, 1] = hold_bounds[k + 1, 0] = hold_bounds[k, 1:].mean()
     frame_ms = 1000.0 / rate
-    # Durations from the sub-frame boundaries; at least a frame each.
-    hold_ms = tuple(max(end - start, 1.0) * frame_ms for start, end in spans)
-    transition_ms = tuple(max(b[0] - a[1], 1.0) * frame_ms for a, b in itertools.pairwise(spans))
+    hold_ms = tuple(max(end - start, 1.0) * frame_ms for start, end in hold_bounds)
+    transition_ms = tuple(
+        max(b[0] - a[1], 1.0) * frame_ms for a, b in itertools.pairwise(hold_bounds)
+    )
     timing = WordTiming(letters, hold_ms, transition_ms, "mocap", {"rate_hz": rate})
-    frames = tuple((int(np.ceil(start)), max(int(np.ceil(end)), int(np.ceil(start)) + 1))
-                   for start, end in spans)  # fmt: skip
-    return Extraction(timing, frames, velocity, weights)
+    return Extraction(timing, hold_bounds / rate, velocity, weights)
 
 
-def _hold_span(
-    velocity: np.ndarray, at: int, before: int, after: int, noise: float
-) -> tuple[float, float]:
-    """Return the start and end (in frames, sub-frame) of the hold around frame *at*.
-
-    *before* and *after* are the neighbouring holds' minima (or the clip's ends): the
-    transition peaks in between set how far the velocity may rise within this hold, and
-    a hold never reaches past them, so neighbouring holds cannot overlap. ``velocity[t]``
-    is the motion from frame t − 1 to t, so it belongs to time t − ½; the boundaries are
-    where it crosses the limit, interpolated linearly between those half frames.
-    """
-    floor = velocity[at]
-    left_peak_at = before + int(np.argmax(velocity[before : at + 1]))
-    right_peak_at = at + int(np.argmax(velocity[at : after + 1]))
-    limit_left = floor + max(HOLD_LEVEL * (velocity[left_peak_at] - floor), noise)
-    limit_right = floor + max(HOLD_LEVEL * (velocity[right_peak_at] - floor), noise)
-    start = at
-    while start > left_peak_at + 1 and velocity[start - 1] <= limit_left:
-        start -= 1
-    end = at + 1
-    while end < right_peak_at and velocity[end] <= limit_right:
-        end += 1
-    start_s = start - 0.5 - _crossing(velocity[start - 1], velocity[start], limit_left)
-    end_s = end - 1.5 + _crossing(velocity[end - 1], velocity[min(end, len(velocity) - 1)],
-                                  limit_right)  # fmt: skip
-    return start_s, max(end_s, start_s)
-
-
-def _crossing(inside: float, outside: float, limit: float) -> float:
-    """Return how far (0–1) from the *inside* sample toward *outside* the limit is crossed."""
-    if outside <= inside:
-        return 0.0
-    return float(np.clip((limit - inside) / (outside - inside), 0.0, 1.0))
+def _boundaries(
+    angles: np.ndarray, anchors: np.ndarray, moves_in: bool, moves_out: bool
+) -> list[tuple[float, float]]:
+    """Return, per anchor, when (in frames, sub-frame) the hand arrives at its pose and
+    when it leaves it."""
+    poses = angles[anchors]
+    last = len(angles) - 1
+    n = len(anchors)
+    arrive = np.zeros(n)
+    leave = np.full(n, float(last))
+    # Each way: (first frame, last frame, from pose, to pose, anchor left, anchor reached).
+    ways = [(anchors[i], anchors[i + 1], poses[i], poses[i + 1], i, i + 1) for i in range(n - 1)]
+    if moves_in:
+        ways.append((0, anchors[0], angles[0], poses[0], None, 0))
+    if moves_out:
+        ways.append((anchors[-1], last, poses[-1], angles[-1], n - 1, None))
+    for lo, hi, a, b, leaving, arriving in ways:
+        way = b - a
+        progress = (angles[lo : hi + 1] - a) @ way / max(float(way @ way), 1e-12)
+        t0, t1 = fit_transition(progress)
+        if leaving is not None:
+            leave[leaving] = max(lo + t0, 0.0)
+        if arriving is not None:
+            arrive[arriving] = min(lo + t1, float(last))
+    return list(zip(arrive, leave, strict=True))

@@ -6,7 +6,7 @@ recording time-warped so that its holds and transitions land on the predicted ti
 natural poses, new rhythm.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +16,7 @@ from synthesis.motion import Motion
 from synthesis.retime import piecewise_linear_warp, time_warp
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
 from synthesis.timing.extraction import Extraction, extract
+from synthesis.timing.simulate import simulate_recording
 from synthesis.timing.training import Annotation, train
 from synthesis.timing.variable import VariableModel
 from synthesis.timing.word import TimingError, WordTiming
@@ -39,9 +40,27 @@ class Recording:
         motion = read_bvh(path)
         return cls(word, motion, extract(motion, word, side))
 
+    @classmethod
+    def simulate(
+        cls,
+        word: str,
+        seed: int,
+        model: VariableModel | None = None,
+        side: str = "right",
+        rate_hz: float = 60.0,
+    ) -> "Recording":
+        """Return a simulated capture of *word* (labelled so in its timing), found like a
+        real one: the stand-in for the Motion capture condition when no recording exists."""
+        motion, truth = simulate_recording(word, np.random.default_rng(seed), model, side,
+                                           rate_hz)  # fmt: skip
+        found = extract(motion, word, side)
+        metadata = {**found.timing.metadata, "simulated": True, "seed": seed}
+        timing = replace(found.timing, metadata=metadata)
+        return cls(truth.word, motion, replace(found, timing=timing))
+
     def hold_times_s(self) -> np.ndarray:
-        """Return each hold's (start, end) in seconds, shape (n_letters, 2)."""
-        return np.asarray(self.extraction.hold_frames, dtype=float) * self.motion.frame_time_s
+        """Return each hold's (start, end) in seconds, shape (n_letters, 2), sub-frame."""
+        return np.asarray(self.extraction.hold_bounds_s, dtype=float)
 
 
 def retime(recording: Recording, timing: WordTiming) -> Motion:

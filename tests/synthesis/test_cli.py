@@ -9,7 +9,7 @@ from synthesis.cli import main
 from synthesis.hand import HandModel
 from synthesis.motion import Motion
 from synthesis.render.video import count_frames
-from synthesis.spelling import spell
+from synthesis.spelling import REST_HOLD_MS, spell
 
 pytestmark = pytest.mark.usefixtures("renderable")
 
@@ -104,8 +104,23 @@ def test_spell_retimes_a_recording_for_each_condition(tmp_path, capsys):
     out = tmp_path / "constant.mp4"
     assert main(["spell", "DAVID", "--condition", "constant", "--recording", str(recording),
                  "--out", str(out), "--size", "64x48"]) == 0  # fmt: skip
-    # The recording's lead-in and lead-out (300 ms each) framed the new timing.
-    expected_s = constant_timing("DAVID").total_ms / 1000 + 0.6
+    # The recording's lead-in and lead-out (300 ms of movement after 100 ms of rest, each)
+    # framed the new timing.
+    expected_s = constant_timing("DAVID").total_ms / 1000 + 2 * (0.3 + REST_HOLD_MS / 1000)
     assert count_frames(out) == pytest.approx(expected_s * 60, abs=3)
     assert main(["spell", "DAVID", "--condition", "mocap", "--out", str(out)]) == 2
     assert "give --recording" in capsys.readouterr().err
+
+
+def test_spell_with_a_simulated_capture(tmp_path, capsys):
+    import json
+
+    assert main(["spell", "DAVID", "--condition", "mocap", "--simulate", "7",
+                 "--timing-only"]) == 0  # fmt: skip
+    timing = json.loads(capsys.readouterr().out)
+    assert timing["condition"] == "mocap" and timing["metadata"]["simulated"] is True
+    assert main(["spell", "DAVID", "--condition", "mocap", "--simulate", "7",
+                 "--timing-only"]) == 0  # fmt: skip
+    assert json.loads(capsys.readouterr().out) == timing  # the seed fixes the take
+    assert main(["spell", "DAVID", "--simulate", "7", "--recording", "x.bvh"]) == 2
+    assert "not both" in capsys.readouterr().err

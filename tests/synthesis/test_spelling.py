@@ -12,8 +12,12 @@ from synthesis.timing import WordTiming, constant_timing
 def test_frame_count_follows_the_timing():
     timing = WordTiming(("A", "B"), (200, 200), (100,))
     frames = spell("AB", rate_hz=60, timing=timing, lead_ms=250)
-    # lead 250, hold 200, transition 100, hold 200, lead 250 = 1.0 s: 60 intervals.
-    assert len(frames) == 61
+    # rest 100, lead 250, hold 200, transition 100, hold 200, lead 250, rest 100 = 1.2 s:
+    # 72 intervals.
+    assert len(frames) == 73
+    # The clip opens and closes on a still, relaxed hand (6 frames of rest at 60 fps).
+    assert np.allclose(frames[:7], frames[0]) and np.allclose(frames[-7:], frames[-1])
+    assert np.allclose(frames[0], frames[-1])
     constant = spell("AB", rate_hz=60, timing=constant_timing("AB"), lead_ms=0)
     assert len(constant) == int((243 + 250 + 800) * 60 / 1000) + 1  # 1.293 s: 77 intervals
 
@@ -21,7 +25,7 @@ def test_frame_count_follows_the_timing():
 def test_holds_show_the_letters():
     timing = WordTiming(("B", "C"), (300, 240), (150,))
     frames = spell("BC", rate_hz=100, timing=timing, lead_ms=200)
-    for start_ms, hold_ms, name in ((200, 300, "B"), (650, 240, "C")):
+    for start_ms, hold_ms, name in ((300, 300, "B"), (750, 240, "C")):
         middle = round((start_ms + hold_ms / 2) / 10)
         assert np.allclose(frames[middle], letter_pose(name), atol=1e-9)
 
@@ -29,9 +33,10 @@ def test_holds_show_the_letters():
 def test_doubled_letters_slide_outward_and_paths_move():
     model = HandModel()
     slide = model.dof_names.index("forearm_tilt_side")
-    _, poses = spelling_keys(simple_timing("LL"))  # rest, L (2 keys), L again (2 keys), rest
-    assert poses[3, slide] - poses[1, slide] == pytest.approx(np.radians(7.0))
-    assert np.array_equal(np.delete(poses[3], slide), np.delete(poses[1], slide))
+    # rest (2 keys), L (2 keys), L again (2 keys), rest (2 keys)
+    _, poses = spelling_keys(simple_timing("LL"))
+    assert poses[4, slide] - poses[2, slide] == pytest.approx(np.radians(7.0))
+    assert np.array_equal(np.delete(poses[4], slide), np.delete(poses[2], slide))
     twist = model.dof_names.index("forearm_twist")
     frames = spell("J")
     assert np.ptp(frames[:, twist]) > np.radians(60)  # J turns the forearm
