@@ -1,4 +1,4 @@
-"""Time the Variable timing model: one 10-letter word's timing and poses, and LOO.
+"""Time the Variable timing model: one 10-letter word's timing and poses, LOO, extraction.
 
 Targets (issue 4): timing + poses for a 10-letter word in < 10 ms (no rendering); naïve
 Bayes leave-one-out on 300 holds in < 2 s. Prints medians; asserts nothing.
@@ -16,7 +16,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from synthesis.spelling import spell
-from synthesis.timing import HoldClassifier, published_model
+from synthesis.timing import HoldClassifier, extract, published_model, simulate_recording
 from synthesis.timing.defaults import published_holds
 
 WORD = "PSYCHIATRY"
@@ -42,6 +42,12 @@ def main() -> None:
     print(f"{WORD}: timing {timing_ms:.2f} ms; timing + poses at 60 fps {both_ms:.2f} ms "
           f"(target < 10 ms)")  # fmt: skip
     print(f"naïve Bayes leave-one-out on {len(samples)} holds: {loo_ms:.0f} ms (target < 2 s)")
+    motion, _ = simulate_recording(WORD, np.random.default_rng(0), model)
+    extract_ms = _median_ms(lambda: extract(motion, WORD), 3)
+    print(
+        f"extraction from a simulated {motion.n_frames}-frame capture of {WORD}: "
+        f"{extract_ms:.0f} ms (no target)"
+    )
 
 
 if __name__ == "__main__":

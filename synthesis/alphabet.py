@@ -237,4 +237,27 @@ def letter_pose(name: str, side: str = "right") -> np.ndarray:
     return letter(name, side).dofs_rad
 
 
-__all__ = ["LETTERS", "AlphabetError", "Letter", "alphabet", "letter", "letter_pose"]
+# A relaxed, slightly open hand: where a word starts and ends.
+REST_DEGREES = {
+    **{f"{f}_mcp_flexion": 20.0 for f in ("index", "middle", "ring", "pinky")},
+    **{f"{f}_pip_flexion": 25.0 for f in ("index", "middle", "ring", "pinky")},
+    "thumb_cmc_flexion": 10.0,
+    "thumb_mcp_flexion": 10.0,
+}
+
+
+def rest_pose(side: str = "right") -> np.ndarray:
+    """Return the DOF vector (radians) of the relaxed hand between words."""
+    return HandModel(side).from_degrees(REST_DEGREES)
+
+
+__all__ = [
+    "LETTERS",
+    "REST_DEGREES",
+    "AlphabetError",
+    "Letter",
+    "alphabet",
+    "letter",
+    "letter_pose",
+    "rest_pose",
+]

@@ -1,9 +1,10 @@
 """Spell a word: letter poses from the alphabet, placed in time by a :class:`WordTiming`.
 
 Letters are held for their hold time and joined by eased interpolation over their
-transition time; J and Z play their motion paths during their hold; a doubled letter
-(the LL of HELLO) slides outward for the repeat (seed 000 §5.2 "the bounce between
-double letters"). The clip starts and ends on a relaxed hand held still for
+transition time, through intermediate poses where the fingers would otherwise pass
+through each other (synthesis.routes); J and Z play their motion paths during their
+hold; a doubled letter (the LL of HELLO) slides outward for the repeat (seed 000 §5.2
+"the bounce between double letters"). The clip starts and ends on a relaxed hand held still for
 ``REST_HOLD_MS``, ``lead_ms`` of eased movement away from the word, so neither the
 first frame nor the last gives away how the word is timed.
 
@@ -11,20 +12,16 @@ Without a timing, :func:`simple_timing` is used: equal holds and transitions, th
 placeholder every clip can use before a study picks a timing model.
 """
 
-import numpy as np
-from scipy.interpolate import PchipInterpolator
+import itertools
 
-from synthesis.alphabet import AlphabetError, letter
+import numpy as np
+from scipy.interpolate import CubicSpline, PchipInterpolator
+
+from synthesis.alphabet import AlphabetError, letter, rest_pose
 from synthesis.hand import HandModel
+from synthesis.routes import REST, letter_route, route_poses
 from synthesis.timing.word import WordTiming
 
-# A relaxed, slightly open hand between words.
-REST_DEGREES = {
-    **{f"{f}_mcp_flexion": 20.0 for f in ("index", "middle", "ring", "pinky")},
-    **{f"{f}_pip_flexion": 25.0 for f in ("index", "middle", "ring", "pinky")},
-    "thumb_cmc_flexion": 10.0,
-    "thumb_mcp_flexion": 10.0,
-}
 DOUBLE_SLIDE_DEG = 7.0
 SIMPLE_HOLD_MS = 200.0
 SIMPLE_PATH_MS = 450.0
@@ -54,11 +51,12 @@ def simple_timing(word: str) -> WordTiming:
 
 def spelling_keys(
     timing: WordTiming, side: str = "right", lead_ms: float = LEAD_MS
-) -> tuple[np.ndarray, np.ndarray]:
-    """Return key times (k,) in seconds and key poses (k, n_dofs) for a timed word."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return key times (k,) in seconds, key poses (k, n_dofs) and which keys are the
+    intermediate poses of a routed transition (k,) for a timed word."""
     word_letters(timing.word)
     model = HandModel(side)
-    rest = model.from_degrees(REST_DEGREES)
+    rest = rest_pose(side)
     slide = model.dof_names.index("forearm_tilt_side")
     outward = np.radians(DOUBLE_SLIDE_DEG) * (1 if side == "right" else -1)
     if lead_ms < 0:
@@ -67,10 +65,14 @@ def spelling_keys(
     still = REST_HOLD_MS / 1000 if lead else 0.0
     # Without a lead the clip starts and ends on the letters themselves.
     times, poses = ([0.0, still], [rest, rest]) if lead else ([], [])
+    via_at: list[int] = []
     starts = still + lead + timing.hold_starts_ms() / 1000
     for k, character in enumerate(timing.letters):
         shape = letter(character, side)
         start, hold = starts[k], timing.hold_ms[k] / 1000
+        if k or lead:
+            previous = timing.letters[k - 1] if k else REST
+            _add_route(times, poses, via_at, previous, character, start, side, shape)
         if shape.path_rad is not None:
             times += list(start + shape.path_times * hold)
             poses += [np.array(pose) for pose in shape.path_rad]
@@ -81,9 +83,30 @@ def spelling_keys(
         times += [start, start + hold]
         poses += [pose, pose]
     if lead:
-        times += [times[-1] + lead, times[-1] + lead + still]
+        end_s = times[-1] + lead
+        _add_route(times, poses, via_at, timing.letters[-1], REST, end_s, side, None, rest)
+        times += [end_s, end_s + still]
         poses += [rest, rest]
-    return np.array(times), np.stack(poses)
+    vias = np.zeros(len(times), dtype=bool)
+    vias[via_at] = True
+    return np.array(times), np.stack(poses), vias
+
+
+def _add_route(times, poses, via_at, previous, character, arrive_s, side, shape, target=None):
+    """Append the intermediate keys that keep the fingers clear of each other between the
+    previous letter's last key and this letter's first (synthesis.routes); REST stands
+    for the relaxed hand."""
+    route = letter_route(previous, character)
+    if route == "direct":
+        return
+    if target is None:
+        target = shape.dofs_rad if shape.path_rad is None else shape.path_rad[0]
+    vias = route_poses(route, poses[-1], target, side)
+    leave_s = times[-1]
+    for i, via in enumerate(vias, start=1):
+        times.append(leave_s + (arrive_s - leave_s) * i / (len(vias) + 1))
+        via_at.append(len(poses))
+        poses.append(via)
 
 
 def spell(
@@ -96,14 +119,25 @@ def spell(
     """Return the hand's DOF vectors (n_frames, n_dofs) spelling *word* at *rate_hz*.
 
     Keys are joined by a monotone cubic (PCHIP), which eases in and out of holds without
-    overshooting a pose (no finger flexes past where either letter puts it).
+    overshooting a pose (no finger flexes past where either letter puts it); a routed
+    transition by a clamped cubic spline through its intermediate poses.
     """
     timing = timing or simple_timing(word)
     if timing.word != "".join(word_letters(word)):
         raise ValueError(f"The timing is for {timing.word}, not {word.upper()}.")
-    times, poses = spelling_keys(timing, side, lead_ms)
+    times, poses, vias = spelling_keys(timing, side, lead_ms)
     count = int(np.floor(times[-1] * rate_hz + 1e-9)) + 1
     if len(times) == 1:  # one letter, no lead: a still
         return HandModel(side).clip(np.repeat(poses, count, axis=0))
-    frames = PchipInterpolator(times, poses, axis=0)(np.arange(count) / rate_hz)
+    at = np.arange(count) / rate_hz
+    frames = PchipInterpolator(times[~vias], poses[~vias], axis=0)(at)
+    # A routed transition sweeps through its intermediate poses on a spline at rest at
+    # both ends (synthesis.routes.route_path), not stopping at each.
+    keys = np.flatnonzero(~vias)
+    for first, last in itertools.pairwise(keys):
+        if last - first > 1:
+            span = slice(first, last + 1)
+            spline = CubicSpline(times[span], poses[span], axis=0, bc_type="clamped")
+            inside = (at > times[first]) & (at < times[last])
+            frames[inside] = spline(at[inside])
     return HandModel(side).clip(frames)

@@ -9,12 +9,12 @@
 3. Each letter gets an anchor frame, in order, where its weight is high and the velocity
    low (dynamic programming over the frames keeps the order). J and Z get two: where
    their path starts and where it ends.
-4. Boundaries: between two anchors the hand travels from one recorded pose to the next.
-   Its progress along that way, ``s(t) = ⟨J(t) − P_a, P_b − P_a⟩ / |P_b − P_a|²``, is fitted
-   with a smoothstep ease by least squares: where the fit leaves 0 the hold before ends,
-   where it reaches 1 the next hold begins. A fit over the whole transition is far less
-   sensitive to capture noise than a threshold on a differentiated signal, and lands
-   between frames.
+4. Boundaries: the hand arrives at a hold and leaves it at rest, so around each anchor
+   the recorded angles are a constant pose between two moves that start quadratically
+   in time, whatever way they take (straight, or round a finger in the way). Fitting
+   that shape by least squares (:func:`fit_hold`) over the hold and the nearer part of
+   both moves says when the hand arrived and left, to a fraction of a frame, and is far
+   less sensitive to capture noise than a threshold on a differentiated signal.
 5. Transitions are the times between consecutive holds.
 
 Joint angles are the rotation vectors of every joint's rotation relative to its parent,
@@ -26,7 +26,6 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
 from scipy.signal import savgol_filter
 
 from synthesis.alphabet import letter
@@ -47,6 +46,8 @@ MATCH_SHARE = 0.75
 # hand is further from that letter than this share of the word's typical letter-to-
 # letter distance.
 LEAD_DISTANCE = 0.25
+# A hold's fit spans the moves into and out of it up to this share of their way.
+DEPARTURE_SHARE = 0.6
 # Between two letters the hand speeds up by at least this share of its velocity range,
 # and by this many times the velocity's spread while it is still (noise).
 RISE = 0.01
@@ -136,36 +137,48 @@ def decompose(angles: np.ndarray, letter_angles: np.ndarray) -> np.ndarray:
     return angles @ np.linalg.pinv(letter_angles)
 
 
-def smoothstep(u: np.ndarray) -> np.ndarray:
-    """Return the cubic ease ``3u² − 2u³`` of *u* clipped to [0, 1]."""
-    u = np.clip(u, 0.0, 1.0)
-    return u * u * (3.0 - 2.0 * u)
+def fit_hold(angles: np.ndarray, arrives: bool, departs: bool) -> tuple[float, float]:
+    """Return when (in samples, sub-sample) the hand arrives at a hold and leaves it.
 
-
-def fit_transition(progress: np.ndarray) -> tuple[float, float]:
-    """Return where (in samples, sub-sample) a smoothstep fitted to *progress* leaves 0
-    and reaches 1.
-
-    *progress* (n,) runs from about 0 at its first sample to about 1 at its last; the fit
-    is ``s(t) = smoothstep((t − t0) / T)`` by least squares (scipy), so every sample of
-    the transition speaks, not only the few near its ends.
+    *angles* (n, m) span the hold and the nearer part of the moves into and out of it.
+    The hand reaches and leaves a hold at rest with a continuous velocity, so whatever
+    way it moves (straight, or round another finger) its angles are, by Taylor,
+    ``p + a₂·τa² + a₃·τa³`` before the arrival ``ta`` (τa = ta − t), ``p`` during the
+    hold and ``p + d₂·τd² + d₃·τd³`` after the departure ``td`` (τd = t − td). For each
+    trial (ta, td) the pose and the vectors are a linear least-squares fit; the pair of
+    the smallest residual wins, on a one-frame grid refined to a twentieth. Fitting both
+    ends with one shared pose keeps a short hold from being swallowed by either move,
+    and every sample of the window speaks, not only the few near the boundaries.
+    *arrives*/*departs* False: the window starts/ends inside the hold.
     """
-    n = len(progress)
+    n = len(angles)
     t = np.arange(n, dtype=float)
-    if n < 3:
-        return 0.0, float(n - 1)
-    slope = float(np.max(np.gradient(progress)))
-    duration = float(np.clip(1.5 / max(slope, 1e-6), 1.0, n - 1))
-    half = float(np.argmax(progress >= 0.5)) if np.any(progress >= 0.5) else (n - 1) / 2
-    start = float(np.clip(half - duration / 2, 0.0, n - 1 - duration))
-    fit = least_squares(
-        lambda p: smoothstep((t - p[0]) / p[1]) - progress,
-        [start, duration],
-        bounds=([-(n - 1.0), 0.5], [n - 1.0, 2.0 * (n - 1)]),
-        x_scale=[1.0, 1.0],
-    )
-    t0, duration = fit.x
-    return float(t0), float(t0 + duration)
+
+    def residual(ta: float, td: float) -> float:
+        columns = [np.ones(n)]
+        if arrives:
+            tau = np.maximum(ta - t, 0.0)
+            columns += [tau**2, tau**3]
+        if departs:
+            tau = np.maximum(t - td, 0.0)
+            columns += [tau**2, tau**3]
+        design = np.stack(columns, axis=1)
+        coefficients = np.linalg.lstsq(design, angles, rcond=None)[0]
+        return float(np.sum((design @ coefficients - angles) ** 2))
+
+    def search(ta_values, td_values):
+        best = (np.inf, 0.0, float(n - 1))
+        for ta in ta_values if arrives else [0.0]:
+            for td in td_values if departs else [float(n - 1)]:
+                if td >= ta:
+                    best = min(best, (residual(ta, td), ta, td))
+        return best
+
+    _, ta, td = search(np.arange(0.0, n - 1), np.arange(0.0, n - 1))
+    for step in (0.25, 0.05):  # refine round the best
+        near = np.arange(-4, 5) * step
+        _, ta, td = search(np.clip(ta + near, 0, n - 1), np.clip(td + near, 0, n - 1))
+    return ta, td
 
 
 def _assign(scores: np.ndarray, velocity: np.ndarray, rise: float) -> list[int]:
@@ -230,7 +243,8 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
             f"{len(letters)} letters of {''.join(letters)}: is this a recording of that word?"
         )
     pose = retarget(motion, model)
-    angles = smooth_angles(joint_angles(pose, parents), rate)
+    raw = joint_angles(pose, parents)
+    angles = smooth_angles(raw, rate)
     names = sorted(key_poses)
     letter_angles = joint_angles(model.pose(np.stack([key_poses[n] for n in names])), parents)
     velocity = angular_velocity(pose, rate)
@@ -238,8 +252,9 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
     columns = [names.index(name) for _, _, name in keys]
     key_weights = weights[:, columns].T
     # Favour slow frames: of two frames where a letter is equally formed, the hold is
-    # where the hand is stillest.
-    scores = key_weights - velocity / max(float(velocity.max()), 1e-9)
+    # where the hand is stillest. Weights past 1 (a pose beyond the letter, on a detour
+    # round a finger) count as 1.
+    scores = np.clip(key_weights, 0.0, 1.0) - velocity / max(float(velocity.max()), 1e-9)
     quiet = velocity[velocity <= np.percentile(velocity, 25)]
     rise = max(RISE * float(np.ptp(velocity)), NOISE_RISE * float(quiet.std()))
     anchors = np.array(_assign(scores, velocity, rise))
@@ -258,7 +273,7 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
                 and np.linalg.norm(angles[0] - angles[anchors[0]]) > far)  # fmt: skip
     moves_out = (velocity[anchors[-1] :].max() >= velocity[anchors[-1]] + rise
                  and np.linalg.norm(angles[-1] - angles[anchors[-1]]) > far)  # fmt: skip
-    bounds = _boundaries(angles, anchors, moves_in, moves_out)
+    bounds = _boundaries(raw, anchors, moves_in, moves_out)
     hold_bounds = np.zeros((len(letters), 2))
     for (k, end, _), (arrive, leave) in zip(keys, bounds, strict=True):
         if end:
@@ -278,27 +293,36 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
 
 
 def _boundaries(
-    angles: np.ndarray, anchors: np.ndarray, moves_in: bool, moves_out: bool
+    raw: np.ndarray, anchors: np.ndarray, moves_in: bool, moves_out: bool
 ) -> list[tuple[float, float]]:
     """Return, per anchor, when (in frames, sub-frame) the hand arrives at its pose and
-    when it leaves it."""
-    poses = angles[anchors]
-    last = len(angles) - 1
-    n = len(anchors)
-    arrive = np.zeros(n)
-    leave = np.full(n, float(last))
-    # Each way: (first frame, last frame, from pose, to pose, anchor left, anchor reached).
-    ways = [(anchors[i], anchors[i + 1], poses[i], poses[i + 1], i, i + 1) for i in range(n - 1)]
-    if moves_in:
-        ways.append((0, anchors[0], angles[0], poses[0], None, 0))
-    if moves_out:
-        ways.append((anchors[-1], last, poses[-1], angles[-1], n - 1, None))
-    for lo, hi, a, b, leaving, arriving in ways:
-        way = b - a
-        progress = (angles[lo : hi + 1] - a) @ way / max(float(way @ way), 1e-12)
-        t0, t1 = fit_transition(progress)
-        if leaving is not None:
-            leave[leaving] = max(lo + t0, 0.0)
-        if arriving is not None:
-            arrive[arriving] = min(lo + t1, float(last))
-    return list(zip(arrive, leave, strict=True))
+    when it leaves it, from the recorded (unsmoothed) joint angles."""
+    last = len(raw) - 1
+    poses = raw[anchors]
+    # The poses the hand comes from and goes to around each anchor: the neighbouring
+    # anchors', the clip's ends for a move from or to rest.
+    before = [raw[0] if moves_in else None, *poses[:-1]]
+    after = [*poses[1:], raw[-1] if moves_out else None]
+    bounds = []
+    for k, at in enumerate(anchors):
+        # The window runs from where the hand is 60 % of the way from the pose before to
+        # where it is 60 % of the way to the pose after (or to the clip's ends).
+        distance = np.linalg.norm(raw - poses[k], axis=1)
+        lo, hi = 0, last
+        if before[k] is not None:
+            far = DEPARTURE_SHARE * np.linalg.norm(poses[k] - before[k])
+            lo_at = np.flatnonzero(distance[: at + 1] > far)
+            lo = int(lo_at[-1]) if lo_at.size else 0
+        if after[k] is not None:
+            far = DEPARTURE_SHARE * np.linalg.norm(after[k] - poses[k])
+            hi_at = np.flatnonzero(distance[at:] > far)
+            hi = at + int(hi_at[0]) if hi_at.size else last
+        window = raw[lo : hi + 1]
+        # Project onto the directions the hand comes from and goes to: two signals that
+        # carry the moves, with the noise of two joint angles rather than of all of them.
+        directions = [window[0] - poses[k], window[-1] - poses[k]]
+        units = np.stack([d / max(np.linalg.norm(d), 1e-12) for d in directions], axis=1)
+        ta, td = fit_hold((window - poses[k]) @ units, before[k] is not None,
+                          after[k] is not None)  # fmt: skip
+        bounds.append((lo + ta, lo + td))
+    return bounds

@@ -34,7 +34,7 @@ def test_doubled_letters_slide_outward_and_paths_move():
     model = HandModel()
     slide = model.dof_names.index("forearm_tilt_side")
     # rest (2 keys), L (2 keys), L again (2 keys), rest (2 keys)
-    _, poses = spelling_keys(simple_timing("LL"))
+    _, poses, _ = spelling_keys(simple_timing("LL"))
     assert poses[4, slide] - poses[2, slide] == pytest.approx(np.radians(7.0))
     assert np.array_equal(np.delete(poses[4], slide), np.delete(poses[2], slide))
     twist = model.dof_names.index("forearm_twist")
