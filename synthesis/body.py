@@ -150,3 +150,21 @@ class BodyModel(Rig):
         kept = where >= 0
         dofs[..., where[kept]] = hand[..., kept]
         return dofs
+
+    def mirror_pose(self, dofs_rad: np.ndarray) -> np.ndarray:
+        """Return the mirror image (x ↦ −x) of body DOF vectors (..., n_dofs).
+
+        The left side's DOFs are the right's mirrored, so sides swap values; the trunk's
+        side bends and rotations (about z and y) change sign.
+        """
+        dofs = np.asarray(dofs_rad, dtype=np.float64)
+        index = {name: i for i, name in enumerate(self.dof_names)}
+        order = np.arange(len(self.dofs))
+        sign = np.ones(len(self.dofs))
+        for i, dof in enumerate(self.dofs):
+            for a, b in (("right_", "left_"), ("left_", "right_")):
+                if dof.name.startswith(a):
+                    order[i] = index[b + dof.name.removeprefix(a)]
+            if not dof.name.startswith(("right_", "left_")) and dof.axis in ("y", "z"):
+                sign[i] = -1.0
+        return dofs[..., order] * sign

@@ -208,6 +208,38 @@ def _render_bvh(args: argparse.Namespace) -> int:
     return 0
 
 
+def _sentence(args: argparse.Namespace) -> int:
+    from synthesis.render.clip import render_clip
+    from synthesis.sentence import SentenceOptions, synthesize
+    from synthesis.signs import read_library
+
+    library = read_library(args.library) if args.library else None
+    options = SentenceOptions(spine=args.spine == "on", rate_hz=args.rate, seed=args.seed,
+                              dominant=args.side)  # fmt: skip
+    sentence = synthesize(args.text, options, library)
+    if args.plot is not None:
+        from synthesis.sentence_plots import torso_angles_figure
+
+        other = synthesize(args.text, SentenceOptions(spine=args.spine != "on", rate_hz=args.rate,
+                                                      seed=args.seed, dominant=args.side),
+                           library)  # fmt: skip
+        pair = (sentence, other) if args.spine == "on" else (other, sentence)
+        torso_angles_figure(*pair, title=args.text).savefig(args.plot, dpi=120)
+        print(f"wrote {args.plot}")
+    if args.out is None:
+        return 0
+    avatar, camera = _scene("upper-body", args.side)
+    info = render_clip(
+        avatar, sentence.dofs_rad, camera, args.out, args.rate, poster=args.poster,
+        width=args.size[0], height=args.size[1], progress=_progress("signing"),
+        workers=args.workers,
+    )  # fmt: skip
+    print(
+        f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, spine {args.spine})"
+    )
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """Build the command-line parser."""
     main = argparse.ArgumentParser(
@@ -273,6 +305,19 @@ def parser() -> argparse.ArgumentParser:
     clip_options(spell)
     spell.set_defaults(run=_spell)
 
+    sentence = rendering("sentence", "render a signed sentence on the upper body",
+                         view="upper-body", out_required=False)  # fmt: skip
+    sentence.add_argument("text", help='glosses, e.g. "BUT SURPRISE MY BROTHER GET NEW C-A-R"')
+    sentence.add_argument("--spine", choices=("on", "off"), default="on",
+                          help="automated spine and shoulder motion (spec 03)")  # fmt: skip
+    sentence.add_argument("--rate", type=float, default=60.0, help="frames per second")
+    sentence.add_argument("--seed", type=int, default=0, help="seed of the liveliness noise")
+    sentence.add_argument("--library", type=Path, help="a sign library (YAML) to use instead")
+    sentence.add_argument("--plot", type=Path,
+                          help="plot torso bend and twist, spine on vs off (PNG/PDF)")  # fmt: skip
+    clip_options(sentence)
+    sentence.set_defaults(run=_sentence)
+
     bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
     bvh.add_argument("file", type=Path)
     bvh.add_argument("--rate", type=float, default=None, help="resample to this frame rate")
@@ -286,7 +331,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         return args.run(args)
-    except (AlphabetError, BvhError, ValueError, OSError) as error:
+    except (AlphabetError, BvhError, ValueError, OSError) as error:  # SignError is a ValueError
         print(f"error: {error}", file=sys.stderr)
         return 2
     except ImportError as error:

@@ -18,10 +18,10 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import butter, sosfiltfilt
 
 from synthesis.hand import HandModel
 from synthesis.motion import Motion
+from synthesis.noise import band_limited_noise
 from synthesis.timing.bayes import CLASSES_MS
 from synthesis.timing.features import word_features
 from synthesis.timing.variable import VariableModel
@@ -52,18 +52,9 @@ class CaptureNoise:
         for rms_deg, cutoff_hz in ((self.sensor_deg, self.sensor_hz),
                                    (self.wander_deg, self.wander_hz)):  # fmt: skip
             if rms_deg > 0:
-                total += np.radians(rms_deg) * _band_limited(n_frames, n_dofs, cutoff_hz,
-                                                             rate_hz, rng)  # fmt: skip
+                total += np.radians(rms_deg) * band_limited_noise(n_frames, n_dofs, cutoff_hz,
+                                                                  rate_hz, rng)  # fmt: skip
         return total
-
-
-def _band_limited(n_frames: int, n_dofs: int, cutoff_hz: float, rate_hz: float, rng):
-    """Return unit-RMS Gaussian noise low-passed at *cutoff_hz* (zero phase)."""
-    pad = int(rate_hz)  # room for the filter to settle at both ends
-    white = rng.standard_normal((n_frames + 2 * pad, n_dofs))
-    sos = butter(2, min(cutoff_hz / (rate_hz / 2), 0.99), output="sos")
-    smooth = sosfiltfilt(sos, white, axis=0)[pad : pad + n_frames]
-    return smooth / smooth.std(axis=0, keepdims=True).clip(1e-12)
 
 
 def sample_timing(model: VariableModel, word: str, rng: np.random.Generator) -> WordTiming:

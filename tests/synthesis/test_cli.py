@@ -124,3 +124,18 @@ def test_spell_with_a_simulated_capture(tmp_path, capsys):
     assert json.loads(capsys.readouterr().out) == timing  # the seed fixes the take
     assert main(["spell", "DAVID", "--simulate", "7", "--recording", "x.bvh"]) == 2
     assert "not both" in capsys.readouterr().err
+
+
+def test_sentence_renders_and_plots_the_spine_conditions(tmp_path, renderable):
+    out, plot = tmp_path / "s.mp4", tmp_path / "torso.png"
+    assert main(["sentence", "ME GET", "--spine", "off", "--out", str(out), "--size", "64x48",
+                 "--plot", str(plot), "--rate", "30"]) == 0  # fmt: skip
+    assert count_frames(out) > 30 and plot.stat().st_size > 10_000
+    assert main(["sentence", "ME FLY", "--out", str(out)]) == 2
+
+
+def test_sentence_names_a_bad_library(tmp_path, capsys):
+    library = tmp_path / "signs.yaml"
+    library.write_text("format: other\n", encoding="utf-8")
+    assert main(["sentence", "ME", "--library", str(library)]) == 2
+    assert "Not a sign library" in capsys.readouterr().err

@@ -1,0 +1,263 @@
+"""Synthesize a signed sentence on the upper body, with automated spine motion on or off.
+
+A sentence is a gloss sequence (``"BUT SURPRISE MY BROTHER GET NEW C-A-R"``); glosses
+come from a sign library (synthesis.signs), letter-hyphen-letter words are fingerspelled.
+Each key posture becomes body DOFs (seed 003 §3):
+
+- **Spine on**: the automated spine and clavicle motion (synthesis.spine), computed from
+  the hand targets, is added on top of the keyed spine; then the arms reach the targets
+  by analytic IK (synthesis.ik) from the torso as it now stands, so the hands are where
+  the sign puts them; and the spine and clavicles start earlier than the arm.
+- **Spine off**: no automated motion; the arms reach the same targets from the keyed
+  torso. Keys, handshapes, head, the head and neck's stagger and the noise are the same,
+  so the versions differ in the spine, the clavicles and the arm angles that make up
+  for them, not in where the hands go (spec 03).
+
+The body's onsets are staggered: gaze (the head) → neck → hips and spine, lower to
+upper → clavicle → arm. Keys are joined by monotone cubics (PCHIP, C¹, eased into and
+out of held postures); liveliness noise (synthesis.liveliness) is added last, the same
+in both conditions for a given seed.
+"""
+
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+
+from synthesis.alphabet import AlphabetError
+from synthesis.body import BodyModel
+from synthesis.ik import hand_frame, solve_arm
+from synthesis.liveliness import Liveliness, joint_group
+from synthesis.signs import SignError, SignLibrary, default_library
+from synthesis.spine import SpineParams, spine_motion
+
+SPINE_JOINTS = ("spine_lower", "spine_middle", "spine_upper")
+REST_HOLD_MS = 150.0
+LEAD_MS = 450.0
+# Seed 003's torso frame (x right, y forward, z up) in the engine's world (x to the
+# viewer's right = the signer's left, y up, z toward the viewer).
+TORSO_TO_WORLD = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
+
+
+@dataclass(frozen=True)
+class Stagger:
+    """Onset offsets (ms; negative starts earlier than the key) per joint group.
+
+    Seed 003 §3.5: gaze → neck → spine/hips → clavicle → arm, one to two frames apart
+    at 30 fps (50 ms here), tighter within the spine (hips lead the upper spine).
+    """
+
+    head_ms: float = -200.0
+    neck_ms: float = -175.0
+    spine_ms: tuple[float, float, float] = (-135.0, -120.0, -105.0)  # lower, middle, upper
+    clavicle_ms: float = -50.0
+
+
+@dataclass(frozen=True)
+class SentenceOptions:
+    """How to synthesize: spine condition, tuning, frame rate, noise seed."""
+
+    spine: bool = True
+    params: SpineParams = field(default_factory=SpineParams)
+    stagger: Stagger = field(default_factory=Stagger)
+    liveliness: Liveliness | None = field(default_factory=Liveliness)
+    rate_hz: float = 60.0
+    seed: int = 0
+    dominant: str = "right"
+
+
+@dataclass(frozen=True)
+class Sentence:
+    """A synthesized sentence: body DOFs per frame and what produced them.
+
+    *dofs_rad* (n_frames, n_dofs); *automated_rad* the automated spine and clavicle part
+    (zero with the spine off); *key_times_s* (n_keys,); *glosses* the parsed tokens.
+    """
+
+    body: BodyModel
+    dofs_rad: np.ndarray
+    automated_rad: np.ndarray
+    rate_hz: float
+    key_times_s: np.ndarray
+    glosses: tuple[str, ...]
+
+    @property
+    def duration_s(self) -> float:
+        return (len(self.dofs_rad) - 1) / self.rate_hz
+
+
+def parse_glosses(text: str) -> tuple[str, ...]:
+    """Return a sentence's tokens: glosses and fingerspelled words (``T-O-Y``)."""
+    tokens = []
+    for word in re.split(r"\s+", text.strip()):
+        word = word.strip(',.!?;:—–"').upper()
+        if word and word not in ("-", "—", "–"):
+            tokens.append(word)
+    if not tokens:
+        raise SignError("Nothing to sign: the sentence is empty.")
+    return tuple(tokens)
+
+
+def _is_spelled(token: str) -> bool:
+    parts = token.split("-")
+    return len(parts) > 1 and all(len(p) == 1 and p.isalpha() for p in parts)
+
+
+@dataclass
+class _Key:
+    ms: float
+    hands: dict
+    spine_deg: dict
+    head_deg: dict
+
+
+def _timeline(glosses, library: SignLibrary) -> list[_Key]:
+    """Return the sentence's keys in time order, holds written out as repeated keys."""
+    rest = {side: library.hand(side, library.rest, "rest") for side in ("right", "left")}
+    keys = [_Key(0.0, dict(rest), {}, {}), _Key(REST_HOLD_MS, dict(rest), {}, {})]
+    t = LEAD_MS
+    spelling = library.spelling
+    for token in glosses:
+        if _is_spelled(token):
+            for character in token.split("-"):
+                hand = library.hand("right", {**spelling, "shape": character}, token)
+                pose = {"right": hand, "left": rest["left"]}
+                keys += [_Key(t, pose, {}, {}),
+                         _Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
+                t = keys[-1].ms + float(spelling.get("transition_ms", 110))
+            t += library.transition_ms - float(spelling.get("transition_ms", 110))
+            continue
+        sign = library.sign(token)
+        used = {side for key in sign for side in key.hands}
+        last = {side: next(k.hands[side] for k in sign if side in k.hands) for side in used}
+        for key in sign:
+            last.update(key.hands)
+            hands = {side: last[side] if side in used else rest[side] for side in rest}
+            keys.append(_Key(t + key.ms, hands, key.spine_deg, key.head_deg))
+            if key.hold_ms > 0:
+                keys.append(_Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
+        t = keys[-1].ms + library.transition_ms
+    keys += [_Key(t, dict(rest), {}, {}), _Key(t + REST_HOLD_MS, dict(rest), {}, {})]
+    return keys
+
+
+class _Solver:
+    """Key postures → body DOFs, and the automated spine motion for them."""
+
+    def __init__(self, body: BodyModel, params: SpineParams):
+        self.body, self.params = body, params
+        pose = body.pose(body.neutral()).positions_m[0]
+        index = body.skeleton.index
+        self.origin = (pose[index("right_clavicle")] + pose[index("left_clavicle")]) / 2
+        self.shoulders = {
+            side: TORSO_TO_WORLD.T @ (pose[index(f"{side}_shoulder")] - self.origin)
+            for side in ("right", "left")
+        }
+        self.names = body.dof_names
+
+    def world(self, torso_m: np.ndarray) -> np.ndarray:
+        return self.origin + TORSO_TO_WORLD @ torso_m
+
+    def trunk(self, spine_deg: dict, head_deg: dict) -> np.ndarray:
+        """Return the keyed trunk pose: spine angles split over the spine joints."""
+        dofs = self.body.neutral()
+        p = self.params
+        for name, value in spine_deg.items():
+            split = p.twist_split if name == "rotation" else p.bend_split
+            for joint, weight in zip(SPINE_JOINTS, split, strict=True):
+                dofs[self.names.index(f"{joint}_{name}")] += np.radians(value) * weight
+        for name, value in head_deg.items():
+            dofs[self.names.index(f"head_{name}")] += np.radians(value)
+        return dofs
+
+    def keys(self, keys: list[_Key], automated: np.ndarray) -> np.ndarray:
+        """Return the body DOFs (n_keys, n_dofs) of the keys: the keyed trunk plus the
+        *automated* spine and clavicle DOFs, then the arms by IK from there."""
+        dofs = np.stack([self.trunk(k.spine_deg, k.head_deg) for k in keys]) + automated
+        for side in ("right", "left"):
+            hands = [k.hands[side] for k in keys]
+            rotations = np.stack([hand_frame(TORSO_TO_WORLD @ h.palm, TORSO_TO_WORLD @ h.fingers)
+                                  for h in hands])  # fmt: skip
+            targets = np.stack([self.world(h.at_m) for h in hands])
+            swivels = np.array([h.swivel_rad for h in hands])
+            dofs = solve_arm(self.body, dofs, side, targets, rotations, swivels)
+            dofs = self.body.with_hand(dofs, side, np.stack([h.shape_rad for h in hands]))
+        return dofs
+
+    def automated(self, keys: list[_Key]) -> np.ndarray:
+        """Return the automated spine and clavicle DOFs (n_keys, n_dofs) from the targets."""
+        right = np.stack([k.hands["right"].at_m for k in keys])
+        left = np.stack([k.hands["left"].at_m for k in keys])
+        motion = spine_motion(right, left, self.shoulders["right"], self.shoulders["left"],
+                              self.params)  # fmt: skip
+        out = np.zeros((len(keys), len(self.names)))
+        for joint, angles in motion.spine_angles(self.params).items():
+            for column, name in enumerate(("flexion", "side_bend", "rotation")):
+                out[:, self.names.index(f"{joint}_{name}")] = angles[:, column]
+        for side in ("right", "left"):
+            out[:, self.names.index(f"{side}_clavicle_raise")] = motion.clavicle_raise_rad[side]
+            out[:, self.names.index(f"{side}_clavicle_forward")] = motion.clavicle_forward_rad[side]
+        return out
+
+
+def _offsets_ms(names: list[str], stagger: Stagger) -> np.ndarray:
+    """Return each DOF's onset offset (ms): the arms and hands keep the keys' times."""
+    offsets = np.zeros(len(names))
+    for i, name in enumerate(names):
+        group = joint_group(name)
+        if group == "head":
+            offsets[i] = stagger.head_ms
+        elif group == "neck":
+            offsets[i] = stagger.neck_ms
+        elif group == "spine":
+            joint = next(j for j in SPINE_JOINTS if name.startswith(j))
+            offsets[i] = stagger.spine_ms[SPINE_JOINTS.index(joint)]
+        elif group == "clavicle":
+            offsets[i] = stagger.clavicle_ms
+    return offsets
+
+
+def _interpolate(times_s, values, offsets_ms, at_s) -> np.ndarray:
+    """Return values (n_frames, n_dofs): each DOF's keys shifted by its offset, PCHIP."""
+    out = np.empty((len(at_s), values.shape[1]))
+    for offset in np.unique(offsets_ms):
+        columns = offsets_ms == offset
+        shifted = times_s + offset / 1000.0
+        curve = PchipInterpolator(shifted, values[:, columns], axis=0, extrapolate=False)
+        sampled = curve(np.clip(at_s, shifted[0], shifted[-1]))
+        out[:, columns] = sampled
+    return out
+
+
+def synthesize(
+    text: str, options: SentenceOptions | None = None, library: SignLibrary | None = None
+) -> Sentence:
+    """Return the sentence *text* synthesized on the upper body (spec 03)."""
+    options = options or SentenceOptions()
+    library = library or default_library()
+    glosses = parse_glosses(text)
+    try:
+        keys = _timeline(glosses, library)
+    except AlphabetError as error:
+        raise SignError(str(error)) from None
+    body = BodyModel(options.dominant)
+    names = body.dof_names
+    # Signs are written for a right-handed signer; a left-handed one mirrors them.
+    solver = _Solver(BodyModel("right"), options.params)
+    auto_keys = solver.automated(keys) if options.spine else np.zeros((len(keys), len(names)))
+    # The arms reach the key's targets from the torso as the spine leaves it, so the
+    # hands' positions are the same in both conditions.
+    keyed = solver.keys(keys, auto_keys)
+    times_s = np.array([k.ms for k in keys]) / 1000.0
+    count = int(np.floor(times_s[-1] * options.rate_hz + 1e-9)) + 1
+    at_s = np.arange(count) / options.rate_hz
+    offsets = _offsets_ms(names, options.stagger)
+    dofs = _interpolate(times_s, keyed, offsets, at_s)
+    automated = _interpolate(times_s, auto_keys, offsets, at_s)
+    if options.dominant == "left":
+        dofs, automated = body.mirror_pose(dofs), body.mirror_pose(automated)
+    if options.liveliness is not None:
+        rng = np.random.default_rng(options.seed)
+        dofs = dofs + options.liveliness.sample(body, count, options.rate_hz, rng)
+    return Sentence(body, body.clip(dofs), automated, options.rate_hz, times_s, glosses)

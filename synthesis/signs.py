@@ -1,0 +1,189 @@
+"""A sign library: glosses as sparse key postures of both hands, with keyed spine poses.
+
+Signs are sequences of keys (seed 003 §2, the segmental style of SLPA): where each
+wrist is, which handshape, which way the palm and fingers face, how long the posture is
+held (a postural segment); the moves between keys are transforming segments. The
+format is ``data/signs.yaml``'s: positions and directions in the signer's torso frame
+(x right, y forward, z up) from the sternal notch, metres.
+"""
+
+import itertools
+from dataclasses import dataclass
+from functools import cache
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from synthesis.alphabet import AlphabetError, letter, rest_pose
+from synthesis.hand import HandModel
+
+FORMAT = "signstudy.sign-library"
+FORMAT_VERSION = 1
+DIRECTIONS = {
+    "forward": (0.0, 1.0, 0.0),
+    "back": (0.0, -1.0, 0.0),
+    "up": (0.0, 0.0, 1.0),
+    "down": (0.0, 0.0, -1.0),
+    "right": (1.0, 0.0, 0.0),
+    "left": (-1.0, 0.0, 0.0),
+}
+# Hand DOFs a handshape sets: the digits; the wrist and forearm follow the orientation.
+_PLACEMENT = ("forearm_tilt_side", "forearm_tilt_forward", "forearm_twist", "wrist_deviation",
+              "wrist_flexion")  # fmt: skip
+KEYED_DOFS = ("flexion", "side_bend", "rotation")
+
+
+class SignError(ValueError):
+    """A malformed sign library or an unknown gloss."""
+
+
+@dataclass(frozen=True)
+class HandKey:
+    """One hand in one key: wrist position (3,) and palm and finger directions (3,), torso
+    frame; handshape DOFs (radians, right-hand model order); elbow swivel (rad)."""
+
+    at_m: np.ndarray
+    palm: np.ndarray
+    fingers: np.ndarray
+    shape_rad: np.ndarray
+    swivel_rad: float
+
+
+@dataclass(frozen=True)
+class SignKey:
+    """A key posture at *ms* from the sign's start, held *hold_ms*; a missing hand rests."""
+
+    ms: float
+    hold_ms: float
+    hands: dict
+    spine_deg: dict
+    head_deg: dict
+
+
+@dataclass(frozen=True)
+class SignLibrary:
+    """Signs by gloss, with the library's shared settings."""
+
+    signs: dict
+    rest: dict
+    spelling: dict
+    transition_ms: float
+    shapes: dict
+    locations: dict
+
+    def sign(self, gloss: str) -> tuple[SignKey, ...]:
+        """Return a sign's keys; SignError names an unknown gloss."""
+        try:
+            return self.signs[gloss.upper()]
+        except KeyError:
+            raise SignError(f"{gloss!r} is not in the sign library.") from None
+
+    def hand(self, side: str, spec: dict, where: str) -> HandKey:
+        """Return a hand key from its library entry (positions mirrored for the left)."""
+        try:
+            at = spec["at"]
+            position = np.array(self.locations[at] if isinstance(at, str) else at, dtype=float)
+            if position.shape != (3,):
+                raise ValueError
+        except (KeyError, ValueError, TypeError):
+            raise SignError(f"{where}: unknown or malformed position {spec.get('at')!r}.") from None
+        if side == "left":
+            position[0] = -position[0]
+        return HandKey(
+            position,
+            _direction(spec.get("palm", "forward"), side, where),
+            _direction(spec.get("fingers", "up"), side, where),
+            self.shape(spec.get("shape", "relaxed"), where),
+            np.radians(float(spec.get("swivel_deg", 20.0))),
+        )
+
+    def shape(self, name, where: str) -> np.ndarray:
+        """Return a handshape's digit DOFs (right-hand model, radians)."""
+        name = str(name)
+        try:
+            return self.shapes[name]
+        except KeyError:
+            raise SignError(f"{where}: unknown handshape {name!r}.") from None
+
+
+def _direction(value, side: str, where: str) -> np.ndarray:
+    if isinstance(value, str):
+        inward = "left" if side == "right" else "right"
+        named = {**DIRECTIONS, "in": DIRECTIONS[inward],
+                 "out": DIRECTIONS["right" if side == "right" else "left"]}  # fmt: skip
+        if value not in named:
+            raise SignError(f"{where}: unknown direction {value!r}.")
+        return np.array(named[value])
+    vector = np.asarray(value, dtype=float)
+    if vector.shape != (3,) or not np.linalg.norm(vector) > 0:
+        raise SignError(f"{where}: a direction is a name or a non-zero [x, y, z].")
+    return vector / np.linalg.norm(vector)
+
+
+def _shapes(entries: dict) -> dict[str, np.ndarray]:
+    """Return every letter, the relaxed hand and the named handshapes as digit DOFs."""
+    model = HandModel()
+    keep = np.array([name not in _PLACEMENT for name in model.dof_names])
+    shapes = {}
+    for character in "ABCDEFGHIJKLMNOPQRSTUVWXYZ":
+        shapes[character] = np.where(keep, letter(character).dofs_rad, 0.0)
+    shapes["relaxed"] = np.where(keep, rest_pose(), 0.0)
+    for name, entry in (entries or {}).items():
+        try:
+            base = shapes[entry] if isinstance(entry, str) else model.from_degrees(entry)
+        except KeyError as error:
+            raise SignError(f"Handshape {name!r}: {error.args[0]}") from None
+        shapes[str(name)] = np.where(keep, base, 0.0)
+    return shapes
+
+
+def parse_library(data) -> SignLibrary:
+    """Return a library from parsed YAML; SignError names what is wrong."""
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise SignError(f"Not a sign library: expected format {FORMAT!r}.")
+    if data.get("version") != FORMAT_VERSION:
+        raise SignError(f"Unsupported sign library version {data.get('version')!r}.")
+    try:
+        shapes = _shapes(data.get("handshapes"))
+    except AlphabetError as error:
+        raise SignError(str(error)) from None
+    library = SignLibrary({}, data.get("rest") or {}, data.get("spelling") or {},
+                          float(data.get("transition_ms", 200)), shapes,
+                          dict(data.get("locations") or {}))  # fmt: skip
+    for gloss, entry in (data.get("signs") or {}).items():
+        keys = []
+        for k, key in enumerate((entry or {}).get("keys") or []):
+            where = f"{gloss} key {k + 1}"
+            hands = {side: library.hand(side, key[side], where)
+                     for side in ("right", "left") if side in key}  # fmt: skip
+            for part in ("spine", "head"):
+                unknown = set(key.get(part) or {}) - set(KEYED_DOFS)
+                if unknown:
+                    raise SignError(f"{where}: unknown {part} angle {sorted(unknown)[0]!r}.")
+            times = float(key.get("ms", 0)), float(key.get("hold_ms", 0))
+            poses = dict(key.get("spine") or {}), dict(key.get("head") or {})
+            keys.append(SignKey(*times, hands, *poses))
+        if not keys:
+            raise SignError(f"{gloss}: a sign needs at least one key.")
+        if any(b.ms < a.ms for a, b in itertools.pairwise(keys)):
+            raise SignError(f"{gloss}: keys must be in time order.")
+        library.signs[str(gloss).upper()] = tuple(keys)
+    return library
+
+
+def read_library(path: str | Path) -> SignLibrary:
+    """Read a sign library file (YAML)."""
+    try:
+        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    except yaml.YAMLError as error:
+        raise SignError(f"{path}: not YAML ({error}).") from None
+    return parse_library(data)
+
+
+@cache
+def default_library() -> SignLibrary:
+    """Return the library that ships with the platform (the spine study's story)."""
+    text = resources.files("synthesis").joinpath("data/signs.yaml").read_text("utf-8")
+    return parse_library(yaml.safe_load(text))

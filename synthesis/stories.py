@@ -1,0 +1,9 @@
+"""The five-sentence story of the spine study (spec 03 §5; seed 003 Fig. 13/14)."""
+
+SPINE_STORY = (
+    "LOOKING-BACK REMEMBER ME SMALL, HAVE LITTLE T-O-Y C-A-R.",
+    "I LOST WHERE. I SEARCH, SEARCH, CAN'T FIND — SAD.",
+    "BUT SURPRISE — MY BROTHER GET NEW C-A-R, BIG, BLUE, GIVE-ME.",
+    "INFORM-YOU BLUE MY FAVORITE COLOR.",
+    "FINALLY HAVE C-A-R AGAIN — HAPPY!",
+)
