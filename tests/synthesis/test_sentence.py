@@ -90,3 +90,16 @@ def test_glosses_and_bad_sentences():
         synthesize(" — ")
     with pytest.raises(SignError, match="'T-3-Y' is not in the sign library"):
         synthesize("ME T-3-Y")
+
+
+def test_hands_move_in_arcs_between_postures():
+    """Joint angles eased between IK solutions carry the wrist on a curve (seed 003
+    §2.1.4), not the straight line between the key positions."""
+    sentence = synthesize("BIG", SentenceOptions(spine=False, **QUIET))
+    keys = np.round(sentence.key_times_s * sentence.rate_hz).astype(int)
+    start, end = keys[3], keys[4]  # BIG's two postures: hands together, then wide apart
+    path = _wrists(sentence, np.arange(start, end + 1))[:, 0]
+    chord = path[-1] - path[0]
+    along = (path - path[0]) @ chord / (chord @ chord)
+    off_line = np.linalg.norm(path - path[0] - along[:, None] * chord, axis=1)
+    assert np.linalg.norm(chord) > 0.25 and off_line.max() > 0.01
