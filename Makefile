@@ -1,5 +1,6 @@
 # SignStudy: two commands on a fresh machine.
-#   make demo   install everything, load the demo studies, serve on 127.0.0.1:8000
+#   make demo   install everything, load the demo studies, render their clips, serve on
+#               127.0.0.1:8000
 #   make test   install everything, lint, run the tests (SQLite, then PostgreSQL if it answers)
 
 PY := .venv/bin/python
@@ -17,7 +18,7 @@ test: install
 demo: install
 	$(PY) manage.py migrate --noinput
 	$(PY) manage.py collectstatic --noinput -v0
-	$(PY) manage.py seed_demo --url http://$(HOST):$(PORT)/
+	$(PY) manage.py seed_demo --render --workers 2 --url http://$(HOST):$(PORT)/
 	$(PY) manage.py runserver --noreload $(HOST):$(PORT)
 
 # Re-pin the whole dependency tree after changing pyproject.toml.

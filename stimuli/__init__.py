@@ -3,6 +3,31 @@
 Depends on :mod:`synthesis` only; never on Django or :mod:`studyplatform`.
 """
 
-from stimuli.design import balanced_pair_assignment
+from stimuli.clips import ClipError, ClipSpec, RenderedClip, engine_digest, render
+from stimuli.design import (
+    all_ordered_pairs,
+    attention_checks,
+    balanced_pair_assignment,
+    latin_square,
+    rotate_for_participant,
+    shuffled,
+)
+from stimuli.manifest import Entry, generate, read_manifest, write_manifest
 
-__all__ = ["balanced_pair_assignment"]
+__all__ = [
+    "ClipError",
+    "ClipSpec",
+    "Entry",
+    "RenderedClip",
+    "all_ordered_pairs",
+    "attention_checks",
+    "balanced_pair_assignment",
+    "engine_digest",
+    "generate",
+    "latin_square",
+    "read_manifest",
+    "render",
+    "rotate_for_participant",
+    "shuffled",
+    "write_manifest",
+]

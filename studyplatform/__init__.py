@@ -4,3 +4,7 @@ The project package is also the platform's single Django app (label ``studyplatf
 models live in :mod:`studyplatform.models`, multi-row writes in
 :mod:`studyplatform.actions`, the researcher's UI in :mod:`studyplatform.admin`.
 """
+
+from studyplatform.celery import app as celery_app
+
+__all__ = ["celery_app"]

@@ -104,9 +104,12 @@ TEMPLATES = [
 ]
 
 _SQLITE_PATH = VAR_DIR / "signstudy.sqlite3"
+# An empty DATABASE_URL means "unset" (dj_database_url would give no engine at all).
 DATABASES = {
-    "default": dj_database_url.config(
-        default=f"sqlite:///{_SQLITE_PATH}", conn_max_age=60, conn_health_checks=True
+    "default": dj_database_url.parse(
+        os.environ.get("DATABASE_URL") or f"sqlite:///{_SQLITE_PATH}",
+        conn_max_age=60,
+        conn_health_checks=True,
     )
 }
 if DATABASES["default"]["ENGINE"] == "django.db.backends.sqlite3":

@@ -3,6 +3,7 @@
 from django.contrib import admin
 from django.utils.html import format_html
 
+from studyplatform.actions.stimuli import do_retry_stimuli
 from studyplatform.admin.design import OwnStudyFilter
 from studyplatform.admin.permissions import StudyScopedMixin
 from studyplatform.models import Stimulus
@@ -24,6 +25,12 @@ class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
     search_fields = ("item__key", "condition__key", "content_hash")
     list_select_related = ("item", "condition")
     readonly_fields = ("player", "created_at")
+    actions = ("retry_stimuli",)
+
+    @admin.action(description="Retry the selected clips (those not rendered)")
+    def retry_stimuli(self, request, queryset) -> None:
+        count = do_retry_stimuli(queryset)
+        self.message_user(request, f"{count} clip(s) queued again.")
 
     @admin.display(description="clip")
     def player(self, stimulus: Stimulus) -> str:

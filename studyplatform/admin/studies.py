@@ -7,14 +7,16 @@ import zipfile
 from django.contrib import admin, messages
 from django.db import models
 from django.db.models import Count
-from django.http import Http404, HttpRequest, HttpResponse
+from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
 from django.utils.html import format_html
 
+from stimuli.clips import ClipError
 from studyplatform import exchange
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
+from studyplatform.actions.stimuli import do_generate_stimuli, stimuli_progress
 from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline
@@ -95,7 +97,7 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
         TrialInline,
         AslVideoInline,
     )
-    actions = ("duplicate_studies", "export_studies")
+    actions = ("generate_stimuli", "duplicate_studies", "export_studies")
     fieldsets = (
         (None, {"fields": ("title", "slug", "status", "owner")}),
         ("Language", {"fields": ("asl_first", "allow_english_only")}),
@@ -178,6 +180,16 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
                 name="studyplatform_study_export",
             ),
             path(
+                "<path:object_id>/stimuli/",
+                self.admin_site.admin_view(self.stimuli_view),
+                name="studyplatform_study_stimuli",
+            ),
+            path(
+                "<path:object_id>/stimuli/progress.json",
+                self.admin_site.admin_view(self.stimuli_progress_view),
+                name="studyplatform_study_stimuli_progress",
+            ),
+            path(
                 "<path:object_id>/preview/",
                 self.admin_site.admin_view(self.preview_view),
                 name="studyplatform_study_preview",
@@ -236,6 +248,46 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
             "title": "Import a study definition",
         }
         return TemplateResponse(request, "admin/studyplatform/study/import.html", context)
+
+    def stimuli_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
+        """Show the study's clips being rendered: a live progress bar and the failures."""
+        study = self._get_visible_study(request, object_id)
+        context = {
+            **self.admin_site.each_context(request),
+            "opts": self.opts,
+            "study": study,
+            "title": f"Stimuli of “{study.title}”",
+            "progress": stimuli_progress(study),
+        }
+        return TemplateResponse(request, "admin/studyplatform/study/stimuli.html", context)
+
+    def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
+        """Return the rendering progress as JSON, for the progress bar to poll."""
+        return JsonResponse(stimuli_progress(self._get_visible_study(request, object_id)))
+
+    @admin.action(description="Generate stimuli (render missing clips)")
+    def generate_stimuli(self, request: HttpRequest, queryset):
+        studies = list(queryset)
+        for study in studies:
+            if not self.has_change_permission(request, study):
+                messages.error(request, f"You cannot change “{study.title}”.")
+                continue
+            try:
+                result = do_generate_stimuli(study)
+            except ClipError as error:
+                messages.error(request, f"“{study.title}”: {error}")
+                continue
+            messages.success(
+                request,
+                format_html(
+                    "“{}”: {} clips, {} queued, {} already rendered. <a href='{}'>Progress</a>",
+                    study.title, result.total, result.queued, result.ready,
+                    reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
+                ),
+            )  # fmt: skip
+        if len(studies) == 1:
+            return redirect(reverse("admin:studyplatform_study_stimuli", args=[studies[0].pk]))
+        return None
 
     @admin.action(description="Duplicate the selected studies (as drafts)")
     def duplicate_studies(self, request: HttpRequest, queryset) -> None:

@@ -18,8 +18,9 @@ class Stimulus(models.Model):
     item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="stimuli")
     content_hash = models.CharField(
         max_length=64,
-        unique=True,
-        help_text="Hash of everything that determines the clip's pixels.",
+        db_index=True,
+        help_text="Hash of everything that determines the clip's pixels (its file name); "
+        "studies that show the same clip share the file.",
     )
     status = models.CharField(
         max_length=10, choices=Status.choices, default=Status.PENDING, db_index=True

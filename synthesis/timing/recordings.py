@@ -14,6 +14,7 @@ import numpy as np
 from synthesis.bvh import read_bvh
 from synthesis.motion import Motion
 from synthesis.retime import piecewise_linear_warp, time_warp
+from synthesis.spelling import LEAD_MS, REST_HOLD_MS
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
 from synthesis.timing.extraction import Extraction, extract
 from synthesis.timing.simulate import simulate_recording
@@ -49,14 +50,19 @@ class Recording:
         side: str = "right",
         rate_hz: float = 60.0,
     ) -> "Recording":
-        """Return a simulated capture of *word* (labelled so in its timing), found like a
-        real one: the stand-in for the Motion capture condition when no recording exists."""
+        """Return a simulated capture of *word*: the stand-in for the Motion capture
+        condition when no recording exists, labelled so in its timing's metadata.
+
+        Its holds are the simulation's own (known exactly), not extracted.
+        """
         motion, truth = simulate_recording(word, np.random.default_rng(seed), model, side,
                                            rate_hz)  # fmt: skip
-        found = extract(motion, word, side)
-        metadata = {**found.timing.metadata, "simulated": True, "seed": seed}
-        timing = replace(found.timing, metadata=metadata)
-        return cls(truth.word, motion, replace(found, timing=timing))
+        metadata = {"rate_hz": rate_hz, "simulated": True, "seed": seed}
+        timing = replace(truth, metadata=metadata)
+        start_s = (REST_HOLD_MS + LEAD_MS + timing.hold_starts_ms()) / 1000
+        bounds = np.stack([start_s, start_s + np.asarray(timing.hold_ms) / 1000], axis=1)
+        empty = np.zeros((0,))
+        return cls(truth.word, motion, Extraction(timing, bounds, empty, empty))
 
     def hold_times_s(self) -> np.ndarray:
         """Return each hold's (start, end) in seconds, shape (n_letters, 2), sub-frame."""

@@ -4,6 +4,7 @@ import secrets
 
 from django.conf import settings
 from django.contrib.auth import get_user_model
+from django.core.management import call_command
 from django.core.management.base import BaseCommand
 
 from studyplatform.actions import do_import_study
@@ -20,8 +21,12 @@ class Command(BaseCommand):
         parser.add_argument(
             "--url", default="http://127.0.0.1:8000/", help="Where the demo is served."
         )
+        parser.add_argument(
+            "--render", action="store_true", help="Also render the demo studies' stimuli."
+        )
+        parser.add_argument("--workers", type=int, default=2, help="Rendering processes.")
 
-    def handle(self, *args, url: str, **options) -> None:
+    def handle(self, *args, url: str, render: bool, workers: int, **options) -> None:
         admin = self._ensure_admin()
         for build in DEMO_STUDIES:
             data = build()
@@ -31,6 +36,13 @@ class Command(BaseCommand):
                 continue
             result = do_import_study(data, owner=admin, slug=slug)
             self.stdout.write(self.style.SUCCESS(f"Loaded demo study '{result.study.title}'."))
+        if render:
+            for build in DEMO_STUDIES:
+                slug = build()["study"]["slug"]
+                self.stdout.write(
+                    f"Rendering the stimuli of '{slug}' (cached after the first run)…"
+                )
+                call_command("generate_stimuli", slug, workers=workers, stdout=self.stdout)
         password = (settings.VAR_DIR / "demo_admin_password").read_text().strip()
         self.stdout.write(
             "\n"

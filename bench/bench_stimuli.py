@@ -1,0 +1,61 @@
+"""Time rendering the demo studies' stimuli: cold, warm, and 1 against 2 workers.
+
+Targets (issue 6): the cold render of the full demo set in < 6 min on this 2-core
+machine; a warm re-run in < 10 s; the speed-up of 2 workers over 1. Runs in a fresh
+temporary data directory (SQLite, no broker: local rendering processes). Prints
+figures; asserts nothing.
+
+    .venv/bin/python bench/bench_stimuli.py [--skip-single]
+"""
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+STUDIES = ("fingerspelling-timing", "spine-motion")
+
+
+def _manage(var_dir: Path, *arguments: str) -> float:
+    """Run manage.py in *var_dir*; return the wall time in seconds."""
+    unset = ("DATABASE_URL", "CELERY_BROKER_URL", "REDIS_URL")  # SQLite, local rendering
+    environment = {k: v for k, v in os.environ.items() if k not in unset}
+    environment["SIGNSTUDY_VAR_DIR"] = str(var_dir)
+    started = time.perf_counter()
+    command = [sys.executable, str(ROOT / "manage.py"), *arguments]
+    subprocess.run(command, check=True, env=environment, cwd=ROOT, stdout=subprocess.DEVNULL)
+    return time.perf_counter() - started
+
+
+def _cold(workers: int) -> tuple[float, dict]:
+    with tempfile.TemporaryDirectory() as directory:
+        var_dir = Path(directory)
+        _manage(var_dir, "migrate", "--noinput", "-v0")
+        _manage(var_dir, "seed_demo")
+        per_study = {slug: _manage(var_dir, "generate_stimuli", slug, "--workers", str(workers))
+                     for slug in STUDIES}  # fmt: skip
+        warm = sum(_manage(var_dir, "generate_stimuli", slug) for slug in STUDIES)
+        clips = list((var_dir / "media" / "stimuli").glob("*.mp4"))
+        return sum(per_study.values()), {"per_study": per_study, "warm": warm, "clips": len(clips)}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--skip-single", action="store_true", help="only the 2-worker run")
+    args = parser.parse_args()
+    two, facts = _cold(2)
+    print(f"cold render, 2 workers: {facts['clips']} clips in {two:.0f} s "
+          f"({', '.join(f'{k} {v:.0f} s' for k, v in facts['per_study'].items())}; "
+          f"target < 360 s)")  # fmt: skip
+    print(f"warm re-run (nothing to render): {facts['warm']:.1f} s (target < 10 s)")
+    if not args.skip_single:
+        one, _ = _cold(1)
+        print(f"cold render, 1 worker: {one:.0f} s; speed-up with 2 workers: {one / two:.2f}×")
+
+
+if __name__ == "__main__":
+    main()

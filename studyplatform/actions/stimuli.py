@@ -1,0 +1,135 @@
+"""Generate a study's stimuli: one clip per (condition, item) its trials show.
+
+:func:`do_generate_stimuli` records what to render as :class:`Stimulus` rows keyed by
+content hash and sends a Celery job per clip that is not rendered yet, once the
+transaction commits. A clip whose hash is unchanged and whose file exists is left
+alone, so running it again renders nothing; changing one condition's parameters
+re-renders exactly that condition's clips.
+"""
+
+import zlib
+from dataclasses import dataclass
+
+from django.db import transaction
+
+from stimuli.clips import ClipError, ClipSpec
+from studyplatform.models import Condition, Item, Stimulus, Study, Trial
+
+
+@dataclass(frozen=True)
+class GenerationResult:
+    """How many clips the study needs, how many were queued, how many were ready."""
+
+    total: int
+    queued: int
+    ready: int
+    stimulus_ids: tuple[int, ...]
+
+
+def clip_spec(condition: Condition, item: Item) -> ClipSpec:
+    """Return the clip specification of *condition* applied to *item*.
+
+    The seed is the item's (its parameters' ``seed``, else a checksum of its key), so all
+    conditions of an item share one performance and one noise.
+    """
+    parameters = {**(item.parameters or {}), **(condition.parameters or {})}
+    seed = int(parameters.pop("seed", zlib.crc32(item.key.encode())))
+    rendering = {key: parameters.pop(key) for key in ("view", "side", "width", "height",
+                                                     "rate_hz") if key in parameters}  # fmt: skip
+    if item.kind == Item.Kind.SENTENCE:
+        clip = {"spine": bool(parameters.get("spine", True))}
+        kind = "sentence"
+    else:
+        clip = {"timing": parameters.get("timing", "simple")}
+        kind = "word"
+    return ClipSpec(kind, item.text, clip, seed=seed, **rendering)
+
+
+def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
+    """Return the (condition, item) pairs the study's trials show, in design order."""
+    pairs = []
+    trials = Trial.objects.filter(block__study=study).select_related(
+        "item", "condition_a", "condition_b"
+    )
+    for trial in trials:
+        for condition in (trial.condition_a, trial.condition_b):
+            if trial.item is not None and condition is not None:
+                pair = (condition, trial.item)
+                if pair not in pairs:
+                    pairs.append(pair)
+    return sorted(pairs, key=lambda p: (p[1].position, p[0].position))
+
+
+def do_generate_stimuli(
+    study: Study, force: bool = False, enqueue: bool = True
+) -> GenerationResult:
+    """Record the study's clips and queue the ones not rendered yet (all with *force*).
+
+    *enqueue* False only records them, for a caller that renders them itself.
+    """
+    from studyplatform.tasks import render_stimulus
+
+    queued, ready, ids = [], 0, []
+    with transaction.atomic():
+        for condition, item in needed_pairs(study):
+            try:
+                spec = clip_spec(condition, item)
+            except ClipError as error:
+                raise ClipError(f"{condition.key} × {item.key}: {error}") from None
+            content_hash = spec.content_hash()
+            stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
+            if stimulus is None:
+                stimulus = Stimulus(condition=condition, item=item)
+            unchanged = stimulus.pk and stimulus.content_hash == content_hash
+            done = unchanged and stimulus.status == Stimulus.Status.READY and _files_exist(stimulus)
+            if done and not force:
+                ready += 1
+            else:
+                stimulus.content_hash = content_hash
+                stimulus.parameters = spec.to_dict()
+                stimulus.engine_version = spec.engine
+                stimulus.status = Stimulus.Status.PENDING
+                stimulus.error = ""
+                stimulus.save()
+                queued.append(stimulus.pk)
+            ids.append(stimulus.pk)
+        for pk in queued if enqueue else ():
+            transaction.on_commit(lambda pk=pk: render_stimulus.delay(pk))
+    return GenerationResult(len(ids), len(queued), ready, tuple(ids))
+
+
+def do_retry_stimuli(stimuli) -> int:
+    """Queue failed (or stuck) clips again; return how many."""
+    from studyplatform.tasks import render_stimulus
+
+    with transaction.atomic():
+        pks = [s.pk for s in stimuli if s.status != Stimulus.Status.READY]
+        Stimulus.objects.filter(pk__in=pks).update(status=Stimulus.Status.PENDING, error="")
+        for pk in pks:
+            transaction.on_commit(lambda pk=pk: render_stimulus.delay(pk))
+    return len(pks)
+
+
+def _files_exist(stimulus: Stimulus) -> bool:
+    return bool(stimulus.video) and stimulus.video.storage.exists(stimulus.video.name)
+
+
+def stimuli_progress(study: Study) -> dict:
+    """Return the study's clips by status, with each failure's error (for the admin)."""
+    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
+    counts = {status: 0 for status in Stimulus.Status.values}
+    failures = []
+    for stimulus in stimuli:
+        counts[stimulus.status] += 1
+        if stimulus.status == Stimulus.Status.FAILED:
+            failures.append({"id": stimulus.pk, "clip": str(stimulus), "error": stimulus.error})
+    total = sum(counts.values())
+    done = counts[Stimulus.Status.READY]
+    return {
+        "total": total,
+        "done": done,
+        "failed": counts[Stimulus.Status.FAILED],
+        "pending": counts[Stimulus.Status.PENDING] + counts[Stimulus.Status.RENDERING],
+        "percent": round(100 * done / total) if total else 0,
+        "failures": failures,
+    }

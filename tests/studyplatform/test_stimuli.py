@@ -1,0 +1,134 @@
+"""Test generating a study's stimuli: caching by content hash, re-rendering, failures."""
+
+import pytest
+from django.core.management import CommandError, call_command
+
+from stimuli.clips import ClipError
+from studyplatform.actions.stimuli import clip_spec, do_generate_stimuli, do_retry_stimuli
+from studyplatform.models import Condition, Stimulus, Trial
+from synthesis.render.video import count_frames
+
+pytestmark = pytest.mark.django_db
+SMALL = {"width": 64, "height": 48, "rate_hz": 20.0}
+
+
+@pytest.fixture
+def small_study(fingerspelling, settings, tmp_path, renderable):
+    """The demo fingerspelling study cut to one comparison page, rendered tiny."""
+    settings.MEDIA_ROOT = tmp_path
+    Trial.objects.filter(block__study=fingerspelling).exclude(key="cmp-01").delete()
+    for condition in fingerspelling.conditions.all():
+        condition.parameters = {**condition.parameters, **SMALL}
+        condition.save()
+    return fingerspelling
+
+
+def _generate(study, capture, **options):
+    with capture(execute=True):
+        return do_generate_stimuli(study, **options)
+
+
+def test_generating_renders_each_clip_once(small_study, django_capture_on_commit_callbacks):
+    first = _generate(small_study, django_capture_on_commit_callbacks)
+    assert (first.total, first.queued, first.ready) == (2, 2, 0)
+    clips = list(Stimulus.objects.filter(pk__in=first.stimulus_ids))
+    for stimulus in clips:
+        assert stimulus.status == Stimulus.Status.READY, stimulus.error
+        assert stimulus.video.name == f"stimuli/{stimulus.content_hash}.mp4"
+        assert count_frames(stimulus.video.path) == stimulus.frame_count > 20
+        assert stimulus.size_bytes == stimulus.video.size and len(stimulus.sha256) == 64
+        assert stimulus.parameters["width"] == 64 and stimulus.engine_version
+    # A second run renders nothing.
+    again = _generate(small_study, django_capture_on_commit_callbacks)
+    assert (again.queued, again.ready) == (0, 2)
+
+
+def test_changing_one_parameter_re_renders_exactly_the_affected_clips(
+    small_study, django_capture_on_commit_callbacks
+):
+    first = _generate(small_study, django_capture_on_commit_callbacks)
+    before = {s.pk: (s.content_hash, s.rendered_at) for s in Stimulus.objects.all()}
+    trial = Trial.objects.get(key="cmp-01")
+    changed = trial.condition_a
+    changed.parameters = {**changed.parameters, "seed": 7}
+    changed.save()
+    second = _generate(small_study, django_capture_on_commit_callbacks)
+    assert second.queued == 1 and set(second.stimulus_ids) == set(first.stimulus_ids)
+    for stimulus in Stimulus.objects.all():
+        same = before[stimulus.pk] == (stimulus.content_hash, stimulus.rendered_at)
+        assert same == (stimulus.condition_id != changed.pk)
+        assert stimulus.status == Stimulus.Status.READY
+
+
+def test_a_failed_clip_is_recorded_and_retried_alone(
+    small_study, django_capture_on_commit_callbacks, monkeypatch
+):
+    import stimuli.clips
+
+    trial = Trial.objects.get(key="cmp-01")
+    real = stimuli.clips.render
+
+    def flaky(spec, directory, progress=None):
+        if spec.parameters.get("timing") == trial.condition_b.parameters["timing"]:
+            raise RuntimeError("the renderer ran out of memory")
+        return real(spec, directory, progress)
+
+    monkeypatch.setattr("studyplatform.tasks.render", flaky)
+    _generate(small_study, django_capture_on_commit_callbacks)
+    failed = Stimulus.objects.get(condition=trial.condition_b)
+    assert failed.status == Stimulus.Status.FAILED
+    assert "RuntimeError: the renderer ran out of memory" in failed.error
+    assert Stimulus.objects.get(condition=trial.condition_a).status == Stimulus.Status.READY
+    monkeypatch.setattr("studyplatform.tasks.render", real)
+    with django_capture_on_commit_callbacks(execute=True):
+        assert do_retry_stimuli(Stimulus.objects.all()) == 1
+    failed.refresh_from_db()
+    assert failed.status == Stimulus.Status.READY
+
+
+def test_bad_condition_parameters_are_named(fingerspelling):
+    condition = Condition.objects.get(study=fingerspelling, key="constant")
+    condition.parameters = {"timing": "fast"}
+    condition.save()
+    with pytest.raises(ClipError, match=r"constant × .*Unknown timing 'fast'"):
+        do_generate_stimuli(fingerspelling)
+    assert not Stimulus.objects.exists()  # nothing half-recorded
+
+
+def test_conditions_of_an_item_share_its_seed(fingerspelling):
+    trial = Trial.objects.filter(block__study=fingerspelling, kind="pairwise").first()
+    a = clip_spec(trial.condition_a, trial.item)
+    b = clip_spec(trial.condition_b, trial.item)
+    assert a.seed == b.seed and a.content_hash() != b.content_hash()
+
+
+def test_the_command_renders_and_reports(small_study, capsys, django_capture_on_commit_callbacks):
+    with django_capture_on_commit_callbacks(execute=True):
+        call_command("generate_stimuli", small_study.slug)
+    assert "2 clips, 2 rendered, 0 already there, 0 failed" in capsys.readouterr().out
+    assert Stimulus.objects.filter(status=Stimulus.Status.READY).count() == 2
+    call_command("generate_stimuli", small_study.slug)
+    assert "2 clips, 0 rendered, 2 already there" in capsys.readouterr().out
+    with pytest.raises(CommandError, match="No study with the slug 'nope'"):
+        call_command("generate_stimuli", "nope")
+
+
+def test_the_admin_action_renders_and_shows_progress(
+    small_study, client, alice, bob, django_capture_on_commit_callbacks
+):
+    from django.urls import reverse
+
+    client.force_login(alice)
+    changelist = reverse("admin:studyplatform_study_changelist")
+    with django_capture_on_commit_callbacks(execute=True):
+        response = client.post(changelist, {"action": "generate_stimuli",
+                                            "_selected_action": [small_study.pk]})  # fmt: skip
+    page = reverse("admin:studyplatform_study_stimuli", args=[small_study.pk])
+    assert response.status_code == 302 and response["Location"] == page
+    assert b"stimuli-bar" in client.get(page).content
+    progress_url = reverse("admin:studyplatform_study_stimuli_progress", args=[small_study.pk])
+    progress = client.get(progress_url).json()
+    assert (progress["total"], progress["done"], progress["failed"], progress["percent"]) == (
+        2, 2, 0, 100)  # fmt: skip
+    client.force_login(bob)  # another researcher's study is not there for bob
+    assert client.get(progress_url).status_code == 404
