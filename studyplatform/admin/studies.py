@@ -210,17 +210,17 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
         response["Content-Disposition"] = f'attachment; filename="{_definition_filename(study)}"'
         return response
 
+    def _page(self, request: HttpRequest, template: str, title: str, **context) -> TemplateResponse:
+        """Render one of the study admin's own pages with the admin's context."""
+        context = {**self.admin_site.each_context(request), "opts": self.opts, "title": title,
+                   **context}  # fmt: skip
+        return TemplateResponse(request, f"admin/studyplatform/study/{template}", context)
+
     def preview_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
         """Show every page of the study as a participant would see it, answers disabled."""
         study = self._get_visible_study(request, object_id)
-        context = {
-            **self.admin_site.each_context(request),
-            "opts": self.opts,
-            "study": study,
-            "title": f"Preview of “{study.title}”",
-            "preview": build_preview(study),
-        }
-        return TemplateResponse(request, "admin/studyplatform/study/preview.html", context)
+        return self._page(request, "preview.html", f"Preview of “{study.title}”", study=study,
+                          preview=build_preview(study))  # fmt: skip
 
     def import_view(self, request: HttpRequest) -> HttpResponse:
         """Create a study from an uploaded definition file."""
@@ -241,25 +241,13 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
                 for warning in result.warnings:
                     messages.warning(request, warning)
                 return redirect(reverse("admin:studyplatform_study_change", args=[result.study.pk]))
-        context = {
-            **self.admin_site.each_context(request),
-            "opts": self.opts,
-            "form": form,
-            "title": "Import a study definition",
-        }
-        return TemplateResponse(request, "admin/studyplatform/study/import.html", context)
+        return self._page(request, "import.html", "Import a study definition", form=form)
 
     def stimuli_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
         """Show the study's clips being rendered: a live progress bar and the failures."""
         study = self._get_visible_study(request, object_id)
-        context = {
-            **self.admin_site.each_context(request),
-            "opts": self.opts,
-            "study": study,
-            "title": f"Stimuli of “{study.title}”",
-            "progress": stimuli_progress(study),
-        }
-        return TemplateResponse(request, "admin/studyplatform/study/stimuli.html", context)
+        return self._page(request, "stimuli.html", f"Stimuli of “{study.title}”", study=study,
+                          progress=stimuli_progress(study))  # fmt: skip
 
     def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
         """Return the rendering progress as JSON, for the progress bar to poll."""
