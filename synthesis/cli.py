@@ -209,6 +209,8 @@ def _render_bvh(args: argparse.Namespace) -> int:
 
 
 def _sentence(args: argparse.Namespace) -> int:
+    from dataclasses import replace
+
     from synthesis.render.clip import render_clip
     from synthesis.sentence import SentenceOptions, synthesize
     from synthesis.signs import read_library
@@ -220,9 +222,7 @@ def _sentence(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from synthesis.sentence_plots import torso_angles_figure
 
-        other = synthesize(args.text, SentenceOptions(spine=args.spine != "on", rate_hz=args.rate,
-                                                      seed=args.seed, dominant=args.side),
-                           library)  # fmt: skip
+        other = synthesize(args.text, replace(options, spine=not options.spine), library)
         pair = (sentence, other) if args.spine == "on" else (other, sentence)
         torso_angles_figure(*pair, title=args.text).savefig(args.plot, dpi=120)
         print(f"wrote {args.plot}")

@@ -49,6 +49,16 @@ def simple_timing(word: str) -> WordTiming:
     )
 
 
+def hold_times_s(timing: WordTiming, lead_ms: float = LEAD_MS) -> np.ndarray:
+    """Return each letter's hold (start, end) in seconds, (n_letters, 2), in the clip
+    :func:`spell` makes with *lead_ms*."""
+    if lead_ms < 0:
+        raise ValueError(f"lead_ms must not be negative, not {lead_ms!r}.")
+    still = REST_HOLD_MS if lead_ms else 0.0
+    starts = (still + lead_ms + timing.hold_starts_ms()) / 1000
+    return np.stack([starts, starts + np.asarray(timing.hold_ms) / 1000], axis=1)
+
+
 def spelling_keys(
     timing: WordTiming, side: str = "right", lead_ms: float = LEAD_MS
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -59,17 +69,15 @@ def spelling_keys(
     rest = rest_pose(side)
     slide = model.dof_names.index("forearm_tilt_side")
     outward = np.radians(DOUBLE_SLIDE_DEG) * (1 if side == "right" else -1)
-    if lead_ms < 0:
-        raise ValueError(f"lead_ms must not be negative, not {lead_ms!r}.")
+    holds = hold_times_s(timing, lead_ms)
     lead = lead_ms / 1000
     still = REST_HOLD_MS / 1000 if lead else 0.0
     # Without a lead the clip starts and ends on the letters themselves.
     times, poses = ([0.0, still], [rest, rest]) if lead else ([], [])
     via_at: list[int] = []
-    starts = still + lead + timing.hold_starts_ms() / 1000
     for k, character in enumerate(timing.letters):
         shape = letter(character, side)
-        start, hold = starts[k], timing.hold_ms[k] / 1000
+        start, hold = holds[k, 0], timing.hold_ms[k] / 1000
         if k or lead:
             previous = timing.letters[k - 1] if k else REST
             _add_route(times, poses, via_at, previous, character, start, side, shape)

@@ -14,7 +14,7 @@ import numpy as np
 from synthesis.bvh import read_bvh
 from synthesis.motion import Motion
 from synthesis.retime import piecewise_linear_warp, time_warp
-from synthesis.spelling import LEAD_MS, REST_HOLD_MS
+from synthesis.spelling import LEAD_MS, hold_times_s
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
 from synthesis.timing.extraction import Extraction, extract
 from synthesis.timing.simulate import simulate_recording
@@ -59,8 +59,7 @@ class Recording:
                                            rate_hz)  # fmt: skip
         metadata = {"rate_hz": rate_hz, "simulated": True, "seed": seed}
         timing = replace(truth, metadata=metadata)
-        start_s = (REST_HOLD_MS + LEAD_MS + timing.hold_starts_ms()) / 1000
-        bounds = np.stack([start_s, start_s + np.asarray(timing.hold_ms) / 1000], axis=1)
+        bounds = hold_times_s(timing, LEAD_MS)
         empty = np.zeros((0,))
         return cls(truth.word, motion, Extraction(timing, bounds, empty, empty))
 
