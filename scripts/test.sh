@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Lint, then run the test suite on SQLite and, when PostgreSQL answers, on PostgreSQL too.
+# Lint, then run the test suite on SQLite and, when PostgreSQL answers, its database tests
+# on PostgreSQL too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=.venv/bin/python
@@ -24,8 +25,12 @@ echo "== tests on SQLite"
 env -u DATABASE_URL "$PY" -m pytest "$@"
 
 if [ -n "$pg_url" ]; then
-  echo "== tests on PostgreSQL ($pg_url)"
-  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "$PY" -m pytest "$@"
+  # Only tests/studyplatform touches a database (synthesis, stimuli and analysis never
+  # import Django), so by default only it runs again; arguments choose otherwise.
+  targets=("$@")
+  [ ${#targets[@]} -eq 0 ] && targets=(tests/studyplatform)
+  echo "== database tests on PostgreSQL ($pg_url): ${targets[*]}"
+  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "$PY" -m pytest "${targets[@]}"
 else
   echo "!! PostgreSQL is not answering on 127.0.0.1:5432 and DATABASE_URL is unset:"
   echo "!! the PostgreSQL run is SKIPPED. CI must not skip it."

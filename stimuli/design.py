@@ -68,8 +68,11 @@ def rotate_for_participant(
     """Return the pages with conditions relabelled by row *participant* of a Latin square.
 
     Row r maps condition i to condition ``square[r][i]``: over any multiple of the
-    square's order of participants, every (item, ordered pair) cell is seen equally often,
-    while each participant's own set keeps the design's balance.
+    square's order of participants, every item is shown in every condition at each clip
+    position equally often and meets every unordered pair equally often, while each
+    participant's own set keeps the design's balance. Which order a pair is shown in is
+    not balanced per item by the rotation (a row keeps the differences between condition
+    indices); randomized clip positions balance it in expectation.
     """
     square = latin_square(len(conditions))
     row = square[participant % len(conditions)]

@@ -69,11 +69,16 @@ def generate(entries: list[Entry], directory: Path, progress=None) -> tuple[list
     return done, rendered
 
 
+def manifest_dict(entries: list[Entry], study: str = "") -> dict:
+    """Return the manifest of *entries* as JSON-ready data."""
+    return {"format": FORMAT, "version": FORMAT_VERSION, "study": study,
+            "clips": [entry.to_dict() for entry in entries]}  # fmt: skip
+
+
 def write_manifest(entries: list[Entry], path: Path, study: str = "") -> Path:
     """Write the manifest as indented JSON, atomically (temporary file, then rename)."""
     path = Path(path)
-    data = {"format": FORMAT, "version": FORMAT_VERSION, "study": study,
-            "clips": [entry.to_dict() for entry in entries]}  # fmt: skip
+    data = manifest_dict(entries, study)
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(dir=path.parent, suffix=".json.part")
     with os.fdopen(handle, "w", encoding="utf-8") as out:

@@ -34,6 +34,7 @@ STUDY_FIELDS = (
     "replay_limit",
     "require_full_view",
     "randomize_positions",
+    "rotate_conditions",
 )
 CONDITION_FIELDS = ("key", "label", "description", "is_simulated", "parameters", "position")
 ITEM_FIELDS = ("key", "kind", "text", "target_text", "is_practice", "parameters", "position")

@@ -85,6 +85,8 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
 
+    conditions = {condition.key: condition for condition in study.conditions.all()}
+
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
             question, trial, participant = response.question, response.trial, response.participant
@@ -94,12 +96,9 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             flags = _flags(participant, trial, participant.pk in failed)
             clip1 = clip2 = ""
             if trial.condition_a is not None:
-                first, second = (
-                    presented_conditions(participant, trial)
-                    if trial.condition_b is not None
-                    else (trial.condition_a, None)
-                )
-                clip1, clip2 = first.key, second.key if second is not None else ""
+                first, second = presented_conditions(participant, trial, conditions)
+                clip1 = first.key if first is not None else ""
+                clip2 = second.key if second is not None else ""
             row = {
                 "participant": str(participant.pk),
                 "study": study.slug,

@@ -3,22 +3,29 @@
 from django.conf import settings
 from django.contrib import admin
 from django.urls import path, re_path
-from django.views.static import serve
 
 from studyplatform import views
 
 urlpatterns = [
     path("", views.home, name="home"),
     path("admin/", admin.site.urls),
+    path("s/<slug:slug>/", views.study_welcome, name="study_welcome"),
+    path("p/<str:token>/", views.resume, name="participant_resume"),
+    path("p/<str:token>/<int:number>/", views.page, name="participant_page"),
+    path("p/<str:token>/answer/", views.save_answer, name="participant_answer"),
+    path("p/<str:token>/events/", views.log_events, name="participant_events"),
+    path(
+        "p/<str:token>/<int:number>/signed/<slug:question>/",
+        views.upload_signed_answer,
+        name="participant_signed_answer",
+    ),
+    path("p/<str:token>/language/", views.set_language, name="participant_language"),
+    path("p/<str:token>/done/", views.done, name="participant_done"),
     # Browsers ask for /favicon.ico on pages that name no icon (e.g. file downloads).
     path("favicon.ico", views.favicon),
 ]
 
 if settings.SIGNSTUDY_SERVE_MEDIA:
     urlpatterns += [
-        re_path(
-            rf"^{settings.MEDIA_URL.lstrip('/')}(?P<path>.*)$",
-            serve,
-            {"document_root": settings.MEDIA_ROOT},
-        )
+        re_path(rf"^{settings.MEDIA_URL.lstrip('/')}(?P<path>.*)$", views.media, name="media")
     ]

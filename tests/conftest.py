@@ -1,6 +1,7 @@
 """Fixtures shared by the whole suite: researchers, studies, the database in use."""
 
 import os
+import re
 
 import pytest
 from django.contrib.auth.models import Group
@@ -79,6 +80,9 @@ CHROMIUM_ARGS = [
     "--disable-background-networking",
     "--disable-component-update",
     "--disable-sync",
+    # A synthetic camera that needs no permission prompt, for webcam-recorded answers.
+    "--use-fake-device-for-media-stream",
+    "--use-fake-ui-for-media-stream",
 ]
 
 
@@ -105,9 +109,14 @@ def browser():
 
 @pytest.fixture
 def page(browser):
-    """A fresh browser page; fails the test on any console error or page crash."""
+    """A fresh browser page; fails the test on any console error or page crash.
+
+    A test that provokes errors on purpose (a lost connection) lists patterns of the
+    ones it expects in ``page.allowed_errors``.
+    """
     context = browser.new_context(viewport={"width": 1280, "height": 900})
     page = context.new_page()
+    page.allowed_errors = []
     errors = []
     page.on(
         "console",
@@ -128,6 +137,7 @@ def page(browser):
     )
     yield page
     context.close()
+    errors = [e for e in errors if not any(re.search(p, e) for p in page.allowed_errors)]
     assert errors == [], f"browser console errors: {errors}"
 
 

@@ -1,16 +1,31 @@
-"""Enroll participants in a study."""
+"""Enroll participants in a study and move them through its pages."""
 
+import re
 from collections.abc import Mapping
+from datetime import timedelta
+from urllib.parse import quote
 
 from django.core.exceptions import ValidationError
 from django.db import transaction
+from django.utils import timezone
 
-from studyplatform.models import Participant, Study
+from studyplatform.models import (
+    MediaEvent,
+    Participant,
+    PersonalAnswer,
+    Question,
+    Response,
+    Study,
+    Trial,
+)
+from studyplatform.schedule import build_schedule
 
 # Longest recruitment parameter kept, in characters: ids from recruitment services are
 # short; anything longer is not an id and is not stored.
 MAX_PARAM_LENGTH = 200
 MAX_PARAMS = 20
+# A one-sitting study closes for a participant who leaves it this long between pages.
+ONE_SITTING_BREAK = timedelta(minutes=30)
 
 
 def clean_recruitment_params(params: Mapping[str, str]) -> dict[str, str]:
@@ -26,13 +41,21 @@ def clean_recruitment_params(params: Mapping[str, str]) -> dict[str, str]:
 
 
 def do_enroll_participant(
-    study: Study, *, recruitment_params: Mapping[str, str] | None = None, user_agent: str = ""
+    study: Study,
+    *,
+    recruitment_params: Mapping[str, str] | None = None,
+    user_agent: str = "",
+    consented: bool = False,
 ) -> Participant:
-    """Create a participant with a fresh token and seed in a pilot or open study."""
+    """Create a participant with a fresh token, seed and schedule in a pilot or open study.
+
+    The schedule is drawn from the seed and the enrollment number (the Latin-square row)
+    and stored; *consented* records consent now (the welcome page's button).
+    """
     if not study.is_accepting_participants:
         raise ValidationError(f"The study “{study.title}” is not taking participants now.")
     with transaction.atomic():
-        return Participant.objects.create(
+        participant = Participant(
             study=study,
             recruitment_params=clean_recruitment_params(recruitment_params or {}),
             is_pilot=study.status == Study.Status.PILOT,
@@ -43,3 +66,178 @@ def do_enroll_participant(
             ),
             user_agent=user_agent[:400],
         )
+        enrollment = Participant.objects.filter(study=study).count()
+        participant.schedule = build_schedule(study, participant.seed, enrollment)
+        if consented:
+            now = timezone.now()
+            participant.consented_at = participant.last_seen_at = now
+            participant.position = participant.reached = 1
+        participant.save()
+        return participant
+
+
+class PageRejected(ValidationError):
+    """A move to a page the participant may not go to; nothing changed."""
+
+
+def page_count(participant: Participant) -> int:
+    """Return the number of scheduled pages (the thank-you page is number count + 1)."""
+    return len(participant.schedule)
+
+
+def closed_reason(participant: Participant, now=None) -> str:
+    """Return why the participant can no longer answer (time limit, sitting), or ""."""
+    study = participant.study
+    now = now or timezone.now()
+    if participant.is_finished:
+        return ""
+    limit = study.time_limit_minutes
+    if (
+        limit
+        and participant.consented_at
+        and now > participant.consented_at + timedelta(minutes=limit)
+    ):
+        return f"The time limit of {limit} minutes has passed."
+    if (
+        study.one_sitting
+        and participant.last_seen_at is not None
+        and now > participant.last_seen_at + ONE_SITTING_BREAK
+    ):
+        minutes = int(ONE_SITTING_BREAK.total_seconds() // 60)
+        return (
+            f"This study must be completed in one sitting, and more than {minutes} "
+            "minutes passed since your last page."
+        )
+    return ""
+
+
+def page_trial(participant: Participant, page: int, for_answer: bool = False) -> Trial:
+    """Return the trial on the participant's *page*, if they may see (or answer) it.
+
+    Raise PageRejected for a page they have not reached, and, when answering, for an
+    earlier page of a study that does not let participants go back, or a finished one.
+    """
+    if not 1 <= page <= page_count(participant):
+        raise PageRejected(f"There is no page {page} in this study.")
+    if page > participant.reached:
+        raise PageRejected("You have not reached this page yet.")
+    if for_answer:
+        if participant.is_finished:
+            raise PageRejected("This study is finished; answers can no longer change.")
+        if page != participant.position and not participant.study.allow_back:
+            raise PageRejected("This study does not let you change answers on earlier pages.")
+        reason = closed_reason(participant)
+        if reason:
+            raise PageRejected(reason)
+    key = participant.schedule[page - 1].get("trial")
+    # One query for the page: no default ordering (it joins the block), the clips and
+    # questions the page shows come along.
+    trial = (
+        Trial.objects.filter(study_id=participant.study_id, key=key)
+        .select_related("block", "item", "condition_a", "condition_b")
+        .prefetch_related("questions__options")
+        .order_by()
+        .first()
+    )
+    if trial is None:
+        raise PageRejected(f"Page {page} was removed from the study.")
+    return trial
+
+
+def missing_answers(participant: Participant, trial: Trial) -> list[Question]:
+    """Return the required questions of *trial* the participant has not answered."""
+    required = [q for q in trial.questions.all() if q.required]
+    answered = set(
+        Response.objects.filter(participant=participant, trial=trial).values_list(
+            "question_id", flat=True
+        )
+    )
+    answered |= set(
+        PersonalAnswer.objects.filter(participant=participant).values_list("question_id", flat=True)
+    )
+    return [q for q in required if q.pk not in answered]
+
+
+def unwatched_clips(participant: Participant, trial: Trial) -> list[int]:
+    """Return the clip positions of *trial* the participant has not watched to the end."""
+    positions = [1, 2] if trial.condition_b_id else [1]
+    ended = set(
+        MediaEvent.objects.filter(
+            participant=participant, trial=trial, kind=MediaEvent.Kind.ENDED
+        ).values_list("clip_position", flat=True)
+    )
+    return [position for position in positions if position not in ended]
+
+
+def do_advance_participant(participant: Participant, page: int, trial: Trial | None) -> int:
+    """Move the participant on from *page* (whose trial is *trial*); return the next page.
+
+    Repeating the move (a double click, a re-posted form) changes nothing and returns
+    the same page. Leaving the last page finishes the session.
+    """
+    with transaction.atomic():
+        participant = Participant.objects.select_for_update().get(pk=participant.pk)
+        if participant.is_finished or page < participant.position:
+            return participant.position  # moved on already: a repeated Next
+        if page > participant.position:
+            raise PageRejected("You have not reached this page yet.")
+        reason = closed_reason(participant)
+        if reason:
+            raise PageRejected(reason)
+        if trial is not None:
+            missing = missing_answers(participant, trial)
+            if missing:
+                raise PageRejected(
+                    "Please answer every question on this page first.",
+                    params={"questions": [q.key for q in missing]},
+                )
+            watch = participant.study.require_full_view and trial.condition_a_id and trial.item_id
+            if watch and unwatched_clips(participant, trial):
+                raise PageRejected("Please watch each clip to its end before going on.")
+        now = timezone.now()
+        participant.position = page + 1
+        participant.reached = max(participant.reached, participant.position)
+        participant.last_seen_at = now
+        if participant.position > page_count(participant):
+            participant.finished_at = now
+        participant.save(update_fields=["position", "reached", "last_seen_at", "finished_at"])
+        return participant.position
+
+
+def do_go_back_participant(participant: Participant, page: int) -> int:
+    """Move the participant back to *page*, if the study lets them; return it."""
+    with transaction.atomic():
+        participant = Participant.objects.select_for_update().get(pk=participant.pk)
+        if not participant.study.allow_back:
+            raise PageRejected("This study does not let you go back to earlier pages.")
+        if participant.is_finished:
+            raise PageRejected("This study is finished; answers can no longer change.")
+        if not 1 <= page <= participant.reached:
+            raise PageRejected("You have not reached this page yet.")
+        participant.position = page
+        participant.last_seen_at = timezone.now()
+        participant.save(update_fields=["position", "last_seen_at"])
+        return page
+
+
+def do_set_participant_language(participant: Participant, language: str) -> None:
+    """Switch the participant between ASL + English and English only."""
+    if language not in Participant.Language.values:
+        raise ValidationError(f"Unknown language “{language}”.")
+    if language == Participant.Language.ENGLISH and not participant.study.allow_english_only:
+        raise ValidationError("This study is presented in ASL and English only.")
+    Participant.objects.filter(pk=participant.pk).update(language=language)
+    participant.language = language
+
+
+def completion_url(participant: Participant) -> str:
+    """Return the study's redirect URL with the participant's recruitment parameters in it.
+
+    ``{PROLIFIC_PID}`` becomes the URL-quoted value the participant arrived with; names
+    the participant did not bring become empty.
+    """
+    template = participant.study.redirect_url
+    params = participant.recruitment_params or {}
+    return re.sub(
+        r"\{([A-Za-z0-9_]+)\}", lambda m: quote(str(params.get(m.group(1), "")), safe=""), template
+    )

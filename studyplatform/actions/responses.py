@@ -1,10 +1,12 @@
 """Save participants' answers idempotently: one response per participant, trial and question."""
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from django.core.exceptions import ValidationError
 from django.db import IntegrityError, transaction
 
+from analysis.intelligibility import word_accuracy
 from studyplatform.models import Condition, Participant, PersonalAnswer, Question, Response, Trial
 
 
@@ -24,23 +26,38 @@ class Answer:
 
 
 MAX_TEXT_LENGTH = 10_000
-ANSWER_FIELDS = ("chosen", "chosen_position", "rating", "number", "text")
+ANSWER_FIELDS = ("chosen", "chosen_position", "rating", "number", "text", "score")
 
 
-def presented_conditions(participant: Participant, trial: Trial) -> tuple[Condition, Condition]:
+def schedule_entry(participant: Participant, trial: Trial) -> dict | None:
+    """Return the participant's schedule entry of *trial*, or None if they are not shown it."""
+    for entry in participant.schedule:
+        if isinstance(entry, dict) and entry.get("trial") == trial.key:
+            return entry
+    return None
+
+
+def presented_conditions(
+    participant: Participant, trial: Trial, conditions: Mapping[str, Condition] | None = None
+) -> tuple[Condition | None, Condition | None]:
     """Return the conditions shown as Clip 1 and Clip 2 to *participant* on *trial*.
 
     The participant's stored schedule says whether the trial's clips were swapped
-    (entries ``{"trial": key, "swap": true}``); without an entry they are not.
+    (``"swap": true``) and, under Latin-square rotation, which conditions were shown
+    (``"a"``, ``"b"``); without an entry the trial's own clips show in order.
+    *conditions* (the study's, by key) saves a query per call.
     """
-    swapped = any(
-        entry.get("trial") == trial.key and entry.get("swap")
-        for entry in participant.schedule
-        if isinstance(entry, dict)
-    )
-    if swapped:
-        return trial.condition_b, trial.condition_a
-    return trial.condition_a, trial.condition_b
+    entry = schedule_entry(participant, trial) or {}
+    first, second = trial.condition_a, trial.condition_b
+    if "a" in entry:
+        if conditions is None:
+            keys = [entry["a"], entry.get("b")]
+            found = Condition.objects.filter(study_id=trial.study_id, key__in=keys)
+            conditions = {condition.key: condition for condition in found}
+        first, second = conditions.get(entry["a"]), conditions.get(entry.get("b"))
+    if entry.get("swap"):
+        return second, first
+    return first, second
 
 
 def _response_values(
@@ -54,6 +71,7 @@ def _response_values(
         "rating": None,
         "number": None,
         "text": "",
+        "score": None,
     }
     if kind == Question.Kind.PAIRWISE:
         position = answer.choice_position
@@ -66,7 +84,7 @@ def _response_values(
         else:
             raise AnswerRejected(f"“{position}” is not one of the clips on this page.")
     elif question.uses_options:
-        allowed = set(question.options.values_list("value", flat=True))
+        allowed = {option.value for option in question.options.all()}
         if answer.rating not in allowed:
             raise AnswerRejected(
                 f"“{answer.rating}” is not a point of the scale of “{question.key}”."
@@ -90,6 +108,9 @@ def _response_values(
         if not text and question.required:
             raise AnswerRejected(f"“{question.key}” needs an answer.")
         values["text"] = text
+        if kind == Question.Kind.INTELLIGIBILITY and trial.item is not None and text:
+            score = word_accuracy(text, trial.item.scoring_target)
+            values["score"] = None if score != score else score
     return values
 
 
@@ -105,7 +126,7 @@ def do_save_response(
         raise AnswerRejected("This page is not part of your study.")
     if participant.is_finished:
         raise AnswerRejected("This study is finished; answers can no longer change.")
-    if not trial.questions.filter(pk=question.pk).exists():
+    if question.pk not in {asked.pk for asked in trial.questions.all()}:  # prefetched or one query
         raise AnswerRejected(f"“{question.key}” is not asked on this page.")
     values = _response_values(participant, trial, question, answer)
 

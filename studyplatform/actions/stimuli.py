@@ -9,11 +9,13 @@ re-renders exactly that condition's clips.
 
 import zlib
 from dataclasses import dataclass
+from pathlib import Path
 
 from django.db import transaction
 
-from stimuli.clips import ClipError, ClipSpec
-from studyplatform.models import Condition, Item, Stimulus, Study, Trial
+from stimuli.clips import ClipError, ClipSpec, RenderedClip
+from stimuli.manifest import Entry
+from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
 
 
 @dataclass(frozen=True)
@@ -46,13 +48,21 @@ def clip_spec(condition: Condition, item: Item) -> ClipSpec:
 
 
 def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
-    """Return the (condition, item) pairs the study's trials show, in design order."""
+    """Return the (condition, item) pairs the study's trials show, in design order.
+
+    Under Latin-square rotation a trial block's item is shown in every condition.
+    """
     pairs = []
     trials = Trial.objects.filter(block__study=study).select_related(
-        "item", "condition_a", "condition_b"
+        "block", "item", "condition_a", "condition_b"
     )
+    every_condition = list(study.conditions.all())
     for trial in trials:
-        for condition in (trial.condition_a, trial.condition_b):
+        shown = [trial.condition_a, trial.condition_b]
+        rotated = study.rotate_conditions and trial.block.kind == Block.Kind.TRIALS
+        if rotated and trial.condition_a is not None:
+            shown = every_condition  # participants' rows relabel the conditions
+        for condition in shown:
             if trial.item is not None and condition is not None:
                 pair = (condition, trial.item)
                 if pair not in pairs:
@@ -133,3 +143,24 @@ def stimuli_progress(study: Study) -> dict:
         "percent": round(100 * done / total) if total else 0,
         "failures": failures,
     }
+
+
+def study_manifest(study: Study) -> list[Entry]:
+    """Return the manifest entries of the study's clips: every rendered clip's spec and facts.
+
+    Clips not rendered yet appear with their spec only, so the manifest still renders them.
+    """
+    entries = []
+    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
+    for stimulus in stimuli.order_by("item__position", "condition__position", "pk"):
+        clip = None
+        if stimulus.status == Stimulus.Status.READY and stimulus.video:
+            clip = RenderedClip(
+                Path(stimulus.video.name).relative_to("stimuli"),
+                Path(stimulus.poster.name).relative_to("stimuli"),
+                stimulus.duration_ms, stimulus.frame_count, stimulus.width, stimulus.height,
+                stimulus.size_bytes, stimulus.sha256,
+            )  # fmt: skip
+        label = f"{stimulus.condition.key} × {stimulus.item.key}"
+        entries.append(Entry(label, ClipSpec.from_dict(stimulus.parameters), clip))
+    return entries

@@ -21,7 +21,7 @@ class ReadOnlyMixin:
 class ResponseInline(ReadOnlyMixin, admin.TabularInline):
     model = Response
     extra = 0
-    fields = ("trial", "question", "chosen", "chosen_position", "rating", "text", "rt_ms")
+    fields = ("trial", "question", "chosen", "chosen_position", "rating", "text", "video", "rt_ms")
     readonly_fields = fields
     can_delete = False
 
@@ -48,6 +48,7 @@ class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
         "language",
         "is_pilot",
         "position",
+        "reached",
         "user_agent",
         "started_at",
         "consented_at",

@@ -1,8 +1,15 @@
 """Attach ASL videos to participant-facing text from the admin."""
 
 from django import forms
+from django.contrib import messages
 from django.contrib.contenttypes.admin import GenericTabularInline
+from django.core.exceptions import PermissionDenied, ValidationError
+from django.http import HttpRequest, HttpResponse, JsonResponse
+from django.shortcuts import redirect
+from django.urls import path
 
+from studyplatform.actions.prompts import do_attach_asl_video
+from studyplatform.asl import study_prompts
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo
 
 
@@ -27,3 +34,49 @@ class AslVideoInline(GenericTabularInline):
             {"field_name": forms.ChoiceField(choices=choices, label="Text")},
         )
         return super().get_formset(request, obj, **kwargs)
+
+
+class StudyAslMixin:
+    """Add the study's "ASL videos" page: every text, whether it is signed, upload or record."""
+
+    def asl_urls(self):
+        return [
+            path(
+                "<path:object_id>/asl/",
+                self.admin_site.admin_view(self.asl_view),
+                name="studyplatform_study_asl",
+            )
+        ]
+
+    def asl_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """List the study's texts with their ASL videos; a POST attaches one (file or webcam)."""
+        study = self._get_visible_study(request, object_id)
+        if request.method == "POST":
+            if not self.has_change_permission(request, study):
+                raise PermissionDenied
+            try:
+                video = do_attach_asl_video(
+                    study,
+                    int(request.POST.get("content_type", 0)),
+                    int(request.POST.get("object_id", 0)),
+                    request.POST.get("field_name", ""),
+                    request.FILES.get("video") or _missing_file(),
+                )
+            except (ValueError, ValidationError) as error:
+                message = error.messages[0] if isinstance(error, ValidationError) else str(error)
+                if request.headers.get("Accept") == "application/json":
+                    return JsonResponse({"error": message}, status=400)
+                messages.error(request, f"Not saved: {message}")
+            else:
+                if request.headers.get("Accept") == "application/json":
+                    return JsonResponse({"saved": True, "url": video.video.url})
+                messages.success(request, "ASL video saved.")
+            return redirect(request.path)
+        prompts = study_prompts(study)
+        signed = sum(1 for prompt in prompts if prompt.video is not None)
+        return self._page(request, "asl.html", f"ASL videos of “{study.title}”", study=study,
+                          prompts=prompts, signed=signed)  # fmt: skip
+
+
+def _missing_file():
+    raise ValidationError("Choose a video file or record one.")

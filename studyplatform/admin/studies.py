@@ -14,12 +14,13 @@ from django.urls import path, reverse
 from django.utils.html import format_html
 
 from stimuli.clips import ClipError
+from stimuli.manifest import manifest_dict
 from studyplatform import exchange
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
-from studyplatform.actions.stimuli import do_generate_stimuli, stimuli_progress
+from studyplatform.actions.stimuli import do_generate_stimuli, stimuli_progress, study_manifest
 from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
-from studyplatform.admin.prompts import AslVideoInline
+from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
@@ -71,7 +72,7 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
+class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyScopedMixin, admin.ModelAdmin):
     study_path = ""
     list_display = (
         "title",
@@ -99,7 +100,7 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
     )
     actions = ("generate_stimuli", "duplicate_studies", "export_studies")
     fieldsets = (
-        (None, {"fields": ("title", "slug", "status", "owner")}),
+        (None, {"fields": ("title", "slug", "status", "owner", "participant_link")}),
         ("Language", {"fields": ("asl_first", "allow_english_only")}),
         (
             "What participants read",
@@ -118,6 +119,7 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
                     "replay_limit",
                     "require_full_view",
                     "randomize_positions",
+                    "rotate_conditions",
                 )
             },
         ),
@@ -157,7 +159,22 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
         return self.list_filter
 
     def get_readonly_fields(self, request: HttpRequest, obj: Study | None = None):
-        return () if request.user.is_superuser else ("owner",)
+        own = () if request.user.is_superuser else ("owner",)
+        return (*own, "participant_link")
+
+    @admin.display(description="participant link")
+    def participant_link(self, study: Study) -> str:
+        """Show the link to send participants (recruitment services append their ids)."""
+        if study.pk is None:
+            return "Save the study first."
+        url = reverse("study_welcome", args=[study.slug])
+        return format_html(
+            '<a href="{}" target="_blank" rel="noopener">{}</a> on this server<div class="help">'
+            "Send this link to participants; parameters such as <code>?PROLIFIC_PID=…</code> "
+            "are kept. It works while the study is in pilot or open.</div>",
+            url,
+            url,
+        )
 
     def get_changeform_initial_data(self, request: HttpRequest):
         return {**super().get_changeform_initial_data(request), "owner": request.user.pk}
@@ -190,12 +207,17 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
                 name="studyplatform_study_stimuli_progress",
             ),
             path(
+                "<path:object_id>/stimuli/manifest.json",
+                self.admin_site.admin_view(self.stimuli_manifest_view),
+                name="studyplatform_study_stimuli_manifest",
+            ),
+            path(
                 "<path:object_id>/preview/",
                 self.admin_site.admin_view(self.preview_view),
                 name="studyplatform_study_preview",
             ),
         ]
-        return own + self.results_urls() + super().get_urls()
+        return own + self.results_urls() + self.asl_urls() + super().get_urls()
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
         study = self.get_object(request, object_id)
@@ -252,6 +274,14 @@ class StudyAdmin(StudyResultsMixin, StudyScopedMixin, admin.ModelAdmin):
     def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
         """Return the rendering progress as JSON, for the progress bar to poll."""
         return JsonResponse(stimuli_progress(self._get_visible_study(request, object_id)))
+
+    def stimuli_manifest_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
+        """Download the study's stimulus manifest (every clip's spec, facts and checksum)."""
+        study = self._get_visible_study(request, object_id)
+        response = JsonResponse(manifest_dict(study_manifest(study), study.slug),
+                                json_dumps_params={"indent": 1, "ensure_ascii": False})  # fmt: skip
+        response["Content-Disposition"] = f'attachment; filename="{study.slug}-stimuli.json"'
+        return response
 
     @admin.action(description="Generate stimuli (render missing clips)")
     def generate_stimuli(self, request: HttpRequest, queryset):

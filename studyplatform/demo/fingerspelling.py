@@ -2,7 +2,7 @@
 
 from typing import Any
 
-from stimuli import balanced_pair_assignment
+from stimuli import attention_checks, balanced_pair_assignment
 from studyplatform.demo.common import definition, numbered, scale
 
 WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
@@ -111,6 +111,21 @@ def fingerspelling_timing_study() -> dict[str, Any]:
                 ),
                 "allow_no_difference": False,
             },
+            {
+                "key": "compare-clips",
+                "kind": "comparative",
+                "text": "How do the two clips compare?",
+                "help_text": "Choose the middle point if you see no difference.",
+                "options": scale(
+                    [
+                        "Clip 1 much more natural",
+                        "Clip 1 a little more natural",
+                        "They look the same",
+                        "Clip 2 a little more natural",
+                        "Clip 2 much more natural",
+                    ]
+                ),
+            },
             *(
                 {"key": key, "kind": "open", "text": text, "required": False}
                 for key, text in OPEN_QUESTIONS
@@ -121,6 +136,12 @@ def fingerspelling_timing_study() -> dict[str, Any]:
         [
             {"key": "demographics", "kind": "demographics", "title": "About you"},
             {"key": "instructions", "kind": "instructions", "title": "Instructions"},
+            {
+                "key": "practice",
+                "kind": "practice",
+                "title": "Practice",
+                "intro_text": "A practice page first: its answer is not analysed.",
+            },
             {
                 "key": "comparisons",
                 "kind": "trials",
@@ -152,6 +173,15 @@ def fingerspelling_timing_study() -> dict[str, Any]:
             "item": EXAMPLE_WORD,
             "condition_a": "variable",
         },
+        {
+            "key": "practice-1",
+            "block": "practice",
+            "kind": "pairwise",
+            "item": EXAMPLE_WORD,
+            "condition_a": "variable",
+            "condition_b": "constant",
+            "questions": ["most-natural"],
+        },
     ]
     keys = [condition["key"] for condition in CONDITIONS]
     for index, (word, first, second) in enumerate(balanced_pair_assignment(keys, WORDS), 1):
@@ -164,6 +194,21 @@ def fingerspelling_timing_study() -> dict[str, Any]:
                 "condition_a": first,
                 "condition_b": second,
                 "questions": ["most-natural"],
+            }
+        )
+    # An attention check among the comparisons: two identical clips, to be rated the same.
+    for number, (word, first, second) in enumerate(attention_checks(keys, WORDS, 1, seed=6), 1):
+        trials.append(
+            {
+                "key": f"attention-{number}",
+                "block": "comparisons",
+                "kind": "comparative",
+                "item": word,
+                "condition_a": first,
+                "condition_b": second,
+                "questions": ["compare-clips"],
+                "is_attention_check": True,
+                "expected_answer": "3",
             }
         )
     trials.append(

@@ -59,6 +59,14 @@ def spine_study() -> dict[str, Any]:
             for key, text, low, high in RATINGS
         ),
         {"key": "preferred", "kind": "pairwise", "text": "Which animation do you prefer?"},
+        {
+            "key": "comments",
+            "kind": "open",
+            "text": "Is there anything else you noticed about the signing?",
+            "help_text": "Type your answer, or sign it with your camera.",
+            "required": False,
+            "allow_signed_answer": True,
+        },
     ]
     blocks = numbered(
         [
@@ -70,6 +78,7 @@ def spine_study() -> dict[str, Any]:
                 "title": "Part 2: which do you prefer?",
                 "randomize_order": True,
             },
+            {"key": "closing", "kind": "closing", "title": "Last question"},
         ]
     )
     trials = [
@@ -105,6 +114,9 @@ def spine_study() -> dict[str, Any]:
                 "questions": ["preferred"],
             }
         )
+    trials.append(
+        {"key": "comments", "block": "closing", "kind": "open", "questions": ["comments"]}
+    )
     return definition(
         {
             "slug": "spine-motion",

@@ -47,7 +47,11 @@ class Participant(models.Model):
         default=False, help_text="Joined while the study was in pilot; excluded from analysis."
     )
     position = models.PositiveIntegerField(
-        default=0, help_text="Index of the page the participant is on."
+        default=0,
+        help_text="Page the participant is on: 0 before consent, 1..n the scheduled pages.",
+    )
+    reached = models.PositiveIntegerField(
+        default=0, help_text="Furthest page the participant reached (they may go back)."
     )
     user_agent = models.CharField(max_length=400, blank=True)
     started_at = models.DateTimeField(auto_now_add=True)

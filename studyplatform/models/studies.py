@@ -92,6 +92,14 @@ class Study(models.Model):
     require_full_view = models.BooleanField(
         default=False, help_text="Participants must watch every clip to its end before answering."
     )
+    rotate_conditions = models.BooleanField(
+        default=False,
+        help_text=(
+            "Latin-square rotation: participant n sees the trial blocks' conditions relabelled "
+            "by row n of a balanced Latin square, so cells balance over every k participants "
+            "(k conditions). Needs every condition rendered for every item."
+        ),
+    )
     randomize_positions = models.BooleanField(
         default=True,
         help_text="Swap Clip 1 and Clip 2 at random per participant (seeded, reproducible).",

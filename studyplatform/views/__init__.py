@@ -1,5 +1,28 @@
 """Participant-facing and public views of the platform."""
 
 from studyplatform.views.home import favicon, home
+from studyplatform.views.media import media
+from studyplatform.views.participate import (
+    done,
+    log_events,
+    page,
+    resume,
+    save_answer,
+    set_language,
+    study_welcome,
+    upload_signed_answer,
+)
 
-__all__ = ["favicon", "home"]
+__all__ = [
+    "done",
+    "favicon",
+    "home",
+    "log_events",
+    "media",
+    "page",
+    "resume",
+    "save_answer",
+    "set_language",
+    "study_welcome",
+    "upload_signed_answer",
+]

@@ -60,9 +60,7 @@ class Renderer:
         # pyrender looks its shaders up by file name in its program cache; pointing the
         # cache at the project's own shaders swaps the PBR model for a much cheaper one
         # (private attributes of the pinned pyrender-maintained 1.0.1).
-        self._renderer._renderer._program_cache = pyrender.shader_program.ShaderProgramCache(
-            shader_dir=str(SHADERS)
-        )
+        self._renderer._renderer._program_cache = _program_cache(pyrender, str(SHADERS))
 
     def set_camera(self, camera: CameraPreset) -> None:
         """Move the camera (and, unless lights were given, the portrait lights with it)."""
@@ -176,3 +174,34 @@ class Renderer:
                 yield self._draw()
                 if progress is not None:
                     progress(start + k + 1, total)
+
+
+def _program_cache(pyrender, shader_dir: str):
+    """Return a shader program cache for one renderer that compiles each program once.
+
+    pyrender keys its cache on the current context object, and OSMesa hands out a new
+    pointer object on every make-current, so with pyrender's own key every frame missed
+    the cache, compiled its shaders again and kept the old programs (a tenth of the frame
+    time, and a leak). One renderer owns one context, so the key here leaves it out.
+    """
+
+    class ProgramCache(pyrender.shader_program.ShaderProgramCache):
+        def __init__(self) -> None:
+            super().__init__(shader_dir=shader_dir)
+            self._compiled: dict = {}
+
+        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None,
+                        defines=None):  # fmt: skip
+            defines = defines or {}
+            key = (vertex_shader, fragment_shader, geometry_shader, tuple(sorted(defines.items())))
+            if key not in self._compiled:
+                self._compiled[key] = super().get_program(
+                    vertex_shader, fragment_shader, geometry_shader, defines
+                )
+            return self._compiled[key]
+
+        def clear(self) -> None:
+            super().clear()
+            self._compiled = {}
+
+    return ProgramCache()

@@ -81,7 +81,7 @@ def test_rotation_is_balanced_over_any_multiple_of_the_square(participants):
         assert set(Counter((a, b) for _, a, b in mine).values()) == {4}
         seen.update(mine)
     cells = {(w, a, b) for w in WORDS for a in CONDITIONS for b in CONDITIONS if a != b}
-    # Every word meets every unordered pair equally often, in each order equally often.
+    # Every word meets every unordered pair equally often.
     pairs = Counter((w, frozenset((a, b))) for (w, a, b), c in seen.items() for _ in range(c))
     assert len(set(pairs.values())) == 1
     assert set(seen) <= cells

@@ -29,8 +29,8 @@ def test_researcher_signs_in_and_previews_the_demo(page, live_server, researcher
     # The admin's own stylesheet is served, so the page is laid out, not bare HTML.
     assert page.locator("#header").evaluate("e => getComputedStyle(e).display") == "flex"
     page.get_by_role("link", name="Preview").click()
-    assert page.locator("section.preview-page").count() == 53
-    assert page.get_by_text("Page 53 of 53").is_visible()
+    assert page.locator("section.preview-page").count() == 55
+    assert page.get_by_text("Page 55 of 55").is_visible()
     # Clip slots keep their 4:3 box before any clip exists: no layout jump later.
     box = page.locator(".clip-slot").first.bounding_box()
     assert box["width"] > 100 and abs(box["width"] / box["height"] - 4 / 3) < 0.02
@@ -48,3 +48,38 @@ def test_import_form_reports_a_bad_file(page, live_server, researcher, tmp_path)
     page.get_by_label("Definition").set_input_files(str(bad))
     page.get_by_role("button", name="Import").click()
     assert page.get_by_text("Not imported: Not a study definition").is_visible()
+
+
+def test_stimuli_page_shows_progress_live(page, live_server, researcher, settings, tmp_path,
+                                          renderable):  # fmt: skip
+    """The progress bar follows clips as a worker renders them, and names a failure."""
+    from studyplatform.actions.stimuli import do_generate_stimuli
+    from studyplatform.models import Stimulus, Study, Trial
+    from studyplatform.tasks import render_now
+
+    settings.MEDIA_ROOT = tmp_path
+    study = Study.objects.get(slug="fingerspelling-timing")
+    Trial.objects.filter(block__study=study).exclude(key="cmp-01").delete()
+    for condition in study.conditions.all():
+        condition.parameters = {**condition.parameters, "width": 64, "height": 48, "rate_hz": 20}
+        condition.save()
+    result = do_generate_stimuli(study, enqueue=False)  # recorded, waiting for a worker
+    first, second = Stimulus.objects.filter(pk__in=result.stimulus_ids)
+    second.parameters = {**second.parameters, "text": "GUITAR!"}  # cannot be spelled
+    second.save()
+
+    page.goto(
+        live_server.url + f"/admin/login/?next=/admin/studyplatform/study/{study.pk}/stimuli/"
+    )
+    page.get_by_label("Username").fill("alice")
+    page.get_by_label("Password").fill("pw-alice")
+    page.get_by_role("button", name="Log in").click()
+    assert page.locator("#stimuli-count").text_content() == "0 / 2"
+    assert render_now(first.pk) == Stimulus.Status.READY, Stimulus.objects.get(pk=first.pk).error
+    page.wait_for_function("document.getElementById('stimuli-count').textContent === '1 / 2'")
+    assert page.locator("#stimuli-percent").text_content() == "50"
+    assert render_now(second.pk) == Stimulus.Status.FAILED
+    failure = page.locator("#stimuli-failures li")
+    failure.wait_for()
+    assert "GUITAR" in failure.text_content() and "!" in failure.text_content()
+    assert page.locator("#stimuli-failed").text_content() == "1"

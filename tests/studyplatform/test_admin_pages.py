@@ -81,14 +81,16 @@ def test_study_page_links_preview_and_export(alice_client, fingerspelling):
     page = alice_client.get(reverse("admin:studyplatform_study_change", args=[fingerspelling.pk]))
     assert reverse("admin:studyplatform_study_preview", args=[fingerspelling.pk]) in page.text
     assert reverse("admin:studyplatform_study_export", args=[fingerspelling.pk]) in page.text
+    assert reverse("study_welcome", args=[fingerspelling.slug]) in page.text  # to send out
 
 
 def test_preview_shows_every_page_in_order(alice_client, fingerspelling):
     page = alice_client.get(reverse("admin:studyplatform_study_preview", args=[fingerspelling.pk]))
     assert page.status_code == 200
-    # consent + demographics + instructions + 48 comparisons + closing + thank-you
-    assert page.text.count('class="preview-page"') == 53
-    assert "Page 53 of 53" in page.text
+    # consent + demographics + instructions + practice + 48 comparisons + attention
+    # check + closing + thank-you
+    assert page.text.count('class="preview-page"') == 55
+    assert "Page 55 of 55" in page.text
     assert "Which animation is the most similar to actual fingerspelling" in page.text
     assert "Clip not rendered yet" in page.text
     assert "simulated" in page.text
@@ -149,7 +151,7 @@ def test_duplicate_action(alice_client, fingerspelling):
     )
     copy = Study.objects.get(slug="fingerspelling-timing-copy")
     assert copy.status == "draft"
-    assert copy.trials.count() == 51
+    assert copy.trials.count() == 53
 
 
 def test_export_of_several_studies_is_a_zip(admin_client, fingerspelling, spine):

@@ -40,7 +40,7 @@ def test_fingerspelling_demo_is_the_spec_02_design(seeded):
     study = Study.objects.get(slug="fingerspelling-timing")
     assert study.conditions.count() == 4
     assert study.conditions.get(key="mocap").is_simulated
-    comparisons = study.trials.filter(kind="pairwise")
+    comparisons = study.trials.filter(kind="pairwise", block__kind="trials")
     assert comparisons.count() == 48
     ordered = Counter((t.condition_a.key, t.condition_b.key) for t in comparisons)
     assert set(ordered.values()) == {4} and len(ordered) == 12
@@ -48,8 +48,14 @@ def test_fingerspelling_demo_is_the_spec_02_design(seeded):
         (t.item.key, frozenset((t.condition_a.key, t.condition_b.key))) for t in comparisons
     )
     assert len(cells) == 48 and set(cells.values()) == {1}
-    # Seed 000 Fig. 5.2: "2 / 51": demographics, instructions, 48 comparisons, closing.
-    assert study.trials.count() == 51
+    # Seed 000 Fig. 5.2: "2 / 51": demographics, instructions, 48 comparisons, closing;
+    # the demo adds a practice page and an attention check (identical clips, rated same).
+    assert study.trials.count() == 53
+    practice = study.trials.get(block__kind="practice")
+    assert practice.item.is_practice and practice.condition_a != practice.condition_b
+    check = study.trials.get(is_attention_check=True)
+    assert check.block.key == "comparisons" and check.condition_a == check.condition_b
+    assert check.expected_answer == "3"
 
 
 def test_spine_demo_is_the_spec_03_design(seeded):

@@ -42,7 +42,7 @@ def test_export_keeps_every_part_of_the_demo(fingerspelling):
     data = export_study(fingerspelling)
     assert len(data["conditions"]) == 4
     assert len(data["items"]) == 9
-    assert len([t for t in data["trials"] if t["kind"] == "pairwise"]) == 48
+    assert len([t for t in data["trials"] if t["kind"] == "pairwise"]) == 49  # 48 + practice
     mocap = next(c for c in data["conditions"] if c["key"] == "mocap")
     assert mocap["is_simulated"] is True
     age = next(q for q in data["questions"] if q["key"] == "age")

@@ -11,7 +11,11 @@ from studyplatform.models import PersonalAnswer, Response
 
 @pytest.fixture
 def participant(fingerspelling):
-    return do_enroll_participant(fingerspelling, recruitment_params={"PROLIFIC_PID": "p1"})
+    """A participant whose clips all show in design order (no swaps)."""
+    participant = do_enroll_participant(fingerspelling, recruitment_params={"PROLIFIC_PID": "p1"})
+    participant.schedule = [{**entry, "swap": False} for entry in participant.schedule]
+    participant.save()
+    return participant
 
 
 def _pairwise_trial(study, key="cmp-01"):

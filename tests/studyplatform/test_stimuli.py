@@ -1,9 +1,11 @@
 """Test generating a study's stimuli: caching by content hash, re-rendering, failures."""
 
+import json
+
 import pytest
 from django.core.management import CommandError, call_command
 
-from stimuli.clips import ClipError
+from stimuli.clips import ClipError, file_sha256
 from studyplatform.actions.stimuli import clip_spec, do_generate_stimuli, do_retry_stimuli
 from studyplatform.models import Condition, Stimulus, Trial
 from synthesis.render.video import count_frames
@@ -132,3 +134,71 @@ def test_the_admin_action_renders_and_shows_progress(
         2, 2, 0, 100)  # fmt: skip
     client.force_login(bob)  # another researcher's study is not there for bob
     assert client.get(progress_url).status_code == 404
+
+
+def test_the_manifest_lists_every_clip_and_renders_the_study_again(
+    small_study, client, alice, settings, tmp_path, capsys, django_capture_on_commit_callbacks
+):
+    from django.urls import reverse
+
+    _generate(small_study, django_capture_on_commit_callbacks)
+    call_command("generate_stimuli", small_study.slug, "--manifest", tmp_path / "m.json")
+    client.force_login(alice)
+    download = client.get(
+        reverse("admin:studyplatform_study_stimuli_manifest", args=[small_study.pk])
+    )
+    assert download["Content-Disposition"] == (
+        'attachment; filename="fingerspelling-timing-stimuli.json"'
+    )
+    manifest = download.json()
+    assert manifest == json.loads((tmp_path / "m.json").read_text())
+    stimuli = {s.content_hash: s for s in Stimulus.objects.all()}
+    assert {clip["hash"] for clip in manifest["clips"]} == set(stimuli)
+    for clip in manifest["clips"]:
+        stimulus = stimuli[clip["hash"]]
+        assert clip["clip"]["sha256"] == stimulus.sha256
+        assert clip["clip"]["frame_count"] == stimulus.frame_count
+        assert clip["clip"]["size_bytes"] == stimulus.size_bytes
+        assert clip["clip"]["video"] == f"{stimulus.content_hash}.mp4"
+
+    # From the manifest alone, into an empty media folder: the same bytes.
+    settings.MEDIA_ROOT = tmp_path / "elsewhere"
+    call_command("generate_stimuli", "--from-manifest", str(tmp_path / "m.json"))
+    assert "2 clips, 2 rendered" in capsys.readouterr().out
+    for content_hash, stimulus in stimuli.items():
+        again = tmp_path / "elsewhere" / "stimuli" / f"{content_hash}.mp4"
+        assert file_sha256(again) == stimulus.sha256
+    call_command("generate_stimuli", "--from-manifest", str(tmp_path / "m.json"))
+    assert "2 clips, 0 rendered" in capsys.readouterr().out
+    (tmp_path / "bad.json").write_text("{}")
+    with pytest.raises(CommandError, match="not a stimuli manifest"):
+        call_command("generate_stimuli", "--from-manifest", str(tmp_path / "bad.json"))
+
+
+def test_conditions_of_an_item_open_and_close_on_the_same_frame(fingerspelling, tmp_path):
+    """Clip hygiene (issue 6): no condition can be told by its first or last frame."""
+    import imageio_ffmpeg
+    import numpy as np
+
+    from stimuli.clips import render
+
+    def decoded(path):
+        reader = imageio_ffmpeg.read_frames(str(path))
+        meta = next(reader)
+        width, height = meta["size"]
+        return [np.frombuffer(f, np.uint8).reshape(height, width, 3) for f in reader]
+
+    item = fingerspelling.items.get(key="DAVID")
+    clips = []
+    for condition in fingerspelling.conditions.all():
+        spec = clip_spec(condition, item)
+        spec = type(spec).from_dict({**spec.to_dict(), **SMALL})
+        clips.append(render(spec, tmp_path))
+    assert len({(c.width, c.height) for c in clips}) == 1
+    frames = [decoded(tmp_path / c.video.name) for c in clips]
+    durations = {c.duration_ms for c in clips}
+    assert len(durations) > 1  # the conditions differ in timing …
+    for ends in (0, -1):  # … but open and close on the same still rest pose
+        reference = frames[0][ends].astype(int)
+        for other in frames[1:]:
+            assert np.abs(other[ends].astype(int) - reference).mean() < 1.0

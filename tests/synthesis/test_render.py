@@ -39,6 +39,29 @@ def test_still_shows_the_hand_and_is_deterministic():
     assert _foreground(fist).sum() < _foreground(first).sum()  # a fist covers less than B
 
 
+def test_shader_programs_are_compiled_once_per_renderer(monkeypatch):
+    """Regression: pyrender's cache key changed with every OSMesa make-current, so each
+    frame compiled its shaders again (and kept the old programs)."""
+    from synthesis.render.backend import import_pyrender
+
+    program = import_pyrender().shader_program.ShaderProgram
+    compiled = []
+    real = program._add_to_context
+
+    def counting(self):
+        compiled.append(self)
+        return real(self)
+
+    monkeypatch.setattr(program, "_add_to_context", counting)
+    motion = np.stack([letter_pose(c) for c in "ABCDEF"])
+    with Renderer(hand_avatar("right"), hand_close_up(), 64, 48) as renderer:
+        first = list(renderer.frames(motion[:1]))
+        after_one = len(compiled)
+        rest = list(renderer.frames(motion))
+    assert after_one > 0 and len(compiled) == after_one  # six more frames, no new programs
+    assert np.array_equal(first[0], rest[0])
+
+
 def test_left_handed_signer_is_the_mirror_image():
     masks = {}
     for side in ("right", "left"):

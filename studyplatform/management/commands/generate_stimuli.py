@@ -1,13 +1,16 @@
 """Render a study's stimuli: every clip its trials show that is not rendered yet."""
 
 import time
+from pathlib import Path
 
 from django.conf import settings
 from django.core.management.base import BaseCommand, CommandError
 
 from stimuli.clips import ClipError
-from studyplatform.actions.stimuli import do_generate_stimuli
+from stimuli.manifest import generate, read_manifest, write_manifest
+from studyplatform.actions.stimuli import do_generate_stimuli, study_manifest
 from studyplatform.models import Stimulus, Study
+from studyplatform.tasks import SUBDIRECTORY
 
 
 class Command(BaseCommand):
@@ -17,14 +20,26 @@ class Command(BaseCommand):
     )
 
     def add_arguments(self, parser) -> None:
-        parser.add_argument("study", help="the study's slug")
+        parser.add_argument("study", nargs="?", default="", help="the study's slug")
         parser.add_argument("--workers", type=int, default=1,
                             help="local rendering processes (when no broker is set)")  # fmt: skip
         parser.add_argument("--force", action="store_true", help="render every clip again")
+        parser.add_argument(
+            "--manifest", type=Path, metavar="PATH",
+            help="write the study's stimulus manifest (JSON) here afterwards",
+        )  # fmt: skip
+        parser.add_argument(
+            "--from-manifest", type=Path, metavar="PATH",
+            help="render a manifest's clips into the media folder (no study)",
+        )  # fmt: skip
         parser.add_argument("--timeout", type=float, default=3600.0,
                             help="seconds to wait for queued jobs (with a broker)")  # fmt: skip
 
     def handle(self, *args, study: str, workers: int, force: bool, timeout: float, **options):
+        if options["from_manifest"] is not None:
+            return self._render_manifest(options["from_manifest"])
+        if not study:
+            raise CommandError("Name a study (its slug), or give --from-manifest.")
         found = Study.objects.filter(slug=study).first()
         if found is None:
             raise CommandError(f"No study with the slug {study!r}.")
@@ -47,8 +62,25 @@ class Command(BaseCommand):
             f"{found.slug}: {result.total} clips, {result.queued} rendered, {result.ready} "
             f"already there, {failed.count()} failed ({time.perf_counter() - started:.1f} s)"
         )
+        if options["manifest"] is not None:
+            path = write_manifest(study_manifest(found), options["manifest"], found.slug)
+            self.stdout.write(f"manifest written to {path}")
         if failed.exists():
             raise CommandError(f"{failed.count()} clip(s) failed; retry them from the admin.")
+
+    def _render_manifest(self, path: Path) -> None:
+        """Render every clip of the manifest at *path* that the media folder lacks."""
+        try:
+            entries = read_manifest(path)
+        except ClipError as error:
+            raise CommandError(str(error)) from None
+        directory = Path(settings.MEDIA_ROOT) / SUBDIRECTORY
+
+        def report(number: int, total: int, label: str) -> None:
+            self.stdout.write(f"  {number}/{total} {label}")
+
+        done, rendered = generate(entries, directory, report)
+        self.stdout.write(f"{path}: {len(done)} clips, {rendered} rendered, into {directory}")
 
     def _render_with_pool(self, study: Study, force: bool, workers: int):
         """Record the clips without queueing, then render them in *workers* processes."""

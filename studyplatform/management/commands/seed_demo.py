@@ -50,6 +50,9 @@ class Command(BaseCommand):
             f"  Admin:           {url}admin/\n"
             f"  Username:        {ADMIN_USERNAME}\n"
             f"  Password:        {password}\n"
+            + "".join(
+                f"  Take part:       {url}s/{build()['study']['slug']}/\n" for build in DEMO_STUDIES
+            )
         )
 
     def _ensure_admin(self):

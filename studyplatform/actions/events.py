@@ -1,0 +1,109 @@
+"""Log what participants did with the clips and pages: play, pause, seek, end, errors."""
+
+from collections.abc import Sequence
+
+from django.core.exceptions import ValidationError
+from django.db import transaction
+
+from studyplatform.actions.participants import PageRejected, page_trial
+from studyplatform.actions.responses import presented_conditions
+from studyplatform.models import MediaEvent, Participant, Stimulus
+
+MAX_EVENTS_PER_BATCH = 500
+MAX_DETAIL_LENGTH = 500
+
+
+class EventsRejected(ValidationError):
+    """A batch of events with a malformed event; none of the batch was saved."""
+
+
+def _event(
+    participant: Participant, number: int, raw: object, trials: dict, stimuli: dict
+) -> MediaEvent:
+    """Check one raw event (a JSON object) and return the unsaved row.
+
+    *trials* (by page) and *stimuli* (by page and clip) remember lookups across a batch.
+    """
+    if not isinstance(raw, dict):
+        raise EventsRejected(f"Event {number} is not an object.")
+    kind = raw.get("kind")
+    if kind not in MediaEvent.Kind.values:
+        raise EventsRejected(f"Event {number} has an unknown kind “{kind}”.")
+    page = raw.get("page")
+    if not isinstance(page, int) or isinstance(page, bool):
+        raise EventsRejected(f"Event {number} names no page.")
+    if page not in trials:
+        try:
+            trials[page] = page_trial(participant, page)
+        except PageRejected as error:
+            raise EventsRejected(f"Event {number}: {error.message}") from None
+    trial = trials[page]
+    clip = raw.get("clip")
+    if clip not in (None, 1, 2):
+        raise EventsRejected(f"Event {number} names clip {clip!r}; a page has clips 1 and 2.")
+    numbers = {}
+    for name in ("media_time_s", "client_time_ms"):
+        value = raw.get(name)
+        if value is not None and (not isinstance(value, int | float) or isinstance(value, bool)):
+            raise EventsRejected(f"Event {number}: {name} is not a number.")
+        numbers[name] = value
+    detail = raw.get("detail") or {}
+    if not isinstance(detail, dict) or len(str(detail)) > MAX_DETAIL_LENGTH:
+        raise EventsRejected(f"Event {number}: the detail is not a small object.")
+    stimulus = None
+    if clip is not None and trial.item_id:
+        if (page, clip) not in stimuli:  # a batch holds many events of the same clips
+            condition = presented_conditions(participant, trial)[clip - 1]
+            stimuli[(page, clip)] = (
+                Stimulus.objects.filter(condition=condition, item_id=trial.item_id).first()
+                if condition is not None
+                else None
+            )
+        stimulus = stimuli[(page, clip)]
+    client_ms = numbers["client_time_ms"]
+    return MediaEvent(
+        participant=participant,
+        trial=trial,
+        stimulus=stimulus,
+        clip_position=clip,
+        kind=kind,
+        media_time_s=numbers["media_time_s"],
+        client_time_ms=None if client_ms is None else int(client_ms),
+        detail=detail,
+    )
+
+
+def do_log_media_events(participant: Participant, events: Sequence[object]) -> int:
+    """Save a batch of events from the participant's browser; return how many were new.
+
+    A batch sent again (its answer was lost on the way back) adds nothing: an event
+    equal in kind, page, clip and browser time to a logged one is skipped.
+    """
+    if not isinstance(events, list | tuple):
+        raise EventsRejected("Events come as a list.")
+    if len(events) > MAX_EVENTS_PER_BATCH:
+        raise EventsRejected(f"At most {MAX_EVENTS_PER_BATCH} events per batch.")
+    trials: dict = {}
+    stimuli: dict = {}
+    rows = [
+        _event(participant, number, raw, trials, stimuli) for number, raw in enumerate(events, 1)
+    ]
+    with transaction.atomic():
+        times = [row.client_time_ms for row in rows if row.client_time_ms is not None]
+        seen = set()
+        if times:
+            seen = set(
+                MediaEvent.objects.filter(
+                    participant=participant,
+                    client_time_ms__gte=min(times),
+                    client_time_ms__lte=max(times),
+                ).values_list("kind", "trial_id", "clip_position", "client_time_ms")
+            )
+        new = []
+        for row in rows:
+            key = (row.kind, row.trial_id, row.clip_position, row.client_time_ms)
+            if row.client_time_ms is None or key not in seen:
+                seen.add(key)
+                new.append(row)
+        MediaEvent.objects.bulk_create(new)
+    return len(new)

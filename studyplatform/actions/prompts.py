@@ -1,0 +1,44 @@
+"""Attach ASL videos to participant-facing texts."""
+
+from django.contrib.contenttypes.models import ContentType
+from django.core.exceptions import ValidationError
+from django.db import transaction
+
+from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo, Study
+
+# The containers an ASL video may come in: uploads and webcam recordings alike.
+VIDEO_SUFFIXES = (".mp4", ".webm", ".mov", ".m4v")
+MAX_ASL_VIDEO_BYTES = 300 * 1024 * 1024
+
+
+def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, field_name: str,
+                        upload) -> AslVideo:  # fmt: skip
+    """Save *upload* as the ASL video of one text of *study*, replacing an older one."""
+    try:
+        model = ContentType.objects.get_for_id(content_type_id).model_class()
+    except ContentType.DoesNotExist:
+        raise ValidationError("Unknown kind of text.") from None
+    fields = PARTICIPANT_FACING_FIELDS.get(model._meta.model_name if model else "", ())
+    if field_name not in fields:
+        raise ValidationError(f"“{field_name}” is not a text participants read.")
+    obj = model._default_manager.filter(pk=object_id).first()
+    owner = obj if isinstance(obj, Study) else getattr(obj, "study", None)
+    if owner is None and obj is not None and hasattr(obj, "question"):
+        owner = obj.question.study
+    if obj is None or owner is None or owner.pk != study.pk:
+        raise ValidationError("This text is not part of the study.")
+    name = getattr(upload, "name", "") or ""
+    if not name.lower().endswith(VIDEO_SUFFIXES):
+        raise ValidationError(f"“{name}” is not a video file ({', '.join(VIDEO_SUFFIXES)}).")
+    if upload.size > MAX_ASL_VIDEO_BYTES:
+        raise ValidationError("The video is larger than 300 MB.")
+    with transaction.atomic():
+        video, _ = AslVideo.objects.select_for_update().get_or_create(
+            content_type_id=content_type_id, object_id=object_id, field_name=field_name,
+            defaults={"video": ""},
+        )  # fmt: skip
+        old = video.video.name if video.video else ""
+        video.video.save(name, upload, save=True)
+        if old and old != video.video.name:
+            transaction.on_commit(lambda: video.video.storage.delete(old))
+    return video

@@ -1,0 +1,115 @@
+"""Receive signed answers recorded with the webcam, in chunks that survive a lost connection.
+
+The browser sends the recording in chunks, each saying at which byte it starts. A chunk
+that does not start where the stored part ends is refused with the stored length, so
+the browser resumes from there after a dropped connection, and a repeated chunk is
+never appended twice; a chunk at byte 0 starts a new recording. The last chunk turns
+the part into the answer's video file.
+"""
+
+import os
+import secrets
+from pathlib import Path
+
+from django.conf import settings
+from django.core.exceptions import ValidationError
+from django.core.files import File
+from django.db import transaction
+
+from studyplatform.models import Participant, Question, Response, Trial
+
+MAX_SIGNED_ANSWER_BYTES = 200 * 1024 * 1024
+# The containers browsers record into: WebM (Matroska's EBML magic) and MP4 (Safari).
+EBML_MAGIC = b"\x1a\x45\xdf\xa3"
+MP4_BRAND_AT = slice(4, 8)
+
+
+class UploadRejected(ValidationError):
+    """A chunk or recording that cannot be taken; what was stored before is kept."""
+
+
+class UploadOffsetMismatch(UploadRejected):
+    """A chunk that does not start where the stored part ends; resume from *offset*."""
+
+    def __init__(self, offset: int):
+        super().__init__(f"The upload continues at byte {offset}.")
+        self.offset = offset
+
+
+def partial_path(participant: Participant, trial: Trial, question: Question) -> Path:
+    """Return where the unfinished upload of this answer is kept."""
+    name = f"{participant.pk}-{trial.pk}-{question.pk}.part"
+    return Path(settings.MEDIA_ROOT) / "answers" / "partial" / name
+
+
+def upload_offset(participant: Participant, trial: Trial, question: Question) -> int:
+    """Return how many bytes of this answer's recording are stored so far."""
+    path = partial_path(participant, trial, question)
+    return path.stat().st_size if path.exists() else 0
+
+
+def _check_question(trial: Trial, question: Question) -> None:
+    if not question.allow_signed_answer:
+        raise UploadRejected(f"“{question.key}” does not take a signed answer.")
+    if not trial.questions.filter(pk=question.pk).exists():
+        raise UploadRejected(f"“{question.key}” is not asked on this page.")
+
+
+def _looks_like_video(head: bytes) -> bool:
+    return head.startswith(EBML_MAGIC) or head[MP4_BRAND_AT] == b"ftyp"
+
+
+def do_append_signed_answer_chunk(
+    participant: Participant,
+    trial: Trial,
+    question: Question,
+    offset: int,
+    chunk: bytes,
+    final: bool,
+) -> tuple[int, Response | None]:
+    """Append *chunk* at byte *offset*; with *final*, save the recording as the answer.
+
+    Return the stored length and, after the final chunk, the saved Response.
+    """
+    _check_question(trial, question)
+    with transaction.atomic():
+        # One writer per participant at a time: concurrent chunks cannot interleave.
+        Participant.objects.select_for_update().get(pk=participant.pk)
+        path = partial_path(participant, trial, question)
+        if offset == 0:
+            path.unlink(missing_ok=True)  # a new recording starts over
+        stored = path.stat().st_size if path.exists() else 0
+        if offset != stored:
+            raise UploadOffsetMismatch(stored)
+        if stored + len(chunk) > MAX_SIGNED_ANSWER_BYTES:
+            path.unlink(missing_ok=True)
+            limit = MAX_SIGNED_ANSWER_BYTES // (1024 * 1024)
+            raise UploadRejected(f"The recording is longer than {limit} MB allows.")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(path, "ab") as part:
+            part.write(chunk)
+            part.flush()
+            os.fsync(part.fileno())
+        stored += len(chunk)
+        if not final:
+            return stored, None
+        with open(path, "rb") as part:
+            head = part.read(12)
+        if not _looks_like_video(head):
+            path.unlink(missing_ok=True)
+            raise UploadRejected("The recording is not a WebM or MP4 video.")
+        suffix = ".webm" if head.startswith(EBML_MAGIC) else ".mp4"
+        response = Response.objects.select_for_update().filter(
+            participant=participant, trial=trial, question=question
+        ).first() or Response(participant=participant, trial=trial, question=question)
+        old = response.video.name if response.video else ""
+        name = f"{participant.pk}-{trial.key}-{question.key}-{secrets.token_hex(4)}{suffix}"
+        with open(path, "rb") as part:
+            response.video.save(name, File(part), save=False)
+        if response.pk:
+            response.revision += 1
+        response.save()
+        path.unlink(missing_ok=True)
+        if old:
+            transaction.on_commit(lambda: response.video.storage.delete(old))
+        return stored, response

@@ -1,0 +1,361 @@
+/* The participant's page: preload clips, own clip controls, save each answer as soon as
+ * it is given (retrying through a lost connection), log media events in batches, and
+ * move on without double submits. Without this script the page still works: native
+ * video controls and a plain form post. */
+(function () {
+  "use strict";
+  const form = document.getElementById("page-form");
+  if (!form) { return; }
+  const csrf = form.querySelector("[name=csrfmiddlewaretoken]").value;
+  const page = Number(form.dataset.page);
+  const trial = form.dataset.trial;
+  const replayLimit = form.dataset.replayLimit ? Number(form.dataset.replayLimit) : null;
+  const fullView = form.dataset.fullView === "1";
+  const status = document.getElementById("save-status");
+  const pageError = document.getElementById("page-error");
+  const nextButton = document.getElementById("next-button");
+  let shownAt = performance.now();
+
+  /* ASL first: English text is secondary, and can be hidden where an ASL video signs it. */
+  const englishToggle = document.getElementById("english-toggle");
+  if (englishToggle) {
+    const hideKey = "signstudy-hide-english";
+    const apply = function (hidden) {
+      document.body.classList.toggle("hide-english", hidden);
+      englishToggle.setAttribute("aria-pressed", String(hidden));
+      englishToggle.textContent = hidden ? "Show English text" : "Hide English text";
+    };
+    apply(localStorage.getItem(hideKey) === "1");
+    englishToggle.hidden = false;
+    englishToggle.addEventListener("click", function () {
+      const hidden = !document.body.classList.contains("hide-english");
+      try { localStorage.setItem(hideKey, hidden ? "1" : "0"); } catch (e) { /* private mode */ }
+      apply(hidden);
+    });
+  }
+
+  function sleep(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
+  function backoff(attempt) { return Math.min(500 * Math.pow(2, attempt), 8000); }
+  function setStatus(text) { status.textContent = text; }
+  function post(url, body, keepalive) {
+    return fetch(url, {
+      method: "POST", credentials: "same-origin", keepalive: Boolean(keepalive),
+      headers: {"Content-Type": "application/json", "Accept": "application/json", "X-CSRFToken": csrf},
+      body: JSON.stringify(body),
+    });
+  }
+
+  /* Events: kept in localStorage until the server has them, so a reload or a lost
+   * connection loses none; the server skips a batch it already logged. */
+  const queueKey = "signstudy-events-" + form.dataset.token;
+  let queue = [];
+  try { queue = JSON.parse(localStorage.getItem(queueKey) || "[]"); } catch (e) { queue = []; }
+  let lastTime = 0;
+  function store() { try { localStorage.setItem(queueKey, JSON.stringify(queue)); } catch (e) { /* full or private mode: keep in memory */ } }
+  function log(kind, clip, mediaTime, detail) {
+    lastTime = Math.max(Date.now(), lastTime + 1);  // distinct times: the server's duplicate key
+    queue.push({kind: kind, page: page, clip: clip || null,
+      media_time_s: mediaTime === undefined ? null : Math.round(mediaTime * 1000) / 1000,
+      client_time_ms: lastTime, detail: detail || {}});
+    store();
+  }
+  let flushing = null;
+  function flush(keepalive) {
+    if (flushing) { return flushing; }
+    if (!queue.length) { return Promise.resolve(true); }
+    const batch = queue.slice(0, 200);
+    flushing = post(form.dataset.eventsUrl, {events: batch}, keepalive).then(function (response) {
+      // 4xx: a batch the server will never take (e.g. from an old page); drop it.
+      if (response.ok || (response.status >= 400 && response.status < 500)) {
+        queue = queue.slice(batch.length);
+        store();
+        return true;
+      }
+      return false;
+    }).catch(function () { return false; }).finally(function () { flushing = null; });
+    return flushing;
+  }
+  setInterval(flush, 4000);
+  document.addEventListener("visibilitychange", function () {
+    if (document.visibilityState === "hidden") { log("page_hidden"); flush(true); }
+  });
+
+  /* Answers: one request at a time per question, the latest value wins. */
+  const pending = new Map();
+  const inflight = new Set();
+  function showQuestionError(question, message) {
+    const element = document.getElementById("error-" + question);
+    if (!element) { return; }
+    element.textContent = message || "";
+    element.hidden = !message;
+  }
+  async function send(question) {
+    if (inflight.has(question)) { return; }
+    inflight.add(question);
+    for (let attempt = 0; pending.has(question); attempt++) {
+      const payload = pending.get(question);
+      setStatus("Saving…");
+      let retry = false;
+      try {
+        const response = await post(form.dataset.answerUrl, payload);
+        if (response.ok) {
+          showQuestionError(question, "");
+        } else if (response.status < 500) {
+          const data = await response.json().catch(function () { return {}; });
+          showQuestionError(question, data.error || "This answer could not be saved.");
+        } else { retry = true; }
+      } catch (e) { retry = true; }
+      if (retry) {
+        setStatus("Not saved yet (no connection). Trying again…");
+        await sleep(backoff(attempt));
+      } else if (pending.get(question) === payload) {
+        pending.delete(question);
+      }
+    }
+    inflight.delete(question);
+    if (!pending.size && !inflight.size) { setStatus("Answer saved."); }
+  }
+  function answered(input) {
+    const match = /^q-(.+)$/.exec(input.name || "");
+    if (!match) { return; }
+    const question = match[1];
+    const rt = Math.round(performance.now() - shownAt);
+    const rtInput = form.querySelector('[name="rt-' + question + '"]');
+    if (rtInput) { rtInput.value = String(rt); }
+    pending.set(question, {page: page, trial: trial, question: question, value: input.value, rt_ms: rt});
+    send(question);
+  }
+  form.addEventListener("change", function (event) { answered(event.target); });
+
+  /* Next / Previous: post the form by script, retrying through a lost connection; the
+   * server ignores a repeated move, so a double click changes nothing. */
+  let moving = false;
+  form.addEventListener("submit", async function (event) {
+    event.preventDefault();
+    if (moving) { return; }
+    const nav = event.submitter && event.submitter.value === "back" ? "back" : "next";
+    moving = true;
+    form.querySelectorAll(".page-nav button").forEach(function (b) { b.disabled = true; });
+    pageError.hidden = true;
+    await flush();
+    const data = new FormData(form);
+    data.set("nav", nav);
+    for (let attempt = 0; ; attempt++) {
+      try {
+        const response = await fetch(form.action || location.href, {
+          method: "POST", body: data, credentials: "same-origin",
+          headers: {"Accept": "application/json", "X-CSRFToken": csrf},
+        });
+        const body = await response.json().catch(function () { return {}; });
+        if (response.ok && body.url) { location.assign(body.url); return; }
+        if (response.status < 500) {
+          pageError.textContent = body.error || "This page could not be saved.";
+          pageError.hidden = false;
+          Object.entries(body.questions || {}).forEach(function (entry) {
+            showQuestionError(entry[0], entry[1]);
+          });
+          const first = form.querySelector(".question-error:not([hidden])");
+          (first ? first.closest("fieldset").querySelector("input, textarea") : pageError).focus?.();
+          break;
+        }
+      } catch (e) { /* no connection: retry below */ }
+      setStatus("No connection. Trying again…");
+      await sleep(backoff(attempt));
+    }
+    moving = false;
+    form.querySelectorAll(".page-nav button").forEach(function (b) { b.disabled = false; });
+  });
+
+  /* Signed answers: record with the webcam, watch, record again, then send in chunks
+   * that resume where the server stopped after a lost connection. */
+  const CHUNK_BYTES = 256 * 1024;
+  function makeButton(text) {
+    const element = document.createElement("button");
+    element.type = "button";
+    element.className = "button secondary";
+    element.textContent = text;
+    return element;
+  }
+  form.querySelectorAll(".signed-answer").forEach(function (box) {
+    const preview = box.querySelector(".signed-preview");
+    const controls = box.querySelector(".signed-controls");
+    const state = box.querySelector(".signed-status");
+    const url = box.dataset.uploadUrl;
+    if (!window.MediaRecorder || !navigator.mediaDevices) {
+      state.textContent = "This browser cannot record video here; please type your answer.";
+      return;
+    }
+    const record = makeButton(preview.getAttribute("src") ? "Record again" : "Record a signed answer");
+    const stop = makeButton("Stop recording");
+    const send = makeButton("Send this recording");
+    stop.hidden = send.hidden = true;
+    controls.append(record, stop, send);
+    let recorder = null;
+    let blob = null;
+    record.addEventListener("click", async function () {
+      let stream;
+      try {
+        stream = await navigator.mediaDevices.getUserMedia({video: true, audio: false});
+      } catch (error) {
+        state.textContent = "The camera could not be used (" + error.name + "). Allow it, or type your answer.";
+        return;
+      }
+      const parts = [];
+      preview.hidden = false;
+      preview.controls = false;
+      preview.removeAttribute("src");
+      preview.srcObject = stream;
+      preview.play().catch(function () {});
+      recorder = new MediaRecorder(stream);
+      recorder.ondataavailable = function (event) { if (event.data.size) { parts.push(event.data); } };
+      recorder.onstop = function () {
+        stream.getTracks().forEach(function (track) { track.stop(); });
+        blob = new Blob(parts, {type: recorder.mimeType || "video/webm"});
+        preview.srcObject = null;
+        preview.src = URL.createObjectURL(blob);
+        preview.controls = true;
+        record.textContent = "Record again";
+        record.hidden = false;
+        stop.hidden = true;
+        send.hidden = false;
+        send.focus();
+        state.textContent = "Watch your recording, then send it or record again.";
+      };
+      recorder.start(500);
+      record.hidden = send.hidden = true;
+      stop.hidden = false;
+      stop.focus();
+      state.textContent = "Recording…";
+    });
+    stop.addEventListener("click", function () {
+      if (recorder && recorder.state !== "inactive") { recorder.stop(); }
+    });
+    send.addEventListener("click", async function () {
+      send.disabled = record.disabled = true;
+      let offset = 0;
+      for (let attempt = 0; ;) {
+        const end = Math.min(offset + CHUNK_BYTES, blob.size);
+        const final = end >= blob.size;
+        let retry = false;
+        try {
+          const response = await fetch(url, {
+            method: "POST", credentials: "same-origin", body: blob.slice(offset, end),
+            headers: {"X-CSRFToken": csrf, "X-Upload-Offset": String(offset),
+              "X-Upload-Final": final ? "1" : "0", "Content-Type": "application/octet-stream",
+              "Accept": "application/json"},
+          });
+          const data = await response.json().catch(function () { return {}; });
+          if (response.ok) {
+            offset = data.offset;
+            attempt = 0;
+            if (data.saved) { break; }
+            state.textContent = "Sending… " + Math.round(100 * offset / blob.size) + " %";
+          } else if (response.status === 409) {
+            offset = data.offset;
+          } else if (response.status < 500) {
+            state.textContent = data.error || "The recording could not be saved.";
+            send.disabled = record.disabled = false;
+            return;
+          } else { retry = true; }
+        } catch (error) { retry = true; }
+        if (retry) {
+          state.textContent = "Connection lost. The recording keeps sending when it is back…";
+          await sleep(backoff(attempt++));
+          try {
+            const where = await fetch(url, {credentials: "same-origin", headers: {"Accept": "application/json"}});
+            if (where.ok) { offset = (await where.json()).offset; }
+          } catch (error) { /* still offline: try again */ }
+        }
+      }
+      state.textContent = "Your signed answer is saved.";
+      send.hidden = true;
+      record.disabled = false;
+    });
+  });
+
+  /* Clips: preload before the page shows, own Play/Replay button, play count, events. */
+  const figures = Array.from(form.querySelectorAll("figure.clip"));
+  const watched = new Set((form.dataset.watched || "").split(",").filter(Boolean).map(Number));
+  const questionSets = Array.from(form.querySelectorAll("fieldset.question"));
+  const fullViewNote = document.getElementById("full-view-note");
+  function updateFullView() {
+    if (!fullView) { return; }
+    const done = figures.every(function (f) { return watched.has(Number(f.dataset.clip)); });
+    questionSets.forEach(function (set) { set.disabled = !done; });
+    fullViewNote.hidden = done;
+  }
+  figures.forEach(function (figure) {
+    const video = figure.querySelector("video");
+    const controls = figure.querySelector(".clip-controls");
+    if (!video) { return; }
+    const clip = Number(figure.dataset.clip);
+    const label = figure.querySelector("figcaption").textContent;
+    let plays = 0;
+    if (replayLimit !== null) { video.controls = false; }
+    const button = document.createElement("button");
+    button.type = "button";
+    button.className = "button play-button";
+    const count = document.createElement("span");
+    count.className = "play-count";
+    count.setAttribute("aria-live", "polite");
+    controls.append(button, count);
+    function refresh() {
+      const left = replayLimit === null ? null : replayLimit - plays;
+      if (!video.paused && !video.ended) { button.textContent = "Pause " + label; }
+      else if (plays && left !== null && left <= 0) { button.textContent = "No plays left"; }
+      else { button.textContent = (plays ? "Replay " : "Play ") + label; }
+      button.disabled = video.paused && left !== null && left <= 0;
+      count.textContent = left === null ? "" : left + " of " + replayLimit + " plays left";
+    }
+    button.addEventListener("click", function () {
+      if (!video.paused && !video.ended) { video.pause(); return; }
+      if (video.ended || video.currentTime === 0 || replayLimit !== null) { video.currentTime = 0; }
+      video.play().catch(function (error) { log("error", clip, video.currentTime, {message: String(error)}); });
+    });
+    video.addEventListener("play", function () {
+      if (video.currentTime < 0.05) {
+        plays += 1;
+        if (replayLimit !== null && plays > replayLimit) { video.pause(); plays -= 1; refresh(); return; }
+      }
+      log("play", clip, video.currentTime, {play: plays});
+      refresh();
+    });
+    video.addEventListener("pause", function () { if (!video.ended) { log("pause", clip, video.currentTime); } refresh(); });
+    video.addEventListener("seeked", function () { log("seek", clip, video.currentTime); });
+    video.addEventListener("ended", function () {
+      log("ended", clip, video.currentTime, {play: plays});
+      watched.add(clip);
+      updateFullView();
+      refresh();
+      flush();
+    });
+    video.addEventListener("error", function () {
+      const code = video.error ? video.error.code : null;
+      log("error", clip, null, {code: code});
+      controls.append(Object.assign(document.createElement("p"), {className: "error", textContent: "This clip could not be played. Please reload the page."}));
+    });
+    refresh();
+  });
+  updateFullView();
+
+  function show() {
+    if (form.classList.contains("ready")) { return; }
+    form.classList.add("ready");
+    form.removeAttribute("aria-busy");
+    shownAt = performance.now();
+    log("page_shown", null, undefined, {width: window.innerWidth, height: window.innerHeight});
+    flush();
+  }
+  const videos = figures.map(function (f) { return f.querySelector("video"); }).filter(Boolean);
+  if (!videos.length) { show(); return; }
+  form.setAttribute("aria-busy", "true");
+  let loaded = 0;
+  videos.forEach(function (video) {
+    function one() { loaded += 1; if (loaded === videos.length) { show(); } }
+    if (video.readyState >= 4) { one(); } else {
+      video.addEventListener("canplaythrough", one, {once: true});
+      video.addEventListener("error", one, {once: true});
+    }
+  });
+  setTimeout(show, 10000);  // a slow connection: show what there is rather than nothing
+})();

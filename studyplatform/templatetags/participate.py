@@ -1,0 +1,19 @@
+"""Template helpers of the participant pages: ASL prompt videos."""
+
+from django import template
+
+register = template.Library()
+
+
+@register.simple_tag
+def asl_video(videos: dict, obj, field_name: str):
+    """Return the ASL video signing *obj*'s *field_name*, or None (``{% asl_video … as v %}``)."""
+    if obj is None or not videos:
+        return None
+    return videos.get((obj._meta.model_name, obj.pk, field_name))
+
+
+@register.filter
+def get_item(mapping: dict, key: str):
+    """Return ``mapping[key]`` or "" (for per-question error messages)."""
+    return (mapping or {}).get(key, "")

@@ -1,0 +1,362 @@
+"""Take a study: welcome and consent, the scheduled pages, saving answers, thank-you.
+
+A participant is known by the token in their link (``/p/<token>/``), which is also
+remembered in the browser session, so the study's own link (``/s/<slug>/``) leads back
+to where they stopped. Every answer is saved as soon as it is given (``answer/``, JSON)
+and again with the page's form; both are idempotent, so a reload, a double click or a
+re-posted form neither loses nor duplicates anything.
+"""
+
+import json
+import math
+
+from django.core.exceptions import ValidationError
+from django.http import HttpRequest, HttpResponse, JsonResponse
+from django.shortcuts import redirect, render
+from django.urls import reverse
+from django.views.decorators.http import require_http_methods, require_POST
+
+from studyplatform.actions import (
+    Answer,
+    AnswerRejected,
+    EventsRejected,
+    PageRejected,
+    closed_reason,
+    completion_url,
+    do_advance_participant,
+    do_enroll_participant,
+    do_go_back_participant,
+    do_log_media_events,
+    do_save_response,
+    do_set_participant_language,
+    page_count,
+    page_trial,
+)
+from studyplatform.actions.participants import unwatched_clips
+from studyplatform.actions.uploads import (
+    UploadOffsetMismatch,
+    UploadRejected,
+    do_append_signed_answer_chunk,
+    upload_offset,
+)
+from studyplatform.models import Participant, Question, Study, Trial
+from studyplatform.pages import participant_page, study_asl
+
+SESSION_KEY = "signstudy_participants"
+
+
+def _invalid_link() -> JsonResponse:
+    """Answer a script that sent an unknown participant token."""
+    return JsonResponse({"error": "This link is not valid."}, status=404)
+
+
+MOBILE_MARKERS = ("Mobi", "Android", "iPhone", "iPad")
+
+
+def _wants_json(request: HttpRequest) -> bool:
+    return "application/json" in request.headers.get("Accept", "")
+
+
+def _problem(request: HttpRequest, message: str, status: int = 400, **context) -> HttpResponse:
+    """Answer with *message*: JSON for the page's script, else a page that says it."""
+    if _wants_json(request) or request.content_type == "application/json":
+        return JsonResponse({"error": message, **context}, status=status)
+    return render(
+        request, "studyplatform/participate/problem.html", {"message": message}, status=status
+    )
+
+
+def _participant(token: str) -> Participant | None:
+    return Participant.objects.select_related("study").filter(token=token).order_by().first()
+
+
+def _page_url(participant: Participant, number: int) -> str:
+    if number > page_count(participant) or participant.is_finished:
+        return reverse("participant_done", args=[participant.token])
+    return reverse("participant_page", args=[participant.token, number])
+
+
+def _device_problem(study: Study, user_agent: str) -> str:
+    mobile = any(marker in user_agent for marker in MOBILE_MARKERS)
+    if study.allowed_devices == Study.Devices.DESKTOP and mobile:
+        return "Please take this study on a desktop or laptop computer."
+    if study.allowed_devices == Study.Devices.MOBILE and not mobile:
+        return "Please take this study on a phone or tablet."
+    return ""
+
+
+@require_http_methods(["GET", "POST"])
+def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
+    """Show the study's welcome and consent page; starting enrolls the participant."""
+    study = Study.objects.filter(slug=slug).first()
+    if study is None:
+        return _problem(request, "There is no study at this address.", status=404)
+    known = request.session.get(SESSION_KEY, {}).get(slug)
+    if known:
+        participant = _participant(known)
+        if participant is not None:
+            return redirect(_page_url(participant, participant.position))
+    if not study.is_accepting_participants:
+        return _problem(request, "This study is not taking participants now.", status=410)
+    user_agent = request.headers.get("User-Agent", "")
+    device = _device_problem(study, user_agent)
+    error = ""
+    if request.method == "POST" and not device:
+        agreed = request.POST.get("consent") == "yes"
+        if study.consent_mode == Study.ConsentMode.EXPLICIT and not agreed:
+            error = "Please tick the box to agree before you start."
+        else:
+            try:
+                participant = do_enroll_participant(
+                    study,
+                    recruitment_params=request.GET.dict(),
+                    user_agent=user_agent,
+                    consented=True,
+                )
+            except ValidationError as problem:
+                return _problem(request, problem.messages[0], status=410)
+            request.session.setdefault(SESSION_KEY, {})[slug] = participant.token
+            request.session.modified = True
+            return redirect(_page_url(participant, 1))
+    language = Participant.Language.ASL_ENGLISH if study.asl_first else Participant.Language.ENGLISH
+    return render(
+        request,
+        "studyplatform/participate/welcome.html",
+        {
+            "study": study,
+            "asl": study_asl(study, language),
+            "device_problem": device,
+            "error": error,
+            "query": request.GET.urlencode(),
+        },
+        status=400 if error else 200,
+    )
+
+
+def resume(request: HttpRequest, token: str) -> HttpResponse:
+    """Send the participant to the page they are on."""
+    participant = _participant(token)
+    if participant is None:
+        return _problem(request, "This link is not valid.", status=404)
+    return redirect(_page_url(participant, max(participant.position, 1)))
+
+
+def _parse_answer(question: Question, value: str, rt_ms: str | int | None) -> Answer:
+    """Turn a posted value into an Answer for *question*; AnswerRejected if it is not one."""
+    try:
+        rt = None if rt_ms in (None, "") else max(0, min(int(float(rt_ms)), 86_400_000))
+    except (TypeError, ValueError):
+        rt = None
+    value = "" if value is None else str(value)
+    try:
+        if question.kind == Question.Kind.PAIRWISE:
+            return Answer(choice_position=int(value), rt_ms=rt)
+        if question.uses_options:
+            return Answer(rating=int(value), rt_ms=rt)
+        if question.kind == Question.Kind.NUMBER:
+            number = float(value)
+            if not math.isfinite(number):
+                raise ValueError
+            return Answer(number=number, rt_ms=rt)
+    except ValueError:
+        raise AnswerRejected(f"“{value[:40]}” is not an answer to “{question.key}”.") from None
+    return Answer(text=value, rt_ms=rt)
+
+
+def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str, str]:
+    """Save every answer the page's form holds; return the errors by question key."""
+    errors = {}
+    for question in trial.questions.all():
+        value = post.get(f"q-{question.key}")
+        if not value:
+            continue  # unanswered (a required question is caught on moving on)
+        try:
+            answer = _parse_answer(question, value, post.get(f"rt-{question.key}"))
+            do_save_response(participant, trial, question, answer)
+        except AnswerRejected as error:
+            errors[question.key] = error.messages[0]
+    return errors
+
+
+@require_http_methods(["GET", "POST"])
+def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
+    """Show page *number*; its form saves the answers and moves on (or back)."""
+    participant = _participant(token)
+    if participant is None:
+        return _problem(request, "This link is not valid.", status=404)
+    if participant.is_finished:
+        return redirect(_page_url(participant, number))
+    reason = closed_reason(participant)
+    if reason:
+        return _problem(request, reason, status=410)
+    study = participant.study
+    if request.method == "GET" and number != participant.position and not study.allow_back:
+        return redirect(_page_url(participant, participant.position))
+    try:
+        trial = page_trial(participant, number)
+    except PageRejected as error:
+        if request.method == "GET":
+            return redirect(_page_url(participant, max(participant.position, 1)))
+        return _problem(request, error.messages[0])
+
+    errors: dict[str, str] = {}
+    if request.method == "POST":
+        if number < participant.position and not study.allow_back:
+            # A re-posted earlier page (double click, back button): already moved on.
+            return _moved(request, participant, participant.position)
+        errors = _save_form_answers(participant, trial, request.POST)
+        if not errors:
+            try:
+                if request.POST.get("nav") == "back":
+                    target = do_go_back_participant(participant, number - 1)
+                else:
+                    target = do_advance_participant(participant, number, trial)
+                participant.refresh_from_db()
+                return _moved(request, participant, target)
+            except PageRejected as error:
+                missing = error.params.get("questions", []) if error.params else []
+                errors = {key: "Please answer this question." for key in missing}
+                errors["__page__"] = error.messages[0]
+        if _wants_json(request):
+            message = errors.get("__page__") or "Some answers could not be saved."
+            questions = {key: text for key, text in errors.items() if key != "__page__"}
+            return JsonResponse({"error": message, "questions": questions}, status=400)
+
+    page_shown = participant_page(participant, number, trial)
+    watched = []
+    if study.require_full_view and page_shown.clips:
+        unwatched = unwatched_clips(participant, trial)
+        watched = [clip.number for clip in page_shown.clips if clip.number not in unwatched]
+    context = {
+        "participant": participant,
+        "study": study,
+        "page": page_shown,
+        "asl": page_shown.asl,
+        "watched": watched,
+        "errors": errors,
+        "page_error": errors.get("__page__", ""),
+        "can_go_back": study.allow_back and number > 1,
+    }
+    return render(
+        request,
+        "studyplatform/participate/page.html",
+        context,
+        status=400 if errors else 200,
+    )
+
+
+def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpResponse:
+    url = _page_url(participant, target)
+    if _wants_json(request):
+        return JsonResponse({"url": url})
+    return redirect(url)
+
+
+def _json_body(request: HttpRequest):
+    try:
+        return json.loads(request.body or b"null")
+    except (ValueError, UnicodeDecodeError):
+        return None
+
+
+@require_POST
+def save_answer(request: HttpRequest, token: str) -> JsonResponse:
+    """Save one answer now (JSON ``{page, trial, question, value, rt_ms}``)."""
+    participant, data = _participant(token), _json_body(request)
+    if participant is None:
+        return _invalid_link()
+    if not isinstance(data, dict) or not isinstance(data.get("page"), int):
+        return JsonResponse({"error": "The answer is not in the expected form."}, status=400)
+    try:
+        trial = page_trial(participant, data["page"], for_answer=True)
+        if data.get("trial") != trial.key:
+            raise AnswerRejected("This answer belongs to another page.")
+        question = next((q for q in trial.questions.all() if q.key == data.get("question")), None)
+        if question is None:
+            raise AnswerRejected(f"“{data.get('question')}” is not asked on this page.")
+        answer = _parse_answer(question, data.get("value"), data.get("rt_ms"))
+        saved = do_save_response(participant, trial, question, answer)
+    except ValidationError as error:
+        return JsonResponse({"error": error.messages[0]}, status=400)
+    return JsonResponse({"saved": True, "revision": getattr(saved, "revision", 1)})
+
+
+@require_http_methods(["GET", "POST"])
+def upload_signed_answer(
+    request: HttpRequest, token: str, number: int, question: str
+) -> JsonResponse:
+    """Take a chunk of a webcam recording (POST), or say how much is stored (GET).
+
+    Headers ``X-Upload-Offset`` (where the chunk starts) and ``X-Upload-Final: 1`` on the
+    last chunk; a chunk at the wrong offset gets 409 and the offset to resume from.
+    """
+    participant = _participant(token)
+    if participant is None:
+        return JsonResponse({"error": "This link is not valid."}, status=404)
+    try:
+        trial = page_trial(participant, number, for_answer=True)
+        found = trial.questions.filter(key=question).first()
+        if found is None:
+            raise UploadRejected(f"“{question}” is not asked on this page.")
+        if request.method == "GET":
+            return JsonResponse({"offset": upload_offset(participant, trial, found)})
+        try:
+            offset = int(request.headers.get("X-Upload-Offset", ""))
+        except ValueError:
+            raise UploadRejected("The chunk does not say where it starts.") from None
+        final = request.headers.get("X-Upload-Final") == "1"
+        stored, response = do_append_signed_answer_chunk(
+            participant, trial, found, offset, request.body, final
+        )
+    except UploadOffsetMismatch as mismatch:
+        return JsonResponse({"error": mismatch.messages[0], "offset": mismatch.offset}, status=409)
+    except ValidationError as error:
+        return JsonResponse({"error": error.messages[0]}, status=400)
+    return JsonResponse({"offset": stored, "saved": response is not None})
+
+
+@require_POST
+def log_events(request: HttpRequest, token: str) -> JsonResponse:
+    """Log a batch of media and page events (JSON ``{"events": [...]}``)."""
+    participant, data = _participant(token), _json_body(request)
+    if participant is None:
+        return _invalid_link()
+    events = data.get("events") if isinstance(data, dict) else None
+    try:
+        logged = do_log_media_events(participant, events)
+    except EventsRejected as error:
+        return JsonResponse({"error": error.messages[0]}, status=400)
+    return JsonResponse({"logged": logged})
+
+
+@require_POST
+def set_language(request: HttpRequest, token: str) -> HttpResponse:
+    """Switch between ASL + English and English only, then show the same page."""
+    participant = _participant(token)
+    if participant is None:
+        return _problem(request, "This link is not valid.", status=404)
+    try:
+        do_set_participant_language(participant, request.POST.get("language", ""))
+    except ValidationError as error:
+        return _problem(request, error.messages[0])
+    return redirect(_page_url(participant, max(participant.position, 1)))
+
+
+def done(request: HttpRequest, token: str) -> HttpResponse:
+    """Thank the participant: the completion code, or the way back to the recruiter."""
+    participant = _participant(token)
+    if participant is None:
+        return _problem(request, "This link is not valid.", status=404)
+    if not participant.is_finished:
+        return redirect(_page_url(participant, max(participant.position, 1)))
+    study = participant.study
+    return render(
+        request,
+        "studyplatform/participate/done.html",
+        {
+            "participant": participant,
+            "study": study,
+            "asl": study_asl(study, participant.language),
+            "redirect": completion_url(participant) if study.redirect_url else "",
+        },
+    )

@@ -1,0 +1,89 @@
+"""Test the study's ASL videos page: which texts are signed, uploading and replacing."""
+
+import pytest
+from django.contrib.contenttypes.models import ContentType
+from django.core.files.uploadedfile import SimpleUploadedFile
+from django.urls import reverse
+
+from studyplatform.asl import study_prompts
+from studyplatform.models import AslVideo, Question
+
+pytestmark = pytest.mark.django_db
+WEBM = b"\x1a\x45\xdf\xa3" + b"\0" * 200
+
+
+@pytest.fixture
+def media(settings, tmp_path):
+    settings.MEDIA_ROOT = tmp_path
+    return tmp_path
+
+
+def _post(client, study, obj, field_name, name="consent.webm", data=WEBM):
+    url = reverse("admin:studyplatform_study_asl", args=[study.pk])
+    return client.post(url, {
+        "content_type": ContentType.objects.get_for_model(obj).pk, "object_id": obj.pk,
+        "field_name": field_name, "video": SimpleUploadedFile(name, data, "video/webm"),
+    }, follow=True)  # fmt: skip
+
+
+def test_every_text_participants_read_is_listed(spine):
+    prompts = study_prompts(spine)
+    where = {(p.obj._meta.model_name, p.field_name) for p in prompts}
+    assert {("study", "consent_text"), ("question", "text"), ("answeroption", "label"),
+            ("block", "title"), ("study", "thank_you_text")} <= where  # fmt: skip
+    assert all(p.text for p in prompts)  # empty texts need no video
+    assert not any(p.video for p in prompts)
+
+
+def test_a_researcher_uploads_and_replaces_a_prompt_video(client, alice, fingerspelling, media):
+    client.force_login(alice)
+    page = client.get(reverse("admin:studyplatform_study_asl", args=[fingerspelling.pk]))
+    total = len(study_prompts(fingerspelling))
+    assert f"0 of {total}" in page.text
+    assert page.text.count('<strong class="missing">') == total
+    saved = _post(client, fingerspelling, fingerspelling, "consent_text")
+    assert "ASL video saved." in saved.text and f"1 of {total}" in saved.text
+    first = AslVideo.objects.get()
+    _post(client, fingerspelling, fingerspelling, "consent_text", name="again.webm")
+    replaced = AslVideo.objects.get()
+    assert replaced.pk == first.pk and replaced.video.name != first.video.name
+    question = Question.objects.get(study=fingerspelling, key="age")
+    _post(client, fingerspelling, question, "text", name="age.mp4")
+    assert AslVideo.objects.count() == 2
+
+
+def test_bad_uploads_are_refused(client, alice, bob, fingerspelling, spine, media):
+    client.force_login(alice)
+    not_video = _post(client, fingerspelling, fingerspelling, "consent_text", name="notes.txt")
+    assert "Not saved: “notes.txt” is not a video file" in not_video.text
+    wrong_field = _post(client, fingerspelling, fingerspelling, "slug")
+    assert "“slug” is not a text participants read" in wrong_field.text
+    elsewhere = _post(client, fingerspelling, spine, "consent_text")  # bob's study's text
+    assert "This text is not part of the study." in elsewhere.text
+    client.force_login(bob)  # alice's study is not there for bob
+    url = reverse("admin:studyplatform_study_asl", args=[fingerspelling.pk])
+    assert client.get(url).status_code == 404
+    assert not AslVideo.objects.exists()
+
+
+def test_participants_see_the_video_first_on_an_asl_first_study(client, bob, spine, media):
+    client.force_login(bob)
+    question = Question.objects.get(study=spine, key="clarity")
+    _post(client, spine, question, "text")
+    _post(client, spine, spine, "consent_text")
+    client.logout()
+    welcome = client.get(reverse("study_welcome", args=[spine.slug]))
+    assert welcome.text.index("<video") < welcome.text.index("This study shows a short signed")
+    client.post(reverse("study_welcome", args=[spine.slug]), {"consent": "yes"})
+    from studyplatform.models import Participant
+
+    participant = Participant.objects.get()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "rate-s1")
+    participant.reached = number
+    participant.save()
+    page = client.get(reverse("participant_page", args=[participant.token, number]))
+    assert 'aria-label="ASL: Rate the clarity of the sentence."' in page.text
+    participant.language = "en"  # English only: no ASL videos
+    participant.save()
+    page = client.get(reverse("participant_page", args=[participant.token, number]))
+    assert "ASL: Rate the clarity" not in page.text

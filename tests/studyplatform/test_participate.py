@@ -1,0 +1,373 @@
+"""Take studies through the participant views: flow, idempotent saves, tampering, isolation."""
+
+import json
+from collections import Counter
+from datetime import timedelta
+
+import pytest
+from django.urls import reverse
+from django.utils import timezone
+
+from studyplatform.actions import do_enroll_participant
+from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Response, Trial
+from studyplatform.schedule import build_schedule
+
+pytestmark = pytest.mark.django_db
+
+
+def _start(client, study, query=""):
+    """Open the study link, agree, and return the participant it created."""
+    url = reverse("study_welcome", args=[study.slug]) + query
+    welcome = client.get(url)
+    assert welcome.status_code == 200
+    assert study.consent_text.split(".")[0] in welcome.text
+    moved = client.post(url, {"consent": "yes"})
+    participant = Participant.objects.latest("pk")
+    assert moved["Location"] == reverse("participant_page", args=[participant.token, 1])
+    return participant
+
+
+def _answer_page(client, participant, number):
+    """Post sensible answers to every question of page *number*; return the response."""
+    participant.refresh_from_db()
+    trial = Trial.objects.get(
+        study=participant.study, key=participant.schedule[number - 1]["trial"]
+    )
+    data = {"nav": "next"}
+    for question in trial.questions.all():
+        if question.kind == "pairwise":
+            data[f"q-{question.key}"] = "1"
+        elif question.uses_options:
+            data[f"q-{question.key}"] = str(question.options.order_by("value").last().value)
+        elif question.kind == "number":
+            data[f"q-{question.key}"] = "12"
+        else:
+            data[f"q-{question.key}"] = "" if question.is_personal else "Smooth motion."
+    return client.post(reverse("participant_page", args=[participant.token, number]), data)
+
+
+def _save(client, participant, **payload):
+    return client.post(
+        reverse("participant_answer", args=[participant.token]),
+        json.dumps(payload),
+        content_type="application/json",
+    )
+
+
+def test_a_participant_goes_from_link_to_completion_code(client, fingerspelling):
+    participant = _start(client, fingerspelling, "?PROLIFIC_PID=abc123&STUDY_ID=s9")
+    assert participant.recruitment_params == {"PROLIFIC_PID": "abc123", "STUDY_ID": "s9"}
+    assert participant.consented_at is not None
+    total = len(participant.schedule)
+    assert total == fingerspelling.trials.count() == 53
+    first = client.get(reverse("participant_page", args=[participant.token, 1]))
+    assert f"Page 1 of {total}" in first.text
+    for number in range(1, total + 1):
+        response = _answer_page(client, participant, number)
+        assert response.status_code == 302, (number, response.text[:2000])
+    participant.refresh_from_db()
+    assert participant.is_finished and participant.position == total + 1
+    done = client.get(response["Location"])
+    assert "FSPELL-DEMO" in done.text
+    # 49 comparisons (48 + practice) + the attention check + 2 demographics + 5 open.
+    assert Response.objects.filter(participant=participant).count() == 57
+    assert not PersonalAnswer.objects.exists()  # the optional name/e-mail were left empty
+
+
+def test_the_study_link_resumes_and_the_token_link_works_elsewhere(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    _answer_page(client, participant, 1)
+    again = client.get(reverse("study_welcome", args=[fingerspelling.slug]))
+    assert again["Location"] == reverse("participant_page", args=[participant.token, 2])
+    from django.test import Client
+
+    elsewhere = Client()  # another browser with the personal link
+    resumed = elsewhere.get(reverse("participant_resume", args=[participant.token]))
+    assert resumed["Location"] == reverse("participant_page", args=[participant.token, 2])
+    assert Participant.objects.count() == 1
+
+
+def test_a_repeated_next_changes_nothing(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    _answer_page(client, participant, 1)
+    _answer_page(client, participant, 2)  # instructions
+    before = list(Response.objects.values_list("pk", "revision"))
+    for _ in range(3):  # double clicks and back-button re-posts of page 2
+        repeated = _answer_page(client, participant, 2)
+        assert repeated["Location"] == reverse("participant_page", args=[participant.token, 3])
+    participant.refresh_from_db()
+    assert participant.position == 3
+    assert list(Response.objects.values_list("pk", "revision")) == before
+
+
+def test_answers_save_at_once_and_idempotently(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    page = {"page": 1, "trial": participant.schedule[0]["trial"]}
+    for _ in range(2):
+        saved = _save(client, participant, **page, question="age", value="3", rt_ms=1200)
+        assert saved.status_code == 200 and saved.json()["revision"] == 1
+    changed = _save(client, participant, **page, question="age", value="4", rt_ms=1500)
+    assert changed.json()["revision"] == 2
+    response = Response.objects.get()
+    assert (response.rating, response.rt_ms) == (4, 1500)
+    shown = client.get(reverse("participant_page", args=[participant.token, 1]))
+    assert 'value="4" checked' in shown.text  # the page shows the saved answer
+
+
+@pytest.mark.parametrize(
+    ("payload", "message"),
+    [
+        ({"question": "age", "value": "9"}, "“9” is not a point of the scale of “age”"),
+        ({"question": "age", "value": "x"}, "“x” is not an answer to “age”"),
+        ({"question": "most-natural", "value": "1"}, "“most-natural” is not asked on this page"),
+        ({"question": "age", "value": "3", "trial": "cmp-01"}, "belongs to another page"),
+        ({"question": "age", "value": "3", "page": 5}, "You have not reached this page yet"),
+        ({"question": "age", "value": "3", "page": 999}, "There is no page 999"),
+    ],
+)
+def test_a_tampered_answer_is_rejected_and_changes_nothing(
+    client, fingerspelling, payload, message
+):
+    participant = _start(client, fingerspelling)
+    body = {"page": 1, "trial": participant.schedule[0]["trial"], **payload}
+    rejected = _save(client, participant, **body)
+    assert rejected.status_code == 400
+    assert message in rejected.json()["error"]
+    assert not Response.objects.exists()
+
+
+def test_a_tampered_choice_in_the_form_is_rejected(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    for number in (1, 2, 3):
+        _answer_page(client, participant, number)
+    participant.refresh_from_db()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"].startswith("cmp-"))
+    participant.position = participant.reached = number
+    participant.save()
+    url = reverse("participant_page", args=[participant.token, number])
+    count = Response.objects.count()
+    bad = client.post(url, {"nav": "next", "q-most-natural": "3"})
+    assert bad.status_code == 400 and "“3” is not one of the clips on this page" in bad.text
+    unanswered = client.post(url, {"nav": "next"}, HTTP_ACCEPT="application/json")
+    assert unanswered.status_code == 400
+    assert unanswered.json()["questions"] == {"most-natural": "Please answer this question."}
+    participant.refresh_from_db()
+    assert participant.position == number and Response.objects.count() == count
+
+
+def test_a_wrong_token_is_refused(client, fingerspelling):
+    _start(client, fingerspelling)
+    assert client.get(reverse("participant_resume", args=["nope"])).status_code == 404
+    refused = _save(client, Participant(token="nope"), page=1, trial="x", question="age", value=1)
+    assert refused.status_code == 404 and refused.json()["error"] == "This link is not valid."
+    assert not Response.objects.exists()
+
+
+def test_participants_never_share_a_session_or_see_each_other(client, fingerspelling):
+    from django.test import Client
+
+    first = _start(client, fingerspelling)
+    other_client = Client()
+    second = _start(other_client, fingerspelling)
+    assert first.token != second.token
+    _save(client, first, page=1, trial=first.schedule[0]["trial"], question="age", value="5")
+    page = other_client.get(reverse("participant_page", args=[second.token, 1]))
+    assert 'value="5" checked' not in page.text
+    # A participant's pages show only their own answers, whoever asks.
+    mine = other_client.get(reverse("participant_page", args=[first.token, 1]))
+    assert 'value="5" checked' in mine.text
+    assert Response.objects.get().participant == first
+
+
+def test_explicit_consent_needs_the_box(client, fingerspelling):
+    fingerspelling.consent_mode = "explicit"
+    fingerspelling.save()
+    url = reverse("study_welcome", args=[fingerspelling.slug])
+    refused = client.post(url, {})
+    assert refused.status_code == 400 and "Please tick the box" in refused.text
+    assert not Participant.objects.exists()
+    assert client.post(url, {"consent": "yes"}).status_code == 302
+
+
+def test_a_closed_study_takes_no_one(client, fingerspelling):
+    fingerspelling.status = "closed"
+    fingerspelling.save()
+    closed = client.get(reverse("study_welcome", args=[fingerspelling.slug]))
+    assert closed.status_code == 410 and "not taking participants" in closed.text
+
+
+def test_going_back_is_a_study_option(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    _answer_page(client, participant, 1)
+    url = reverse("participant_page", args=[participant.token, 2])
+    back = client.post(url, {"nav": "back"})
+    assert back["Location"] == reverse("participant_page", args=[participant.token, 1])
+    fingerspelling.allow_back = False
+    fingerspelling.save()
+    participant.refresh_from_db()
+    _answer_page(client, participant, 1)
+    earlier = client.get(reverse("participant_page", args=[participant.token, 1]))
+    assert earlier["Location"] == url  # the earlier page is closed: back to the current one
+    refused = _save(client, participant, page=1, trial=participant.schedule[0]["trial"],
+                    question="age", value="2")  # fmt: skip
+    assert "does not let you change answers" in refused.json()["error"]
+
+
+def test_time_limit_and_one_sitting_close_the_session(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    url = reverse("participant_page", args=[participant.token, 1])
+    Participant.objects.filter(pk=participant.pk).update(
+        last_seen_at=timezone.now() - timedelta(hours=1)
+    )
+    assert "one sitting" in client.get(url).text  # the demo is a one-sitting study
+    fingerspelling.one_sitting = False
+    fingerspelling.time_limit_minutes = 30
+    fingerspelling.save()
+    Participant.objects.filter(pk=participant.pk).update(
+        consented_at=timezone.now() - timedelta(minutes=31)
+    )
+    closed = client.get(url)
+    assert closed.status_code == 410 and "time limit of 30 minutes has passed" in closed.text
+    refused = _save(client, participant, page=1, trial=participant.schedule[0]["trial"],
+                    question="age", value="2")  # fmt: skip
+    assert "time limit" in refused.json()["error"] and not Response.objects.exists()
+
+
+def test_the_completion_redirect_carries_the_recruitment_ids(client, fingerspelling):
+    fingerspelling.redirect_url = "https://example.org/done?pid={PROLIFIC_PID}&x={MISSING}"
+    fingerspelling.save()
+    participant = _start(client, fingerspelling, "?PROLIFIC_PID=a%20b")
+    Participant.objects.filter(pk=participant.pk).update(finished_at=timezone.now())
+    done = client.get(reverse("participant_done", args=[participant.token]))
+    assert 'href="https://example.org/done?pid=a%20b&amp;x="' in done.text
+
+
+def test_media_events_are_logged_once(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    url = reverse("participant_events", args=[participant.token])
+    events = [
+        {"kind": "page_shown", "page": 1, "client_time_ms": 1000},
+        {"kind": "play", "page": 1, "clip": 1, "media_time_s": 0.0, "client_time_ms": 1001},
+    ]
+    for expected in (2, 0):  # the same batch again (its answer was lost): nothing new
+        logged = client.post(url, json.dumps({"events": events}), content_type="application/json")
+        assert logged.json() == {"logged": expected}
+    assert MediaEvent.objects.count() == 2
+    bad = [{"kind": "rewind", "page": 1}]
+    refused = client.post(url, json.dumps({"events": bad}), content_type="application/json")
+    assert refused.status_code == 400 and "unknown kind “rewind”" in refused.json()["error"]
+    ahead = [{"kind": "play", "page": 9, "clip": 1}]
+    refused = client.post(url, json.dumps({"events": ahead}), content_type="application/json")
+    assert "not reached this page" in refused.json()["error"]
+    assert MediaEvent.objects.count() == 2
+
+
+def test_language_switch(client, spine):
+    participant = _start(client, spine)
+    assert participant.language == "asl_en"
+    url = reverse("participant_language", args=[participant.token])
+    client.post(url, {"language": "en"})
+    participant.refresh_from_db()
+    assert participant.language == "en"
+    assert client.post(url, {"language": "fr"}).status_code == 400
+
+
+def test_schedules_are_reproducible_from_the_seed(fingerspelling):
+    participant = do_enroll_participant(fingerspelling)
+    assert build_schedule(fingerspelling, participant.seed, 0) == participant.schedule
+    keys = [entry["trial"] for entry in participant.schedule]
+    assert keys[:3] == ["demographics", "instructions", "practice-1"] and keys[-1] == "closing"
+    other = do_enroll_participant(fingerspelling)
+    assert [e["trial"] for e in other.schedule] != keys  # the comparisons are shuffled
+    swaps = [e["swap"] for e in participant.schedule if e["trial"].startswith("cmp-")]
+    assert 10 < sum(swaps) < 38  # positions are randomized, about half swapped
+
+
+def test_latin_square_rotation_balances_cells_over_participants(fingerspelling):
+    fingerspelling.rotate_conditions = True
+    fingerspelling.save()
+    pairs, shown = Counter(), Counter()
+    for _ in range(8):  # two rounds of the 4-row square
+        participant = do_enroll_participant(fingerspelling)
+        own = Counter()
+        for entry in participant.schedule:
+            if entry["trial"].startswith("cmp-"):
+                trial = fingerspelling.trials.get(key=entry["trial"])
+                pairs[(trial.item.key, frozenset((entry["a"], entry["b"])))] += 1
+                shown.update([(trial.item.key, entry["a"], 1), (trial.item.key, entry["b"], 2)])
+                own[frozenset((entry["a"], entry["b"]))] += 1
+        assert set(own.values()) == {8}  # each participant still meets every pair 8 times
+    # Over the rows, every word meets every pair, and every condition in each position,
+    # equally often (in design order, before the participant's random swaps).
+    assert len(pairs) == 8 * 6 and set(pairs.values()) == {8}
+    assert len(shown) == 8 * 4 * 2 and set(shown.values()) == {12}
+
+
+WEBM = b"\x1a\x45\xdf\xa3" + bytes(range(256)) * 40
+
+
+def _chunk(client, participant, number, data, offset, final=False, question="comments"):
+    url = reverse("participant_signed_answer", args=[participant.token, number, question])
+    headers = {"X-Upload-Offset": str(offset), "X-Upload-Final": "1" if final else "0"}
+    return client.post(url, data, content_type="application/octet-stream", headers=headers)
+
+
+@pytest.fixture
+def at_comments(client, spine, settings, tmp_path):
+    """A spine participant who reached every page; the number of the signed-answer page."""
+    settings.MEDIA_ROOT = tmp_path
+    participant = _start(client, spine)
+    participant.reached = len(participant.schedule)
+    participant.save()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "comments")
+    return participant, number
+
+
+def test_a_signed_answer_arrives_in_chunks_that_resume(client, at_comments):
+    participant, number = at_comments
+    first, rest = WEBM[:4000], WEBM[4000:]
+    assert _chunk(client, participant, number, first, 0).json() == {"offset": 4000, "saved": False}
+    # A chunk that does not start where the stored part ends: refused, with where to go on.
+    again = _chunk(client, participant, number, first, 1)
+    assert again.status_code == 409 and again.json()["offset"] == 4000
+    url = reverse("participant_signed_answer", args=[participant.token, number, "comments"])
+    assert client.get(url).json() == {"offset": 4000}
+    done = _chunk(client, participant, number, rest, 4000, final=True)
+    assert done.json() == {"offset": len(WEBM), "saved": True}
+    response = Response.objects.get(participant=participant)
+    assert response.video.read() == WEBM and response.text == ""
+    assert client.get(url).json() == {"offset": 0}  # nothing left half-sent
+
+
+def test_a_bad_signed_answer_is_refused(client, at_comments):
+    participant, number = at_comments
+    bad = _chunk(client, participant, number, b"<html>not a video</html>", 0, final=True)
+    assert bad.status_code == 400 and "not a WebM or MP4 video" in bad.json()["error"]
+    rating = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "rate-s1")
+    refused = _chunk(client, participant, rating, WEBM, 0, final=True, question="clarity")
+    assert "does not take a signed answer" in refused.json()["error"]
+    other = _chunk(client, participant, rating, WEBM, 0, final=True)
+    assert "not asked on this page" in other.json()["error"]
+    no_offset = client.post(
+        reverse("participant_signed_answer", args=[participant.token, number, "comments"]),
+        WEBM, content_type="application/octet-stream",
+    )  # fmt: skip
+    assert "does not say where it starts" in no_offset.json()["error"]
+    assert not Response.objects.exists()
+
+
+def test_next_waits_for_every_clip_watched_to_the_end(client, fingerspelling):
+    fingerspelling.require_full_view = True
+    fingerspelling.save()
+    participant = _start(client, fingerspelling)
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "cmp-01")
+    participant.reached = participant.position = number
+    participant.save()
+    url = reverse("participant_page", args=[participant.token, number])
+    refused = client.post(url, {"nav": "next", "q-most-natural": "1"})
+    assert refused.status_code == 400 and "watch each clip to its end" in refused.text
+    events = [{"kind": "ended", "page": number, "clip": clip, "client_time_ms": 5000 + clip}
+              for clip in (1, 2)]  # fmt: skip
+    client.post(reverse("participant_events", args=[participant.token]),
+                json.dumps({"events": events}), content_type="application/json")  # fmt: skip
+    assert client.post(url, {"nav": "next"}).status_code == 302
