@@ -5,6 +5,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=.venv/bin/python
 DEFAULT_PG_URL=postgres://postgres@127.0.0.1:5432/signstudy
+# Tests run in this many processes (pytest-xdist), a file's tests in one of them: the
+# browser, worker and render tests spend much of their time waiting, so two processes
+# finish in about 60 % of one's time even on two cores. SIGNSTUDY_TEST_WORKERS=0 runs
+# everything in this process.
+WORKERS=${SIGNSTUDY_TEST_WORKERS:-2}
+PYTEST=("$PY" -m pytest --durations=10)
+if [ "$WORKERS" != 0 ]; then
+  PYTEST+=(-n "$WORKERS" --dist loadfile)
+fi
 
 echo "== ruff"
 .venv/bin/ruff check .
@@ -22,7 +31,7 @@ if [ -z "$pg_url" ] && "$PY" scripts/port_open.py 127.0.0.1 5432; then
 fi
 
 echo "== tests on SQLite"
-env -u DATABASE_URL "$PY" -m pytest "$@"
+env -u DATABASE_URL "${PYTEST[@]}" "$@"
 
 if [ -n "$pg_url" ]; then
   # Only tests/studyplatform touches a database (synthesis, stimuli and analysis never
@@ -30,7 +39,7 @@ if [ -n "$pg_url" ]; then
   targets=("$@")
   [ ${#targets[@]} -eq 0 ] && targets=(tests/studyplatform)
   echo "== database tests on PostgreSQL ($pg_url): ${targets[*]}"
-  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "$PY" -m pytest "${targets[@]}"
+  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "${PYTEST[@]}" "${targets[@]}"
 else
   echo "!! PostgreSQL is not answering on 127.0.0.1:5432 and DATABASE_URL is unset:"
   echo "!! the PostgreSQL run is SKIPPED. CI must not skip it."

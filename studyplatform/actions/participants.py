@@ -116,6 +116,8 @@ def page_trial(participant: Participant, page: int, for_answer: bool = False) ->
 
     Raise PageRejected for a page they have not reached, and, when answering, for an
     earlier page of a study that does not let participants go back, or a finished one.
+    The page's questions come along, and their options too unless *for_answer* (one
+    answer needs at most one question's options).
     """
     if not 1 <= page <= page_count(participant):
         raise PageRejected(f"There is no page {page} in this study.")
@@ -135,7 +137,7 @@ def page_trial(participant: Participant, page: int, for_answer: bool = False) ->
     trial = (
         Trial.objects.filter(study_id=participant.study_id, key=key)
         .select_related("block", "item", "condition_a", "condition_b")
-        .prefetch_related("questions__options")
+        .prefetch_related("questions" if for_answer else "questions__options")
         .order_by()
         .first()
     )
@@ -147,14 +149,20 @@ def page_trial(participant: Participant, page: int, for_answer: bool = False) ->
 def missing_answers(participant: Participant, trial: Trial) -> list[Question]:
     """Return the required questions of *trial* the participant has not answered."""
     required = [q for q in trial.questions.all() if q.required]
+    if not required:
+        return []
     answered = set(
         Response.objects.filter(participant=participant, trial=trial).values_list(
             "question_id", flat=True
         )
     )
-    answered |= set(
-        PersonalAnswer.objects.filter(participant=participant).values_list("question_id", flat=True)
-    )
+    personal = [q.pk for q in required if q.is_personal]
+    if personal:
+        answered |= set(
+            PersonalAnswer.objects.filter(
+                participant=participant, question_id__in=personal
+            ).values_list("question_id", flat=True)
+        )
     return [q for q in required if q.pk not in answered]
 
 
@@ -173,51 +181,74 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
     """Move the participant on from *page* (whose trial is *trial*); return the next page.
 
     Repeating the move (a double click, a re-posted form) changes nothing and returns
-    the same page. Leaving the last page finishes the session.
+    the same page. Leaving the last page finishes the session. *participant* is brought
+    up to date with the stored row.
     """
     with transaction.atomic():
-        participant = Participant.objects.select_for_update().get(pk=participant.pk)
-        if participant.is_finished or page < participant.position:
-            return participant.position  # moved on already: a repeated Next
-        if page > participant.position:
+        locked = _locked(participant)
+        if locked.is_finished or page < locked.position:
+            _follow(participant, locked)
+            return locked.position  # moved on already: a repeated Next
+        if page > locked.position:
             raise PageRejected("You have not reached this page yet.")
-        reason = closed_reason(participant)
+        reason = closed_reason(locked)
         if reason:
             raise PageRejected(reason)
         if trial is not None:
-            missing = missing_answers(participant, trial)
+            missing = missing_answers(locked, trial)
             if missing:
                 raise PageRejected(
                     "Please answer every question on this page first.",
                     params={"questions": [q.key for q in missing]},
                 )
-            watch = participant.study.require_full_view and trial.condition_a_id and trial.item_id
-            if watch and unwatched_clips(participant, trial):
+            watch = locked.study.require_full_view and trial.condition_a_id and trial.item_id
+            if watch and unwatched_clips(locked, trial):
                 raise PageRejected("Please watch each clip to its end before going on.")
         now = timezone.now()
-        participant.position = page + 1
-        participant.reached = max(participant.reached, participant.position)
-        participant.last_seen_at = now
-        if participant.position > page_count(participant):
-            participant.finished_at = now
-        participant.save(update_fields=["position", "reached", "last_seen_at", "finished_at"])
-        return participant.position
+        locked.position = page + 1
+        locked.reached = max(locked.reached, locked.position)
+        locked.last_seen_at = now
+        if locked.position > page_count(locked):
+            locked.finished_at = now
+        locked.save(update_fields=list(MOVE_FIELDS))
+    _follow(participant, locked)
+    return locked.position
 
 
 def do_go_back_participant(participant: Participant, page: int) -> int:
     """Move the participant back to *page*, if the study lets them; return it."""
     with transaction.atomic():
-        participant = Participant.objects.select_for_update().get(pk=participant.pk)
-        if not participant.study.allow_back:
+        locked = _locked(participant)
+        if not locked.study.allow_back:
             raise PageRejected("This study does not let you go back to earlier pages.")
-        if participant.is_finished:
+        if locked.is_finished:
             raise PageRejected("This study is finished; answers can no longer change.")
-        if not 1 <= page <= participant.reached:
+        if not 1 <= page <= locked.reached:
             raise PageRejected("You have not reached this page yet.")
-        participant.position = page
-        participant.last_seen_at = timezone.now()
-        participant.save(update_fields=["position", "last_seen_at"])
-        return page
+        locked.position = page
+        locked.last_seen_at = timezone.now()
+        locked.save(update_fields=["position", "last_seen_at"])
+    _follow(participant, locked)
+    return page
+
+
+# The fields a move may change.
+MOVE_FIELDS = ("position", "reached", "last_seen_at", "finished_at")
+
+
+def _locked(participant: Participant) -> Participant:
+    """Read and lock the participant's row (only it), with the study, for a move."""
+    return (
+        Participant.objects.select_related("study")
+        .select_for_update(of=("self",))
+        .get(pk=participant.pk)
+    )
+
+
+def _follow(participant: Participant, stored: Participant) -> None:
+    """Bring the caller's *participant* up to the row a move read or wrote."""
+    for name in MOVE_FIELDS:
+        setattr(participant, name, getattr(stored, name))
 
 
 def do_set_participant_language(participant: Participant, language: str) -> None:

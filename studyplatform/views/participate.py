@@ -211,7 +211,6 @@ def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
                     target = do_go_back_participant(participant, number - 1)
                 else:
                     target = do_advance_participant(participant, number, trial)
-                participant.refresh_from_db()
                 return _moved(request, participant, target)
             except PageRejected as error:
                 missing = error.params.get("questions", []) if error.params else []
