@@ -132,15 +132,15 @@ def page_trial(participant: Participant, page: int, for_answer: bool = False) ->
         if reason:
             raise PageRejected(reason)
     key = participant.schedule[page - 1].get("trial")
-    # One query for the page: no default ordering (it joins the block), the clips and
-    # questions the page shows come along.
-    trial = (
+    # One query for the page, with the clips and questions it shows; unordered (the
+    # key is unique in the study), as ordering would join the block or sort by pk.
+    found = (
         Trial.objects.filter(study_id=participant.study_id, key=key)
         .select_related("block", "item", "condition_a", "condition_b")
         .prefetch_related("questions" if for_answer else "questions__options")
-        .order_by()
-        .first()
+        .order_by()[:1]
     )
+    trial = next(iter(found), None)
     if trial is None:
         raise PageRejected(f"Page {page} was removed from the study.")
     return trial

@@ -1,5 +1,6 @@
 """Offscreen rendering of a posed avatar with pyrender: DOF vectors in, RGB frames out."""
 
+import functools
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
@@ -54,7 +55,10 @@ class Renderer:
             for part in avatar.parts
         ]
         self._colors = [np.asarray(part.colors_rgb, dtype=np.float32) for part in avatar.parts]
-        self._nodes: list = []
+        self._primitives: list = []
+        self._mesh = None
+        self._staging: list[np.ndarray] | None = None
+        self._uploaded = True
         self._flags = pyrender.RenderFlags.SHADOWS_DIRECTIONAL
         self._renderer = pyrender.OffscreenRenderer(width, height)
         # pyrender looks its shaders up by file name in its program cache; pointing the
@@ -72,17 +76,26 @@ class Renderer:
         self.lights = self._fixed_lights or portrait_lighting(target, distance)
         for node in self._light_nodes:
             self.scene.remove_node(node)
-        self._light_nodes = [
-            self.scene.add(self._light(light), pose=look_at(np.asarray(light.position_m), target))
-            for light in self.lights
-        ]
+        self._light_nodes = []
+        for light in self.lights:
+            node = _ordered_node_class(self._pyrender)(
+                order=len(self._light_nodes),
+                light=self._light(light),
+                matrix=look_at(np.asarray(light.position_m), target),
+            )
+            self.scene.add_node(node)
+            self._light_nodes.append(node)
 
     def _light(self, light: Light):
         pyrender = self._pyrender
         if light.kind == "directional":
-            return pyrender.DirectionalLight(color=light.color_rgb, intensity=light.intensity)
+            return pyrender.DirectionalLight(
+                color=light.color_rgb, intensity=light.intensity, name=light.name
+            )
         if light.kind == "point":
-            return pyrender.PointLight(color=light.color_rgb, intensity=light.intensity)
+            return pyrender.PointLight(
+                color=light.color_rgb, intensity=light.intensity, name=light.name
+            )
         raise ValueError(f"Unknown light kind {light.kind!r} for light {light.name!r}.")
 
     def __enter__(self) -> "Renderer":
@@ -98,10 +111,24 @@ class Renderer:
             self._renderer = None
 
     def _show(self, meshes: list[tuple[np.ndarray, np.ndarray]]) -> None:
+        """Put the avatar's parts in the scene with these vertices and normals.
+
+        The first call builds the scene's mesh; later ones change its primitives' data
+        in place, and :meth:`_draw` writes it into the vertex buffers pyrender made
+        (building primitives and buffers for every frame cost a fifth of the frame).
+        """
+        if self._primitives:
+            for primitive, (vertices, normals) in zip(self._primitives, meshes, strict=True):
+                primitive.positions = vertices  # also forgets the primitive's bounds
+                primitive.normals = normals
+            # The directional lights' shadow volume follows the scene's bounds, which
+            # pyrender caches on the mesh and the scene.
+            self._mesh._bounds = None
+            self.scene._bounds = None
+            self._uploaded = False
+            return
         pyrender = self._pyrender
-        for node in self._nodes:
-            self.scene.remove_node(node)
-        primitives = [
+        self._primitives = [
             pyrender.Primitive(
                 positions=vertices.astype(np.float32),
                 normals=normals.astype(np.float32),
@@ -116,7 +143,40 @@ class Renderer:
         # One mesh, so that the parts are drawn in list order: pyrender keeps a scene's
         # meshes in a set, and an order that changes from run to run would change the
         # pixels where two parts meet at equal depth (nails on fingertips).
-        self._nodes = [self.scene.add(pyrender.Mesh(primitives))]
+        self._mesh = pyrender.Mesh(self._primitives)
+        self.scene.add(self._mesh)
+        self._uploaded = True  # pyrender uploads a new mesh itself
+
+    def _upload(self) -> None:
+        """Write the primitives' changed vertex data into their buffers (context current).
+
+        pyrender's vertex buffer interleaves position (3), normal (3) and colour (4)
+        floats per vertex for primitives like ours, without tangents or texture
+        coordinates; the colour columns never change.
+        """
+        if self._uploaded or self._primitives[0]._vaid is None:
+            return
+        from OpenGL import GL
+
+        for primitive, interleaved in zip(self._primitives, self._interleaved(), strict=True):
+            interleaved[:, 0:3] = primitive.positions
+            interleaved[:, 3:6] = primitive.normals
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, primitive._buffers[0])
+            GL.glBufferSubData(GL.GL_ARRAY_BUFFER, 0, interleaved.nbytes, interleaved)
+        GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
+        self._uploaded = True
+
+    def _interleaved(self) -> list[np.ndarray]:
+        """Return one (n_vertices, 10) float32 array per primitive, colours filled in."""
+        if self._staging is None:
+            self._staging = []
+            for primitive in self._primitives:
+                if primitive.tangents is not None or primitive.texcoord_0 is not None:
+                    raise RuntimeError("In-place vertex updates expect no tangents or UVs.")
+                staging = np.empty((len(primitive.positions), 10), dtype=np.float32)
+                staging[:, 6:10] = primitive.color_0
+                self._staging.append(staging)
+        return self._staging
 
     def frame(self, dofs_rad: np.ndarray) -> np.ndarray:
         """Return one frame (height, width, 3) uint8 of the avatar in a pose."""
@@ -135,6 +195,7 @@ class Renderer:
         inner = offscreen._renderer
         offscreen._platform.make_current()
         try:
+            self._upload()
             inner.viewport_width, inner.viewport_height = self.width, self.height
             if offscreen._platform.supports_framebuffers():
                 offscreen_flag = self._pyrender.RenderFlags.OFFSCREEN
@@ -205,3 +266,24 @@ def _program_cache(pyrender, shader_dir: str):
             self._compiled = {}
 
     return ProgramCache()
+
+
+@functools.cache
+def _ordered_node_class(pyrender):
+    """Return a pyrender Node class whose nodes hash to the order they were given.
+
+    pyrender keeps lights in a set and numbers them for the shader in the set's
+    iteration order, which for plain nodes follows their memory addresses; the shader
+    then summed the lights in an order that changed from run to run, and so did the
+    last bits of some pixels. Small-integer hashes make a set iterate in their order.
+    """
+
+    class OrderedNode(pyrender.Node):
+        def __init__(self, order: int, **kwargs) -> None:
+            super().__init__(**kwargs)
+            self.order = order
+
+        def __hash__(self) -> int:
+            return self.order
+
+    return OrderedNode

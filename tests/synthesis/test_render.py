@@ -62,6 +62,35 @@ def test_shader_programs_are_compiled_once_per_renderer(monkeypatch):
     assert np.array_equal(first[0], rest[0])
 
 
+def test_lights_reach_the_shader_in_the_order_given():
+    """Regression: pyrender numbers lights in its set's order, which followed memory
+    addresses, so the shader summed them in a different order from run to run and the
+    last bits of some pixels changed. Several renderers alive at once have their nodes at
+    different addresses; each must still list its lights in the given order."""
+    avatar = hand_avatar("right")
+    renderers = [Renderer(avatar, hand_close_up(), 16, 12) for _ in range(6)]
+    try:
+        for renderer in renderers:
+            lights = [node.light for node in renderer.scene.light_nodes]  # set order
+            assert [light.name for light in lights] == [light.name for light in renderer.lights]
+    finally:
+        for renderer in renderers:
+            renderer.close()
+
+
+def test_frames_after_the_first_equal_a_fresh_renderers():
+    """Later frames rewrite the vertex buffers in place: each must equal the frame a new
+    renderer draws from scratch for the same pose (shadows follow the moved bounds)."""
+    poses = np.stack([letter_pose(c) for c in "AYB"])
+    avatar = hand_avatar("right")
+    with Renderer(avatar, hand_close_up(), 96, 72) as renderer:
+        streamed = list(renderer.frames(poses))
+    for pose, frame in zip(poses, streamed, strict=True):
+        with Renderer(avatar, hand_close_up(), 96, 72) as fresh:
+            assert np.array_equal(fresh.frame(pose), frame)
+    assert not np.array_equal(streamed[0], streamed[1])
+
+
 def test_left_handed_signer_is_the_mirror_image():
     masks = {}
     for side in ("right", "left"):
