@@ -36,6 +36,13 @@ def test_researcher_signs_in_and_previews_the_demo(page, live_server, researcher
     assert box["width"] > 100 and abs(box["width"] / box["height"] - 4 / 3) < 0.02
     SCREENSHOTS.mkdir(exist_ok=True)
     page.screenshot(path=SCREENSHOTS / "admin-preview.png")
+    # The ASL videos page lists what participants read, none signed yet in this import.
+    page.go_back()
+    page.get_by_role("link", name="ASL videos").click()
+    rows = page.locator("#asl-prompts tbody tr")
+    assert rows.count() > 10 and rows.count() == page.locator("tr.unsigned").count()
+    assert page.locator("#asl-summary").text_content().strip().startswith(f"0 of {rows.count()}")
+    page.screenshot(path=SCREENSHOTS / "admin-asl.png")
 
 
 def test_import_form_reports_a_bad_file(page, live_server, researcher, tmp_path):

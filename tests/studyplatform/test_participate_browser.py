@@ -121,6 +121,8 @@ def test_fingerspelling_study_from_link_to_completion_code(
     page.allowed_errors = [r"ERR_INTERNET_DISCONNECTED", r"Failed to fetch"]
     page.goto(f"{live_server.url}/s/{fingerspelling.slug}/?PROLIFIC_PID=pp-42")
     assert "Continuing means you agree" in page.content()
+    SCREENSHOTS.mkdir(exist_ok=True)
+    page.screenshot(path=SCREENSHOTS / "participant-welcome.png")
     page.get_by_role("button", name="Continue (I agree to take part)").click()
     participant = Participant.objects.get()
     assert participant.recruitment_params == {"PROLIFIC_PID": "pp-42"}
