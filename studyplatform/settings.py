@@ -171,10 +171,12 @@ if _env_flag("SIGNSTUDY_HTTPS"):
     CSRF_COOKIE_SECURE = True
     SECURE_PROXY_SSL_HEADER = ("HTTP_X_FORWARDED_PROTO", "https")
 
-CELERY_BROKER_URL = os.environ.get("CELERY_BROKER_URL") or os.environ.get("REDIS_URL") or ""
-CELERY_RESULT_BACKEND = os.environ.get("CELERY_RESULT_BACKEND") or CELERY_BROKER_URL or None
-# Without a broker (the demo's default) jobs run in the calling process.
-CELERY_TASK_ALWAYS_EAGER = not CELERY_BROKER_URL
+_BROKER_URL = os.environ.get("CELERY_BROKER_URL") or os.environ.get("REDIS_URL") or ""
+# Without a broker (the demo's default) jobs run in the calling process; the in-memory
+# transport keeps kombu from warning about (and defaulting to) an AMQP server on localhost.
+CELERY_TASK_ALWAYS_EAGER = not _BROKER_URL
+CELERY_BROKER_URL = _BROKER_URL or "memory://localhost/"
+CELERY_RESULT_BACKEND = os.environ.get("CELERY_RESULT_BACKEND") or _BROKER_URL or None
 CELERY_TASK_EAGER_PROPAGATES = True
 # Acknowledge after success so a killed worker's job is redelivered, not lost.
 CELERY_TASK_ACKS_LATE = True
@@ -186,4 +188,7 @@ LOGGING = {
     "disable_existing_loggers": False,
     "handlers": {"console": {"class": "logging.StreamHandler"}},
     "root": {"handlers": ["console"], "level": os.environ.get("SIGNSTUDY_LOG_LEVEL", "INFO")},
+    # Jobs run in the calling process report themselves (generate_stimuli prints each
+    # clip); Celery's per-task lines would repeat that. A real worker logs them.
+    "loggers": {"celery.app.trace": {"level": "WARNING" if CELERY_TASK_ALWAYS_EAGER else "INFO"}},
 }

@@ -79,3 +79,35 @@ def test_sqlite_runs_in_wal_mode():
     with connection.cursor() as cursor:
         cursor.execute("PRAGMA journal_mode")
         assert cursor.fetchone()[0] == "wal"
+
+
+def test_without_a_broker_jobs_run_here_quietly(tmp_path):
+    """No broker: a job runs in the calling process, with no warning about a missing
+    AMQP host and no per-task log lines (the commands report their own progress)."""
+    code = (
+        "import django, os\n"
+        "os.environ['DJANGO_SETTINGS_MODULE'] = 'studyplatform.settings'\n"
+        "django.setup()\n"
+        "from studyplatform.celery import app\n"
+        "@app.task\n"
+        "def add(a, b):\n"
+        "    return a + b\n"
+        "print(add.delay(2, 3).get())\n"
+    )
+    clean_env = {
+        k: v
+        for k, v in os.environ.items()
+        if not k.startswith(("SIGNSTUDY_", "DATABASE_URL", "CELERY_", "REDIS_URL"))
+    }
+    result = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=ROOT,
+        env={**clean_env, "SIGNSTUDY_VAR_DIR": str(tmp_path)},
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert result.stdout.strip() == "5"
+    assert result.stderr == ""
+    broker = {"SIGNSTUDY_VAR_DIR": str(tmp_path), "CELERY_BROKER_URL": "redis://127.0.0.1:6379/9"}
+    assert _settings_in_subprocess(broker, "settings.CELERY_TASK_ALWAYS_EAGER") == "False"
