@@ -17,6 +17,7 @@ from studyplatform.actions.participants import (
     do_set_participant_language,
     page_count,
     page_trial,
+    time_left,
 )
 from studyplatform.actions.responses import (
     Answer,
@@ -56,4 +57,5 @@ __all__ = [
     "page_trial",
     "presented_conditions",
     "schedule_entry",
+    "time_left",
 ]

@@ -85,19 +85,27 @@ def page_count(participant: Participant) -> int:
     return len(participant.schedule)
 
 
+def time_left(participant: Participant, now=None) -> timedelta | None:
+    """Return how long the participant has left under the study's time limit, or None.
+
+    The limit runs from consent; None when the study has no limit (or before consent).
+    """
+    limit = participant.study.time_limit_minutes
+    if not limit or participant.consented_at is None:
+        return None
+    deadline = participant.consented_at + timedelta(minutes=limit)
+    return max(deadline - (now or timezone.now()), timedelta(0))
+
+
 def closed_reason(participant: Participant, now=None) -> str:
     """Return why the participant can no longer answer (time limit, sitting), or ""."""
     study = participant.study
     now = now or timezone.now()
     if participant.is_finished:
         return ""
-    limit = study.time_limit_minutes
-    if (
-        limit
-        and participant.consented_at
-        and now > participant.consented_at + timedelta(minutes=limit)
-    ):
-        return f"The time limit of {limit} minutes has passed."
+    left = time_left(participant, now)
+    if left is not None and not left:
+        return f"The time limit of {study.time_limit_minutes} minutes has passed."
     if (
         study.one_sitting
         and participant.last_seen_at is not None

@@ -1,4 +1,4 @@
-"""Template helpers of the participant pages: ASL prompt videos."""
+"""Template helpers of the participant pages: ASL prompt videos, time left."""
 
 from django import template
 
@@ -17,3 +17,12 @@ def asl_video(videos: dict, obj, field_name: str):
 def get_item(mapping: dict, key: str):
     """Return ``mapping[key]`` or "" (for per-question error messages)."""
     return (mapping or {}).get(key, "")
+
+
+@register.filter
+def minutes_left(seconds: int) -> str:
+    """Say how long is left in whole minutes ("12 minutes left"), as the page's timer does."""
+    minutes = int(seconds) // 60
+    if minutes < 1:
+        return "Less than a minute left"
+    return f"{minutes} minute{'s' if minutes != 1 else ''} left"

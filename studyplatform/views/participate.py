@@ -31,6 +31,7 @@ from studyplatform.actions import (
     do_set_participant_language,
     page_count,
     page_trial,
+    time_left,
 )
 from studyplatform.actions.participants import unwatched_clips
 from studyplatform.actions.uploads import (
@@ -238,6 +239,7 @@ def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
         "errors": errors,
         "page_error": errors.get("__page__", ""),
         "can_go_back": study.allow_back and number > 1,
+        "seconds_left": _seconds(time_left(participant)),
     }
     return render(
         request,
@@ -245,6 +247,10 @@ def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
         context,
         status=400 if errors else 200,
     )
+
+
+def _seconds(left) -> int | None:
+    return None if left is None else int(left.total_seconds())
 
 
 def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpResponse:

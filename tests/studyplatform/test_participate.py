@@ -1,6 +1,7 @@
 """Take studies through the participant views: flow, idempotent saves, tampering, isolation."""
 
 import json
+import re
 from collections import Counter
 from datetime import timedelta
 
@@ -231,6 +232,22 @@ def test_time_limit_and_one_sitting_close_the_session(client, fingerspelling):
     refused = _save(client, participant, page=1, trial=participant.schedule[0]["trial"],
                     question="age", value="2")  # fmt: skip
     assert "time limit" in refused.json()["error"] and not Response.objects.exists()
+
+
+def test_a_time_limited_study_shows_the_time_left(client, fingerspelling):
+    participant = _start(client, fingerspelling)
+    url = reverse("participant_page", args=[participant.token, 1])
+    assert 'role="timer"' not in client.get(url).text  # the demo has no time limit
+    fingerspelling.time_limit_minutes = 20
+    fingerspelling.save()
+    page = client.get(url).text
+    seconds = int(re.search(r'data-seconds-left="(\d+)"', page).group(1))
+    assert 1190 <= seconds <= 1200 and "19 minutes left" in page and "time-low" not in page
+    Participant.objects.filter(pk=participant.pk).update(
+        consented_at=timezone.now() - timedelta(minutes=16, seconds=30)
+    )
+    page = client.get(url).text
+    assert "3 minutes left" in page and "time-low" in page  # under five minutes: prominent
 
 
 def test_the_completion_redirect_carries_the_recruitment_ids(client, fingerspelling):

@@ -398,3 +398,37 @@ def test_replay_limit_and_watching_to_the_end(page, live_server, fingerspelling,
     assert participant.position == number + 1
     ended = MediaEvent.objects.filter(participant=participant, kind="ended")
     assert sorted(ended.values_list("clip_position", flat=True)) == [1, 2]
+
+
+def test_the_time_left_counts_down_and_the_page_closes_at_the_limit(page, live_server,
+                                                                   fingerspelling):  # fmt: skip
+    """The timer turns prominent five minutes before the limit, and at the limit the page
+    reloads into the server's "time is up" message."""
+    from datetime import timedelta
+
+    from django.utils import timezone
+
+    from studyplatform.actions import do_enroll_participant
+
+    page.allowed_errors = [r"\b410\b"]  # the closed page's status, expected at the end
+    fingerspelling.time_limit_minutes = 20
+    fingerspelling.save()
+    participant = do_enroll_participant(fingerspelling, consented=True)
+    url = f"{live_server.url}/p/{participant.token}/1/"
+    Participant.objects.filter(pk=participant.pk).update(
+        consented_at=timezone.now() - timedelta(minutes=15) + timedelta(seconds=2)
+    )
+    page.goto(url)
+    timer = page.locator("#time-left")
+    assert timer.text_content() == "5 minutes left" and "time-low" not in timer.get_attribute(
+        "class"
+    )
+    page.wait_for_function("document.getElementById('time-left').classList.contains('time-low')")
+    assert timer.text_content() == "4 minutes left"
+    assert page.locator("#save-status").text_content() == "Five minutes left."
+    Participant.objects.filter(pk=participant.pk).update(
+        consented_at=timezone.now() - timedelta(minutes=20) + timedelta(seconds=2)
+    )
+    page.goto(url)
+    assert timer.text_content() == "Less than a minute left"
+    page.get_by_text("The time limit of 20 minutes has passed.").wait_for(timeout=10000)

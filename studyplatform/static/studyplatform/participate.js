@@ -16,6 +16,29 @@
   const nextButton = document.getElementById("next-button");
   let shownAt = performance.now();
 
+  /* Time limit: count the server's "seconds left" down in whole minutes; at the end,
+   * reload, and the server says the time is up. Five minutes before, the timer turns
+   * prominent and says so once to screen readers. */
+  const timer = document.getElementById("time-left");
+  if (timer) {
+    const endsAt = performance.now() + Number(timer.dataset.secondsLeft) * 1000;
+    let warned = timer.classList.contains("time-low");
+    const tick = function () {
+      const seconds = Math.max(0, Math.round((endsAt - performance.now()) / 1000));
+      const minutes = Math.floor(seconds / 60);
+      timer.textContent = minutes < 1 ? "Less than a minute left"
+        : minutes + (minutes === 1 ? " minute left" : " minutes left");
+      if (seconds < 300 && !warned) {
+        warned = true;
+        timer.classList.add("time-low");
+        status.textContent = "Five minutes left.";
+      }
+      if (seconds === 0) { window.location.reload(); return; }
+      setTimeout(tick, 1000);
+    };
+    tick();
+  }
+
   /* ASL first: English text is secondary, and can be hidden where an ASL video signs it. */
   const englishToggle = document.getElementById("english-toggle");
   if (englishToggle) {
