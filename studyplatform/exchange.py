@@ -28,6 +28,7 @@ STUDY_FIELDS = (
     "redirect_url",
     "allowed_devices",
     "one_sitting",
+    "shared_computer",
     "time_limit_minutes",
     "target_n",
     "allow_back",

@@ -113,6 +113,7 @@ class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyScopedMixin, admin.Model
                 "fields": (
                     "allowed_devices",
                     "one_sitting",
+                    "shared_computer",
                     "time_limit_minutes",
                     "target_n",
                     "allow_back",

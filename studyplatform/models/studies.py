@@ -77,6 +77,15 @@ class Study(models.Model):
     one_sitting = models.BooleanField(
         default=False, help_text="The study must be completed in one sitting."
     )
+    shared_computer = models.BooleanField(
+        "shared computer",
+        default=False,
+        help_text=(
+            "For a lab computer that participants take in turns: when one finishes, the "
+            "study link starts afresh in that browser, and the thank-you page has a button "
+            "for the next participant."
+        ),
+    )
     time_limit_minutes = models.PositiveIntegerField(
         null=True, blank=True, validators=[MinValueValidator(1)], help_text="Empty: no limit."
     )

@@ -98,7 +98,8 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     known = request.session.get(SESSION_KEY, {}).get(slug)
     if known:
         participant = _participant(known)
-        if participant is not None:
+        # On a shared computer a finished participant's link is the next one's start.
+        if participant is not None and not (study.shared_computer and participant.is_finished):
             return redirect(_page_url(participant, participant.position))
     if not study.is_accepting_participants:
         return _problem(request, "This study is not taking participants now.", status=410)
@@ -358,6 +359,12 @@ def done(request: HttpRequest, token: str) -> HttpResponse:
     if not participant.is_finished:
         return redirect(_page_url(participant, max(participant.position, 1)))
     study = participant.study
+    if study.shared_computer:
+        # Forget this participant in this browser: the study link now starts afresh.
+        remembered = request.session.get(SESSION_KEY, {})
+        if remembered.get(study.slug) == participant.token:
+            del remembered[study.slug]
+            request.session.modified = True
     return render(
         request,
         "studyplatform/participate/done.html",

@@ -250,6 +250,34 @@ def test_a_time_limited_study_shows_the_time_left(client, fingerspelling):
     assert "3 minutes left" in page and "time-low" in page  # under five minutes: prominent
 
 
+def _finish(participant):
+    Participant.objects.filter(pk=participant.pk).update(
+        finished_at=timezone.now(), position=len(participant.schedule) + 1
+    )
+
+
+def test_on_a_shared_computer_the_study_link_starts_afresh_after_a_finish(client, fingerspelling):
+    welcome = reverse("study_welcome", args=[fingerspelling.slug])
+    first = _start(client, fingerspelling)
+    _finish(first)
+    done = reverse("participant_done", args=[first.token])
+    assert client.get(welcome)["Location"] == done  # by default: back to the thank-you page
+    assert "next participant" not in client.get(done).text
+
+    fingerspelling.shared_computer = True
+    fingerspelling.save()
+    second = _start(client, fingerspelling)  # the welcome page again, and a new participant
+    assert second.pk != first.pk and second.token != first.token
+    moved = client.get(welcome)
+    assert moved["Location"] == reverse("participant_page", args=[second.token, 1])  # unfinished
+    _finish(second)
+    page = client.get(reverse("participant_done", args=[second.token])).text
+    assert f'id="next-participant" href="{welcome}"' in page
+    third = _start(client, fingerspelling)
+    assert third.pk not in (first.pk, second.pk)
+    assert Participant.objects.filter(study=fingerspelling).count() == 3
+
+
 def test_the_completion_redirect_carries_the_recruitment_ids(client, fingerspelling):
     fingerspelling.redirect_url = "https://example.org/done?pid={PROLIFIC_PID}&x={MISSING}"
     fingerspelling.save()
