@@ -30,6 +30,8 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import machine
+
 ROOT = Path(__file__).resolve().parent.parent
 POSTGRES = "postgres://postgres@127.0.0.1:5432/signstudy_bench"
 
@@ -169,6 +171,7 @@ def main() -> None:
     if args.child:
         run(args.child, args.participants, args.pages, args.think_s)
         return
+    print(machine.describe())
     for database in ("sqlite", "postgres") if args.database == "both" else (args.database,):
         with tempfile.TemporaryDirectory() as var_dir:
             unset = ("DATABASE_URL", "CELERY_BROKER_URL", "REDIS_URL")

@@ -17,6 +17,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+import machine
+
 from synthesis.posture import fingerspelling_posture
 from synthesis.render.backend import select_platform
 from synthesis.render.clip import render_clip
@@ -57,6 +59,7 @@ def main() -> None:
     # 600 frames: a 10 s clip at 60 fps, a typical sentence or a long fingerspelled word.
     parser.add_argument("--frames", type=int, default=600)
     args = parser.parse_args()
+    print(machine.describe())
     print(f"OpenGL platform: {select_platform()}; render workers: {default_workers()}")
     for name, avatar, camera, motion, build_s in _views(args.frames):
         n = len(motion)

@@ -16,6 +16,8 @@ import tempfile
 import time
 from pathlib import Path
 
+import machine
+
 ROOT = Path(__file__).resolve().parent.parent
 STUDIES = ("fingerspelling-timing", "spine-motion")
 
@@ -47,6 +49,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--skip-single", action="store_true", help="only the 2-worker run")
     args = parser.parse_args()
+    print(machine.describe())
     two, facts = _cold(2)
     print(f"cold render, 2 workers: {facts['clips']} clips in {two:.0f} s "
           f"({', '.join(f'{k} {v:.0f} s' for k, v in facts['per_study'].items())}; "
