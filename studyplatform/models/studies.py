@@ -83,7 +83,8 @@ class Study(models.Model):
         help_text=(
             "For a lab computer that participants take in turns: when one finishes, the "
             "study link starts afresh in that browser, and the thank-you page has a button "
-            "for the next participant."
+            "for the next participant. The study link with ?new=1 starts afresh even if "
+            "the one before left without finishing."
         ),
     )
     time_limit_minutes = models.PositiveIntegerField(

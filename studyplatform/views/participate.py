@@ -44,6 +44,7 @@ from studyplatform.models import Participant, Question, Study, Trial
 from studyplatform.pages import participant_page, study_asl
 
 SESSION_KEY = "signstudy_participants"
+NEW_PARTICIPANT_PARAM = "new"
 
 
 def _invalid_link() -> JsonResponse:
@@ -95,7 +96,10 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     study = Study.objects.filter(slug=slug).first()
     if study is None:
         return _problem(request, "There is no study at this address.", status=404)
-    known = request.session.get(SESSION_KEY, {}).get(slug)
+    # On a shared computer, ?new=1 starts the next participant even when the one before
+    # left without finishing (the researcher's way to clear the computer).
+    fresh = study.shared_computer and request.GET.get(NEW_PARTICIPANT_PARAM) == "1"
+    known = None if fresh else request.session.get(SESSION_KEY, {}).get(slug)
     if known:
         participant = _participant(known)
         # On a shared computer a finished participant's link is the next one's start.
@@ -112,9 +116,11 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
             error = "Please tick the box to agree before you start."
         else:
             try:
+                params = request.GET.dict()
+                params.pop(NEW_PARTICIPANT_PARAM, None)
                 participant = do_enroll_participant(
                     study,
-                    recruitment_params=request.GET.dict(),
+                    recruitment_params=params,
                     user_agent=user_agent,
                     consented=True,
                 )

@@ -275,7 +275,15 @@ def test_on_a_shared_computer_the_study_link_starts_afresh_after_a_finish(client
     assert f'id="next-participant" href="{welcome}"' in page
     third = _start(client, fingerspelling)
     assert third.pk not in (first.pk, second.pk)
-    assert Participant.objects.filter(study=fingerspelling).count() == 3
+    # The third walks away unfinished: ?new=1 clears the computer for the fourth.
+    assert client.get(welcome)["Location"] == reverse("participant_page", args=[third.token, 1])
+    fourth = _start(client, fingerspelling, "?new=1&PROLIFIC_PID=p4")
+    assert fourth.pk != third.pk and fourth.recruitment_params == {"PROLIFIC_PID": "p4"}
+    assert Participant.objects.filter(study=fingerspelling).count() == 4
+    fingerspelling.shared_computer = False  # elsewhere ?new=1 changes nothing
+    fingerspelling.save()
+    resumed = client.get(welcome + "?new=1")
+    assert resumed["Location"] == reverse("participant_page", args=[fourth.token, 1])
 
 
 def test_the_completion_redirect_carries_the_recruitment_ids(client, fingerspelling):
