@@ -26,6 +26,8 @@ MAX_PARAM_LENGTH = 200
 MAX_PARAMS = 20
 # A one-sitting study closes for a participant who leaves it this long between pages.
 ONE_SITTING_BREAK = timedelta(minutes=30)
+# Under a time limit, the page warns the participant when this much time is left.
+TIME_LOW = timedelta(minutes=5)
 
 
 def clean_recruitment_params(params: Mapping[str, str]) -> dict[str, str]:
@@ -103,8 +105,7 @@ def closed_reason(participant: Participant, now=None) -> str:
     now = now or timezone.now()
     if participant.is_finished:
         return ""
-    left = time_left(participant, now)
-    if left is not None and not left:
+    if time_left(participant, now) == timedelta(0):
         return f"The time limit of {study.time_limit_minutes} minutes has passed."
     if (
         study.one_sitting

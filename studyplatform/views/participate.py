@@ -33,7 +33,7 @@ from studyplatform.actions import (
     page_trial,
     time_left,
 )
-from studyplatform.actions.participants import unwatched_clips
+from studyplatform.actions.participants import TIME_LOW, unwatched_clips
 from studyplatform.actions.uploads import (
     UploadOffsetMismatch,
     UploadRejected,
@@ -247,6 +247,7 @@ def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
         "page_error": errors.get("__page__", ""),
         "can_go_back": study.allow_back and number > 1,
         "seconds_left": _seconds(time_left(participant)),
+        "low_seconds": _seconds(TIME_LOW),
     }
     return render(
         request,

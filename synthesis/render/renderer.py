@@ -115,7 +115,8 @@ class Renderer:
 
         The first call builds the scene's mesh; later ones change its primitives' data
         in place, and :meth:`_draw` writes it into the vertex buffers pyrender made
-        (building primitives and buffers for every frame cost a fifth of the frame).
+        (building primitives and buffers for every frame cost about a tenth of an
+        upper-body frame).
         """
         if self._primitives:
             for primitive, (vertices, normals) in zip(self._primitives, meshes, strict=True):

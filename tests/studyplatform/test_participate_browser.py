@@ -425,7 +425,7 @@ def test_the_time_left_counts_down_and_the_page_closes_at_the_limit(page, live_s
     )
     page.wait_for_function("document.getElementById('time-left').classList.contains('time-low')")
     assert timer.text_content() == "4 minutes left"
-    assert page.locator("#save-status").text_content() == "Five minutes left."
+    assert page.locator("#save-status").text_content() == "5 minutes left."
     Participant.objects.filter(pk=participant.pk).update(
         consented_at=timezone.now() - timedelta(minutes=20) + timedelta(seconds=2)
     )

@@ -17,21 +17,24 @@
   let shownAt = performance.now();
 
   /* Time limit: count the server's "seconds left" down in whole minutes; at the end,
-   * reload, and the server says the time is up. Five minutes before, the timer turns
-   * prominent and says so once to screen readers. */
+   * reload, and the server says the time is up. When little time is left (the server
+   * says how little), the timer turns prominent and says so once to screen readers. */
   const timer = document.getElementById("time-left");
   if (timer) {
     const endsAt = performance.now() + Number(timer.dataset.secondsLeft) * 1000;
+    const lowSeconds = Number(timer.dataset.lowSeconds);
     let warned = timer.classList.contains("time-low");
+    const say = function (minutes) {
+      return minutes < 1 ? "Less than a minute left"
+        : minutes + (minutes === 1 ? " minute left" : " minutes left");
+    };
     const tick = function () {
       const seconds = Math.max(0, Math.round((endsAt - performance.now()) / 1000));
-      const minutes = Math.floor(seconds / 60);
-      timer.textContent = minutes < 1 ? "Less than a minute left"
-        : minutes + (minutes === 1 ? " minute left" : " minutes left");
-      if (seconds < 300 && !warned) {
+      timer.textContent = say(Math.floor(seconds / 60));
+      if (seconds < lowSeconds && !warned) {
         warned = true;
         timer.classList.add("time-low");
-        status.textContent = "Five minutes left.";
+        status.textContent = say(Math.round(lowSeconds / 60)) + ".";
       }
       if (seconds === 0) { window.location.reload(); return; }
       setTimeout(tick, 1000);
