@@ -4,7 +4,7 @@ from django.contrib.contenttypes.models import ContentType
 from django.core.exceptions import ValidationError
 from django.db import transaction
 
-from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo, Study
+from studyplatform.models import PARTICIPANT_FACING_FIELDS, STUDY_PATHS, AslVideo, Study
 
 # The containers an ASL video may come in: uploads and webcam recordings alike.
 VIDEO_SUFFIXES = (".mp4", ".webm", ".mov", ".m4v")
@@ -21,11 +21,9 @@ def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, fiel
     fields = PARTICIPANT_FACING_FIELDS.get(model._meta.model_name if model else "", ())
     if field_name not in fields:
         raise ValidationError(f"“{field_name}” is not a text participants read.")
-    obj = model._default_manager.filter(pk=object_id).first()
-    owner = obj if isinstance(obj, Study) else getattr(obj, "study", None)
-    if owner is None and obj is not None and hasattr(obj, "question"):
-        owner = obj.question.study
-    if obj is None or owner is None or owner.pk != study.pk:
+    path = STUDY_PATHS[model._meta.model_name]
+    in_study = {path: study} if path else {"pk": study.pk}
+    if not model._default_manager.filter(pk=object_id).filter(**in_study).exists():
         raise ValidationError("This text is not part of the study.")
     name = getattr(upload, "name", "") or ""
     if not name.lower().endswith(VIDEO_SUFFIXES):

@@ -51,7 +51,7 @@ def upload_offset(participant: Participant, trial: Trial, question: Question) ->
 def _check_question(trial: Trial, question: Question) -> None:
     if not question.allow_signed_answer:
         raise UploadRejected(f"“{question.key}” does not take a signed answer.")
-    if not trial.questions.filter(pk=question.pk).exists():
+    if question.pk not in {asked.pk for asked in trial.questions.all()}:  # prefetched or one query
         raise UploadRejected(f"“{question.key}” is not asked on this page.")
 
 
@@ -78,7 +78,7 @@ def do_append_signed_answer_chunk(
         path = partial_path(participant, trial, question)
         if offset == 0:
             path.unlink(missing_ok=True)  # a new recording starts over
-        stored = path.stat().st_size if path.exists() else 0
+        stored = upload_offset(participant, trial, question)
         if offset != stored:
             raise UploadOffsetMismatch(stored)
         if stored + len(chunk) > MAX_SIGNED_ANSWER_BYTES:

@@ -9,7 +9,7 @@ from django.contrib import admin
 from django.db.models import Model, QuerySet
 from django.http import HttpRequest
 
-from studyplatform.models import Study
+from studyplatform.models import STUDY_PATHS, Study
 
 # The attribute of the request on which an inline finds the study being edited; admin
 # instances are shared between threads, so per-request state lives on the request.
@@ -29,23 +29,6 @@ def scope_queryset(queryset: QuerySet, study_path: str, request: HttpRequest) ->
         return queryset
     owner_lookup = "owner" if study_path == "" else f"{study_path}__owner"
     return queryset.filter(**{owner_lookup: request.user})
-
-
-# Where each model's study is, for filtering related choices in forms.
-STUDY_PATHS: dict[str, str] = {
-    "study": "",
-    "condition": "study",
-    "item": "study",
-    "question": "study",
-    "answeroption": "question__study",
-    "block": "study",
-    "trial": "study",
-    "stimulus": "condition__study",
-    "participant": "study",
-    "personalanswer": "participant__study",
-    "response": "participant__study",
-    "mediaevent": "participant__study",
-}
 
 
 def scope_related(queryset: QuerySet, request: HttpRequest) -> QuerySet:

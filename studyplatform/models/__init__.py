@@ -9,11 +9,13 @@ from studyplatform.models.participants import (
 )
 from studyplatform.models.prompts import PARTICIPANT_FACING_FIELDS, AslVideo
 from studyplatform.models.responses import MediaEvent, Response
+from studyplatform.models.scope import STUDY_PATHS
 from studyplatform.models.stimuli import Stimulus
 from studyplatform.models.studies import Condition, Item, Study
 
 __all__ = [
     "PARTICIPANT_FACING_FIELDS",
+    "STUDY_PATHS",
     "TRIAL_QUESTION_KINDS",
     "AnswerOption",
     "AslVideo",

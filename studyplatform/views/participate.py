@@ -311,7 +311,7 @@ def upload_signed_answer(
         return JsonResponse({"error": "This link is not valid."}, status=404)
     try:
         trial = page_trial(participant, number, for_answer=True)
-        found = trial.questions.filter(key=question).first()
+        found = next((q for q in trial.questions.all() if q.key == question), None)
         if found is None:
             raise UploadRejected(f"“{question}” is not asked on this page.")
         if request.method == "GET":
