@@ -4,6 +4,7 @@
     python -m synthesis render-pose --letter R --out r.png
     python -m synthesis spell HEAVEN --out heaven.mp4
     python -m synthesis render-bvh file.bvh --out clip.mp4
+    python -m synthesis techniques                     # what a condition can set
 
 Rendering commands take ``--view hand`` (the fingerspelling close-up) or ``--view
 upper-body``, ``--side left`` for a left-handed signer, and ``--size 640x480``.
@@ -20,6 +21,14 @@ from synthesis.alphabet import AlphabetError, letter_pose
 from synthesis.bvh import BvhError
 from synthesis.hand import HandModel
 from synthesis.landmarks import landmarks
+from synthesis.techniques import (
+    REGISTRY,
+    ClipRequest,
+    avatar_and_camera,
+    build_motion,
+    render_request,
+)
+from synthesis.techniques.timing import TIMINGS
 
 
 def _landmarks(args: argparse.Namespace) -> int:
@@ -57,127 +66,122 @@ def _progress(label: str):
     return report
 
 
-def _scene(view: str, side: str):
-    from synthesis.render.scene import hand_close_up, upper_body_front
-
-    if view == "hand":
-        from synthesis.avatar.hand import hand_avatar
-
-        return hand_avatar(side), hand_close_up(side)
-    from synthesis.avatar.body import body_avatar
-
-    return body_avatar(side), upper_body_front(side)
-
-
-def _hand_motion_for(avatar, side: str, hand_dofs: np.ndarray) -> np.ndarray:
-    """Return the avatar's DOFs for hand-model DOFs (a body holds the hand up to sign)."""
-    if isinstance(avatar.rig, HandModel):
+def _hand_motion_for(rig, side: str, hand_dofs: np.ndarray) -> np.ndarray:
+    """Return the rig's DOFs for hand-model DOFs (a body holds the hand up to sign)."""
+    if isinstance(rig, HandModel):
         return hand_dofs
     from synthesis.posture import fingerspelling_posture
 
-    return fingerspelling_posture(avatar.rig, side, hand_dofs)
+    return fingerspelling_posture(rig, side, hand_dofs)
 
 
 def _render_pose(args: argparse.Namespace) -> int:
     from synthesis.render.clip import render_still
 
-    avatar, camera = _scene(args.view, args.side)
-    dofs = _hand_motion_for(avatar, args.side, letter_pose(args.letter, args.side)[None])[0]
+    avatar, camera = avatar_and_camera(args.view, args.side)
+    dofs = _hand_motion_for(avatar.rig, args.side, letter_pose(args.letter, args.side)[None])[0]
     path = render_still(avatar, dofs, camera, args.out, *args.size)
     print(f"wrote {path}")
     return 0
 
 
-def _timing(args: argparse.Namespace, recording=None):
-    """Return the word timing the spell command asks for (a recording's own for mocap)."""
-    from synthesis.spelling import simple_timing, word_letters
-    from synthesis.timing import WordTiming, constant_timing, normalized_constant_timing
-
-    if args.timing_file is not None:
-        timing = WordTiming.from_dict(json.loads(args.timing_file.read_text("utf-8")))
-        if timing.word != "".join(word_letters(args.word)):
-            raise ValueError(f"{args.timing_file} times {timing.word}, not {args.word.upper()}.")
-        return timing
-    word = "".join(word_letters(args.word))
-    if args.condition == "mocap":
-        if recording is None:
-            raise ValueError(
-                "The mocap condition plays a recording: give --recording FILE.bvh of the word "
-                "(or --simulate SEED for a simulated one)."
-            )
-        return recording.extraction.timing
-    if args.condition == "constant":
-        return constant_timing(word)
-    if args.condition in ("variable", "normalized"):
-        variable = _model(args).timing(word)
-        if args.condition == "variable":
-            return variable
-        return normalized_constant_timing(word, variable)
-    return simple_timing(args.word)
+def _flag(name: str) -> str:
+    return "--" + name.replace("_", "-")
 
 
-def _model(args: argparse.Namespace):
-    """Return the Variable model the command asks for (the published one by default)."""
-    from synthesis.timing import VariableModel, published_model
+def _on_off(text: str) -> bool:
+    if text not in ("on", "off"):
+        raise argparse.ArgumentTypeError(f"use on or off, not {text!r}")
+    return text == "on"
 
-    return VariableModel.load(args.model) if args.model else published_model()
 
+def add_technique_flags(command: argparse.ArgumentParser, kind: str) -> None:
+    """Add a flag for every registered technique parameter that applies to *kind*.
 
-def _recorded_motion(recording, timing, avatar, args: argparse.Namespace):
-    """Return the recording (retimed unless mocap) as the hand avatar's joint transforms.
-
-    Seed 000 §4.3: with a recording, every condition is the recording itself, its holds
-    and transitions moved onto the condition's timing.
+    A flag left out takes the technique's default, so the command and the platform
+    render the same clip for the same parameters.
     """
-    from synthesis.retarget import retarget
-    from synthesis.retime import resample
-    from synthesis.timing.recordings import retime
+    for technique in REGISTRY.for_kind(kind):
+        group = command.add_argument_group(f"{technique.label} ({technique.source})")
+        for parameter in technique.parameters:
+            options = {"dest": f"technique_{parameter.name}", "default": None}
+            default = parameter.label_of(parameter.default) if parameter.type != "file" else ""
+            help_text = parameter.help + (f" Default: {default}." if default else "")
+            if parameter.type == "choice":
+                options.update(choices=parameter.choices)
+            elif parameter.type == "bool":
+                options.update(type=_on_off, metavar="on|off")
+            elif parameter.type == "file":
+                options.update(type=str, metavar="FILE")
+            else:
+                options.update(type=int if parameter.type == "int" else float,
+                               metavar=parameter.units.upper() or "N")  # fmt: skip
+            group.add_argument(_flag(parameter.name), help=help_text.replace("%", "%%"),
+                               **options)  # fmt: skip
 
-    if not isinstance(avatar.rig, HandModel):
-        raise ValueError("Recordings are rendered in the hand view for now: use --view hand.")
-    motion = recording.motion if args.condition == "mocap" else retime(recording, timing)
-    if abs(motion.rate_hz - args.rate) > 1e-9:
-        motion = resample(motion, args.rate)
-    return retarget(motion, avatar.rig)
+
+def technique_values(args: argparse.Namespace) -> dict:
+    """Return the technique parameters given on the command line."""
+    prefix = "technique_"
+    return {
+        name.removeprefix(prefix): value
+        for name, value in vars(args).items()
+        if name.startswith(prefix) and value is not None
+    }
+
+
+def _request(args: argparse.Namespace, kind: str, text: str, **values) -> ClipRequest:
+    fields = {"view": args.view or "", "side": args.side, "width": args.size[0],
+              "height": args.size[1], "rate_hz": args.rate}  # fmt: skip
+    if getattr(args, "seed", None) is not None:
+        fields["seed"] = args.seed
+    return ClipRequest(kind, text, {**technique_values(args), **values}, **fields)
 
 
 def _spell(args: argparse.Namespace) -> int:
-    from synthesis.render.clip import render_clip
-    from synthesis.spelling import spell
-
-    recording = None
-    if args.recording is not None and args.simulate is not None:
+    given = technique_values(args)
+    values = {}
+    if given.get("recording") and args.simulate is not None:
         raise ValueError("Give either --recording or --simulate, not both.")
-    if args.recording is not None:
-        from synthesis.timing.recordings import Recording
-
-        recording = Recording.read(args.recording, args.word, args.side)
+    if given.get("recording"):
+        values["source"] = given.get("source", "recording")
     elif args.simulate is not None:
-        from synthesis.timing.recordings import Recording
-
-        model = _model(args)
-        recording = Recording.simulate(args.word, args.simulate, model, args.side, args.rate)
-    timing = _timing(args, recording)
+        values["source"] = "simulated"
+        args.seed = args.simulate
+    request = _request(args, "word", args.word, **values)
+    build = build_motion(request)
     if args.timing_only:
-        print(json.dumps(timing.to_dict(), indent=2))
+        print(json.dumps(build.timing.to_dict(), indent=2))
         return 0
     if args.out is None:
         raise ValueError("Give --out FILE.mp4 (or --timing-only to print the timing).")
-    avatar, camera = _scene(args.view, args.side)
-    if recording is not None:
-        motion = _recorded_motion(recording, timing, avatar, args)
-    else:
-        hand_motion = spell(args.word, args.side, args.rate, timing=timing)
-        motion = _hand_motion_for(avatar, args.side, hand_motion)
-    info = render_clip(
-        avatar, motion, camera, args.out, args.rate, poster=args.poster,
-        width=args.size[0], height=args.size[1], progress=_progress(f"spelling {args.word}"),
-        workers=args.workers,
-    )  # fmt: skip
+    info = render_request(request, args.out, poster=args.poster, workers=args.workers,
+                          progress=_progress(f"spelling {args.word}"), build=build)  # fmt: skip
     print(
         f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, "
-        f"{timing.condition} timing)"
+        f"{build.timing.condition} timing)"
     )
+    return 0
+
+
+def _sentence(args: argparse.Namespace) -> int:
+    request = _request(args, "sentence", args.text)
+    build = build_motion(request)
+    if args.plot is not None:
+        from synthesis.sentence_plots import torso_angles_figure
+
+        spine = request.parameters["spine"]
+        flipped = {**request.parameters, "spine": not spine}
+        other = build_motion(ClipRequest(**{**request.to_dict(), "parameters": flipped}))
+        pair = (build.result, other.result) if spine else (other.result, build.result)
+        torso_angles_figure(*pair, title=args.text).savefig(args.plot, dpi=120)
+        print(f"wrote {args.plot}")
+    if args.out is None:
+        return 0
+    info = render_request(request, args.out, poster=args.poster, workers=args.workers,
+                          progress=_progress("signing"), build=build)  # fmt: skip
+    spine = "on" if request.parameters["spine"] else "off"
+    print(f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, spine {spine})")
     return 0
 
 
@@ -194,7 +198,7 @@ def _render_bvh(args: argparse.Namespace) -> int:
     mapping = detect_mapping(motion.skeleton)
     view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
     side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
-    avatar, camera = _scene(view, side)
+    avatar, camera = avatar_and_camera(view, side)
     pose = retarget(motion, avatar.rig, mapping)
     info = render_clip(
         avatar, pose, camera, args.out, motion.rate_hz, poster=args.poster,
@@ -208,35 +212,37 @@ def _render_bvh(args: argparse.Namespace) -> int:
     return 0
 
 
-def _sentence(args: argparse.Namespace) -> int:
-    from dataclasses import replace
+def techniques_help() -> str:
+    """Return the registered techniques as the help text lists them."""
+    lines = [
+        "techniques (from the registry; python -m synthesis techniques --json for the schema):"
+    ]
+    for technique in REGISTRY.techniques:
+        kinds = ", ".join(sorted(technique.kinds))
+        names = ", ".join(p.name for p in technique.parameters)
+        lines.append(f"  {technique.name:<11} {technique.label} [{kinds}; {technique.source}]: "
+                     f"{names}")  # fmt: skip
+    return "\n".join(lines)
 
-    from synthesis.render.clip import render_clip
-    from synthesis.sentence import SentenceOptions, synthesize
-    from synthesis.signs import read_library
 
-    library = read_library(args.library) if args.library else None
-    options = SentenceOptions(spine=args.spine == "on", rate_hz=args.rate, seed=args.seed,
-                              dominant=args.side)  # fmt: skip
-    sentence = synthesize(args.text, options, library)
-    if args.plot is not None:
-        from synthesis.sentence_plots import torso_angles_figure
+def _version(args: argparse.Namespace) -> int:
+    from synthesis.identity import engine_digest
 
-        other = synthesize(args.text, replace(options, spine=not options.spine), library)
-        pair = (sentence, other) if args.spine == "on" else (other, sentence)
-        torso_angles_figure(*pair, title=args.text).savefig(args.plot, dpi=120)
-        print(f"wrote {args.plot}")
-    if args.out is None:
+    print(engine_digest())
+    return 0
+
+
+def _techniques(args: argparse.Namespace) -> int:
+    if args.json:
+        print(json.dumps(REGISTRY.schema(), indent=2, ensure_ascii=False))
         return 0
-    avatar, camera = _scene("upper-body", args.side)
-    info = render_clip(
-        avatar, sentence.dofs_rad, camera, args.out, args.rate, poster=args.poster,
-        width=args.size[0], height=args.size[1], progress=_progress("signing"),
-        workers=args.workers,
-    )  # fmt: skip
-    print(
-        f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, spine {args.spine})"
-    )
+    for technique in REGISTRY.techniques:
+        print(f"{technique.name}: {technique.label} ({technique.source}), "
+              f"for {', '.join(sorted(technique.kinds))}")  # fmt: skip
+        for parameter in technique.parameters:
+            allowed = f" {{{', '.join(parameter.choices)}}}" if parameter.choices else ""
+            print(f"  {parameter.name} ({parameter.type}{allowed}, default "
+                  f"{parameter.default!r}): {parameter.help}")  # fmt: skip
     return 0
 
 
@@ -245,6 +251,7 @@ def parser() -> argparse.ArgumentParser:
     main = argparse.ArgumentParser(
         prog="python -m synthesis",
         description=__doc__.split("\n\n")[0],
+        epilog=techniques_help(),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     commands = main.add_subparsers(dest="command", required=True)
@@ -278,27 +285,14 @@ def parser() -> argparse.ArgumentParser:
     spell = rendering("spell", "render a fingerspelled word to an MP4", out_required=False)
     spell.add_argument("word")
     spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
-    spell.add_argument(
-        "--condition", choices=("simple", "constant", "variable", "normalized", "mocap"),
-        default="simple",
-        help="timing: simple (equal holds), constant (Huenerfauth: 243/800 ms holds), "
-        "variable (naïve Bayes + pose distance), normalized (constant at variable's length), "
-        "mocap (the --recording as it is)",
-    )  # fmt: skip
-    spell.add_argument(
-        "--recording", type=Path,
-        help="a BVH recording of the word: conditions retime it instead of synthesising",
-    )  # fmt: skip
+    spell.add_argument("--condition", dest="technique_timing", choices=TIMINGS,
+                       help="the same as --timing")  # fmt: skip
     spell.add_argument(
         "--simulate", type=int, metavar="SEED",
         help="a simulated capture of the word (timing sampled from the model, capture noise "
         "added) in place of --recording; labelled simulated in the timing",
     )  # fmt: skip
-    spell.add_argument(
-        "--model", type=Path,
-        help="a trained Variable model (JSON); default: built from published statistics",
-    )  # fmt: skip
-    spell.add_argument("--timing-file", type=Path, help="a word timing saved as JSON")
+    add_technique_flags(spell, "word")
     spell.add_argument(
         "--timing-only", action="store_true", help="print the timing as JSON, render nothing"
     )
@@ -308,15 +302,22 @@ def parser() -> argparse.ArgumentParser:
     sentence = rendering("sentence", "render a signed sentence on the upper body",
                          view="upper-body", out_required=False)  # fmt: skip
     sentence.add_argument("text", help='glosses, e.g. "BUT SURPRISE MY BROTHER GET NEW C-A-R"')
-    sentence.add_argument("--spine", choices=("on", "off"), default="on",
-                          help="automated spine and shoulder motion (spec 03)")  # fmt: skip
     sentence.add_argument("--rate", type=float, default=60.0, help="frames per second")
     sentence.add_argument("--seed", type=int, default=0, help="seed of the liveliness noise")
-    sentence.add_argument("--library", type=Path, help="a sign library (YAML) to use instead")
     sentence.add_argument("--plot", type=Path,
                           help="plot torso bend and twist, spine on vs off (PNG/PDF)")  # fmt: skip
+    add_technique_flags(sentence, "sentence")
     clip_options(sentence)
     sentence.set_defaults(run=_sentence)
+
+    version = commands.add_parser(
+        "version", help="print the engine digest that names every clip this engine renders"
+    )
+    version.set_defaults(run=_version)
+
+    listing = commands.add_parser("techniques", help="list the registered techniques")
+    listing.add_argument("--json", action="store_true", help="print the parameters' JSON Schema")
+    listing.set_defaults(run=_techniques)
 
     bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
     bvh.add_argument("file", type=Path)

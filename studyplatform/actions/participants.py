@@ -68,6 +68,10 @@ def do_enroll_participant(
             ),
             user_agent=user_agent[:400],
         )
+        # The enrollment number is the Latin-square row: lock the study so that two
+        # participants enrolling at once count one after the other (PostgreSQL; SQLite
+        # takes its write lock when the transaction begins).
+        Study.objects.select_for_update().filter(pk=study.pk).values_list("pk").first()
         enrollment = Participant.objects.filter(study=study).count()
         participant.schedule = build_schedule(study, participant.seed, enrollment)
         if consented:

@@ -16,6 +16,7 @@ from django.db import transaction
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
+from synthesis.techniques import ClipRequest
 
 
 @dataclass(frozen=True)
@@ -31,20 +32,13 @@ class GenerationResult:
 def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     """Return the clip specification of *condition* applied to *item*.
 
-    The seed is the item's (its parameters' ``seed``, else a checksum of its key), so all
-    conditions of an item share one performance and one noise.
+    The condition's parameters override the item's. The seed is the item's (its
+    parameters' ``seed``, else a checksum of its key), so all conditions of an item share
+    one performance and one noise.
     """
     parameters = {**(item.parameters or {}), **(condition.parameters or {})}
-    seed = int(parameters.pop("seed", zlib.crc32(item.key.encode())))
-    rendering = {key: parameters.pop(key) for key in ("view", "side", "width", "height",
-                                                     "rate_hz") if key in parameters}  # fmt: skip
-    if item.kind == Item.Kind.SENTENCE:
-        clip = {"spine": bool(parameters.get("spine", True))}
-        kind = "sentence"
-    else:
-        clip = {"timing": parameters.get("timing", "simple")}
-        kind = "word"
-    return ClipSpec(kind, item.text, clip, seed=seed, **rendering)
+    parameters.setdefault("seed", zlib.crc32(item.key.encode()))
+    return ClipSpec.from_request(ClipRequest.from_parameters(item.kind, item.text, parameters))
 
 
 def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
@@ -70,16 +64,41 @@ def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
     return sorted(pairs, key=lambda p: (p[1].position, p[0].position))
 
 
+class RerenderRefused(ClipError):
+    """Generation would silently change clips that participants of an open study have seen."""
+
+
+def _refuse_changes_in_the_field(study: Study, changed: list[tuple[Stimulus, ClipSpec]]) -> None:
+    engines = sorted({stimulus.engine_version for stimulus, _ in changed})
+    current = changed[0][1].engine
+    raise RerenderRefused(
+        f"“{study.title}” is {study.get_status_display().lower()}: {len(changed)} of its "
+        f"rendered clips would change (rendered by engine {', '.join(engines)}; this "
+        f"installation's engine is {current}), so participants would see other clips than "
+        "those already shown. Render with the engine the clips were made with (a checkout "
+        "whose 'python -m synthesis version' prints it), or re-render on purpose "
+        "(generate_stimuli --rerender-open)."
+    )
+
+
 def do_generate_stimuli(
-    study: Study, force: bool = False, enqueue: bool = True
+    study: Study, force: bool = False, enqueue: bool = True, rerender_open: bool = False
 ) -> GenerationResult:
     """Record the study's clips and queue the ones not rendered yet (all with *force*).
 
-    *enqueue* False only records them, for a caller that renders them itself.
+    *enqueue* False only records them, for a caller that renders them itself. On an open
+    or closed study that participants have taken, clips already rendered whose
+    specification changed (new parameters, another engine) are re-rendered only with
+    *rerender_open*; otherwise :class:`RerenderRefused` names them and nothing changes.
     """
     from studyplatform.tasks import render_stimulus
 
-    queued, ready, ids = [], 0, []
+    queued, ready, ids, changed = [], 0, [], []
+    # Clips are in the field once participants of an open (or closed) study have seen them.
+    in_field = (
+        study.status in (Study.Status.OPEN, Study.Status.CLOSED)
+        and study.participants.filter(is_pilot=False).exists()
+    )
     with transaction.atomic():
         for condition, item in needed_pairs(study):
             try:
@@ -88,6 +107,11 @@ def do_generate_stimuli(
                 raise ClipError(f"{condition.key} × {item.key}: {error}") from None
             content_hash = spec.content_hash()
             stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
+            rendered = stimulus is not None and stimulus.status == Stimulus.Status.READY
+            if rendered and stimulus.content_hash != content_hash:
+                changed.append((stimulus, spec))
+                if in_field and not rerender_open:
+                    continue
             if stimulus is None:
                 stimulus = Stimulus(condition=condition, item=item)
             unchanged = stimulus.pk and stimulus.content_hash == content_hash
@@ -103,6 +127,8 @@ def do_generate_stimuli(
                 stimulus.save()
                 queued.append(stimulus.pk)
             ids.append(stimulus.pk)
+        if changed and in_field and not rerender_open:
+            _refuse_changes_in_the_field(study, changed)
         for pk in queued if enqueue else ():
             transaction.on_commit(lambda pk=pk: render_stimulus.delay(pk))
     return GenerationResult(len(ids), len(queued), ready, tuple(ids))

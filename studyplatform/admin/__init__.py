@@ -2,7 +2,13 @@
 
 from django.contrib import admin
 
-from studyplatform.admin import design, participants, stimuli, studies  # noqa: F401
+from studyplatform.admin import (  # noqa: F401
+    conditions,
+    design,
+    participants,
+    stimuli,
+    studies,
+)
 
 admin.site.site_header = "SignStudy"
 admin.site.site_title = "SignStudy admin"

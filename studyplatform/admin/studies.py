@@ -22,13 +22,23 @@ from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.results import StudyResultsMixin
+from studyplatform.lib.techniques import describe_parameters
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
 
 
 class ConditionInline(StudyInline):
     model = Condition
-    fields = ("position", "key", "label", "is_simulated", "description")
+    fields = ("position", "key", "label", "is_simulated", "description", "parameters", "compares")
+    readonly_fields = ("compares",)
+    verbose_name_plural = "conditions (open one to edit its techniques field by field)"
+
+    @admin.display(description="What it compares")
+    def compares(self, obj: Condition) -> str:
+        if obj is None or obj.pk is None:
+            return "—"
+        kinds = obj.study.items.values_list("kind", flat=True)
+        return "; ".join(describe_parameters(obj.parameters or {}, kinds))
 
 
 class ItemInline(StudyInline):

@@ -24,7 +24,7 @@ CONDITIONS = (
         "key": "variable",
         "label": "Variable",
         "description": "Data-driven timing: naive Bayes holds, regression transitions.",
-        "parameters": {"timing": "variable"},
+        "parameters": {"timing": "variable", "source": "simulated"},
     },
     {
         "key": "constant",
@@ -32,6 +32,7 @@ CONDITIONS = (
         "description": "243 ms holds, last letter 800 ms, 250 ms transitions.",
         "parameters": {
             "timing": "constant",
+            "source": "simulated",
             "hold_ms": 243,
             "last_hold_ms": 800,
             "transition_ms": 250,
@@ -41,7 +42,7 @@ CONDITIONS = (
         "key": "normalized",
         "label": "Normalized constant",
         "description": "Constant timing scaled to the Variable model's total duration.",
-        "parameters": {"timing": "normalized"},
+        "parameters": {"timing": "normalized", "source": "simulated"},
     },
 )
 

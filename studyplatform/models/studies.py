@@ -147,7 +147,14 @@ class Condition(models.Model):
         ),
     )
     parameters = models.JSONField(
-        default=dict, blank=True, help_text="Synthesis parameters for this condition (JSON)."
+        default=dict,
+        blank=True,
+        help_text=(
+            'The techniques\' settings for this condition, e.g. {"timing": "variable", '
+            '"source": "simulated"}; checked against the technique registry on save '
+            "(python -m synthesis techniques lists every parameter). Leave out a setting "
+            "to take its default."
+        ),
     )
     position = models.PositiveSmallIntegerField(default=0)
 
@@ -159,6 +166,11 @@ class Condition(models.Model):
 
     def __str__(self) -> str:
         return f"{self.label} (simulated)" if self.is_simulated else self.label
+
+    def clean(self) -> None:
+        from studyplatform.lib.techniques import check_condition
+
+        check_condition(self)
 
 
 class Item(models.Model):
@@ -181,7 +193,12 @@ class Item(models.Model):
     )
     is_practice = models.BooleanField(default=False, help_text="Used only for practice trials.")
     parameters = models.JSONField(
-        default=dict, blank=True, help_text="Item-specific synthesis parameters (JSON)."
+        default=dict,
+        blank=True,
+        help_text=(
+            'Item-specific settings, e.g. {"seed": 7}; a condition\'s settings override '
+            "them. Checked against the technique registry on save."
+        ),
     )
     position = models.PositiveSmallIntegerField(default=0)
 
@@ -193,6 +210,11 @@ class Item(models.Model):
 
     def __str__(self) -> str:
         return self.key
+
+    def clean(self) -> None:
+        from studyplatform.lib.techniques import check_item
+
+        check_item(self)
 
     @property
     def scoring_target(self) -> str:

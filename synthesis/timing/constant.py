@@ -14,22 +14,30 @@ TRANSITION_MS = 250.0
 SOURCE = "Huenerfauth 2009 (seed 000 ref. 48) holds; seed 000 §4.3 mean transition"
 
 
-def constant_timing(word: str) -> WordTiming:
-    """Return the Constant timing of *word*."""
+def constant_timing(
+    word: str,
+    hold_ms: float = HOLD_MS,
+    last_hold_ms: float = LAST_HOLD_MS,
+    transition_ms: float = TRANSITION_MS,
+) -> WordTiming:
+    """Return the Constant timing of *word* (Huenerfauth's durations unless given)."""
     letters = tuple(c.upper() for c in word if not c.isspace())
-    holds = (HOLD_MS,) * (len(letters) - 1) + (LAST_HOLD_MS,) if letters else ()
+    holds = (float(hold_ms),) * (len(letters) - 1) + (float(last_hold_ms),) if letters else ()
     return WordTiming(
         letters,
         holds,
-        (TRANSITION_MS,) * max(len(letters) - 1, 0),
+        (float(transition_ms),) * max(len(letters) - 1, 0),
         "constant",
         {"source": SOURCE},
     )
 
 
-def normalized_constant_timing(word: str, reference: WordTiming) -> WordTiming:
-    """Return the Constant timing scaled to last exactly as long as *reference*."""
-    constant = constant_timing(word)
+def normalized_constant_timing(word: str, reference: WordTiming, **durations_ms) -> WordTiming:
+    """Return the Constant timing scaled to last exactly as long as *reference*.
+
+    *durations_ms* are :func:`constant_timing`'s hold and transition durations.
+    """
+    constant = constant_timing(word, **durations_ms)
     if constant.letters != reference.letters:
         raise ValueError(f"The reference timing is for {reference.word}, not {constant.word}.")
     normalized = constant.scaled(reference.total_ms / constant.total_ms, "normalized")

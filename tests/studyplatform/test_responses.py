@@ -169,3 +169,37 @@ def test_database_refuses_a_duplicate_response_outright(participant):
     Response.objects.create(participant=participant, trial=trial, question=question, chosen="x")
     with pytest.raises(IntegrityError), transaction.atomic():
         Response.objects.create(participant=participant, trial=trial, question=question, chosen="y")
+
+
+@pytest.mark.django_db(transaction=True)
+def test_concurrent_enrollments_take_distinct_latin_square_rows(fingerspelling):
+    """Eight participants enrolling at once get each row of the 4-row square twice."""
+    from collections import Counter
+
+    fingerspelling.rotate_conditions = True
+    fingerspelling.save()
+    barrier, errors, schedules = threading.Barrier(8), [], []
+
+    def enroll():
+        try:
+            study = type(fingerspelling).objects.get(pk=fingerspelling.pk)
+            barrier.wait(timeout=10)
+            schedules.append(do_enroll_participant(study).schedule)
+        except Exception as error:  # collected and asserted on below
+            errors.append(error)
+        finally:
+            close_old_connections()
+            connection.close()
+
+    threads = [threading.Thread(target=enroll) for _ in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=60)
+    assert errors == []
+    first = fingerspelling.trials.get(key="cmp-01")
+    # A row relabels the first trial's condition A as one condition: the rows taken.
+    rows = Counter(
+        next(e["a"] for e in schedule if e["trial"] == first.key) for schedule in schedules
+    )
+    assert len(rows) == 4 and set(rows.values()) == {2}

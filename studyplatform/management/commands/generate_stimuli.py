@@ -25,6 +25,11 @@ class Command(BaseCommand):
                             help="local rendering processes (when no broker is set)")  # fmt: skip
         parser.add_argument("--force", action="store_true", help="render every clip again")
         parser.add_argument(
+            "--rerender-open", action="store_true",
+            help="on an open or closed study, re-render clips whose specification changed "
+            "(another engine or new parameters); refused without it",
+        )  # fmt: skip
+        parser.add_argument(
             "--manifest", type=Path, metavar="PATH",
             help="write the study's stimulus manifest (JSON) here afterwards",
         )  # fmt: skip
@@ -46,10 +51,15 @@ class Command(BaseCommand):
         started = time.perf_counter()
         eager = settings.CELERY_TASK_ALWAYS_EAGER
         if eager and workers > 1:
-            result = self._render_with_pool(found, force, workers)
+            try:
+                result = self._render_with_pool(found, force, workers, options["rerender_open"])
+            except ClipError as error:
+                raise CommandError(str(error)) from None
         else:
             try:
-                result = do_generate_stimuli(found, force=force)
+                result = do_generate_stimuli(
+                    found, force=force, rerender_open=options["rerender_open"]
+                )
             except ClipError as error:
                 raise CommandError(str(error)) from None
             if not eager:
@@ -82,12 +92,12 @@ class Command(BaseCommand):
         done, rendered = generate(entries, directory, report)
         self.stdout.write(f"{path}: {len(done)} clips, {rendered} rendered, into {directory}")
 
-    def _render_with_pool(self, study: Study, force: bool, workers: int):
+    def _render_with_pool(self, study: Study, force: bool, workers: int, rerender_open: bool):
         """Record the clips without queueing, then render them in *workers* processes."""
         from concurrent.futures import ProcessPoolExecutor
         from multiprocessing import get_context
 
-        result = do_generate_stimuli(study, force=force, enqueue=False)
+        result = do_generate_stimuli(study, force=force, enqueue=False, rerender_open=rerender_open)
         rows = Stimulus.objects.filter(pk__in=result.stimulus_ids)
         pending = list(rows.exclude(status=Stimulus.Status.READY).values_list("pk", flat=True))
         from studyplatform import render_pool

@@ -1,0 +1,145 @@
+"""Edit a condition through fields generated from the technique registry, never raw JSON.
+
+Each technique that applies to the study's item kinds gets a fieldset: one form field
+per parameter, with its type, allowed values or range, default and help text. What the
+researcher leaves at the default is not stored, so a condition's parameters say only
+what it changes; anything the registry does not know stays in "Other parameters" where
+the model's check names it.
+"""
+
+from django import forms
+from django.contrib import admin
+from django.http import HttpRequest
+
+from studyplatform.admin.permissions import StudyScopedMixin
+from studyplatform.lib.techniques import describe_parameters, supported_kinds
+from studyplatform.models import Condition
+from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS, Parameter
+
+PREFIX = "technique_"
+# A condition is filmed like the others of its item; the seed is the item's (shared
+# performance), so it is set on items, not here.
+FILMING = tuple(p for p in REQUEST_PARAMETERS if p.name != "seed")
+
+
+def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
+    """Return the form field that edits *parameter*, showing *initial*."""
+    help_text = parameter.help
+    common = {"label": parameter.name.replace("_", " ").capitalize(), "initial": initial}
+    if parameter.type == "choice":
+        labels = parameter.labels or {}
+        choices = [(value, labels.get(value, value)) for value in parameter.choices]
+        return forms.ChoiceField(choices=choices, help_text=help_text, **common)
+    if parameter.type == "bool":
+        return forms.TypedChoiceField(
+            choices=[(True, "On"), (False, "Off")], coerce=lambda v: v in (True, "True"),
+            help_text=help_text, **common,
+        )  # fmt: skip
+    if parameter.type == "file":
+        help_text += " A path on the rendering machine; empty: none."
+        return forms.CharField(required=False, help_text=help_text, **common)
+    units = f" ({parameter.units})" if parameter.units else ""
+    field = forms.IntegerField if parameter.type == "int" else forms.FloatField
+    return field(
+        min_value=parameter.minimum, max_value=parameter.maximum,
+        help_text=f"{help_text}{units} Default: {parameter.default:g}.", **common,
+    )  # fmt: skip
+
+
+def technique_groups(kinds) -> list[tuple[str, tuple[Parameter, ...]]]:
+    """Return (fieldset title, parameters) for the techniques of *kinds*, then filming."""
+    kinds = supported_kinds(kinds) or list(REGISTRY.kinds)
+    groups, seen = [], set()
+    for technique in REGISTRY.techniques:
+        if technique.kinds & set(kinds) and technique.name not in seen:
+            seen.add(technique.name)
+            title = (
+                f"{technique.label} ({technique.source})" if technique.source else technique.label
+            )
+            groups.append((title, technique.parameters))
+    groups.append(("Filming", FILMING))
+    return groups
+
+
+class ConditionForm(forms.ModelForm):
+    """Edit a condition; the technique fields are added per study by :func:`condition_form`."""
+
+    groups: list = []
+
+    class Meta:
+        model = Condition
+        fields = ("study", "position", "key", "label", "description", "is_simulated", "parameters")
+        labels = {"parameters": "Other parameters (JSON)"}
+        help_texts = {
+            "parameters": "Settings no field above offers; normally empty {}. Checked on save."
+        }
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        stored = dict(self.instance.parameters or {})
+        for _, parameters in self.groups:
+            for parameter in parameters:
+                field = self.fields[PREFIX + parameter.name]
+                field.initial = stored.pop(parameter.name, parameter.default)
+        self.initial["parameters"] = stored
+
+    def clean(self):
+        cleaned = super().clean()
+        extra = cleaned.get("parameters")
+        parameters = dict(extra) if isinstance(extra, dict) else {}
+        for _, declared in self.groups:
+            for parameter in declared:
+                value = cleaned.get(PREFIX + parameter.name)
+                if value is None or value == parameter.default:
+                    continue
+                if parameter.type == "file" and not value:
+                    continue
+                parameters[parameter.name] = value
+        if extra is not None and not isinstance(extra, dict):
+            parameters = extra  # the model's check names what is wrong with it
+        cleaned["parameters"] = parameters
+        self.instance.parameters = parameters
+        return cleaned
+
+
+def condition_form(kinds) -> type[ConditionForm]:
+    """Return a condition form with a field per technique parameter of *kinds*."""
+    groups = technique_groups(kinds)
+    fields = {
+        PREFIX + parameter.name: parameter_formfield(parameter, parameter.default)
+        for _, parameters in groups
+        for parameter in parameters
+    }
+    return type("ConditionForm", (ConditionForm,), {**fields, "groups": groups})
+
+
+def _kinds_of(obj: Condition | None) -> list[str]:
+    if obj is None or obj.study_id is None:
+        return []
+    return list(obj.study.items.values_list("kind", flat=True))
+
+
+@admin.register(Condition)
+class ConditionAdmin(StudyScopedMixin, admin.ModelAdmin):
+    list_display = ("label", "key", "study", "is_simulated", "compares")
+    list_filter = ("study", "is_simulated")
+    search_fields = ("key", "label")
+    readonly_fields = ("compares",)
+
+    def get_form(self, request: HttpRequest, obj: Condition | None = None, **kwargs):
+        kwargs["form"] = condition_form(_kinds_of(obj))
+        return super().get_form(request, obj, **kwargs)
+
+    def get_fieldsets(self, request: HttpRequest, obj: Condition | None = None):
+        main = ("study", "position", "key", "label", "description", "is_simulated", "compares")
+        fieldsets = [(None, {"fields": main})]
+        for title, parameters in technique_groups(_kinds_of(obj)):
+            fieldsets.append((title, {"fields": [PREFIX + p.name for p in parameters]}))
+        fieldsets.append(("Other parameters", {"fields": ["parameters"], "classes": ["collapse"]}))
+        return fieldsets
+
+    @admin.display(description="What it compares")
+    def compares(self, obj: Condition) -> str:
+        if obj is None or obj.pk is None:
+            return "—"
+        return "; ".join(describe_parameters(obj.parameters or {}, _kinds_of(obj)))

@@ -1,0 +1,109 @@
+"""Check and describe a study's condition and item parameters with the technique registry.
+
+A condition's parameters apply to every item of its study, so they are checked against
+each item kind the study holds (against any kind while it holds none); an item's
+against its own kind. The rules themselves live in :mod:`synthesis.techniques`.
+"""
+
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+from django.core.exceptions import ValidationError
+
+from synthesis.techniques import (
+    FIELDS,
+    REGISTRY,
+    REQUEST_PARAMETERS,
+    ClipError,
+    validate_parameters,
+)
+
+
+def supported_kinds(kinds: Iterable[str]) -> list[str]:
+    """Return the item kinds among *kinds* that the engine renders, in a fixed order."""
+    return sorted(kind for kind in set(kinds) if kind in REGISTRY.kinds)
+
+
+def check_parameters(parameters: Any, kinds: Iterable[str]) -> None:
+    """Raise ClipError naming the problem if *parameters* do not suit every kind of *kinds*.
+
+    With no kinds, they must suit at least one kind the engine renders.
+    """
+    kinds = supported_kinds(kinds)
+    if kinds:
+        for kind in kinds:
+            validate_parameters(kind, parameters)
+        return
+    errors = []
+    for kind in REGISTRY.kinds:
+        try:
+            validate_parameters(kind, parameters)
+            return
+        except ClipError as error:
+            # The kind whose techniques know every key says what is wrong with a value.
+            known = set(REGISTRY.parameters(kind)) | set(FIELDS)
+            fits = isinstance(parameters, Mapping) and set(parameters) <= known
+            if fits:
+                errors.insert(0, error)
+            else:
+                errors.append(error)
+    raise errors[0]
+
+
+def check_condition(condition) -> None:
+    """Raise ValidationError on the parameters field if they do not suit the study's items."""
+    kinds = []
+    if condition.study_id is not None:
+        kinds = condition.study.items.values_list("kind", flat=True)
+    try:
+        check_parameters(condition.parameters or {}, kinds)
+    except ClipError as error:
+        raise ValidationError({"parameters": str(error)}) from None
+
+
+def check_item(item) -> None:
+    """Raise ValidationError if the engine cannot render *item* under its study's conditions."""
+    try:
+        REGISTRY.kind(item.kind)
+    except ClipError as error:
+        raise ValidationError({"kind": f"{error} No technique renders it yet."}) from None
+    try:
+        validate_parameters(item.kind, item.parameters or {})
+    except ClipError as error:
+        raise ValidationError({"parameters": str(error)}) from None
+    if item.study_id is None:
+        return
+    for condition in item.study.conditions.all():
+        try:
+            validate_parameters(item.kind, {**(item.parameters or {}), **condition.parameters})
+        except ClipError as error:
+            raise ValidationError(
+                {"kind": f"Condition {condition.key!r} cannot render this item: {error}"}
+            ) from None
+
+
+def describe_parameters(parameters: Mapping[str, Any], kinds: Iterable[str]) -> list[str]:
+    """Return what *parameters* make each technique do, in plain words.
+
+    One line per technique of each of *kinds* (of each kind they suit, with no kinds),
+    then one for the filming fields they set.
+    """
+    chosen = supported_kinds(kinds)
+    techniques = {k: v for k, v in parameters.items() if k not in FIELDS}
+    lines = []
+    for kind in chosen or list(REGISTRY.kinds):
+        try:
+            validate_parameters(kind, parameters)
+        except ClipError as error:
+            if chosen:
+                lines.append(f"Not renderable as a {REGISTRY.kind(kind).label}: {error}")
+            continue
+        lines += [line for line in REGISTRY.describe(kind, techniques) if line not in lines]
+    filming = [
+        f"{p.name.replace('_', ' ')} {p.label_of(parameters[p.name])}"
+        for p in REQUEST_PARAMETERS
+        if p.name in parameters
+    ]
+    if filming:
+        lines.append(f"Filming: {', '.join(filming)}")
+    return lines

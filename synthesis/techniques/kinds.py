@@ -1,0 +1,75 @@
+"""The item kinds the engine renders: fingerspelled words and signed sentences.
+
+Each kind starts a clip's build from its request and, once the prepare-stage techniques
+have chosen a performance, a timing or synthesis options, makes the motion.
+"""
+
+import numpy as np
+
+from synthesis.techniques.parameters import ClipError
+from synthesis.techniques.registry import ItemKind
+from synthesis.techniques.request import Build
+
+
+def _start_word(build: Build) -> Build:
+    from synthesis.spelling import word_letters
+
+    try:
+        word_letters(build.request.text)
+    except ValueError as error:
+        raise ClipError(str(error)) from None
+    return build
+
+
+def _finish_word(build: Build) -> Build:
+    """Spell the word with the chosen timing, or retime the chosen performance onto it.
+
+    Seed 000 §4.3: with a performance, every condition is that performance, its holds and
+    transitions moved onto the condition's timing; the Motion capture condition plays it
+    as performed.
+    """
+    from synthesis.hand import HandModel
+    from synthesis.spelling import spell
+
+    request = build.request
+    if build.performance is None:
+        hand = spell(request.text, request.side, request.rate_hz, timing=build.timing)
+        if isinstance(build.rig, HandModel):
+            return build.but(motion=hand)
+        from synthesis.posture import fingerspelling_posture
+
+        return build.but(motion=fingerspelling_posture(build.rig, request.side, hand))
+    from synthesis.retarget import retarget
+    from synthesis.retime import resample
+    from synthesis.timing.recordings import retime
+
+    if not isinstance(build.rig, HandModel):
+        raise ClipError(
+            "A recorded or simulated performance renders in the hand view for now: "
+            "set view to 'hand' (--view hand)."
+        )
+    plays_as_performed = build.timing is build.performance.extraction.timing
+    motion = build.performance.motion if plays_as_performed else retime(build.performance,
+                                                                        build.timing)  # fmt: skip
+    if abs(motion.rate_hz - request.rate_hz) > 1e-9:
+        motion = resample(motion, request.rate_hz)
+    return build.but(motion=retarget(motion, build.rig))
+
+
+def _start_sentence(build: Build) -> Build:
+    from synthesis.sentence import SentenceOptions
+
+    request = build.request
+    options = SentenceOptions(rate_hz=request.rate_hz, seed=request.seed, dominant=request.side)
+    return build.but(options=options)
+
+
+def _finish_sentence(build: Build) -> Build:
+    from synthesis.sentence import synthesize
+
+    sentence = synthesize(build.request.text, build.options, build.library)
+    return build.but(motion=np.asarray(sentence.dofs_rad), result=sentence)
+
+
+WORD = ItemKind("word", "fingerspelled word", ("hand", "upper-body"), _start_word, _finish_word)
+SENTENCE = ItemKind("sentence", "sentence", ("upper-body",), _start_sentence, _finish_sentence)

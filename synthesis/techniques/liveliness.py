@@ -1,0 +1,33 @@
+"""Liveliness: coherent band-limited noise on every joint, so a still signer breathes."""
+
+from dataclasses import replace
+
+from synthesis.techniques.parameters import Parameter
+from synthesis.techniques.registry import Technique
+from synthesis.techniques.request import Build
+
+
+def _apply(build: Build) -> Build:
+    from synthesis.liveliness import Liveliness
+
+    liveliness = Liveliness() if build.request.parameters["liveliness"] else None
+    return build.but(options=replace(build.options, liveliness=liveliness))
+
+
+TECHNIQUE = Technique(
+    name="liveliness",
+    label="Liveliness noise",
+    kinds=frozenset({"sentence"}),
+    parameters=(
+        Parameter(
+            "liveliness",
+            "bool",
+            True,
+            "Small, slow noise on every joint (smaller and "
+            "faster distally, larger on the weak side), seeded per item.",
+        ),
+    ),
+    source="spec 03 (clip hygiene)",
+    order=40,
+    apply=_apply,
+)

@@ -1,0 +1,212 @@
+"""The one entry point from "an item under a condition" to its motion and its clip.
+
+A :class:`ClipRequest` says everything a clip's pixels depend on besides the engine
+itself: the item (kind and text), the techniques' parameters, and how it is filmed
+(view, side, size, rate, seed). :func:`build_motion` runs the item kind and the
+registered techniques over it; :func:`render_request` films the result. The command
+line, :mod:`stimuli` and the platform all go through here, so no other module knows
+which parameter means which motion.
+"""
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from synthesis.techniques.parameters import ClipError, Parameter
+
+VIEWS = ("hand", "upper-body")
+
+REQUEST_PARAMETERS = (
+    Parameter("view", "choice", "hand", "Camera and avatar: the hand close-up or the upper body.",
+              choices=VIEWS, labels={"hand": "hand close-up", "upper-body": "upper body"}),
+    Parameter("side", "choice", "right", "The signer's dominant hand.", choices=("right", "left")),
+    Parameter("width", "int", 640, "Clip width.", minimum=16, maximum=3840, units="px"),
+    Parameter("height", "int", 480, "Clip height.", minimum=16, maximum=2160, units="px"),
+    Parameter("rate_hz", "float", 60.0, "Frame rate.", minimum=1, maximum=240, units="Hz"),
+    Parameter("seed", "int", 0, "Seed of the item's performance and noise (shared by its "
+              "conditions).", minimum=0, maximum=2**63 - 1),
+)  # fmt: skip
+FIELDS = tuple(p.name for p in REQUEST_PARAMETERS)
+
+
+def _registry():
+    from synthesis.techniques import REGISTRY
+
+    return REGISTRY
+
+
+@dataclass(frozen=True)
+class ClipRequest:
+    """An item under a condition, filmed one way: what determines a clip's pixels.
+
+    *kind* is an item kind of the registry ("word", "sentence"); *parameters* the
+    techniques' values, checked and completed with their defaults on creation; *view*
+    defaults to the kind's; *width*/*height* in pixels (even), *rate_hz* frames per
+    second; *seed* fixes the item's simulated performance and liveliness noise.
+    """
+
+    kind: str
+    text: str
+    parameters: Mapping[str, Any] = field(default_factory=dict)
+    view: str = ""
+    side: str = "right"
+    width: int = 640
+    height: int = 480
+    rate_hz: float = 60.0
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        item_kind = _registry().kind(self.kind)
+        if not isinstance(self.text, str) or not self.text.strip():
+            raise ClipError(f"A {item_kind.label} needs its text, not {self.text!r}.")
+        if not self.view:
+            object.__setattr__(self, "view", item_kind.default_view)
+        for parameter in REQUEST_PARAMETERS:
+            checked = parameter.check(getattr(self, parameter.name))
+            object.__setattr__(self, parameter.name, checked)
+        if self.view not in item_kind.views:
+            raise ClipError(
+                f"A {item_kind.label} renders in the {' or '.join(item_kind.views)} view, "
+                f"not {self.view!r}."
+            )
+        if self.width % 2 or self.height % 2:
+            raise ClipError(
+                f"width and height must be even (H.264), not {self.width}×{self.height}."
+            )
+        object.__setattr__(self, "parameters", _registry().normalize(self.kind, self.parameters))
+
+    @classmethod
+    def from_parameters(
+        cls, kind: str, text: str, parameters: Mapping[str, Any], **fields: Any
+    ) -> "ClipRequest":
+        """Return the request for *parameters* that may also hold the filming fields.
+
+        A condition's or item's parameters are one flat mapping (``{"timing":
+        "variable", "rate_hz": 30}``); *fields* are defaults the mapping overrides.
+        """
+        if not isinstance(parameters, Mapping):
+            raise ClipError(f"Parameters must be a mapping of names to values, not {parameters!r}.")
+        techniques = dict(parameters)
+        for name in FIELDS:
+            if name in techniques:
+                fields[name] = techniques.pop(name)
+        return cls(kind, text, techniques, **fields)
+
+    def to_dict(self) -> dict:
+        """Return the request as plain JSON values."""
+        return {"kind": self.kind, "text": self.text, "parameters": dict(self.parameters),
+                **{name: getattr(self, name) for name in FIELDS}}  # fmt: skip
+
+    def files(self) -> list[Path]:
+        """Return the files the techniques read (their content shapes the clip)."""
+        declared = _registry().parameters(self.kind)
+        return [
+            Path(value)
+            for name, value in sorted(self.parameters.items())
+            if declared[name][0].type == "file" and value
+        ]
+
+
+def validate_parameters(kind: str, parameters: Mapping[str, Any]) -> dict[str, Any]:
+    """Return *parameters* (techniques' and filming fields) checked for an item of *kind*.
+
+    Raise :class:`ClipError` naming the first unknown key, wrong type, out-of-range value
+    or technique that does not apply to *kind*. Only the keys given are returned.
+    """
+    if not isinstance(parameters, Mapping):
+        raise ClipError(f"Parameters must be a mapping of names to values, not {parameters!r}.")
+    techniques, checked = dict(parameters), {}
+    for parameter in REQUEST_PARAMETERS:
+        if parameter.name in techniques:
+            checked[parameter.name] = parameter.check(techniques.pop(parameter.name))
+    view = checked.get("view")
+    item_kind = _registry().kind(kind)
+    if view is not None and view not in item_kind.views:
+        raise ClipError(f"A {item_kind.label} renders in the {' or '.join(item_kind.views)} view.")
+    normalized = _registry().normalize(kind, techniques)
+    return {**checked, **{name: normalized[name] for name in techniques}}
+
+
+@dataclass(frozen=True)
+class Build:
+    """A clip's motion in the making, passed from technique to technique.
+
+    *performance* a recording to retime (words), *timing* a word's holds and transitions,
+    *options* the sentence synthesis options, *library* a sign library, *motion* the
+    result: DOF vectors (n_frames, n_dofs) of *rig*, or a Pose of its skeleton; *result*
+    what the item kind made it from (a Sentence for sentences).
+    """
+
+    request: ClipRequest
+    rig: Any
+    performance: Any = None
+    timing: Any = None
+    options: Any = None
+    library: Any = None
+    motion: Any = None
+    result: Any = None
+
+    def but(self, **changes: Any) -> "Build":
+        """Return a copy with *changes*."""
+        return replace(self, **changes)
+
+
+def rig_for(view: str, side: str):
+    """Return the rig of the avatar of *view*: the hand model or the upper body."""
+    if view == "hand":
+        from synthesis.hand import HandModel
+
+        return HandModel(side)
+    from synthesis.body import BodyModel
+
+    return BodyModel(side)
+
+
+def build_motion(request: ClipRequest) -> Build:
+    """Return the motion of *request*: its kind starts, its techniques work, it finishes."""
+    from synthesis.techniques.registry import MOTION, PREPARE
+
+    registry = _registry()
+    kind = registry.kind(request.kind)
+    techniques = sorted(registry.for_kind(request.kind), key=lambda t: t.order)
+    build = kind.start(Build(request, rig_for(request.view, request.side)))
+    for technique in techniques:
+        if technique.stage == PREPARE and technique.apply is not None:
+            build = technique.apply(build)
+    build = kind.finish(build)
+    for technique in techniques:
+        if technique.stage == MOTION and technique.apply is not None:
+            build = technique.apply(build)
+    return build
+
+
+def avatar_and_camera(view: str, side: str):
+    """Return the avatar and camera preset of *view* (the avatar is built once a process)."""
+    from synthesis.render.scene import hand_close_up, upper_body_front
+
+    if view == "hand":
+        from synthesis.avatar.hand import hand_avatar
+
+        return hand_avatar(side), hand_close_up(side)
+    from synthesis.avatar.body import body_avatar
+
+    return body_avatar(side), upper_body_front(side)
+
+
+def render_request(
+    request: ClipRequest, out: str | Path, poster: str | Path | None = None,
+    progress=None, workers: int = 1, build: Build | None = None,
+):  # fmt: skip
+    """Render *request* to an MP4 at *out* (and a poster PNG); return the video's facts.
+
+    *build* is the request's motion when the caller made it already.
+    """
+    from synthesis.render.clip import render_clip
+
+    build = build or build_motion(request)
+    avatar, camera = avatar_and_camera(request.view, request.side)
+    return render_clip(
+        avatar, build.motion, camera, out, request.rate_hz, poster=poster, width=request.width,
+        height=request.height, progress=progress, workers=workers,
+    )  # fmt: skip

@@ -1,0 +1,176 @@
+"""Test the technique registry: declarations drive validation, the CLI, the hash, the motion."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stimuli import ClipSpec
+from synthesis.cli import main, parser
+from synthesis.techniques import (
+    MOTION,
+    REGISTRY,
+    ClipError,
+    ClipRequest,
+    Parameter,
+    Technique,
+    build_motion,
+    validate_parameters,
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _slow_down(build):
+    """Repeat every frame ``slowdown`` times (a toy technique for these tests)."""
+    factor = build.request.parameters["slowdown"]
+    return build.but(motion=np.repeat(build.motion, factor, axis=0))
+
+
+TOY = Technique(
+    name="toy",
+    label="Toy slow motion",
+    kinds=frozenset({"word"}),
+    parameters=(
+        Parameter("slowdown", "int", 1, "Show every frame this many times.", minimum=1, maximum=4),
+    ),
+    source="a test",
+    stage=MOTION,
+    apply=_slow_down,
+)
+
+
+def test_a_registered_toy_technique_is_validated_offered_hashed_and_applied(capsys):
+    plain = ClipSpec("word", "AB", {"timing": "constant"})
+    with REGISTRY.registered(TOY):
+        request = ClipRequest("word", "AB", {"timing": "constant", "slowdown": 2})
+        assert request.parameters["slowdown"] == 2
+        with pytest.raises(ClipError, match="slowdown must be at most 4"):
+            ClipRequest("word", "AB", {"slowdown": 9})
+        with pytest.raises(ClipError, match=r"'slowdown' \(Toy slow motion\) does not apply"):
+            ClipRequest("sentence", "ME GET", {"slowdown": 2})
+        assert "--slowdown" in parser()._subparsers._group_actions[0].choices["spell"].format_help()
+        assert "toy" in parser().format_help()
+        hashed = ClipSpec("word", "AB", {"timing": "constant"})
+        assert hashed.parameters["slowdown"] == 1 and hashed.content_hash() != plain.content_hash()
+        slow = build_motion(request).motion
+        assert main(["spell", "AB", "--condition", "constant", "--slowdown", "3",
+                     "--timing-only"]) == 0  # fmt: skip
+        capsys.readouterr()
+    normal = build_motion(ClipRequest("word", "AB", {"timing": "constant"})).motion
+    assert len(slow) == 2 * len(normal)
+    np.testing.assert_array_equal(slow[::2], normal)
+    assert "slowdown" not in ClipRequest("word", "AB").parameters  # unregistered again
+    assert "toy" not in parser().format_help()
+
+
+@pytest.mark.parametrize(
+    ("kind", "parameters", "message"),
+    [
+        ("sentence", {"spin": False}, "Unknown parameter 'spin' for a sentence"),
+        ("sentence", {"spine": "no"}, "spine must be true or false, not 'no'"),
+        ("word", {"hold_ms": True}, "hold_ms must be a number, not True"),
+        ("word", {"hold_ms": float("nan")}, "hold_ms must be a finite number"),
+        ("word", {"spine": False}, r"'spine' \(Automated spine motion\) does not apply to a "
+                                   "fingerspelled word"),
+        ("sign_pair", {}, "Unknown item kind 'sign_pair'"),
+        ("word", {"timing": "mocap"}, "timing 'mocap' plays a performance"),
+        ("word", {"source": "recording"}, "source 'recording' needs the recording"),
+        ("sentence", {"view": "hand"}, "renders in the upper-body view"),
+        ("word", {"rate_hz": 0}, "rate_hz must be at least 1 Hz"),
+    ],
+)  # fmt: skip
+def test_bad_parameters_are_refused_naming_them(kind, parameters, message):
+    with pytest.raises(ClipError, match=message):
+        validate_parameters(kind, parameters)
+
+
+def test_validation_returns_only_what_was_given_checked():
+    assert validate_parameters("sentence", {"spine": False, "rate_hz": 30}) == {
+        "spine": False,
+        "rate_hz": 30.0,
+    }
+
+
+def test_a_request_round_trips_and_defaults_name_the_same_clip():
+    short = ClipRequest.from_parameters("word", "DAVID", {"timing": "variable", "seed": 4})
+    assert ClipRequest(**short.to_dict()) == short
+    spelled_out = ClipRequest("word", "DAVID", dict(short.parameters), seed=4)
+    assert spelled_out == short
+    assert (
+        ClipSpec.from_request(short).content_hash()
+        == ClipSpec.from_request(spelled_out).content_hash()
+    )
+
+
+def test_a_file_parameter_counts_by_its_content(tmp_path):
+    from synthesis.timing import WordTiming
+
+    saved = tmp_path / "ok.json"
+    saved.write_text(json.dumps(WordTiming(("O", "K"), (100, 100), (100,), "mine").to_dict()))
+    spec = ClipSpec("word", "OK", {"timing_file": str(saved)})
+    before = spec.content_hash()
+    saved.write_text(json.dumps(WordTiming(("O", "K"), (200, 100), (100,), "mine").to_dict()))
+    assert spec.content_hash() != before
+
+
+def test_the_schema_lists_every_parameter_and_refuses_others():
+    schema = REGISTRY.schema()
+    assert set(schema) == {"word", "sentence"}
+    assert schema["word"]["additionalProperties"] is False
+    assert schema["word"]["properties"]["timing"]["enum"] == [
+        "mocap", "variable", "constant", "normalized", "simple",
+    ]  # fmt: skip
+    assert schema["sentence"]["properties"]["spine"]["type"] == "boolean"
+
+
+def test_techniques_describe_a_condition_in_plain_words():
+    lines = REGISTRY.describe("word", {"timing": "constant", "hold_ms": 200, "source": "simulated"})
+    assert lines == [
+        "Performance: a simulated capture",
+        "Timing model: Constant (200 ms holds, the last 800 ms, 250 ms transitions)",
+    ]
+    assert REGISTRY.describe("sentence", {"spine": False})[1] == "Automated spine motion: off"
+
+
+def test_the_cli_lists_the_techniques(capsys):
+    result = subprocess.run([sys.executable, "-m", "synthesis", "--help"], cwd=ROOT,
+                            capture_output=True, text=True, check=True)  # fmt: skip
+    for technique in REGISTRY.techniques:
+        assert technique.label in result.stdout
+    assert main(["techniques", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == REGISTRY.schema()
+
+
+def test_the_timing_names_are_listed_in_one_place():
+    result = subprocess.run(
+        ["grep", "-rln", '"mocap", "variable"', "synthesis", "stimuli", "studyplatform"],
+        cwd=ROOT, capture_output=True, text=True,
+    )  # fmt: skip
+    assert result.stdout.split() == ["synthesis/techniques/timing.py"]
+
+
+def test_changing_an_engine_source_file_changes_every_clip_hash(tmp_path):
+    copy = tmp_path / "synthesis"
+    shutil.copytree(ROOT / "synthesis", copy, ignore=shutil.ignore_patterns("__pycache__"))
+    code = (
+        "from synthesis.identity import engine_digest\n"
+        "from stimuli import ClipSpec\n"
+        "print(engine_digest(), ClipSpec('word', 'AB').content_hash())\n"
+    )
+
+    def digest_and_hash() -> list[str]:
+        env = {"PYTHONPATH": f"{tmp_path}:{ROOT}", "PATH": "/usr/bin:/bin"}
+        result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
+                                capture_output=True, text=True, check=True)  # fmt: skip
+        return result.stdout.split()
+
+    before = digest_and_hash()
+    kinematics = copy / "kinematics.py"
+    kinematics.write_text(kinematics.read_text() + "\n# a change\n")
+    after = digest_and_hash()
+    assert before[0] != after[0] and before[1] != after[1]
