@@ -14,7 +14,7 @@ timing differs; sentences start and end at rest.
 
 import hashlib
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from synthesis.identity import engine_digest
@@ -24,33 +24,17 @@ __all__ = ["ClipError", "ClipSpec", "RenderedClip", "engine_digest", "file_sha25
 
 
 @dataclass(frozen=True)
-class ClipSpec:
+class ClipSpec(ClipRequest):
     """Everything that determines one clip's pixels: a clip request and the engine's digest.
 
-    *kind*, *text*, *parameters* and the filming fields are a
-    :class:`synthesis.techniques.ClipRequest`'s, checked and completed with defaults on
-    creation (so ``{"timing": "variable"}`` and the same with every default spelled out
-    name one clip); *engine* is the digest of the engine's source and data files. *seed*
-    fixes the simulated performance or the liveliness noise; it is per item, so the
-    conditions of an item share it.
+    The request's fields (*kind*, *text*, *parameters*, view, side, size, rate, seed) are
+    checked and completed with defaults on creation, so ``{"timing": "variable"}`` and
+    the same with every default spelled out name one clip; *engine* is the digest of
+    the engine's source and data files. *seed* fixes the simulated performance or the
+    liveliness noise; it is per item, so the conditions of an item share it.
     """
 
-    kind: str
-    text: str
-    parameters: dict = field(default_factory=dict)
-    view: str = ""
-    side: str = "right"
-    width: int = 640
-    height: int = 480
-    rate_hz: float = 60.0
-    seed: int = 0
     engine: str = field(default_factory=engine_digest)
-
-    def __post_init__(self) -> None:
-        request = ClipRequest(self.kind, self.text, self.parameters, self.view, self.side,
-                              self.width, self.height, self.rate_hz, self.seed)  # fmt: skip
-        for name, value in request.to_dict().items():
-            object.__setattr__(self, name, value)
 
     @classmethod
     def from_request(cls, request: ClipRequest, engine: str | None = None) -> "ClipSpec":
@@ -59,12 +43,10 @@ class ClipSpec:
 
     def request(self) -> ClipRequest:
         """Return the clip request this specification renders."""
-        fields = self.to_dict()
-        fields.pop("engine")
-        return ClipRequest(**fields)
+        return ClipRequest(**super().to_dict())
 
     def to_dict(self) -> dict:
-        return asdict(self)
+        return {**super().to_dict(), "engine": self.engine}
 
     @classmethod
     def from_dict(cls, data: dict) -> "ClipSpec":
