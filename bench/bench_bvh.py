@@ -15,13 +15,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bodies import random_motion
 
-from synthesis import parse_bvh, write_bvh
+from synthesis import format_bvh, parse_bvh
 
 
 def main() -> None:
     motion = random_motion(12000, rate_hz=120)  # 100 s at 120 fps
     started = time.perf_counter()
-    text = write_bvh(motion)
+    text = format_bvh(motion)
     write_s = time.perf_counter() - started
     size_mb = len(text.encode()) / 1e6
     times = []

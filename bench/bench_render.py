@@ -19,18 +19,18 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import machine
 
-from synthesis.posture import fingerspelling_posture
+from synthesis.fingerspelling.spelling import spell
 from synthesis.render.backend import select_platform
 from synthesis.render.clip import render_clip
 from synthesis.render.parallel import default_workers, render_frames
 from synthesis.render.renderer import Renderer
 from synthesis.render.scene import hand_close_up, upper_body_front
-from synthesis.spelling import spell
+from synthesis.rigs.posture import fingerspelling_posture
 
 
 def _views(n_frames: int):
-    from synthesis.avatar.body import body_avatar
-    from synthesis.avatar.hand import hand_avatar
+    from synthesis.avatar.body_mesh import body_avatar
+    from synthesis.avatar.hand_mesh import hand_avatar
 
     word = "HEAVENLY" * 4
     hand_motion = spell(word, rate_hz=60)[:n_frames]

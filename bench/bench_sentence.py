@@ -14,8 +14,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.sentence import SentenceOptions, synthesize
-from synthesis.stories import SPINE_STORY
+from synthesis.signing.sentence import SentenceOptions, synthesize
+from synthesis.signing.stories import SPINE_STORY
 
 
 def main() -> None:

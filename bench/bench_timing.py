@@ -15,7 +15,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.spelling import spell
+from synthesis.fingerspelling.spelling import spell
 from synthesis.timing import HoldClassifier, extract, published_model, simulate_recording
 from synthesis.timing.defaults import published_holds
 

@@ -15,8 +15,8 @@ from PIL import Image, ImageDraw, ImageFont
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.alphabet import LETTERS, letter
-from synthesis.avatar.hand import hand_avatar
+from synthesis.avatar.hand_mesh import hand_avatar
+from synthesis.fingerspelling.alphabet import LETTERS, letter
 from synthesis.render.renderer import Renderer
 from synthesis.render.scene import CameraPreset
 

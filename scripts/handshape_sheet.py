@@ -15,9 +15,9 @@ import matplotlib.pyplot as plt
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.alphabet import LETTERS, alphabet
-from synthesis.hand import HandModel
-from synthesis.landmarks import landmarks
+from synthesis.fingerspelling.alphabet import LETTERS, alphabet
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.landmarks import landmarks
 
 CHAINS = {
     "thumb": (0, 1, 2, 3, 4),

@@ -9,7 +9,7 @@ import json
 import time
 from pathlib import Path
 
-from synthesis.routes import compute_table
+from synthesis.fingerspelling.routes import compute_table
 
 OUT = Path(__file__).resolve().parent.parent / "synthesis" / "data" / "letter_routes.json"
 

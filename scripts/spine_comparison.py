@@ -16,12 +16,12 @@ from PIL import Image, ImageDraw, ImageFont
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.avatar.body import body_avatar
+from synthesis.avatar.body_mesh import body_avatar
 from synthesis.render.renderer import Renderer
 from synthesis.render.scene import upper_body_front
-from synthesis.sentence import SentenceOptions, synthesize
-from synthesis.sentence_plots import torso_angles, torso_angles_figure
-from synthesis.stories import SPINE_STORY
+from synthesis.signing.sentence import SentenceOptions, synthesize
+from synthesis.signing.sentence_plots import torso_angles, torso_angles_figure
+from synthesis.signing.stories import SPINE_STORY
 
 TILE = 300
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"

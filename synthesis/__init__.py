@@ -1,33 +1,50 @@
 """The animation engine: skeletons, BVH, kinematics, the ASL hand alphabet, timing, rendering.
 
 Pure numpy/scipy code; never imports Django, :mod:`studyplatform`, :mod:`stimuli` or
-:mod:`analysis`.
+:mod:`analysis`. Its subpackages, lowest first: ``skeleton`` (joint trees, motions,
+files, kinematics), ``rigs`` (the hand and body models), ``fingerspelling`` (alphabet,
+word timing, spelling), ``timing`` (the timing models), ``signing`` (sentences),
+``avatar`` and ``render`` (meshes and offscreen video), ``techniques`` (what a study
+compares, and the one entry point to a clip).
 """
 
-from synthesis.body import BodyModel
-from synthesis.bvh import BvhError, parse_bvh, read_bvh, save_bvh, write_bvh
-from synthesis.hand import HandModel
-from synthesis.kinematics import Pose, forward_kinematics, forward_kinematics_arrays
-from synthesis.mapping import JOINT_NAME_TABLES, JointMapping, detect_mapping
-from synthesis.motion import Motion
-from synthesis.retarget import retarget
-from synthesis.retime import (
+from synthesis.fingerspelling import WordTiming, simple_timing, spell
+from synthesis.identity import engine_digest
+from synthesis.rigs import BodyModel, HandModel, retarget
+from synthesis.skeleton import (
+    JOINT_NAME_TABLES,
+    BvhError,
+    Joint,
+    JointMapping,
+    Motion,
+    Pose,
+    Skeleton,
+    detect_mapping,
+    format_bvh,
+    forward_kinematics,
+    forward_kinematics_arrays,
+    guess_length_unit,
     interpolate_poses,
     monotone_spline_warp,
+    parse_bvh,
     piecewise_linear_warp,
+    read_bvh,
     resample,
     sample,
     time_warp,
     trim,
+    write_bvh,
 )
-from synthesis.skeleton import Joint, Skeleton, guess_length_unit
-from synthesis.spelling import simple_timing, spell
-from synthesis.timing import WordTiming, constant_timing, normalized_constant_timing
+from synthesis.techniques import REGISTRY, ClipError, ClipRequest, build_motion, render_request
+from synthesis.timing import constant_timing, normalized_constant_timing
 
 __all__ = [
     "JOINT_NAME_TABLES",
+    "REGISTRY",
     "BodyModel",
     "BvhError",
+    "ClipError",
+    "ClipRequest",
     "HandModel",
     "Joint",
     "JointMapping",
@@ -35,8 +52,11 @@ __all__ = [
     "Pose",
     "Skeleton",
     "WordTiming",
+    "build_motion",
     "constant_timing",
     "detect_mapping",
+    "engine_digest",
+    "format_bvh",
     "forward_kinematics",
     "forward_kinematics_arrays",
     "guess_length_unit",
@@ -46,10 +66,10 @@ __all__ = [
     "parse_bvh",
     "piecewise_linear_warp",
     "read_bvh",
+    "render_request",
     "resample",
     "retarget",
     "sample",
-    "save_bvh",
     "simple_timing",
     "spell",
     "time_warp",

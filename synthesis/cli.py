@@ -17,10 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.alphabet import AlphabetError, letter_pose
-from synthesis.bvh import BvhError
-from synthesis.hand import HandModel
-from synthesis.landmarks import landmarks
+from synthesis.fingerspelling.alphabet import AlphabetError, letter_pose
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.landmarks import landmarks
+from synthesis.skeleton.bvh import BvhError
 from synthesis.techniques import (
     REGISTRY,
     ClipRequest,
@@ -70,7 +70,7 @@ def _hand_motion_for(rig, side: str, hand_dofs: np.ndarray) -> np.ndarray:
     """Return the rig's DOFs for hand-model DOFs (a body holds the hand up to sign)."""
     if isinstance(rig, HandModel):
         return hand_dofs
-    from synthesis.posture import fingerspelling_posture
+    from synthesis.rigs.posture import fingerspelling_posture
 
     return fingerspelling_posture(rig, side, hand_dofs)
 
@@ -168,7 +168,7 @@ def _sentence(args: argparse.Namespace) -> int:
     request = _request(args, "sentence", args.text)
     build = build_motion(request)
     if args.plot is not None:
-        from synthesis.sentence_plots import torso_angles_figure
+        from synthesis.signing.sentence_plots import torso_angles_figure
 
         spine = request.parameters["spine"]
         flipped = {**request.parameters, "spine": not spine}
@@ -186,11 +186,11 @@ def _sentence(args: argparse.Namespace) -> int:
 
 
 def _render_bvh(args: argparse.Namespace) -> int:
-    from synthesis.bvh import read_bvh
-    from synthesis.mapping import detect_mapping
     from synthesis.render.clip import render_clip
-    from synthesis.retarget import retarget
-    from synthesis.retime import resample
+    from synthesis.rigs.retarget import retarget
+    from synthesis.skeleton.bvh import read_bvh
+    from synthesis.skeleton.mapping import detect_mapping
+    from synthesis.skeleton.retime import resample
 
     motion = read_bvh(args.file)
     if args.rate and abs(motion.rate_hz - args.rate) > 1e-9:

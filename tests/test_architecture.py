@@ -59,3 +59,72 @@ def test_importing_the_pure_packages_loads_no_django():
         [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True
     )
     assert result.stdout.strip() == ""
+
+
+def _synthesis_edges() -> dict[str, set[str]]:
+    """Return, per subpackage of synthesis, the other subpackages its modules import."""
+    package = ROOT / "synthesis"
+    subpackages = {p.name for p in package.iterdir() if (p / "__init__.py").exists()}
+    edges: dict[str, set[str]] = {name: set() for name in subpackages}
+    for path in package.rglob("*.py"):
+        parts = path.relative_to(package).parts
+        if len(parts) < 2:
+            continue  # top-level modules (cli, identity, the package's API) sit above all
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            names = []
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                names = [node.module]
+            for name in names:
+                bits = name.split(".")
+                inside = bits[0] == "synthesis" and len(bits) > 1 and bits[1] in subpackages
+                if inside and bits[1] != parts[0]:
+                    edges[parts[0]].add(bits[1])
+    return edges
+
+
+def find_cycle(edges: dict[str, set[str]]) -> list[str]:
+    """Return one cycle of the graph *edges* as a path (first node repeated), or []."""
+    state: dict[str, int] = {}
+    path: list[str] = []
+
+    def visit(node: str) -> list[str]:
+        state[node] = 1
+        path.append(node)
+        for target in sorted(edges.get(node, ())):
+            if state.get(target) == 1:
+                return [*path[path.index(target) :], target]
+            if target not in state and (cycle := visit(target)):
+                return cycle
+        state[node] = 2
+        path.pop()
+        return []
+
+    for node in sorted(edges):
+        if node not in state and (cycle := visit(node)):
+            return cycle
+    return []
+
+
+def test_the_engine_subpackages_import_each_other_without_a_cycle():
+    cycle = find_cycle(_synthesis_edges())
+    assert not cycle, "import cycle between synthesis subpackages: " + " → ".join(cycle)
+
+
+def test_the_cycle_check_sees_a_cycle():
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": set()}) == []
+
+
+def test_no_module_is_longer_than_about_400_lines():
+    long = []
+    for package in sorted(PROJECT_PACKAGES):
+        for path in sorted((ROOT / package).rglob("*.py")):
+            if "migrations" in path.parts:
+                continue
+            lines = len(path.read_text(encoding="utf-8").splitlines())
+            if lines > 400:
+                long.append(f"{path.relative_to(ROOT)}: {lines} lines")
+    assert not long, "split these modules:\n" + "\n".join(long)

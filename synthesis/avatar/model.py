@@ -12,7 +12,7 @@ from synthesis.avatar.skinning import (
     linear_blend_skinning,
     skin_transforms,
 )
-from synthesis.kinematics import Pose
+from synthesis.skeleton.kinematics import Pose
 
 SKIN_RGB = (0.74, 0.55, 0.45)
 NAIL_RGB = (0.82, 0.64, 0.60)

@@ -10,8 +10,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import sparse
 
-from synthesis.kinematics import Pose
-from synthesis.rotations import quat_to_matrix
+from synthesis.skeleton.kinematics import Pose
+from synthesis.skeleton.rotations import quat_to_matrix
 
 MAX_BONES = 4
 

@@ -5,11 +5,11 @@ from pathlib import Path
 import numpy as np
 
 from synthesis.avatar.model import Avatar
-from synthesis.kinematics import Pose
 from synthesis.render.parallel import render_frames
 from synthesis.render.renderer import Progress, Renderer
 from synthesis.render.scene import CameraPreset
 from synthesis.render.video import VideoInfo, write_mp4, write_png
+from synthesis.skeleton.kinematics import Pose
 
 
 def render_still(

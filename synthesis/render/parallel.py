@@ -15,9 +15,9 @@ from queue import Empty
 import numpy as np
 
 from synthesis.avatar.model import Avatar
-from synthesis.kinematics import Pose
 from synthesis.render.renderer import Progress, Renderer
 from synthesis.render.scene import CameraPreset
+from synthesis.skeleton.kinematics import Pose
 
 QUEUE_FRAMES = 6
 # Below this many frames a second process costs more to start than it saves.

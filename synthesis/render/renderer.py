@@ -1,15 +1,15 @@
 """Offscreen rendering of a posed avatar with pyrender: DOF vectors in, RGB frames out."""
 
-import functools
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import numpy as np
 
 from synthesis.avatar.model import Avatar
-from synthesis.kinematics import Pose
+from synthesis.render import pyrender_compat as compat
 from synthesis.render.backend import import_pyrender
 from synthesis.render.scene import CameraPreset, Light, look_at, portrait_lighting
+from synthesis.skeleton.kinematics import Pose
 
 BACKGROUND_RGB = (0.42, 0.47, 0.53)
 SHADERS = Path(__file__).with_name("shaders")
@@ -64,7 +64,7 @@ class Renderer:
         # pyrender looks its shaders up by file name in its program cache; pointing the
         # cache at the project's own shaders swaps the PBR model for a much cheaper one
         # (private attributes of the pinned pyrender-maintained 1.0.1).
-        self._renderer._renderer._program_cache = _program_cache(pyrender, str(SHADERS))
+        compat.install_program_cache(pyrender, self._renderer, str(SHADERS))
 
     def set_camera(self, camera: CameraPreset) -> None:
         """Move the camera (and, unless lights were given, the portrait lights with it)."""
@@ -78,7 +78,7 @@ class Renderer:
             self.scene.remove_node(node)
         self._light_nodes = []
         for light in self.lights:
-            node = _ordered_node_class(self._pyrender)(
+            node = compat.ordered_node_class(self._pyrender)(
                 order=len(self._light_nodes),
                 light=self._light(light),
                 matrix=look_at(np.asarray(light.position_m), target),
@@ -124,8 +124,7 @@ class Renderer:
                 primitive.normals = normals
             # The directional lights' shadow volume follows the scene's bounds, which
             # pyrender caches on the mesh and the scene.
-            self._mesh._bounds = None
-            self.scene._bounds = None
+            compat.forget_bounds(self._mesh, self.scene)
             self._uploaded = False
             return
         pyrender = self._pyrender
@@ -155,14 +154,14 @@ class Renderer:
         floats per vertex for primitives like ours, without tangents or texture
         coordinates; the colour columns never change.
         """
-        if self._uploaded or self._primitives[0]._vaid is None:
+        if self._uploaded or compat.vertex_buffer(self._primitives[0]) is None:
             return
         from OpenGL import GL
 
         for primitive, interleaved in zip(self._primitives, self._interleaved(), strict=True):
             interleaved[:, 0:3] = primitive.positions
             interleaved[:, 3:6] = primitive.normals
-            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, primitive._buffers[0])
+            GL.glBindBuffer(GL.GL_ARRAY_BUFFER, compat.vertex_buffer(primitive))
             GL.glBufferSubData(GL.GL_ARRAY_BUFFER, 0, interleaved.nbytes, interleaved)
         GL.glBindBuffer(GL.GL_ARRAY_BUFFER, 0)
         self._uploaded = True
@@ -186,27 +185,9 @@ class Renderer:
         return self._draw()
 
     def _draw(self) -> np.ndarray:
-        """Draw the scene and read back its colours, (height, width, 3) uint8.
-
-        ``OffscreenRenderer.render`` also reads and linearises the depth buffer, a tenth
-        of the frame time that clips never use; this is its colour-only path (pyrender's
-        own renderer object, as the pinned pyrender-maintained 1.0.1 lays it out).
-        """
-        offscreen = self._renderer
-        inner = offscreen._renderer
-        offscreen._platform.make_current()
-        try:
-            self._upload()
-            inner.viewport_width, inner.viewport_height = self.width, self.height
-            if offscreen._platform.supports_framebuffers():
-                offscreen_flag = self._pyrender.RenderFlags.OFFSCREEN
-                color, _ = inner.render(self.scene, self._flags | offscreen_flag)
-            else:
-                inner.render(self.scene, self._flags)
-                color = inner.read_color_buf()
-        finally:
-            offscreen._platform.make_uncurrent()
-        return np.ascontiguousarray(color[..., :3])
+        """Draw the scene and read back its colours, (height, width, 3) uint8."""
+        return compat.render_color(self._pyrender, self._renderer, self.scene, self._flags,
+                                   self.width, self.height, before_draw=self._upload)  # fmt: skip
 
     def frames(
         self, motion: np.ndarray | Pose, progress: Progress | None = None
@@ -214,7 +195,7 @@ class Renderer:
         """Yield one frame per frame of *motion*, reporting (done, total) to *progress*.
 
         *motion* is DOF vectors (n_frames, n_dofs) of the avatar's rig, or a
-        :class:`~synthesis.kinematics.Pose` of its skeleton (n_frames, n_joints, …).
+        :class:`~synthesis.skeleton.kinematics.Pose` of its skeleton (n_frames, n_joints, …).
         """
         if isinstance(motion, Pose):
             total = motion.quaternions.shape[0]
@@ -236,55 +217,3 @@ class Renderer:
                 yield self._draw()
                 if progress is not None:
                     progress(start + k + 1, total)
-
-
-def _program_cache(pyrender, shader_dir: str):
-    """Return a shader program cache for one renderer that compiles each program once.
-
-    pyrender keys its cache on the current context object, and OSMesa hands out a new
-    pointer object on every make-current, so with pyrender's own key every frame missed
-    the cache, compiled its shaders again and kept the old programs (a tenth of the frame
-    time, and a leak). One renderer owns one context, so the key here leaves it out.
-    """
-
-    class ProgramCache(pyrender.shader_program.ShaderProgramCache):
-        def __init__(self) -> None:
-            super().__init__(shader_dir=shader_dir)
-            self._compiled: dict = {}
-
-        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None,
-                        defines=None):  # fmt: skip
-            defines = defines or {}
-            key = (vertex_shader, fragment_shader, geometry_shader, tuple(sorted(defines.items())))
-            if key not in self._compiled:
-                self._compiled[key] = super().get_program(
-                    vertex_shader, fragment_shader, geometry_shader, defines
-                )
-            return self._compiled[key]
-
-        def clear(self) -> None:
-            super().clear()
-            self._compiled = {}
-
-    return ProgramCache()
-
-
-@functools.cache
-def _ordered_node_class(pyrender):
-    """Return a pyrender Node class whose nodes hash to the order they were given.
-
-    pyrender keeps lights in a set and numbers them for the shader in the set's
-    iteration order, which for plain nodes follows their memory addresses; the shader
-    then summed the lights in an order that changed from run to run, and so did the
-    last bits of some pixels. Small-integer hashes make a set iterate in their order.
-    """
-
-    class OrderedNode(pyrender.Node):
-        def __init__(self, order: int, **kwargs) -> None:
-            super().__init__(**kwargs)
-            self.order = order
-
-        def __hash__(self) -> int:
-            return self.order
-
-    return OrderedNode

@@ -12,7 +12,7 @@ from synthesis.techniques.request import Build
 
 
 def _start_word(build: Build) -> Build:
-    from synthesis.spelling import word_letters
+    from synthesis.fingerspelling.spelling import word_letters
 
     try:
         word_letters(build.request.text)
@@ -28,19 +28,19 @@ def _finish_word(build: Build) -> Build:
     transitions moved onto the condition's timing; the Motion capture condition plays it
     as performed.
     """
-    from synthesis.hand import HandModel
-    from synthesis.spelling import spell
+    from synthesis.fingerspelling.spelling import spell
+    from synthesis.rigs.hand import HandModel
 
     request = build.request
     if build.performance is None:
         hand = spell(request.text, request.side, request.rate_hz, timing=build.timing)
         if isinstance(build.rig, HandModel):
             return build.but(motion=hand)
-        from synthesis.posture import fingerspelling_posture
+        from synthesis.rigs.posture import fingerspelling_posture
 
         return build.but(motion=fingerspelling_posture(build.rig, request.side, hand))
-    from synthesis.retarget import retarget
-    from synthesis.retime import resample
+    from synthesis.rigs.retarget import retarget
+    from synthesis.skeleton.retime import resample
     from synthesis.timing.recordings import retime
 
     if not isinstance(build.rig, HandModel):
@@ -57,7 +57,7 @@ def _finish_word(build: Build) -> Build:
 
 
 def _start_sentence(build: Build) -> Build:
-    from synthesis.sentence import SentenceOptions
+    from synthesis.signing.sentence import SentenceOptions
 
     request = build.request
     options = SentenceOptions(rate_hz=request.rate_hz, seed=request.seed, dominant=request.side)
@@ -65,7 +65,7 @@ def _start_sentence(build: Build) -> Build:
 
 
 def _finish_sentence(build: Build) -> Build:
-    from synthesis.sentence import synthesize
+    from synthesis.signing.sentence import synthesize
 
     sentence = synthesize(build.request.text, build.options, build.library)
     return build.but(motion=np.asarray(sentence.dofs_rad), result=sentence)

@@ -8,7 +8,7 @@ from synthesis.techniques.request import Build
 
 
 def _apply(build: Build) -> Build:
-    from synthesis.liveliness import Liveliness
+    from synthesis.signing.liveliness import Liveliness
 
     liveliness = Liveliness() if build.request.parameters["liveliness"] else None
     return build.but(options=replace(build.options, liveliness=liveliness))

@@ -155,10 +155,10 @@ class Build:
 def rig_for(view: str, side: str):
     """Return the rig of the avatar of *view*: the hand model or the upper body."""
     if view == "hand":
-        from synthesis.hand import HandModel
+        from synthesis.rigs.hand import HandModel
 
         return HandModel(side)
-    from synthesis.body import BodyModel
+    from synthesis.rigs.body import BodyModel
 
     return BodyModel(side)
 
@@ -186,10 +186,10 @@ def avatar_and_camera(view: str, side: str):
     from synthesis.render.scene import hand_close_up, upper_body_front
 
     if view == "hand":
-        from synthesis.avatar.hand import hand_avatar
+        from synthesis.avatar.hand_mesh import hand_avatar
 
         return hand_avatar(side), hand_close_up(side)
-    from synthesis.avatar.body import body_avatar
+    from synthesis.avatar.body_mesh import body_avatar
 
     return body_avatar(side), upper_body_front(side)
 

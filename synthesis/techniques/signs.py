@@ -6,7 +6,7 @@ from synthesis.techniques.request import Build
 
 
 def _apply(build: Build) -> Build:
-    from synthesis.signs import read_library
+    from synthesis.signing.signs import read_library
 
     path = build.request.parameters["library"]
     return build.but(library=read_library(path)) if path else build

@@ -51,7 +51,7 @@ def _read_timing_file(path: str, word: str):
 
 def word_timing(values, text: str, performance=None):
     """Return the timing *values* choose for the word *text* (a performance's own for mocap)."""
-    from synthesis.spelling import simple_timing, word_letters
+    from synthesis.fingerspelling.spelling import simple_timing, word_letters
     from synthesis.timing import constant_timing, normalized_constant_timing
 
     word = "".join(word_letters(text))

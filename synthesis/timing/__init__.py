@@ -1,6 +1,7 @@
 """Fingerspelling timing: per-letter holds and per-pair transitions, and the models that
 predict them (spec 02; seed 000 ch. 4)."""
 
+from synthesis.fingerspelling.word_timing import TimingError, WordTiming
 from synthesis.timing.bayes import HoldClassifier, LeaveOneOut
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
 from synthesis.timing.defaults import published_model
@@ -9,7 +10,6 @@ from synthesis.timing.features import DEFAULT_FEATURES, FEATURES, letter_feature
 from synthesis.timing.simulate import CaptureNoise, sample_timing, simulate_recording
 from synthesis.timing.transitions import TransitionModel, letter_distance, pose_distance
 from synthesis.timing.variable import VariableModel
-from synthesis.timing.word import TimingError, WordTiming
 
 __all__ = [
     "DEFAULT_FEATURES",

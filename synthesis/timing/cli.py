@@ -14,7 +14,8 @@ import json
 import sys
 from pathlib import Path
 
-from synthesis.bvh import BvhError
+from synthesis.fingerspelling.word_timing import TimingError
+from synthesis.skeleton.bvh import BvhError
 from synthesis.timing.defaults import published_model
 from synthesis.timing.training import (
     HOLD_COLUMNS,
@@ -23,7 +24,6 @@ from synthesis.timing.training import (
     train,
 )
 from synthesis.timing.variable import VariableModel
-from synthesis.timing.word import TimingError
 
 
 def _recordings(args: argparse.Namespace) -> list:
@@ -63,7 +63,7 @@ def _compare(args: argparse.Namespace) -> int:
 
 
 def _plot(args: argparse.Namespace) -> int:
-    from synthesis.spelling import spell, word_letters
+    from synthesis.fingerspelling.spelling import spell, word_letters
     from synthesis.timing.plots import save_figure, timeline_figure, trajectory_figure
     from synthesis.timing.recordings import condition_timings
 

@@ -6,7 +6,7 @@ not give one). Normalized constant: the same, scaled as a whole to another timin
 total duration (the Variable model's, in the study), so that only the rhythm differs.
 """
 
-from synthesis.timing.word import WordTiming
+from synthesis.fingerspelling.word_timing import WordTiming
 
 HOLD_MS = 243.0
 LAST_HOLD_MS = 800.0

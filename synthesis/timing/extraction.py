@@ -28,12 +28,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import savgol_filter
 
-from synthesis.alphabet import letter
-from synthesis.hand import HandModel
-from synthesis.kinematics import Pose
-from synthesis.motion import Motion
-from synthesis.retarget import retarget
-from synthesis.timing.word import TimingError, WordTiming
+from synthesis.fingerspelling.alphabet import letter
+from synthesis.fingerspelling.word_timing import TimingError, WordTiming
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.retarget import retarget
+from synthesis.skeleton.kinematics import Pose
+from synthesis.skeleton.motion import Motion
 
 # Joint angles are smoothed over about this long before differentiating (5 frames at
 # 60 fps): long enough to quiet sensor noise, short against a letter's hold.

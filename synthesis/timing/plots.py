@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.timing.word import WordTiming
+from synthesis.fingerspelling.word_timing import WordTiming
 
 COLOURS = {
     "mocap": "#4d4d4d",
@@ -62,7 +62,7 @@ def trajectory_figure(motions: dict[str, np.ndarray], rate_hz: float, word: str)
 
     *motions* maps a condition to hand-model DOF vectors (n_frames, n_dofs).
     """
-    from synthesis.hand import HandModel
+    from synthesis.rigs.hand import HandModel
 
     plt = _pyplot()
     names = HandModel().dof_names

@@ -11,16 +11,16 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.bvh import read_bvh
-from synthesis.motion import Motion
-from synthesis.retime import piecewise_linear_warp, time_warp
-from synthesis.spelling import LEAD_MS, hold_times_s
+from synthesis.fingerspelling.spelling import LEAD_MS, hold_times_s
+from synthesis.fingerspelling.word_timing import TimingError, WordTiming
+from synthesis.skeleton.bvh import read_bvh
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.retime import piecewise_linear_warp, time_warp
 from synthesis.timing.constant import constant_timing, normalized_constant_timing
 from synthesis.timing.extraction import Extraction, extract
 from synthesis.timing.simulate import simulate_recording
 from synthesis.timing.training import Annotation, train
 from synthesis.timing.variable import VariableModel
-from synthesis.timing.word import TimingError, WordTiming
 
 
 @dataclass(frozen=True)

@@ -19,13 +19,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from synthesis.hand import HandModel
-from synthesis.motion import Motion
-from synthesis.noise import band_limited_noise
+from synthesis.fingerspelling.word_timing import WordTiming
+from synthesis.rigs.hand import HandModel
+from synthesis.signing.noise import band_limited_noise
+from synthesis.skeleton.motion import Motion
 from synthesis.timing.bayes import CLASSES_MS
 from synthesis.timing.features import word_features
 from synthesis.timing.variable import VariableModel
-from synthesis.timing.word import WordTiming
 
 # Residual spread of transitions around the regression line when the model does not
 # record it: the published model's σ = 60 ms with r = 0.44 leaves 60·√(1 − r²) ≈ 54 ms.
@@ -95,11 +95,11 @@ def simulate_recording(
     """Return a simulated capture of *word* (a BVH-ready Motion) and its true timing.
 
     The timing is sampled from *model* (the published model when None) unless given;
-    the word is spelled as :func:`synthesis.spelling.spell` does, with *lead_ms*.
+    the word is spelled as :func:`synthesis.fingerspelling.spelling.spell` does, with *lead_ms*.
     """
     # Imported here: spelling uses this package's WordTiming, so a module-level import
     # would be circular.
-    from synthesis.spelling import spell, word_letters
+    from synthesis.fingerspelling.spelling import spell, word_letters
 
     word_letters(word)  # AlphabetError names a character that is not a letter
     if timing is None:

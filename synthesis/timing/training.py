@@ -13,11 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
+from synthesis.fingerspelling.word_timing import TimingError
 from synthesis.timing.bayes import HoldClassifier, LeaveOneOut
 from synthesis.timing.features import DEFAULT_FEATURES, letter_features
 from synthesis.timing.transitions import METRICS, TransitionModel, letter_distance
 from synthesis.timing.variable import VariableModel
-from synthesis.timing.word import TimingError
 
 HOLD_COLUMNS = ("word", "index", "hold_ms")
 TRANSITION_COLUMNS = ("word", "index", "transition_ms")

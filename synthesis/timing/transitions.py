@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from synthesis.alphabet import letter_pose
+from synthesis.fingerspelling.alphabet import letter_pose
 
 METRICS = ("rmsd", "manhattan", "chebyshev")
 

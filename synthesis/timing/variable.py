@@ -10,10 +10,10 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from synthesis.fingerspelling.word_timing import TimingError, WordTiming, check_header
 from synthesis.timing.bayes import HoldClassifier
 from synthesis.timing.features import word_features
 from synthesis.timing.transitions import TransitionModel
-from synthesis.timing.word import TimingError, WordTiming, check_header
 
 FORMAT = "signstudy.timing-model"
 FORMAT_VERSION = 1

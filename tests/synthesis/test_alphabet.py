@@ -8,9 +8,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from synthesis.alphabet import LETTERS, AlphabetError, alphabet, contact_gaps_m, letter, letter_pose
-from synthesis.hand import HandModel
-from synthesis.landmarks import LANDMARK_NAMES, landmarks
+from synthesis.fingerspelling.alphabet import (
+    LETTERS,
+    AlphabetError,
+    alphabet,
+    contact_gaps_m,
+    letter,
+    letter_pose,
+)
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.landmarks import LANDMARK_NAMES, landmarks
 
 ROOT = Path(__file__).resolve().parents[2]
 MODEL = HandModel()

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import trimesh
 
-from synthesis.avatar.body import body_avatar
-from synthesis.avatar.hand import hand_avatar, hand_primitives
+from synthesis.avatar.body_mesh import body_avatar
+from synthesis.avatar.hand_mesh import hand_avatar, hand_primitives
 from synthesis.avatar.model import TOP_RGB, Avatar, SkinnedPart
 from synthesis.avatar.skinning import skin_weights
 

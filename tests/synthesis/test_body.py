@@ -2,10 +2,10 @@
 
 import numpy as np
 
-from synthesis.alphabet import letter_pose
-from synthesis.body import BodyModel
-from synthesis.hand import HandModel
-from synthesis.posture import fingerspelling_posture
+from synthesis.fingerspelling.alphabet import letter_pose
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.posture import fingerspelling_posture
 
 
 def _at(model, dofs, joint):

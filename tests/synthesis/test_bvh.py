@@ -8,8 +8,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from synthesis import BvhError, Joint, Motion, Skeleton, parse_bvh, read_bvh, save_bvh, write_bvh
-from synthesis.skeleton import CHANNEL_NAMES, ROTATION_CHANNELS
+from synthesis import BvhError, Joint, Motion, Skeleton, format_bvh, parse_bvh, read_bvh, write_bvh
+from synthesis.skeleton.skeleton import CHANNEL_NAMES, ROTATION_CHANNELS
 
 DATA = Path(__file__).parent / "data"
 FILES = sorted(DATA.glob("*.bvh"))
@@ -18,10 +18,10 @@ FILES = sorted(DATA.glob("*.bvh"))
 @pytest.mark.parametrize("path", FILES, ids=lambda p: p.name)
 def test_sample_files_round_trip_exactly(path, tmp_path):
     motion = read_bvh(path)
-    save_bvh(motion, tmp_path / "again.bvh")
+    write_bvh(motion, tmp_path / "again.bvh")
     again = read_bvh(tmp_path / "again.bvh", length_unit=motion.skeleton.length_unit)
     assert again == motion
-    assert write_bvh(again) == write_bvh(motion)
+    assert format_bvh(again) == format_bvh(motion)
 
 
 def test_seed_004_sample_reads_as_published():
@@ -76,7 +76,7 @@ def test_empty_and_long_clips_round_trip():
     rng = np.random.default_rng(4)
     for frames in (0, 1, 5000):
         motion = Motion(skeleton, rng.uniform(-180, 180, (frames, 21)).round(6), 1 / 120)
-        assert parse_bvh(write_bvh(motion), length_unit="cm") == motion
+        assert parse_bvh(format_bvh(motion), length_unit="cm") == motion
 
 
 @pytest.mark.parametrize(
@@ -155,7 +155,7 @@ def skeletons(draw) -> Skeleton:
     # Writers list a joint's children after it: order joints depth-first like a file.
     skeleton = Skeleton(tuple(joints), length_unit="cm")
     return parse_bvh(
-        write_bvh(Motion(skeleton, np.zeros((0, skeleton.channel_count)), 0.01)), length_unit="cm"
+        format_bvh(Motion(skeleton, np.zeros((0, skeleton.channel_count)), 0.01)), length_unit="cm"
     ).skeleton
 
 
@@ -174,10 +174,10 @@ def motions(draw) -> Motion:
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(motions())
 def test_any_motion_round_trips_exactly(motion):
-    text = write_bvh(motion)
+    text = format_bvh(motion)
     again = parse_bvh(text, length_unit="cm")
     assert again == motion
-    assert write_bvh(again) == text
+    assert format_bvh(again) == text
 
 
 @settings(max_examples=300, deadline=None)

@@ -4,12 +4,12 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from synthesis.bvh import save_bvh
 from synthesis.cli import main
-from synthesis.hand import HandModel
-from synthesis.motion import Motion
+from synthesis.fingerspelling.spelling import REST_HOLD_MS, spell
 from synthesis.render.video import count_frames
-from synthesis.spelling import REST_HOLD_MS, spell
+from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.bvh import write_bvh
+from synthesis.skeleton.motion import Motion
 
 pytestmark = pytest.mark.usefixtures("renderable")
 
@@ -42,7 +42,7 @@ def test_render_bvh_renders_a_hand_file(tmp_path):
     model = HandModel()
     dofs = spell("HI", rate_hz=30)[::3]
     path = tmp_path / "hi.bvh"
-    save_bvh(Motion(model.skeleton, model.channel_values(dofs), 0.1), path)
+    write_bvh(Motion(model.skeleton, model.channel_values(dofs), 0.1), path)
     out = tmp_path / "hi.mp4"
     assert main(["render-bvh", str(path), "--out", str(out), "--size", "96x72"]) == 0
     assert count_frames(out) == len(dofs)
@@ -96,7 +96,7 @@ def test_spell_retimes_a_recording_for_each_condition(tmp_path, capsys):
 
     model = HandModel()
     recording = tmp_path / "david.bvh"
-    save_bvh(Motion(model.skeleton, model.channel_values(spell("DAVID", lead_ms=300)), 1 / 60),
+    write_bvh(Motion(model.skeleton, model.channel_values(spell("DAVID", lead_ms=300)), 1 / 60),
              recording)  # fmt: skip
     assert main(["spell", "DAVID", "--condition", "mocap", "--recording", str(recording),
                  "--timing-only"]) == 0  # fmt: skip

@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from synthesis.collisions import finger_intersections, segment_distances
-from synthesis.hand import HandModel
+from synthesis.rigs.collisions import finger_intersections, segment_distances
+from synthesis.rigs.hand import HandModel
 
 
 def test_segment_distance_against_dense_sampling():

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from synthesis import forward_kinematics
-from synthesis.hand import HandModel
-from synthesis.motion import Motion
+from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.motion import Motion
 
 
 def test_25_digit_curves_per_hand_named_as_in_seed_002():

@@ -2,9 +2,9 @@
 
 import numpy as np
 
-from synthesis.body import BodyModel
-from synthesis.ik import hand_frame, solve_arm
-from synthesis.rotations import quat_to_matrix
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.ik import hand_frame, solve_arm
+from synthesis.skeleton.rotations import quat_to_matrix
 
 BODY = BodyModel()
 

@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from synthesis.body import BodyModel
-from synthesis.liveliness import DEFAULT_GROUPS, Liveliness, joint_group
+from synthesis.rigs.body import BodyModel
+from synthesis.signing.liveliness import DEFAULT_GROUPS, Liveliness, joint_group
 
 BODY = BodyModel()
 RATE = 60.0

@@ -4,14 +4,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from synthesis.alphabet import letter_pose
-from synthesis.body import BodyModel
-from synthesis.hand import HandModel
-from synthesis.mapping import JOINT_NAME_TABLES, detect_mapping, normalise
-from synthesis.motion import Motion
-from synthesis.retarget import retarget
-from synthesis.rotations import quat_multiply
-from synthesis.skeleton import Joint, Skeleton
+from synthesis.fingerspelling.alphabet import letter_pose
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.retarget import retarget
+from synthesis.skeleton.mapping import JOINT_NAME_TABLES, detect_mapping, normalise
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.rotations import quat_multiply
+from synthesis.skeleton.skeleton import Joint, Skeleton
 
 
 def _renamed(skeleton: Skeleton, names: dict[str, str], prefix: str = "") -> Skeleton:

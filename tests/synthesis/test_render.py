@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from synthesis.alphabet import letter_pose
-from synthesis.avatar.hand import hand_avatar
+from synthesis.avatar.hand_mesh import hand_avatar
+from synthesis.fingerspelling.alphabet import letter_pose
 from synthesis.render.renderer import BACKGROUND_RGB, Renderer
 from synthesis.render.scene import hand_close_up, portrait_lighting, upper_body_front
 
@@ -113,7 +113,7 @@ def test_frames_report_progress_and_accept_poses():
 
 
 def test_upper_body_camera_frames_the_signer():
-    from synthesis.avatar.body import body_avatar
+    from synthesis.avatar.body_mesh import body_avatar
 
     avatar = body_avatar("right")
     with Renderer(avatar, upper_body_front(), 160, 120) as renderer:
@@ -130,8 +130,8 @@ def test_odd_frame_sizes_are_refused():
 
 def test_clips_are_byte_identical_across_runs_and_worker_counts(tmp_path):
     """Same inputs, same bytes (spec 01): in one process, or split over two."""
+    from synthesis.fingerspelling.spelling import spell
     from synthesis.render.clip import render_clip
-    from synthesis.spelling import spell
 
     avatar = hand_avatar("right")
     motion = spell("NAIL", rate_hz=30)

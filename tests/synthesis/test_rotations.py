@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from synthesis.rotations import quat_from_euler, quat_multiply, quat_rotate, quat_to_matrix
+from synthesis.skeleton.rotations import quat_from_euler, quat_multiply, quat_rotate, quat_to_matrix
 
 ORDERS = ["XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "ZXZ", "XYX", "Z", "XY"]
 

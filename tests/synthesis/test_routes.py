@@ -6,10 +6,8 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from synthesis.alphabet import letter, rest_pose
-from synthesis.collisions import finger_crossings, overlap_depths_m
-from synthesis.hand import HandModel
-from synthesis.routes import (
+from synthesis.fingerspelling.alphabet import letter, rest_pose
+from synthesis.fingerspelling.routes import (
     REST,
     ROUTES,
     choose_route,
@@ -19,7 +17,9 @@ from synthesis.routes import (
     route_poses,
     start_pose,
 )
-from synthesis.spelling import spell
+from synthesis.fingerspelling.spelling import spell
+from synthesis.rigs.collisions import finger_crossings, overlap_depths_m
+from synthesis.rigs.hand import HandModel
 from synthesis.timing import constant_timing, normalized_constant_timing, published_model
 
 STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL",

@@ -5,9 +5,9 @@ import itertools
 import numpy as np
 import pytest
 
-from synthesis.sentence import SentenceOptions, Stagger, parse_glosses, synthesize
-from synthesis.signs import SignError
-from synthesis.stories import SPINE_STORY
+from synthesis.signing.sentence import SentenceOptions, Stagger, parse_glosses, synthesize
+from synthesis.signing.signs import SignError
+from synthesis.signing.stories import SPINE_STORY
 
 QUIET = dict(liveliness=None)
 
@@ -48,7 +48,7 @@ def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text)
 
 
 def test_sentences_two_to_four_bend_and_twist_visibly_with_the_spine_on():
-    from synthesis.sentence_plots import torso_angles
+    from synthesis.signing.sentence_plots import torso_angles
 
     for text in SPINE_STORY[1:4]:
         on = torso_angles(synthesize(text, SentenceOptions(spine=True, **QUIET)))

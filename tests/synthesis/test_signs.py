@@ -3,9 +3,9 @@
 import pytest
 import yaml
 
-from synthesis.sentence import parse_glosses
-from synthesis.signs import SignError, default_library, parse_library, read_library
-from synthesis.stories import SPINE_STORY
+from synthesis.signing.sentence import parse_glosses
+from synthesis.signing.signs import SignError, default_library, parse_library, read_library
+from synthesis.signing.stories import SPINE_STORY
 
 
 def test_the_shipped_library_has_every_sign_of_the_story():

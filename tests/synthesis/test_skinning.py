@@ -9,8 +9,8 @@ from synthesis.avatar.skinning import (
     skin_transforms,
     skin_weights,
 )
-from synthesis.hand import HandModel
-from synthesis.kinematics import Pose
+from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.kinematics import Pose
 
 
 def _finger():
@@ -27,7 +27,7 @@ def test_weights_sum_to_one_with_at_most_four_bones():
     model = HandModel()
     rng = np.random.default_rng(3)
     vertices = rng.uniform(-0.05, 0.4, (300, 3))
-    from synthesis.avatar.hand import bind_dofs, hand_primitives
+    from synthesis.avatar.hand_mesh import bind_dofs, hand_primitives
 
     primitives = hand_primitives(model, bind_dofs(model), "right")
     index = {name: i for i, name in enumerate(model.skeleton.names)}

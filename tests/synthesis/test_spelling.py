@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from synthesis.alphabet import AlphabetError, letter_pose
-from synthesis.hand import HandModel
-from synthesis.spelling import simple_timing, spell, spelling_keys
+from synthesis.fingerspelling.alphabet import AlphabetError, letter_pose
+from synthesis.fingerspelling.spelling import simple_timing, spell, spelling_keys
+from synthesis.rigs.hand import HandModel
 from synthesis.timing import WordTiming, constant_timing
 
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from synthesis.spine import SpineParams, smoothstep, spine_motion
+from synthesis.signing.spine import SpineParams, smoothstep, spine_motion
 
 PARAMS = SpineParams()
 RIGHT_SHOULDER = np.array([0.175, 0.0, 0.0])

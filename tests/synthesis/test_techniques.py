@@ -170,7 +170,7 @@ def test_changing_an_engine_source_file_changes_every_clip_hash(tmp_path):
         return result.stdout.split()
 
     before = digest_and_hash()
-    kinematics = copy / "kinematics.py"
+    kinematics = copy / "skeleton" / "kinematics.py"
     kinematics.write_text(kinematics.read_text() + "\n# a change\n")
     after = digest_and_hash()
     assert before[0] != after[0] and before[1] != after[1]

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from synthesis.bvh import save_bvh
-from synthesis.hand import HandModel
-from synthesis.motion import Motion
-from synthesis.spelling import spell
+from synthesis.fingerspelling.spelling import spell
+from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.bvh import write_bvh
+from synthesis.skeleton.motion import Motion
 from synthesis.timing import WordTiming, constant_timing, extract, published_model
 from synthesis.timing.recordings import (
     Recording,
@@ -23,7 +23,7 @@ def _save(folder, word: str, rng) -> WordTiming:
     timing = WordTiming(tuple(word), tuple(holds), tuple(rng.uniform(130, 280, len(word) - 1)))
     model = HandModel()
     dofs = spell(word, rate_hz=60, timing=timing, lead_ms=300)
-    save_bvh(Motion(model.skeleton, model.channel_values(dofs), 1 / 60), folder / f"{word}.bvh")
+    write_bvh(Motion(model.skeleton, model.channel_values(dofs), 1 / 60), folder / f"{word}.bvh")
     return timing
 
 

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from synthesis.alphabet import AlphabetError
-from synthesis.hand import HandModel
+from synthesis.fingerspelling.alphabet import AlphabetError
+from synthesis.rigs.hand import HandModel
 from synthesis.timing import CaptureNoise, published_model, sample_timing, simulate_recording
 from synthesis.timing.bayes import CLASSES_MS
 

@@ -71,17 +71,17 @@ def test_predict_prints_a_timing(capsys):
 
 
 def test_train_and_compare_from_recordings(tmp_path, capsys):
-    from synthesis.bvh import save_bvh
-    from synthesis.hand import HandModel
-    from synthesis.motion import Motion
-    from synthesis.spelling import spell
+    from synthesis.fingerspelling.spelling import spell
+    from synthesis.rigs.hand import HandModel
+    from synthesis.skeleton.bvh import write_bvh
+    from synthesis.skeleton.motion import Motion
 
     model = HandModel()
     paths = []
     for word in ("DAVID", "VICTOR", "HEAVEN"):
         dofs = spell(word, rate_hz=60, timing=None, lead_ms=300)
         paths.append(tmp_path / f"take-{word.lower()}.bvh")
-        save_bvh(Motion(model.skeleton, model.channel_values(dofs), 1 / 60), paths[-1])
+        write_bvh(Motion(model.skeleton, model.channel_values(dofs), 1 / 60), paths[-1])
     out = tmp_path / "model.json"
     args = ["train", *map(str, paths), "--words", "DAVID,VICTOR,HEAVEN", "--out", str(out)]
     assert main(args) == 0

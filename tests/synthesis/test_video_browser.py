@@ -6,11 +6,11 @@ import threading
 
 import pytest
 
-from synthesis.avatar.hand import hand_avatar
+from synthesis.avatar.hand_mesh import hand_avatar
+from synthesis.fingerspelling.spelling import spell
 from synthesis.render.clip import render_clip
 from synthesis.render.scene import hand_close_up
 from synthesis.render.video import count_frames
-from synthesis.spelling import spell
 
 pytestmark = pytest.mark.usefixtures("renderable")
 

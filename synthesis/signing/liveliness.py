@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from synthesis.body import BodyModel
-from synthesis.noise import band_limited_noise
+from synthesis.rigs.body import BodyModel
+from synthesis.signing.noise import band_limited_noise
 
 # Per joint group: (peak amplitude in degrees, cutoff frequency in Hz), proximal to
 # distal. The project's tuning (the seed gives guidelines, not numbers).

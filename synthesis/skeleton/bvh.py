@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.motion import Motion
-from synthesis.skeleton import CHANNEL_NAMES, Joint, Skeleton, guess_length_unit
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.skeleton import CHANNEL_NAMES, Joint, Skeleton, guess_length_unit
 
 MAX_DEPTH = 256
 _CHANNEL_LOOKUP = {name.lower(): name for name in CHANNEL_NAMES}
@@ -277,7 +277,7 @@ def _number(value: float) -> str:
     return np.format_float_positional(value, unique=True, trim="-")
 
 
-def write_bvh(motion: Motion) -> str:
+def format_bvh(motion: Motion) -> str:
     """Return *motion* as BVH text, tab-indented, one frame a line."""
     skeleton = motion.skeleton
     out = io.StringIO()
@@ -309,6 +309,6 @@ def write_bvh(motion: Motion) -> str:
     return out.getvalue()
 
 
-def save_bvh(motion: Motion, path: str | Path) -> None:
+def write_bvh(motion: Motion, path: str | Path) -> None:
     """Write *motion* to a BVH file."""
-    Path(path).write_text(write_bvh(motion), encoding="utf-8")
+    Path(path).write_text(format_bvh(motion), encoding="utf-8")

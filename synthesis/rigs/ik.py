@@ -18,8 +18,8 @@ from functools import cache
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from synthesis.body import BodyModel
-from synthesis.rotations import euler_angles, quat_to_matrix
+from synthesis.rigs.body import BodyModel
+from synthesis.skeleton.rotations import euler_angles, quat_to_matrix
 
 
 def _unit(v: np.ndarray) -> np.ndarray:

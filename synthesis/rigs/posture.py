@@ -8,8 +8,8 @@ motion: a sideways tilt turns the upper arm inward, a forward tilt opens the elb
 
 import numpy as np
 
-from synthesis.body import BodyModel
-from synthesis.hand import HandModel
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.hand import HandModel
 
 FINGERSPELLING_DEGREES = {
     "shoulder_flexion": 25.0,

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from synthesis.motion import Motion
-from synthesis.rotations import quat_multiply, quat_rotate, quat_to_matrix
-from synthesis.skeleton import Skeleton
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.rotations import quat_multiply, quat_rotate, quat_to_matrix
+from synthesis.skeleton.skeleton import Skeleton
 
 
 @dataclass(frozen=True)

@@ -10,11 +10,11 @@ the source root does, scaled by the two skeletons' sizes.
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from synthesis.kinematics import Pose, forward_kinematics
-from synthesis.mapping import JointMapping, detect_mapping
-from synthesis.motion import Motion
-from synthesis.rig import Rig
-from synthesis.rotations import quat_multiply, quat_rotate
+from synthesis.rigs.rig import Rig
+from synthesis.skeleton.kinematics import Pose, forward_kinematics
+from synthesis.skeleton.mapping import JointMapping, detect_mapping
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.rotations import quat_multiply, quat_rotate
 
 
 def _conjugate(q: np.ndarray) -> np.ndarray:

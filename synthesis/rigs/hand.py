@@ -23,7 +23,7 @@ from functools import cached_property
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from synthesis.rig import MIRROR_X, Dof, JointSpec, Rig, mirror_dof
+from synthesis.rigs.rig import MIRROR_X, Dof, JointSpec, Rig, mirror_dof
 
 FINGERS = ("index", "middle", "ring", "pinky")
 DIGITS = ("thumb", *FINGERS)

@@ -15,9 +15,9 @@ import trimesh
 from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, Avatar, SkinnedPart, rigid_part
 from synthesis.avatar.sdf import Primitive, RoundCone, RoundedPlate, mesh_primitives, simplify
 from synthesis.avatar.skinning import skin_weights
-from synthesis.hand import FINGERS, HandModel
-from synthesis.rig import MIRROR_X, Rig
-from synthesis.rotations import quat_rotate
+from synthesis.rigs.hand import FINGERS, HandModel
+from synthesis.rigs.rig import MIRROR_X, Rig
+from synthesis.skeleton.rotations import quat_rotate
 
 # Radii (m) at the MCP, PIP, DIP and tip of each finger.
 FINGER_RADII_M = {

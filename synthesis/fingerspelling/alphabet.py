@@ -16,8 +16,8 @@ import numpy as np
 import yaml
 from scipy.optimize import least_squares
 
-from synthesis.hand import FINGERS, HandModel
-from synthesis.rotations import quat_rotate
+from synthesis.rigs.hand import FINGERS, HandModel
+from synthesis.skeleton.rotations import quat_rotate
 
 LETTERS = tuple("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
 # Shorthand groups of the data file → DOF names.

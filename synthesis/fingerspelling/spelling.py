@@ -2,7 +2,7 @@
 
 Letters are held for their hold time and joined by eased interpolation over their
 transition time, through intermediate poses where the fingers would otherwise pass
-through each other (synthesis.routes); J and Z play their motion paths during their
+through each other (synthesis.fingerspelling.routes); J and Z play their motion paths during their
 hold; a doubled letter (the LL of HELLO) slides outward for the repeat (seed 000 §5.2
 "the bounce between double letters"). The clip starts and ends on a relaxed hand held still for
 ``REST_HOLD_MS``, ``lead_ms`` of eased movement away from the word, so neither the
@@ -17,10 +17,10 @@ import itertools
 import numpy as np
 from scipy.interpolate import CubicSpline, PchipInterpolator
 
-from synthesis.alphabet import AlphabetError, letter, rest_pose
-from synthesis.hand import HandModel
-from synthesis.routes import REST, letter_route, route_poses
-from synthesis.timing.word import WordTiming
+from synthesis.fingerspelling.alphabet import AlphabetError, letter, rest_pose
+from synthesis.fingerspelling.routes import REST, letter_route, route_poses
+from synthesis.fingerspelling.word_timing import WordTiming
+from synthesis.rigs.hand import HandModel
 
 DOUBLE_SLIDE_DEG = 7.0
 SIMPLE_HOLD_MS = 200.0
@@ -102,8 +102,8 @@ def spelling_keys(
 
 def _add_route(times, poses, via_at, previous, character, arrive_s, side, shape, target=None):
     """Append the intermediate keys that keep the fingers clear of each other between the
-    previous letter's last key and this letter's first (synthesis.routes); REST stands
-    for the relaxed hand."""
+    previous letter's last key and this letter's first (fingerspelling.routes); REST
+    stands for the relaxed hand."""
     route = letter_route(previous, character)
     if route == "direct":
         return
@@ -140,7 +140,7 @@ def spell(
     at = np.arange(count) / rate_hz
     frames = PchipInterpolator(times[~vias], poses[~vias], axis=0)(at)
     # A routed transition sweeps through its intermediate poses on a spline at rest at
-    # both ends (synthesis.routes.route_path), not stopping at each.
+    # both ends (synthesis.fingerspelling.routes.route_path), not stopping at each.
     keys = np.flatnonzero(~vias)
     for first, last in itertools.pairwise(keys):
         if last - first > 1:

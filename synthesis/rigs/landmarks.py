@@ -9,7 +9,7 @@ finger MCPs), like MediaPipe's "approximate geometric center of the hand".
 
 import numpy as np
 
-from synthesis.hand import HandModel
+from synthesis.rigs.hand import HandModel
 
 LANDMARK_JOINTS = (
     "wrist",

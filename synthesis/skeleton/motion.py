@@ -4,8 +4,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from synthesis.rotations import quat_from_euler, quat_to_matrix
-from synthesis.skeleton import POSITION_CHANNELS, Skeleton
+from synthesis.skeleton.rotations import quat_from_euler, quat_to_matrix
+from synthesis.skeleton.skeleton import POSITION_CHANNELS, Skeleton
 
 
 @dataclass(frozen=True, eq=False)

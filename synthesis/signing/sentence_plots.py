@@ -7,7 +7,7 @@ keys marked, so a researcher sees what the automated motion adds and when.
 
 import numpy as np
 
-from synthesis.sentence import SPINE_JOINTS, Sentence
+from synthesis.signing.sentence import SPINE_JOINTS, Sentence
 
 ANGLES = (("flexion", "forward bend"), ("side_bend", "side bend (to the left +)"),
           ("rotation", "twist (right shoulder forward +)"))  # fmt: skip

@@ -11,7 +11,7 @@ compared without case, separators or a namespace prefix (``mixamorig:``), so
 import re
 from dataclasses import dataclass
 
-from synthesis.skeleton import Skeleton
+from synthesis.skeleton.skeleton import Skeleton
 
 _DIGITS_FINGERS = ("index", "middle", "ring", "pinky")
 _FINGER_JOINTS = ("mcp", "pip", "dip", "tip")

@@ -12,9 +12,9 @@ from functools import cached_property
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from synthesis.kinematics import Pose, forward_kinematics_arrays
-from synthesis.rotations import euler_angles, quat_from_euler, quat_multiply
-from synthesis.skeleton import Joint, Skeleton
+from synthesis.skeleton.kinematics import Pose, forward_kinematics_arrays
+from synthesis.skeleton.rotations import euler_angles, quat_from_euler, quat_multiply
+from synthesis.skeleton.skeleton import Joint, Skeleton
 
 _EULER_COLUMN = {"z": 0, "x": 1, "y": 2}
 

@@ -1,12 +1,12 @@
 """Synthesize a signed sentence on the upper body, with automated spine motion on or off.
 
 A sentence is a gloss sequence (``"BUT SURPRISE MY BROTHER GET NEW C-A-R"``); glosses
-come from a sign library (synthesis.signs), letter-hyphen-letter words are fingerspelled.
+come from a sign library (synthesis.signing.signs), letter-hyphen-letter words are fingerspelled.
 Each key posture becomes body DOFs (seed 003 §3):
 
-- **Spine on**: the automated spine and clavicle motion (synthesis.spine), computed from
+- **Spine on**: the automated spine and clavicle motion (synthesis.signing.spine), computed from
   the hand targets, is added on top of the keyed spine; then the arms reach the targets
-  by analytic IK (synthesis.ik) from the torso as it now stands, so the hands are where
+  by analytic IK (synthesis.rigs.ik) from the torso as it now stands, so the hands are where
   the sign puts them; and the spine and clavicles start earlier than the arm.
 - **Spine off**: no automated motion; the arms reach the same targets from the keyed
   torso. Keys, handshapes, head, the head and neck's stagger and the noise are the same,
@@ -15,7 +15,7 @@ Each key posture becomes body DOFs (seed 003 §3):
 
 The body's onsets are staggered: gaze (the head) → neck → hips and spine, lower to
 upper → clavicle → arm. Keys are joined by monotone cubics (PCHIP, C¹, eased into and
-out of held postures); liveliness noise (synthesis.liveliness) is added last, the same
+out of held postures); liveliness noise (synthesis.signing.liveliness) is added last, the same
 in both conditions for a given seed.
 """
 
@@ -25,12 +25,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from synthesis.alphabet import AlphabetError
-from synthesis.body import BodyModel
-from synthesis.ik import hand_frame, solve_arm
-from synthesis.liveliness import Liveliness, joint_group
-from synthesis.signs import SignError, SignLibrary, default_library
-from synthesis.spine import SpineParams, spine_motion
+from synthesis.fingerspelling.alphabet import AlphabetError
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.ik import hand_frame, solve_arm
+from synthesis.signing.liveliness import Liveliness, joint_group
+from synthesis.signing.signs import SignError, SignLibrary, default_library
+from synthesis.signing.spine import SpineParams, spine_motion
 
 SPINE_JOINTS = ("spine_lower", "spine_middle", "spine_upper")
 REST_HOLD_MS = 150.0

@@ -2,7 +2,7 @@
 
 Joints (seed 003 §3.2–3.3): hips (root), three spine joints (lower, middle, upper),
 neck, head; per side a clavicle with two DOFs (raise, forward), shoulder (3), elbow
-(flexion), forearm twist, wrist (2) and the full hand of :class:`~synthesis.hand.HandModel`.
+(flexion), forearm twist, wrist (2) and the full hand of :class:`~synthesis.rigs.hand.HandModel`.
 Seed 003's torso frame is x right, y forward, z up; the engine's world is x to the
 viewer's right, y up, z toward the viewer, with the signer facing the viewer, so the
 signer's right arm hangs at −x.
@@ -20,8 +20,8 @@ from functools import cached_property
 
 import numpy as np
 
-from synthesis.hand import HandModel
-from synthesis.rig import MIRROR_X, Dof, JointSpec, Rig, mirror_dof
+from synthesis.rigs.hand import HandModel
+from synthesis.rigs.rig import MIRROR_X, Dof, JointSpec, Rig, mirror_dof
 
 SIDES = ("right", "left")
 HIPS_HEIGHT_M = 1.0

@@ -11,13 +11,13 @@ from functools import cache
 import numpy as np
 import trimesh
 
-from synthesis.avatar.hand import BIND_DEGREES as HAND_BIND_DEGREES
-from synthesis.avatar.hand import hand_nails, hand_primitives
+from synthesis.avatar.hand_mesh import BIND_DEGREES as HAND_BIND_DEGREES
+from synthesis.avatar.hand_mesh import hand_nails, hand_primitives
 from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, TOP_RGB, Avatar, SkinnedPart, rigid_part
 from synthesis.avatar.sdf import Primitive, RoundCone, mesh_primitives, simplify
 from synthesis.avatar.skinning import skin_weights
-from synthesis.body import SIDES, BodyModel
-from synthesis.rotations import quat_rotate
+from synthesis.rigs.body import SIDES, BodyModel
+from synthesis.skeleton.rotations import quat_rotate
 
 EYE_RGB = (0.08, 0.06, 0.05)
 # Bones under the top; the forearm's sleeve ends this far from the wrist.

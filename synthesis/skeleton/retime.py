@@ -11,9 +11,9 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.spatial.transform import Rotation
 
-from synthesis.motion import Motion
-from synthesis.rotations import euler_angles
-from synthesis.skeleton import Skeleton
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.rotations import euler_angles
+from synthesis.skeleton.skeleton import Skeleton
 
 Warp = Callable[[np.ndarray], np.ndarray]
 

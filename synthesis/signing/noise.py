@@ -1,6 +1,6 @@
 """Smooth random signals: Gaussian noise low-passed with a zero-phase Butterworth filter.
 
-Used for the liveliness of held postures (synthesis.liveliness, seed 003 §3.6) and for
+Used for the liveliness of held postures (synthesis.signing.liveliness, seed 003 §3.6) and for
 simulated capture noise (synthesis.timing.simulate): coherent, band-limited wander in
 the spirit of Perlin noise, deterministic for a given ``np.random.Generator``.
 """

@@ -18,9 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from synthesis.hand import FINGERS, HandModel
+from synthesis.rigs.hand import FINGERS, HandModel
 
-# Radii (m) at the start of each phalanx, like the avatar's skin (synthesis.avatar.hand).
+# Radii (m) at the start of each phalanx, like the avatar's skin (synthesis.avatar.hand_mesh).
 _THUMB = (("thumb_mcp", "thumb_ip", 0.0100), ("thumb_ip", "thumb_tip", 0.0088))
 _FINGER_RADII_M = {"index": 0.0088, "middle": 0.0090, "ring": 0.0085, "pinky": 0.0076}
 

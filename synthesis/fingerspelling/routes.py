@@ -6,7 +6,7 @@ A signer avoids that by moving the digits in an order: opening the fingers first
 the thumb out of their way, closing them again. Each such order is a *route*: zero to
 three intermediate poses between the letters, passed through at equal steps of the
 transition time. For each pair of letters the route is the shortest of :data:`ROUTES`
-that passes no phalanx through another (:func:`synthesis.collisions.finger_crossings`)
+that passes no phalanx through another (:func:`synthesis.rigs.collisions.finger_crossings`)
 and adds little overlap between digits beyond what the two letters themselves have.
 
 Choosing takes about 0.1 s a pair, so the choices for the whole alphabet are computed
@@ -21,9 +21,9 @@ from importlib import resources
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from synthesis.alphabet import LETTERS, letter, rest_pose
-from synthesis.collisions import finger_crossings, overlap_depths_m
-from synthesis.hand import FINGERS, HandModel
+from synthesis.fingerspelling.alphabet import LETTERS, letter, rest_pose
+from synthesis.rigs.collisions import finger_crossings, overlap_depths_m
+from synthesis.rigs.hand import FINGERS, HandModel
 
 FORMAT = "signstudy.letter-routes"
 FORMAT_VERSION = 1

@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from synthesis.alphabet import AlphabetError, letter, rest_pose
-from synthesis.hand import HandModel
+from synthesis.fingerspelling.alphabet import AlphabetError, letter, rest_pose
+from synthesis.rigs.hand import HandModel
 
 FORMAT = "signstudy.sign-library"
 FORMAT_VERSION = 1
