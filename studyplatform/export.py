@@ -1,7 +1,8 @@
 """Export a study's responses in the tidy format that :mod:`analysis` reads.
 
 One row per participant × trial × question (docs/tidy-format.md). Demographic answers
-become participant columns; identifying answers (name, e-mail) are never exported.
+(choice, number and short-text questions, on whatever page they are asked) become
+participant columns; identifying answers (name, e-mail) are never exported.
 """
 
 import csv
@@ -10,24 +11,12 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
-from studyplatform.actions import presented_conditions
+from studyplatform.lib.presentation import presented_conditions
 from studyplatform.models import Block, Participant, Question, Response, Study, Trial
+from studyplatform.questions import QUESTION_TYPES
 
-KIND_BY_QUESTION = {
-    Question.Kind.PAIRWISE: "pairwise",
-    Question.Kind.COMPARATIVE: "comparative",
-    Question.Kind.LIKERT: "rating",
-    Question.Kind.INTELLIGIBILITY: "text",
-    Question.Kind.OPEN: "text",
-}
-
-
-def _answer_value(response: Response, question: Question, labels: dict) -> str:
-    if question.uses_options:
-        return labels.get((question.pk, response.rating), str(response.rating))
-    if question.kind == Question.Kind.NUMBER:
-        return "" if response.number is None else f"{response.number:g}"
-    return response.text
+# Kinds whose answers describe the participant: exported as participant columns.
+ATTRIBUTE_KINDS = [kind for kind, type_ in QUESTION_TYPES.items() if type_.export_kind is None]
 
 
 def _failed_attention(response: Response, trial: Trial) -> bool:
@@ -42,7 +31,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     """Return the column names and the rows of *study*'s responses in the tidy format."""
     demographic_questions = list(
         Question.objects.filter(
-            study=study, trials__block__kind=Block.Kind.DEMOGRAPHICS, is_personal=False
+            study=study, kind__in=ATTRIBUTE_KINDS, trials__isnull=False, is_personal=False
         )
         .distinct()
         .order_by("position", "pk")
@@ -71,8 +60,9 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     demographic_keys = {q.pk for q in demographic_questions}
     for response in responses:
         if response.question_id in demographic_keys:
-            attributes[response.participant_id][response.question.key] = _answer_value(
-                response, response.question, labels
+            question = response.question
+            attributes[response.participant_id][question.key] = question.type.export_value(
+                question, response, labels
             )
         if response.trial.is_attention_check and _failed_attention(response, response.trial):
             failed.add(response.participant_id)
@@ -90,7 +80,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
             question, trial, participant = response.question, response.trial, response.participant
-            kind = KIND_BY_QUESTION.get(question.kind)
+            kind = question.type.export_kind
             if kind is None:
                 continue  # demographic answers are participant columns
             flags = _flags(participant, trial, participant.pk in failed)

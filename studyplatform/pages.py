@@ -7,8 +7,9 @@ participants at once.
 
 from dataclasses import dataclass, field
 
-from studyplatform.actions import page_count, presented_conditions
 from studyplatform.asl import asl_videos
+from studyplatform.lib.participants import page_count
+from studyplatform.lib.presentation import presented_conditions
 from studyplatform.models import (
     AnswerOption,
     Block,
@@ -20,6 +21,7 @@ from studyplatform.models import (
     Study,
     Trial,
 )
+from studyplatform.questions import question_type
 
 
 @dataclass(frozen=True)
@@ -69,15 +71,7 @@ class ParticipantPage:
 
 def _answer_text(response: Response | None, question: Question) -> str:
     """Return the stored answer as the value the page's control holds."""
-    if response is None:
-        return ""
-    if question.kind == Question.Kind.PAIRWISE:
-        return str(response.chosen_position or 0) if response.chosen else ""
-    if question.uses_options:
-        return "" if response.rating is None else str(response.rating)
-    if question.kind == Question.Kind.NUMBER:
-        return "" if response.number is None else f"{response.number:g}"
-    return response.text
+    return "" if response is None else question_type(question).display(question, response)
 
 
 def participant_page(participant: Participant, number: int, trial: Trial) -> ParticipantPage:

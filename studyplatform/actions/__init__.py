@@ -2,60 +2,65 @@
 
 Each action is a ``do_<verb>_<noun>()`` function that runs in one transaction and
 raises a ValidationError subclass naming the problem when its input is unacceptable,
-leaving the database as it was.
+leaving the database as it was. Reads live in :mod:`studyplatform.lib`.
 """
 
 from studyplatform.actions.events import EventsRejected, do_log_media_events
 from studyplatform.actions.participants import (
-    PageRejected,
-    clean_recruitment_params,
-    closed_reason,
-    completion_url,
     do_advance_participant,
     do_enroll_participant,
     do_go_back_participant,
     do_set_participant_language,
-    page_count,
-    page_trial,
-    time_left,
 )
-from studyplatform.actions.responses import (
-    Answer,
-    AnswerRejected,
-    do_save_response,
-    presented_conditions,
-    schedule_entry,
+from studyplatform.actions.prompts import do_attach_asl_video
+from studyplatform.actions.responses import do_save_response
+from studyplatform.actions.stimuli import (
+    GenerationResult,
+    RerenderRefused,
+    do_fail_stimulus,
+    do_generate_stimuli,
+    do_record_rendered_stimulus,
+    do_retry_stimuli,
+    do_start_rendering,
 )
 from studyplatform.actions.studies import (
     ImportResult,
     StudyImportError,
     do_duplicate_study,
     do_import_study,
-    free_slug,
 )
+from studyplatform.actions.uploads import (
+    UploadOffsetMismatch,
+    UploadRejected,
+    do_append_signed_answer_chunk,
+)
+from studyplatform.lib.participants import PageRejected
+from studyplatform.questions import Answer, AnswerRejected
 
 __all__ = [
     "Answer",
     "AnswerRejected",
     "EventsRejected",
+    "GenerationResult",
     "ImportResult",
     "PageRejected",
+    "RerenderRefused",
     "StudyImportError",
-    "clean_recruitment_params",
-    "closed_reason",
-    "completion_url",
+    "UploadOffsetMismatch",
+    "UploadRejected",
     "do_advance_participant",
+    "do_append_signed_answer_chunk",
+    "do_attach_asl_video",
     "do_duplicate_study",
     "do_enroll_participant",
+    "do_fail_stimulus",
+    "do_generate_stimuli",
     "do_go_back_participant",
     "do_import_study",
     "do_log_media_events",
+    "do_record_rendered_stimulus",
+    "do_retry_stimuli",
     "do_save_response",
     "do_set_participant_language",
-    "free_slug",
-    "page_count",
-    "page_trial",
-    "presented_conditions",
-    "schedule_entry",
-    "time_left",
+    "do_start_rendering",
 ]

@@ -5,8 +5,8 @@ from collections.abc import Sequence
 from django.core.exceptions import ValidationError
 from django.db import transaction
 
-from studyplatform.actions.participants import PageRejected, page_trial
-from studyplatform.actions.responses import presented_conditions
+from studyplatform.lib.participants import PageRejected, page_trial
+from studyplatform.lib.presentation import presented_conditions
 from studyplatform.models import MediaEvent, Participant, Stimulus
 
 MAX_EVENTS_PER_BATCH = 500

@@ -7,16 +7,14 @@ alone, so running it again renders nothing; changing one condition's parameters
 re-renders exactly that condition's clips.
 """
 
-import zlib
 from dataclasses import dataclass
-from pathlib import Path
 
 from django.db import transaction
+from django.utils import timezone
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
-from stimuli.manifest import Entry
-from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
-from synthesis.techniques import ClipRequest
+from studyplatform.lib.stimuli import clip_spec, files_exist, needed_pairs
+from studyplatform.models import Stimulus, Study
 
 
 @dataclass(frozen=True)
@@ -27,41 +25,6 @@ class GenerationResult:
     queued: int
     ready: int
     stimulus_ids: tuple[int, ...]
-
-
-def clip_spec(condition: Condition, item: Item) -> ClipSpec:
-    """Return the clip specification of *condition* applied to *item*.
-
-    The condition's parameters override the item's. The seed is the item's (its
-    parameters' ``seed``, else a checksum of its key), so all conditions of an item share
-    one performance and one noise.
-    """
-    parameters = {**(item.parameters or {}), **(condition.parameters or {})}
-    parameters.setdefault("seed", zlib.crc32(item.key.encode()))
-    return ClipSpec.from_request(ClipRequest.from_parameters(item.kind, item.text, parameters))
-
-
-def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
-    """Return the (condition, item) pairs the study's trials show, in design order.
-
-    Under Latin-square rotation a trial block's item is shown in every condition.
-    """
-    pairs = []
-    trials = Trial.objects.filter(block__study=study).select_related(
-        "block", "item", "condition_a", "condition_b"
-    )
-    every_condition = list(study.conditions.all())
-    for trial in trials:
-        shown = [trial.condition_a, trial.condition_b]
-        rotated = study.rotate_conditions and trial.block.kind == Block.Kind.TRIALS
-        if rotated and trial.condition_a is not None:
-            shown = every_condition  # participants' rows relabel the conditions
-        for condition in shown:
-            if trial.item is not None and condition is not None:
-                pair = (condition, trial.item)
-                if pair not in pairs:
-                    pairs.append(pair)
-    return sorted(pairs, key=lambda p: (p[1].position, p[0].position))
 
 
 class RerenderRefused(ClipError):
@@ -115,7 +78,7 @@ def do_generate_stimuli(
             if stimulus is None:
                 stimulus = Stimulus(condition=condition, item=item)
             unchanged = stimulus.pk and stimulus.content_hash == content_hash
-            done = unchanged and stimulus.status == Stimulus.Status.READY and _files_exist(stimulus)
+            done = unchanged and stimulus.status == Stimulus.Status.READY and files_exist(stimulus)
             if done and not force:
                 ready += 1
             else:
@@ -146,47 +109,40 @@ def do_retry_stimuli(stimuli) -> int:
     return len(pks)
 
 
-def _files_exist(stimulus: Stimulus) -> bool:
-    return bool(stimulus.video) and stimulus.video.storage.exists(stimulus.video.name)
+def do_start_rendering(stimulus: Stimulus) -> None:
+    """Mark the clip as being rendered."""
+    Stimulus.objects.filter(pk=stimulus.pk).update(status=Stimulus.Status.RENDERING)
 
 
-def stimuli_progress(study: Study) -> dict:
-    """Return the study's clips by status, with each failure's error (for the admin)."""
-    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
-    counts = {status: 0 for status in Stimulus.Status.values}
-    failures = []
-    for stimulus in stimuli:
-        counts[stimulus.status] += 1
-        if stimulus.status == Stimulus.Status.FAILED:
-            failures.append({"id": stimulus.pk, "clip": str(stimulus), "error": stimulus.error})
-    total = sum(counts.values())
-    done = counts[Stimulus.Status.READY]
-    return {
-        "total": total,
-        "done": done,
-        "failed": counts[Stimulus.Status.FAILED],
-        "pending": counts[Stimulus.Status.PENDING] + counts[Stimulus.Status.RENDERING],
-        "percent": round(100 * done / total) if total else 0,
-        "failures": failures,
-    }
+def do_fail_stimulus(stimulus: Stimulus, error: Exception) -> str:
+    """Record why the clip could not be rendered; return its status."""
+    Stimulus.objects.filter(pk=stimulus.pk).update(
+        status=Stimulus.Status.FAILED, error=f"{type(error).__name__}: {error}"
+    )
+    return Stimulus.Status.FAILED
 
 
-def study_manifest(study: Study) -> list[Entry]:
-    """Return the manifest entries of the study's clips: every rendered clip's spec and facts.
+def do_record_rendered_stimulus(
+    stimulus: Stimulus, spec: ClipSpec, clip: RenderedClip, subdirectory: str
+) -> str:
+    """Record a rendered clip's files and facts as ready; return the clip's status.
 
-    Clips not rendered yet appear with their spec only, so the manifest still renders them.
+    A clip whose study changed while it rendered (its hash is no longer the row's) is
+    not recorded: "superseded".
     """
-    entries = []
-    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
-    for stimulus in stimuli.order_by("item__position", "condition__position", "pk"):
-        clip = None
-        if stimulus.status == Stimulus.Status.READY and stimulus.video:
-            clip = RenderedClip(
-                Path(stimulus.video.name).relative_to("stimuli"),
-                Path(stimulus.poster.name).relative_to("stimuli"),
-                stimulus.duration_ms, stimulus.frame_count, stimulus.width, stimulus.height,
-                stimulus.size_bytes, stimulus.sha256,
-            )  # fmt: skip
-        label = f"{stimulus.condition.key} × {stimulus.item.key}"
-        entries.append(Entry(label, ClipSpec.from_dict(stimulus.parameters), clip))
-    return entries
+    with transaction.atomic():
+        stimulus = Stimulus.objects.select_for_update().get(pk=stimulus.pk)
+        if stimulus.content_hash != spec.content_hash():
+            return "superseded"
+        stimulus.video.name = f"{subdirectory}/{clip.video.name}"
+        stimulus.poster.name = f"{subdirectory}/{clip.poster.name}"
+        stimulus.duration_ms = clip.duration_ms
+        stimulus.frame_count = clip.frame_count
+        stimulus.width, stimulus.height = clip.width, clip.height
+        stimulus.size_bytes = clip.size_bytes
+        stimulus.sha256 = clip.sha256
+        stimulus.status = Stimulus.Status.READY
+        stimulus.error = ""
+        stimulus.rendered_at = timezone.now()
+        stimulus.save()
+    return stimulus.status

@@ -7,6 +7,7 @@ import zipfile
 from django.contrib import admin, messages
 from django.db import models
 from django.db.models import Count
+from django.forms import Textarea
 from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.template.response import TemplateResponse
@@ -17,11 +18,12 @@ from stimuli.clips import ClipError
 from stimuli.manifest import manifest_dict
 from studyplatform import exchange
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
-from studyplatform.actions.stimuli import do_generate_stimuli, stimuli_progress, study_manifest
+from studyplatform.actions.stimuli import do_generate_stimuli
 from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.results import StudyResultsMixin
+from studyplatform.lib.stimuli import stimuli_progress, study_manifest
 from studyplatform.lib.techniques import describe_parameters
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
@@ -32,6 +34,11 @@ class ConditionInline(StudyInline):
     fields = ("position", "key", "label", "is_simulated", "description", "parameters", "compares")
     readonly_fields = ("compares",)
     verbose_name_plural = "conditions (open one to edit its techniques field by field)"
+    # Compact cells: a condition's page has the room for long descriptions and settings.
+    formfield_overrides = {
+        models.TextField: {"widget": Textarea(attrs={"rows": 2, "cols": 24})},
+        models.JSONField: {"widget": Textarea(attrs={"rows": 2, "cols": 24})},
+    }
 
     @admin.display(description="What it compares")
     def compares(self, obj: Condition) -> str:

@@ -1,6 +1,6 @@
 """Expose the study platform's models."""
 
-from studyplatform.models.design import TRIAL_QUESTION_KINDS, AnswerOption, Block, Question, Trial
+from studyplatform.models.design import AnswerOption, Block, Question, Trial, trial_question_kinds
 from studyplatform.models.participants import (
     Participant,
     PersonalAnswer,
@@ -16,7 +16,6 @@ from studyplatform.models.studies import Condition, Item, Study
 __all__ = [
     "PARTICIPANT_FACING_FIELDS",
     "STUDY_PATHS",
-    "TRIAL_QUESTION_KINDS",
     "AnswerOption",
     "AslVideo",
     "Block",
@@ -32,4 +31,5 @@ __all__ = [
     "Trial",
     "new_participant_token",
     "new_randomization_seed",
+    "trial_question_kinds",
 ]

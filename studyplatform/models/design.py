@@ -67,22 +67,22 @@ class Question(models.Model):
         return self.key
 
     @property
+    def type(self):
+        """Return this question's type (studyplatform.questions): how answers behave."""
+        from studyplatform.questions import question_type
+
+        return question_type(self)
+
+    @property
     def uses_options(self) -> bool:
         """Return whether answers are one of this question's answer options."""
-        return self.kind in {self.Kind.COMPARATIVE, self.Kind.LIKERT, self.Kind.CHOICE}
+        return self.type.uses_options
 
     def clean(self) -> None:
         """Reject settings that do not apply to this kind of question."""
-        errors = {}
-        if self.allow_no_difference and self.kind != self.Kind.PAIRWISE:
-            errors["allow_no_difference"] = "Only pairwise questions have this answer."
-        if self.allow_signed_answer and self.kind not in {
-            self.Kind.OPEN,
-            self.Kind.INTELLIGIBILITY,
-        }:
-            errors["allow_signed_answer"] = "Only open and intelligibility questions take videos."
-        if self.is_personal and self.kind != self.Kind.SHORT_TEXT:
-            errors["is_personal"] = "Only short-text questions can hold identifying data."
+        if self.kind not in self.Kind.values:
+            return  # the field's own choices check names it
+        errors = self.type.check(self)
         if (
             self.min_value is not None
             and self.max_value is not None
@@ -147,18 +147,14 @@ class Block(models.Model):
         return self.title or self.key
 
 
-# The question kinds each trial kind may ask.
-TRIAL_QUESTION_KINDS: dict[str, frozenset[str]] = {
-    "info": frozenset(),
-    "pairwise": frozenset({Question.Kind.PAIRWISE}),
-    "comparative": frozenset({Question.Kind.COMPARATIVE}),
-    "rating": frozenset({Question.Kind.LIKERT}),
-    "intelligibility": frozenset({Question.Kind.INTELLIGIBILITY}),
-    "open": frozenset({Question.Kind.OPEN}),
-    "demographic": frozenset(
-        {Question.Kind.CHOICE, Question.Kind.NUMBER, Question.Kind.SHORT_TEXT}
-    ),
-}
+def trial_question_kinds() -> dict[str, frozenset[str]]:
+    """Return the question kinds each trial kind may ask (from the question types)."""
+    from studyplatform.questions import QUESTION_TYPES
+
+    return {
+        kind: frozenset(k for k, t in QUESTION_TYPES.items() if kind in t.trial_kinds)
+        for kind in Trial.Kind.values
+    }
 
 
 class Trial(models.Model):
@@ -256,7 +252,7 @@ class Trial(models.Model):
 
     def check_questions(self, questions: Iterable[Question]) -> None:
         """Raise ValidationError unless *questions* may be asked on this trial."""
-        allowed = TRIAL_QUESTION_KINDS[self.kind]
+        allowed = trial_question_kinds()[self.kind]
         questions = list(questions)
         wrong = [q.key for q in questions if q.kind not in allowed]
         if wrong:

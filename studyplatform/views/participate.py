@@ -8,7 +8,7 @@ re-posted form neither loses nor duplicates anything.
 """
 
 import json
-import math
+from dataclasses import replace
 
 from django.core.exceptions import ValidationError
 from django.http import HttpRequest, HttpResponse, JsonResponse
@@ -21,27 +21,31 @@ from studyplatform.actions import (
     AnswerRejected,
     EventsRejected,
     PageRejected,
-    closed_reason,
-    completion_url,
     do_advance_participant,
     do_enroll_participant,
     do_go_back_participant,
     do_log_media_events,
     do_save_response,
     do_set_participant_language,
-    page_count,
-    page_trial,
-    time_left,
 )
-from studyplatform.actions.participants import TIME_LOW, unwatched_clips
 from studyplatform.actions.uploads import (
     UploadOffsetMismatch,
     UploadRejected,
     do_append_signed_answer_chunk,
     upload_offset,
 )
+from studyplatform.lib import (
+    TIME_LOW,
+    closed_reason,
+    completion_url,
+    page_count,
+    page_trial,
+    time_left,
+    unwatched_clips,
+)
 from studyplatform.models import Participant, Question, Study, Trial
 from studyplatform.pages import participant_page, study_asl
+from studyplatform.questions import question_type
 
 SESSION_KEY = "signstudy_participants"
 NEW_PARTICIPANT_PARAM = "new"
@@ -160,18 +164,10 @@ def _parse_answer(question: Question, value: str, rt_ms: str | int | None) -> An
         rt = None
     value = "" if value is None else str(value)
     try:
-        if question.kind == Question.Kind.PAIRWISE:
-            return Answer(choice_position=int(value), rt_ms=rt)
-        if question.uses_options:
-            return Answer(rating=int(value), rt_ms=rt)
-        if question.kind == Question.Kind.NUMBER:
-            number = float(value)
-            if not math.isfinite(number):
-                raise ValueError
-            return Answer(number=number, rt_ms=rt)
+        answer = question_type(question).parse(question, value)
     except ValueError:
         raise AnswerRejected(f"“{value[:40]}” is not an answer to “{question.key}”.") from None
-    return Answer(text=value, rt_ms=rt)
+    return replace(answer, rt_ms=rt)
 
 
 def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str, str]:

@@ -3,7 +3,8 @@
 import pytest
 from django.core.exceptions import ValidationError
 
-from studyplatform.actions import clean_recruitment_params, do_enroll_participant
+from studyplatform.actions import do_enroll_participant
+from studyplatform.lib import clean_recruitment_params
 from studyplatform.models import Study
 
 pytestmark = pytest.mark.django_db

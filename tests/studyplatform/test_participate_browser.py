@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from studyplatform.actions.stimuli import clip_spec, needed_pairs
+from studyplatform.lib.stimuli import clip_spec, needed_pairs
 from studyplatform.models import MediaEvent, Participant, Response, Stimulus, Trial
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
@@ -190,7 +190,7 @@ def test_fingerspelling_study_from_link_to_completion_code(
     assert {"page_shown", "play", "ended"} <= kinds
     # And the data analyses: the 48 comparisons as this participant saw and chose them.
     from analysis import ReportOptions
-    from studyplatform.actions import presented_conditions
+    from studyplatform.lib import presented_conditions
     from studyplatform.results import analyse_study
 
     results = analyse_study(fingerspelling, ReportOptions())

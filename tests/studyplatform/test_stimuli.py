@@ -6,7 +6,8 @@ import pytest
 from django.core.management import CommandError, call_command
 
 from stimuli.clips import ClipError, file_sha256
-from studyplatform.actions.stimuli import clip_spec, do_generate_stimuli, do_retry_stimuli
+from studyplatform.actions.stimuli import do_generate_stimuli, do_retry_stimuli
+from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Stimulus, Trial
 from synthesis.render.video import count_frames
 

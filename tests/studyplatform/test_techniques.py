@@ -5,9 +5,9 @@ from django.core.exceptions import ValidationError
 from django.urls import reverse
 
 from studyplatform.actions import StudyImportError, do_import_study
-from studyplatform.actions.stimuli import clip_spec
 from studyplatform.demo import DEMO_STUDIES
 from studyplatform.exchange import export_study
+from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Item
 from synthesis.techniques import MOTION, REGISTRY, Parameter, Technique
 

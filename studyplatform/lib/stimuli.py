@@ -1,0 +1,91 @@
+"""Read what a study's stimuli are: the clips its trials need, their specs and progress."""
+
+import zlib
+from pathlib import Path
+
+from stimuli.clips import ClipSpec, RenderedClip
+from stimuli.manifest import Entry
+from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
+from synthesis.techniques import ClipRequest
+
+
+def clip_spec(condition: Condition, item: Item) -> ClipSpec:
+    """Return the clip specification of *condition* applied to *item*.
+
+    The condition's parameters override the item's. The seed is the item's (its
+    parameters' ``seed``, else a checksum of its key), so all conditions of an item share
+    one performance and one noise.
+    """
+    parameters = {**(item.parameters or {}), **(condition.parameters or {})}
+    parameters.setdefault("seed", zlib.crc32(item.key.encode()))
+    return ClipSpec.from_request(ClipRequest.from_parameters(item.kind, item.text, parameters))
+
+
+def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
+    """Return the (condition, item) pairs the study's trials show, in design order.
+
+    Under Latin-square rotation a trial block's item is shown in every condition.
+    """
+    pairs = []
+    trials = Trial.objects.filter(block__study=study).select_related(
+        "block", "item", "condition_a", "condition_b"
+    )
+    every_condition = list(study.conditions.all())
+    for trial in trials:
+        shown = [trial.condition_a, trial.condition_b]
+        rotated = study.rotate_conditions and trial.block.kind == Block.Kind.TRIALS
+        if rotated and trial.condition_a is not None:
+            shown = every_condition  # participants' rows relabel the conditions
+        for condition in shown:
+            if trial.item is not None and condition is not None:
+                pair = (condition, trial.item)
+                if pair not in pairs:
+                    pairs.append(pair)
+    return sorted(pairs, key=lambda p: (p[1].position, p[0].position))
+
+
+def files_exist(stimulus: Stimulus) -> bool:
+    """Return whether the stimulus's video file is in storage."""
+    return bool(stimulus.video) and stimulus.video.storage.exists(stimulus.video.name)
+
+
+def stimuli_progress(study: Study) -> dict:
+    """Return the study's clips by status, with each failure's error (for the admin)."""
+    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
+    counts = {status: 0 for status in Stimulus.Status.values}
+    failures = []
+    for stimulus in stimuli:
+        counts[stimulus.status] += 1
+        if stimulus.status == Stimulus.Status.FAILED:
+            failures.append({"id": stimulus.pk, "clip": str(stimulus), "error": stimulus.error})
+    total = sum(counts.values())
+    done = counts[Stimulus.Status.READY]
+    return {
+        "total": total,
+        "done": done,
+        "failed": counts[Stimulus.Status.FAILED],
+        "pending": counts[Stimulus.Status.PENDING] + counts[Stimulus.Status.RENDERING],
+        "percent": round(100 * done / total) if total else 0,
+        "failures": failures,
+    }
+
+
+def study_manifest(study: Study) -> list[Entry]:
+    """Return the manifest entries of the study's clips: every rendered clip's spec and facts.
+
+    Clips not rendered yet appear with their spec only, so the manifest still renders them.
+    """
+    entries = []
+    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
+    for stimulus in stimuli.order_by("item__position", "condition__position", "pk"):
+        clip = None
+        if stimulus.status == Stimulus.Status.READY and stimulus.video:
+            clip = RenderedClip(
+                Path(stimulus.video.name).relative_to("stimuli"),
+                Path(stimulus.poster.name).relative_to("stimuli"),
+                stimulus.duration_ms, stimulus.frame_count, stimulus.width, stimulus.height,
+                stimulus.size_bytes, stimulus.sha256,
+            )  # fmt: skip
+        label = f"{stimulus.condition.key} × {stimulus.item.key}"
+        entries.append(Entry(label, ClipSpec.from_dict(stimulus.parameters), clip))
+    return entries

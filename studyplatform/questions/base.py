@@ -1,0 +1,81 @@
+"""What every question type does: parse a posted answer, check it, show it, export it.
+
+A question type is one class per :class:`~studyplatform.models.Question` kind; the
+participant view, the save action, the page layout, the export and the templates ask
+the type instead of branching on the kind.
+"""
+
+from dataclasses import dataclass
+
+from django.core.exceptions import ValidationError
+
+
+class AnswerRejected(ValidationError):
+    """An answer that does not fit its question or trial; nothing was saved."""
+
+
+@dataclass(frozen=True)
+class Answer:
+    """What a participant gave for one question; unused fields stay empty."""
+
+    choice_position: int | None = None  # pairwise: 1, 2, or 0 for "cannot see a difference"
+    rating: int | None = None  # the value of a scale point or choice option
+    number: float | None = None
+    text: str = ""
+    rt_ms: int | None = None
+
+
+MAX_TEXT_LENGTH = 10_000
+
+
+def empty_values() -> dict:
+    """Return the Response answer fields, all empty."""
+    return {"chosen": "", "chosen_position": None, "rating": None, "number": None, "text": "",
+            "score": None}  # fmt: skip
+
+
+class QuestionType:
+    """The behaviour of one question kind; subclasses set the class attributes.
+
+    *template* is the widget the participant page (and the admin preview) includes;
+    *export_kind* the tidy format's ``kind`` of its rows, or None for a participant
+    attribute (a demographic column); *trial_kinds* the pages that may ask it.
+    """
+
+    kind: str = ""
+    template: str = ""
+    export_kind: str | None = None
+    trial_kinds: frozenset[str] = frozenset()
+    uses_options = False
+    is_scale = False
+    allows_no_difference = False
+    takes_signed_answer = False
+    can_be_personal = False
+    has_range = False
+
+    def parse(self, question, value: str) -> Answer:
+        """Return the posted *value* as an Answer; raise ValueError if it is not one."""
+        return Answer(text=value)
+
+    def response_values(self, question, answer: Answer, participant, trial) -> dict:
+        """Check *answer* and return the Response fields it sets (AnswerRejected if bad)."""
+        raise NotImplementedError
+
+    def display(self, question, response) -> str:
+        """Return a stored response as the value the page's control holds."""
+        return response.text
+
+    def export_value(self, question, response, labels: dict) -> str:
+        """Return a stored response as a participant column's value."""
+        return self.display(question, response)
+
+    def check(self, question) -> dict[str, str]:
+        """Return the question's settings that do not apply to this kind, by field."""
+        errors = {}
+        if question.allow_no_difference and not self.allows_no_difference:
+            errors["allow_no_difference"] = "Only pairwise questions have this answer."
+        if question.allow_signed_answer and not self.takes_signed_answer:
+            errors["allow_signed_answer"] = "Only open and intelligibility questions take videos."
+        if question.is_personal and not self.can_be_personal:
+            errors["is_personal"] = "Only short-text questions can hold identifying data."
+        return errors

@@ -1,0 +1,89 @@
+"""Questions answered in the participant's own words or numbers."""
+
+import math
+
+from studyplatform.questions.base import (
+    MAX_TEXT_LENGTH,
+    Answer,
+    AnswerRejected,
+    QuestionType,
+    empty_values,
+)
+
+
+class NumberQuestion(QuestionType):
+    """A number within the question's range (a demographic column)."""
+
+    kind = "number"
+    template = "studyplatform/questions/number.html"
+    trial_kinds = frozenset({"demographic"})
+    has_range = True
+
+    def parse(self, question, value: str) -> Answer:
+        number = float(value)
+        if not math.isfinite(number):
+            raise ValueError(value)
+        return Answer(number=number)
+
+    def response_values(self, question, answer, participant, trial) -> dict:
+        number = answer.number
+        if number is None or number != number:
+            raise AnswerRejected(f"“{question.key}” needs a number.")
+        if (question.min_value is not None and number < question.min_value) or (
+            question.max_value is not None and number > question.max_value
+        ):
+            low = "−∞" if question.min_value is None else f"{question.min_value:g}"
+            high = "∞" if question.max_value is None else f"{question.max_value:g}"
+            raise AnswerRejected(f"{number:g} is outside the allowed range {low} to {high}.")
+        return {**empty_values(), "number": number}
+
+    def display(self, question, response) -> str:
+        return "" if response.number is None else f"{response.number:g}"
+
+
+class TextQuestion(QuestionType):
+    """Free text, stripped and bounded."""
+
+    template = "studyplatform/questions/text.html"
+
+    def response_values(self, question, answer, participant, trial) -> dict:
+        text = answer.text.strip()
+        if len(text) > MAX_TEXT_LENGTH:
+            raise AnswerRejected(f"The answer is longer than {MAX_TEXT_LENGTH} characters.")
+        if not text and question.required:
+            raise AnswerRejected(f"“{question.key}” needs an answer.")
+        return {**empty_values(), "text": text}
+
+
+class ShortTextQuestion(TextQuestion):
+    """A short text about the participant; identifying ones (name, e-mail) stay apart."""
+
+    kind = "short_text"
+    template = "studyplatform/questions/short_text.html"
+    trial_kinds = frozenset({"demographic"})
+    can_be_personal = True
+
+
+class OpenQuestion(TextQuestion):
+    """An open question, answered in writing or signed on camera."""
+
+    kind = "open"
+    export_kind = "text"
+    trial_kinds = frozenset({"open"})
+    takes_signed_answer = True
+
+
+class IntelligibilityQuestion(OpenQuestion):
+    """ "What is the signer saying?": free text scored against the item's target words."""
+
+    kind = "intelligibility"
+    trial_kinds = frozenset({"intelligibility"})
+
+    def response_values(self, question, answer, participant, trial) -> dict:
+        from analysis.intelligibility import word_accuracy
+
+        values = super().response_values(question, answer, participant, trial)
+        if trial.item is not None and values["text"]:
+            score = word_accuracy(values["text"], trial.item.scoring_target)
+            values["score"] = None if score != score else score
+        return values

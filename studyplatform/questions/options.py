@@ -1,0 +1,52 @@
+"""Questions answered with one of their answer options: scales and single choices."""
+
+from studyplatform.questions.base import Answer, AnswerRejected, QuestionType, empty_values
+
+
+class OptionsQuestion(QuestionType):
+    """An answer that is the value of one of the question's options."""
+
+    template = "studyplatform/questions/options.html"
+    uses_options = True
+    is_scale = True
+
+    def parse(self, question, value: str) -> Answer:
+        return Answer(rating=int(value))
+
+    def response_values(self, question, answer, participant, trial) -> dict:
+        allowed = {option.value for option in question.options.all()}
+        if answer.rating not in allowed:
+            raise AnswerRejected(
+                f"“{answer.rating}” is not a point of the scale of “{question.key}”."
+            )
+        return {**empty_values(), "rating": answer.rating}
+
+    def display(self, question, response) -> str:
+        return "" if response.rating is None else str(response.rating)
+
+    def export_value(self, question, response, labels: dict) -> str:
+        return labels.get((question.pk, response.rating), str(response.rating))
+
+
+class ComparativeQuestion(OptionsQuestion):
+    """A 5-point scale between two clips (Clip 1 a lot better … Clip 2 a lot better)."""
+
+    kind = "comparative"
+    export_kind = "comparative"
+    trial_kinds = frozenset({"comparative"})
+
+
+class LikertQuestion(OptionsQuestion):
+    """A Likert rating of one clip, with a label per point."""
+
+    kind = "likert"
+    export_kind = "rating"
+    trial_kinds = frozenset({"rating"})
+
+
+class ChoiceQuestion(OptionsQuestion):
+    """A single choice about the participant (a demographic column)."""
+
+    kind = "choice"
+    trial_kinds = frozenset({"demographic"})
+    is_scale = False
