@@ -105,7 +105,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                 "rt_ms": "" if response.rt_ms is None else str(response.rt_ms),
                 "flags": ";".join(flags),
                 "target": trial.item.scoring_target
-                if question.kind == Question.Kind.INTELLIGIBILITY and trial.item
+                if question.type.is_scored and trial.item
                 else "",
             }
             answers = attributes.get(participant.pk, {})

@@ -48,6 +48,7 @@ class QuestionType:
     trial_kinds: frozenset[str] = frozenset()
     uses_options = False
     is_scale = False
+    is_scored = False  # scored against the item's target words (the export's ``target``)
     allows_no_difference = False
     takes_signed_answer = False
     can_be_personal = False

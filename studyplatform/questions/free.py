@@ -78,6 +78,7 @@ class IntelligibilityQuestion(OpenQuestion):
 
     kind = "intelligibility"
     trial_kinds = frozenset({"intelligibility"})
+    is_scored = True
 
     def response_values(self, question, answer, participant, trial) -> dict:
         from analysis.intelligibility import word_accuracy

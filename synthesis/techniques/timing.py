@@ -28,7 +28,7 @@ def variable_model(values):
     """Return the Variable model *values* name (the published one by default)."""
     from synthesis.timing import VariableModel, published_model
 
-    return VariableModel.load(values["model"]) if values["model"] else published_model()
+    return VariableModel.read(values["model"]) if values["model"] else published_model()
 
 
 def _check(values) -> None:

@@ -49,7 +49,7 @@ def _train(args: argparse.Namespace) -> int:
         raise TimingError("Give recordings (BVH files) or both --holds and --transitions.")
     for line in report.lines():
         print(line)
-    model.save(args.out)
+    model.write(args.out)
     print(f"wrote {args.out}")
     return 0
 
@@ -57,29 +57,29 @@ def _train(args: argparse.Namespace) -> int:
 def _compare(args: argparse.Namespace) -> int:
     from synthesis.timing.recordings import duration_table, format_table
 
-    model = VariableModel.load(args.model) if args.model else published_model()
+    model = VariableModel.read(args.model) if args.model else published_model()
     print(format_table(duration_table(_recordings(args), model)))
     return 0
 
 
 def _plot(args: argparse.Namespace) -> int:
     from synthesis.fingerspelling.spelling import spell, word_letters
-    from synthesis.timing.plots import save_figure, timeline_figure, trajectory_figure
+    from synthesis.timing.plots import timeline_figure, trajectory_figure, write_figure
     from synthesis.timing.recordings import condition_timings
 
     word = "".join(word_letters(args.word))
-    model = VariableModel.load(args.model) if args.model else published_model()
+    model = VariableModel.read(args.model) if args.model else published_model()
     timings = condition_timings(word, model)
-    print(f"wrote {save_figure(timeline_figure(timings), args.out)}")
+    print(f"wrote {write_figure(timeline_figure(timings), args.out)}")
     if args.trajectory:
         motions = {name: spell(word, timing=t) for name, t in timings.items()}
         figure = trajectory_figure(motions, 60.0, word)
-        print(f"wrote {save_figure(figure, args.trajectory)}")
+        print(f"wrote {write_figure(figure, args.trajectory)}")
     return 0
 
 
 def _predict(args: argparse.Namespace) -> int:
-    model = VariableModel.load(args.model) if args.model else published_model()
+    model = VariableModel.read(args.model) if args.model else published_model()
     print(json.dumps(model.timing(args.word).to_dict(), indent=2))
     return 0
 

@@ -81,7 +81,7 @@ def trajectory_figure(motions: dict[str, np.ndarray], rate_hz: float, word: str)
     return figure
 
 
-def save_figure(figure, path: str | Path) -> Path:
+def write_figure(figure, path: str | Path) -> Path:
     """Write a figure as PNG or PDF (by the extension), byte-stable for PDFs, and close it."""
     path = Path(path)
     metadata = {"CreationDate": None} if path.suffix.lower() == ".pdf" else {}

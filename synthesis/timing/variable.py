@@ -67,14 +67,14 @@ class VariableModel:
         except (KeyError, TypeError, ValueError) as error:
             raise TimingError(f"Malformed timing model: {error}") from None
 
-    def save(self, path: str | Path) -> Path:
+    def write(self, path: str | Path) -> Path:
         """Write the model as indented JSON."""
         path = Path(path)
         path.write_text(json.dumps(self.to_dict(), indent=1) + "\n", encoding="utf-8")
         return path
 
     @classmethod
-    def load(cls, path: str | Path) -> "VariableModel":
+    def read(cls, path: str | Path) -> "VariableModel":
         """Read a model file."""
         try:
             data = json.loads(Path(path).read_text(encoding="utf-8"))

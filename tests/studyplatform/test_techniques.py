@@ -178,3 +178,15 @@ def test_the_migration_keeps_the_meaning_of_old_word_conditions(fingerspelling):
     parameters = dict(fingerspelling.conditions.values_list("key", "parameters"))
     assert parameters["variable"] == {"timing": "variable", "source": "simulated"}
     assert parameters["constant"] == {"timing": "simple"}  # was always the alphabet
+
+
+def test_the_admin_check_names_a_wrong_type_and_an_unknown_item_kind(fingerspelling):
+    condition = fingerspelling.conditions.get(key="constant")
+    condition.parameters = {"timing": "constant", "hold_ms": "long"}
+    with pytest.raises(ValidationError, match="hold_ms must be a number, not 'long'"):
+        condition.full_clean()
+    item = fingerspelling.items.first()
+    item.kind = "sign_pair"
+    with pytest.raises(ValidationError) as raised:
+        item.full_clean()
+    assert "Unknown item kind 'sign_pair'" in raised.value.message_dict["kind"][0]

@@ -174,3 +174,24 @@ def test_changing_an_engine_source_file_changes_every_clip_hash(tmp_path):
     kinematics.write_text(kinematics.read_text() + "\n# a change\n")
     after = digest_and_hash()
     assert before[0] != after[0] and before[1] != after[1]
+
+
+@pytest.mark.parametrize(
+    ("argv", "named"),
+    [
+        (["spell", "AB", "--spine", "off"], "unrecognized arguments: --spine"),
+        (["sentence", "ME GET", "--timing", "constant"], "unrecognized arguments: --timing"),
+        (["spell", "AB", "--timing", "fast"], "argument --timing: invalid choice: 'fast'"),
+        (["spell", "AB", "--hold-ms", "long"], "argument --hold-ms: invalid float value"),
+        (["sentence", "ME GET", "--spine", "maybe"], "argument --spine: use on or off"),
+    ],
+)
+def test_the_cli_refuses_bad_technique_flags_naming_them(argv, named, capsys):
+    with pytest.raises(SystemExit) as raised:
+        main(argv)
+    assert raised.value.code == 2 and named in capsys.readouterr().err
+
+
+def test_the_cli_refuses_a_bad_value_the_registry_checks(capsys):
+    assert main(["spell", "AB", "--hold-ms", "0", "--timing-only"]) == 2
+    assert "hold_ms must be at least 1 ms" in capsys.readouterr().err

@@ -36,7 +36,7 @@ def test_train_end_to_end_reports_leave_one_out_and_fit(tmp_path, capsys):
                  "--out", str(out)]) == 0  # fmt: skip
     printed = capsys.readouterr().out
     assert "leave-one-out accuracy" in printed and "mean error" in printed
-    model = VariableModel.load(out)
+    model = VariableModel.read(out)
     assert model.metadata["training_holds"] >= 300
     assert model.transitions.slope_ms_per_rad == pytest.approx(200, rel=0.1)
     assert model.transitions.r > 0.9

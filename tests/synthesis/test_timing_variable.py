@@ -113,16 +113,16 @@ def test_normalized_constant_equals_the_variable_duration():
 
 def test_model_round_trips_through_its_file_and_names_bad_files(tmp_path):
     model = published_model()
-    path = model.save(tmp_path / "model.json")
-    again = VariableModel.load(path)
+    path = model.write(tmp_path / "model.json")
+    again = VariableModel.read(path)
     assert again.timing("ELEPHANT") == model.timing("ELEPHANT")
     assert again.metadata == model.metadata
     (tmp_path / "bad.json").write_text('{"format": "signstudy.timing-model", "version": 1}')
     with pytest.raises(TimingError, match="Malformed timing model"):
-        VariableModel.load(tmp_path / "bad.json")
+        VariableModel.read(tmp_path / "bad.json")
     (tmp_path / "junk.json").write_text("{nope")
     with pytest.raises(TimingError, match="not JSON"):
-        VariableModel.load(tmp_path / "junk.json")
+        VariableModel.read(tmp_path / "junk.json")
 
 
 def test_leave_one_out_reports_on_every_hold():
