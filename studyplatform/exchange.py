@@ -136,3 +136,27 @@ def export_study(study: Study) -> dict[str, Any]:
             for v in asl_videos
         ],
     }
+
+
+def parameters_schema() -> dict:
+    """Return the JSON Schema of condition and item ``parameters`` (from the technique registry).
+
+    A condition's parameters may hold the techniques of any item kind of its study and the
+    filming fields; an item's, those of its own kind. Saving and importing check the same
+    rules with messages that name the field (studyplatform.lib.techniques).
+    """
+    from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS
+
+    filming = {p.name: p.schema() for p in REQUEST_PARAMETERS}
+    by_kind = {
+        kind: {**schema, "properties": {**schema["properties"], **filming}}
+        for kind, schema in REGISTRY.schema().items()
+    }
+    return {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": f"Parameters of conditions and items in a {FORMAT} definition (version {VERSION})",
+        "description": "One object per item kind; a condition's parameters must fit the kind "
+        "of every item of its study.",
+        "$defs": by_kind,
+        "anyOf": [{"$ref": f"#/$defs/{kind}"} for kind in by_kind],
+    }

@@ -71,7 +71,10 @@ class ConditionForm(forms.ModelForm):
         fields = ("study", "position", "key", "label", "description", "is_simulated", "parameters")
         labels = {"parameters": "Other parameters (JSON)"}
         help_texts = {
-            "parameters": "Settings no field above offers; normally empty {}. Checked on save."
+            "parameters": (
+                "Settings no field above offers; normally empty {}. Checked on save against "
+                "the parameters' JSON Schema (linked from Import study)."
+            )
         }
 
     def __init__(self, *args, **kwargs) -> None:

@@ -210,6 +210,11 @@ class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyScopedMixin, admin.Model
                 name="studyplatform_study_import",
             ),
             path(
+                "parameters-schema.json",
+                self.admin_site.admin_view(self.parameters_schema_view),
+                name="studyplatform_study_parameters_schema",
+            ),
+            path(
                 "<path:object_id>/export/",
                 self.admin_site.admin_view(self.export_view),
                 name="studyplatform_study_export",
@@ -261,6 +266,10 @@ class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyScopedMixin, admin.Model
         study = self._get_visible_study(request, object_id)
         return self._page(request, "preview.html", f"Preview of “{study.title}”", study=study,
                           preview=build_preview(study))  # fmt: skip
+
+    def parameters_schema_view(self, request: HttpRequest) -> HttpResponse:
+        """Serve the JSON Schema of condition and item parameters."""
+        return JsonResponse(exchange.parameters_schema(), json_dumps_params={"indent": 2})
 
     def import_view(self, request: HttpRequest) -> HttpResponse:
         """Create a study from an uploaded definition file."""

@@ -190,3 +190,16 @@ def test_the_admin_check_names_a_wrong_type_and_an_unknown_item_kind(fingerspell
     with pytest.raises(ValidationError) as raised:
         item.full_clean()
     assert "Unknown item kind 'sign_pair'" in raised.value.message_dict["kind"][0]
+
+
+def test_the_parameters_schema_comes_from_the_registry(alice_client):
+    from studyplatform.exchange import parameters_schema
+
+    url = reverse("admin:studyplatform_study_parameters_schema")
+    served = alice_client.get(url).json()
+    assert served == parameters_schema()
+    word = served["$defs"]["word"]["properties"]
+    assert word["timing"]["enum"][0] == "mocap" and word["rate_hz"]["x-units"] == "Hz"
+    with REGISTRY.registered(TOY):
+        assert "slowdown" in parameters_schema()["$defs"]["word"]["properties"]
+    assert "Import" in alice_client.get(reverse("admin:studyplatform_study_import")).text
