@@ -4,6 +4,8 @@
     python -m synthesis render-pose --letter R --out r.png
     python -m synthesis spell HEAVEN --out heaven.mp4
     python -m synthesis render-bvh file.bvh --out clip.mp4
+    python -m synthesis capture video.mp4 --word HEAVEN --out heaven.pose --bvh heaven.bvh
+    python -m synthesis render-pose-file file.pose --out clip.mp4
     python -m synthesis techniques                     # what a condition can set
 
 Rendering commands take ``--view hand`` (the fingerspelling close-up) or ``--view
@@ -28,6 +30,7 @@ from synthesis.techniques import (
     build_motion,
     render_request,
 )
+from synthesis.techniques.flags import add_technique_flags, technique_values, techniques_help
 from synthesis.techniques.timing import TIMINGS
 
 
@@ -85,51 +88,6 @@ def _render_pose(args: argparse.Namespace) -> int:
     return 0
 
 
-def _flag(name: str) -> str:
-    return "--" + name.replace("_", "-")
-
-
-def _on_off(text: str) -> bool:
-    if text not in ("on", "off"):
-        raise argparse.ArgumentTypeError(f"use on or off, not {text!r}")
-    return text == "on"
-
-
-def add_technique_flags(command: argparse.ArgumentParser, kind: str) -> None:
-    """Add a flag for every registered technique parameter that applies to *kind*.
-
-    A flag left out takes the technique's default, so the command and the platform
-    render the same clip for the same parameters.
-    """
-    for technique in REGISTRY.for_kind(kind):
-        group = command.add_argument_group(f"{technique.label} ({technique.source})")
-        for parameter in technique.parameters:
-            options = {"dest": f"technique_{parameter.name}", "default": None}
-            default = parameter.label_of(parameter.default) if parameter.type != "file" else ""
-            help_text = parameter.help + (f" Default: {default}." if default else "")
-            if parameter.type == "choice":
-                options.update(choices=parameter.choices)
-            elif parameter.type == "bool":
-                options.update(type=_on_off, metavar="on|off")
-            elif parameter.type == "file":
-                options.update(type=str, metavar="FILE")
-            else:
-                options.update(type=int if parameter.type == "int" else float,
-                               metavar=parameter.units.upper() or "N")  # fmt: skip
-            group.add_argument(_flag(parameter.name), help=help_text.replace("%", "%%"),
-                               **options)  # fmt: skip
-
-
-def technique_values(args: argparse.Namespace) -> dict:
-    """Return the technique parameters given on the command line."""
-    prefix = "technique_"
-    return {
-        name.removeprefix(prefix): value
-        for name, value in vars(args).items()
-        if name.startswith(prefix) and value is not None
-    }
-
-
 def _request(args: argparse.Namespace, kind: str, text: str, **values) -> ClipRequest:
     fields = {"view": args.view or "", "side": args.side, "width": args.size[0],
               "height": args.size[1], "rate_hz": args.rate}  # fmt: skip
@@ -185,6 +143,68 @@ def _sentence(args: argparse.Namespace) -> int:
     return 0
 
 
+def _capture(args: argparse.Namespace) -> int:
+    from synthesis.capture import captured_hand, write_pose, write_report
+    from synthesis.capture.video import capture_hands
+    from synthesis.skeleton.bvh import write_bvh
+
+    one_hand = args.side if args.one_hand else None
+    recording = capture_hands(args.video, mirrored=args.mirrored, one_hand=one_hand,
+                              progress=_frames_progress(Path(args.video).name))  # fmt: skip
+    hand = captured_hand(recording, args.side)
+    if args.out is not None:
+        print(f"wrote {write_pose(recording, args.out)}")
+    if args.bvh is not None:
+        write_bvh(hand.motion, args.bvh)
+        print(f"wrote {args.bvh}")
+    if args.report is not None:
+        print(f"wrote {write_report(hand, recording, args.report)}/quality.json, quality.png")
+    quality = hand.quality(recording)
+    print(
+        f"{recording.n_frames} frames at {recording.fps:g} fps; {args.side} hand found in "
+        f"{quality['hands_found'].get(args.side, 0):.0%}; fit residual median "
+        f"{quality['residual_mm_median']:.1f} mm"
+    )
+    if args.word:
+        from synthesis.timing.extraction import extract
+
+        timing = extract(hand.motion, args.word, args.side).timing
+        print(json.dumps(timing.to_dict(), indent=2))
+    return 0
+
+
+def _frames_progress(label: str):
+    def report(done: int) -> None:
+        if done % 50 == 0:
+            print(f"{label}: frame {done}", file=sys.stderr, flush=True)
+
+    return report
+
+
+def _render_pose_file(args: argparse.Namespace) -> int:
+    from synthesis.capture import captured_hand, read_pose
+    from synthesis.render.clip import render_clip
+    from synthesis.rigs.retarget import retarget
+    from synthesis.skeleton.retime import resample
+
+    recording = read_pose(args.file)
+    hand = captured_hand(recording, args.side)
+    motion = hand.motion
+    if args.rate and abs(motion.rate_hz - args.rate) > 1e-9:
+        motion = resample(motion, args.rate)
+    avatar, camera = avatar_and_camera("hand", args.side)
+    info = render_clip(
+        avatar, retarget(motion, avatar.rig), camera, args.out, motion.rate_hz,
+        poster=args.poster, width=args.size[0], height=args.size[1],
+        progress=_progress(Path(args.file).name), workers=args.workers,
+    )  # fmt: skip
+    print(
+        f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; fit residual "
+        f"median {hand.fit.median_residual_mm():.1f} mm)"
+    )
+    return 0
+
+
 def _render_bvh(args: argparse.Namespace) -> int:
     from synthesis.render.clip import render_clip
     from synthesis.rigs.retarget import retarget
@@ -210,19 +230,6 @@ def _render_bvh(args: argparse.Namespace) -> int:
         f"{mapping.convention} joint names, {len(mapping.to_canonical)} joints mapped)"
     )
     return 0
-
-
-def techniques_help() -> str:
-    """Return the registered techniques as the help text lists them."""
-    lines = [
-        "techniques (from the registry; python -m synthesis techniques --json for the schema):"
-    ]
-    for technique in REGISTRY.techniques:
-        kinds = ", ".join(sorted(technique.kinds))
-        names = ", ".join(p.name for p in technique.parameters)
-        lines.append(f"  {technique.name:<11} {technique.label} [{kinds}; {technique.source}]: "
-                     f"{names}")  # fmt: skip
-    return "\n".join(lines)
 
 
 def _version(args: argparse.Namespace) -> int:
@@ -318,6 +325,28 @@ def parser() -> argparse.ArgumentParser:
     listing = commands.add_parser("techniques", help="list the registered techniques")
     listing.add_argument("--json", action="store_true", help="print the parameters' JSON Schema")
     listing.set_defaults(run=_techniques)
+
+    capture = commands.add_parser(
+        "capture", help="find the hands in a video (MediaPipe), fit the hand model, report"
+    )
+    capture.add_argument("video", type=Path, help="an MP4, WebM or MOV video")
+    capture.add_argument("--word", help="the word it spells: print its holds and transitions")
+    capture.add_argument("--out", type=Path, help="write the landmarks as a .pose file")
+    capture.add_argument("--bvh", type=Path, help="write the fitted hand motion as BVH")
+    capture.add_argument("--report", type=Path, help="write quality.json and quality.png here")
+    capture.add_argument("--side", choices=("right", "left"), default="right",
+                         help="the signer's dominant hand")  # fmt: skip
+    capture.add_argument("--one-hand", action="store_true",
+                         help="the video shows only that hand (a close-up)")  # fmt: skip
+    capture.add_argument("--mirrored", action="store_true", help="the video is a selfie view")
+    capture.set_defaults(run=_capture)
+
+    pose_file = rendering("render-pose-file", "render a .pose file's hand on the avatar",
+                          view="hand")  # fmt: skip
+    pose_file.add_argument("file", type=Path)
+    pose_file.add_argument("--rate", type=float, default=None, help="resample to this rate")
+    clip_options(pose_file)
+    pose_file.set_defaults(run=_render_pose_file)
 
     bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
     bvh.add_argument("file", type=Path)

@@ -33,12 +33,21 @@ class Recording:
 
     @classmethod
     def read(cls, path: str | Path, word: str | None = None, side: str = "right") -> "Recording":
-        """Read a BVH recording; the word defaults to the file name's letters (HEAVEN.bvh)."""
+        """Read a BVH or .pose recording; the word defaults to the file name's letters.
+
+        A .pose file (captured landmarks) is fitted to the hand model first
+        (synthesis.capture); the signer's *side* hand is the one read.
+        """
         path = Path(path)
         word = (word or "".join(c for c in path.stem if c.isalpha())).upper()
         if not word:
             raise TimingError(f"{path}: give the word it spells (its name has no letters).")
-        motion = read_bvh(path)
+        if path.suffix.lower() == ".pose":
+            from synthesis.capture import captured_hand, read_pose
+
+            motion = captured_hand(read_pose(path), side).motion
+        else:
+            motion = read_bvh(path)
         return cls(word, motion, extract(motion, word, side))
 
     @classmethod

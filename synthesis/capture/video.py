@@ -1,0 +1,121 @@
+"""Markerless capture: find a signer's hands in a video with MediaPipe Hands (on the CPU).
+
+The video's frames are read with imageio-ffmpeg; MediaPipe's Hands solution (its models
+ship inside the wheel and run offline; requirements/capture.txt) finds up to two hands
+per frame, tracking them from frame to frame. The result is a :class:`PoseRecording` in
+the MediaPipe Holistic layout of ``.pose`` files: image x and y in pixels, z in the same
+units as x, confidence the detection's handedness score (0 where a hand was not found).
+
+MediaPipe names hands as if the image were mirrored (a selfie view): in an ordinary
+camera's view of a signer facing it, the hand it calls "Left" is the signer's right.
+*mirrored* says which view the video is.
+"""
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from synthesis.capture.posefile import HAND_COMPONENTS, PoseRecording
+from synthesis.rigs.landmarks import LANDMARK_NAMES
+
+SUFFIXES = (".mp4", ".webm", ".mov", ".m4v", ".mkv", ".avi")
+MIN_FRAMES = 2
+
+
+class CaptureError(ValueError):
+    """A video that cannot be captured: unreadable, too short, or without hands."""
+
+
+def _hands_solution():
+    try:
+        from mediapipe.python.solutions import hands
+    except ImportError as error:  # pragma: no cover - depends on the install
+        raise CaptureError(
+            f"MediaPipe cannot be imported ({error}); run 'make install' to install it "
+            "(requirements/capture.txt)."
+        ) from error
+    return hands
+
+
+def read_frames(path: str | Path):
+    """Return the video's frame rate and an iterator of its RGB frames (h, w, 3) uint8."""
+    import imageio.v3 as iio
+
+    path = Path(path)
+    if not path.is_file():
+        raise CaptureError(f"{path}: no such video file.")
+    if path.suffix.lower() not in SUFFIXES:
+        raise CaptureError(f"{path}: not a video ({', '.join(SUFFIXES)}).")
+    try:
+        meta = iio.immeta(path)
+        fps = float(meta.get("fps") or 0)
+    except Exception as error:  # ffmpeg's errors come in many types
+        raise CaptureError(f"{path}: not a readable video ({error}).") from None
+    if not np.isfinite(fps) or fps <= 0:
+        raise CaptureError(f"{path}: the video has no frame rate.")
+
+    def frames():
+        try:
+            for frame in iio.imiter(path):
+                yield np.ascontiguousarray(frame[..., :3])
+        except Exception as error:
+            raise CaptureError(f"{path}: reading its frames failed ({error}).") from None
+
+    return fps, frames()
+
+
+def capture_hands(
+    path: str | Path, mirrored: bool = False, progress: Callable[[int], None] | None = None,
+    model_complexity: int = 1, one_hand: str | None = None,
+) -> PoseRecording:  # fmt: skip
+    """Return the hands MediaPipe finds in the video at *path*, frame by frame.
+
+    *one_hand* ("right" or "left") says the video shows only that hand (a close-up):
+    MediaPipe then looks for one hand and it is that one, whatever handedness it
+    guesses. *progress* receives the number of frames done. Raise CaptureError for an
+    unreadable file, a video shorter than two frames, or one in which no hand is found.
+    """
+    if one_hand not in (None, "right", "left"):
+        raise CaptureError(f"one_hand must be 'right', 'left' or None, not {one_hand!r}.")
+    hands = _hands_solution()
+    fps, frames = read_frames(path)
+    sides = {"Left": "left", "Right": "right"} if mirrored else {"Left": "right", "Right": "left"}
+    points: dict[str, list] = {"right": [], "left": []}
+    scores: dict[str, list] = {"right": [], "left": []}
+    width = height = 0
+    tracker = hands.Hands(
+        static_image_mode=False,
+        max_num_hands=1 if one_hand else 2,
+        model_complexity=model_complexity,
+        min_detection_confidence=0.3,
+        min_tracking_confidence=0.3,
+    )
+    with tracker:
+        for number, frame in enumerate(frames, start=1):
+            height, width = frame.shape[:2]
+            found = tracker.process(frame)
+            seen = {}
+            for marks, handed in zip(found.multi_hand_landmarks or (),
+                                     found.multi_handedness or (), strict=True):  # fmt: skip
+                label = handed.classification[0]
+                side = one_hand or sides.get(label.label)
+                if side is None or (side in seen and seen[side][1] >= label.score):
+                    continue
+                xyz = np.array([(m.x * width, m.y * height, m.z * width) for m in marks.landmark])
+                seen[side] = (xyz, float(label.score))
+            for side in ("right", "left"):
+                xyz, score = seen.get(side, (np.zeros((21, 3)), 0.0))
+                points[side].append(xyz)
+                scores[side].append(np.full(21, score))
+            if progress is not None:
+                progress(number)
+    n = len(points["right"])
+    if n < MIN_FRAMES:
+        raise CaptureError(f"{path}: the video is too short ({n} frame(s)).")
+    if not any(np.max(scores[side]) > 0 for side in scores):
+        raise CaptureError(f"{path}: no hand was found in any of its {n} frames.")
+    components = tuple((HAND_COMPONENTS[side], LANDMARK_NAMES) for side in ("left", "right"))
+    data = np.concatenate([np.array(points["left"]), np.array(points["right"])], axis=1)
+    confidence = np.concatenate([np.array(scores["left"]), np.array(scores["right"])], axis=1)
+    return PoseRecording(fps, components, data, confidence, width, height)

@@ -1,0 +1,81 @@
+"""Test markerless capture: a rendered clip's hand is found, fitted and timed again."""
+
+import json
+
+import imageio.v3 as iio
+import numpy as np
+import pytest
+
+from synthesis.capture import captured_hand, read_pose
+from synthesis.capture.video import CaptureError, capture_hands
+from synthesis.cli import main
+from synthesis.rigs import HandModel
+from synthesis.techniques import ClipRequest, build_motion, render_request
+
+pytestmark = pytest.mark.usefixtures("renderable")
+pytest.importorskip(
+    "mediapipe.python.solutions.hands",
+    reason="CAPTURE TESTS SKIPPED: MediaPipe is not installed (make install adds it)",
+)
+
+
+@pytest.fixture(scope="module")
+def clip(tmp_path_factory):
+    """Render ABLE in the Constant timing: known DOFs per frame (30 fps, 480×360)."""
+    request = ClipRequest("word", "ABLE", {"timing": "constant"}, rate_hz=30, width=480,
+                          height=360)  # fmt: skip
+    build = build_motion(request)
+    path = tmp_path_factory.mktemp("capture") / "able.mp4"
+    render_request(request, path, build=build)
+    return path, build.motion
+
+
+def test_a_rendered_hand_is_captured_and_fitted_back(clip):
+    path, truth = clip
+    recording = capture_hands(path, one_hand="right")
+    assert recording.found_hands()["right"] > 0.9
+    hand = captured_hand(recording, "right")
+    model = HandModel()
+    fingers = [i for i, n in enumerate(model.dof_names)
+               if "flexion" in n and not n.startswith(("thumb", "wrist"))]  # fmt: skip
+    n = min(len(truth), len(hand.fit.dofs_rad))
+    error_deg = np.degrees(np.abs(hand.fit.dofs_rad[:n, fingers] - truth[:n, fingers]))
+    # Measured at 640×480: median 10°, where the issue's target is 8° (not met yet; see
+    # bench/bench_capture.py): MediaPipe puts our mesh's fingertips less curled.
+    assert np.median(error_deg) < 15
+    assert hand.quality(recording)["residual_mm_median"] < 15
+
+
+def test_capture_on_the_command_line_writes_pose_bvh_report_and_timing(clip, tmp_path, capsys):
+    path, _ = clip
+    pose, bvh, report = tmp_path / "able.pose", tmp_path / "able.bvh", tmp_path / "report"
+    assert main(["capture", str(path), "--one-hand", "--word", "ABLE", "--out", str(pose),
+                 "--bvh", str(bvh), "--report", str(report)]) == 0  # fmt: skip
+    printed = capsys.readouterr().out
+    timing = json.loads(printed[printed.index("{") :])
+    assert timing["word"] == "ABLE" and len(timing["hold_ms"]) == 4
+    # Constant timing: 243 ms holds, the last 800 ms; captured within 150 ms.
+    assert np.allclose(timing["hold_ms"], [243, 243, 243, 800], atol=150)
+    assert read_pose(pose).n_frames > 60 and bvh.stat().st_size > 0
+    quality = json.loads((report / "quality.json").read_text())
+    assert quality["hands_found"]["right"] > 0.9 and (report / "quality.png").exists()
+    out = tmp_path / "again.mp4"
+    assert main(["render-pose-file", str(pose), "--out", str(out), "--size", "96x72"]) == 0
+    assert iio.improps(out).shape[0] > 60
+
+
+def test_bad_videos_are_refused_by_name(tmp_path):
+    with pytest.raises(CaptureError, match="no such video file"):
+        capture_hands(tmp_path / "missing.mp4")
+    text = tmp_path / "notes.txt"
+    text.write_text("not a video")
+    with pytest.raises(CaptureError, match="not a video"):
+        capture_hands(text)
+    broken = tmp_path / "broken.mp4"
+    broken.write_bytes(b"\x00\x00\x00\x18ftypmp42" + bytes(200))
+    with pytest.raises(CaptureError, match=r"not a readable video|reading its frames"):
+        capture_hands(broken)
+    empty = tmp_path / "empty.mp4"
+    iio.imwrite(empty, np.full((10, 64, 64, 3), 90, np.uint8), fps=10, codec="libx264")
+    with pytest.raises(CaptureError, match="no hand was found in any of its 10 frames"):
+        capture_hands(empty)
