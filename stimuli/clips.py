@@ -41,10 +41,6 @@ class ClipSpec(ClipRequest):
         """Return the specification of *request* rendered by this engine (or *engine*)."""
         return cls(**request.to_dict(), **({"engine": engine} if engine else {}))
 
-    def request(self) -> ClipRequest:
-        """Return the clip request this specification renders."""
-        return ClipRequest(**super().to_dict())
-
     def to_dict(self) -> dict:
         return {**super().to_dict(), "engine": self.engine}
 
@@ -61,7 +57,7 @@ class ClipSpec(ClipRequest):
         The files it names (a recording, a model, a library) count by their content.
         """
         data = self.to_dict()
-        files = {str(path): file_sha256(path) for path in self.request().files()}
+        files = {str(path): file_sha256(path) for path in self.files()}
         if files:
             data["files"] = files
         canonical = json.dumps(data, sort_keys=True, separators=(",", ":"))
@@ -101,7 +97,7 @@ def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
     directory.mkdir(parents=True, exist_ok=True)
     name = spec.content_hash()
     video, poster = directory / f"{name}.mp4", directory / f"{name}.png"
-    info = render_request(spec.request(), video, poster=poster, progress=progress)
+    info = render_request(spec, video, poster=poster, progress=progress)
     return RenderedClip(
         video, poster, round(info.duration_s * 1000), info.n_frames, info.width, info.height,
         video.stat().st_size, file_sha256(video),

@@ -17,8 +17,6 @@ import json
 import sys
 from pathlib import Path
 
-import numpy as np
-
 from synthesis.fingerspelling.alphabet import AlphabetError, letter_pose
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import landmarks
@@ -69,20 +67,13 @@ def _progress(label: str):
     return report
 
 
-def _hand_motion_for(rig, side: str, hand_dofs: np.ndarray) -> np.ndarray:
-    """Return the rig's DOFs for hand-model DOFs (a body holds the hand up to sign)."""
-    if isinstance(rig, HandModel):
-        return hand_dofs
-    from synthesis.rigs.posture import fingerspelling_posture
-
-    return fingerspelling_posture(rig, side, hand_dofs)
-
-
 def _render_pose(args: argparse.Namespace) -> int:
     from synthesis.render.clip import render_still
 
     avatar, camera = avatar_and_camera(args.view, args.side)
-    dofs = _hand_motion_for(avatar.rig, args.side, letter_pose(args.letter, args.side)[None])[0]
+    from synthesis.rigs.posture import hand_motion_on
+
+    dofs = hand_motion_on(avatar.rig, args.side, letter_pose(args.letter, args.side)[None])[0]
     path = render_still(avatar, dofs, camera, args.out, *args.size)
     print(f"wrote {path}")
     return 0

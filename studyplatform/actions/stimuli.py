@@ -62,6 +62,7 @@ def do_generate_stimuli(
         study.status in (Study.Status.OPEN, Study.Status.CLOSED)
         and study.participants.filter(is_pilot=False).exists()
     )
+    refuse_changes = in_field and not rerender_open
     with transaction.atomic():
         for condition, item in needed_pairs(study):
             try:
@@ -73,7 +74,7 @@ def do_generate_stimuli(
             rendered = stimulus is not None and stimulus.status == Stimulus.Status.READY
             if rendered and stimulus.content_hash != content_hash:
                 changed.append((stimulus, spec))
-                if in_field and not rerender_open:
+                if refuse_changes:
                     continue
             if stimulus is None:
                 stimulus = Stimulus(condition=condition, item=item)
@@ -90,7 +91,7 @@ def do_generate_stimuli(
                 stimulus.save()
                 queued.append(stimulus.pk)
             ids.append(stimulus.pk)
-        if changed and in_field and not rerender_open:
+        if changed and refuse_changes:
             _refuse_changes_in_the_field(study, changed)
         for pk in queued if enqueue else ():
             transaction.on_commit(lambda pk=pk: render_stimulus.delay(pk))

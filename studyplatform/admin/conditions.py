@@ -12,7 +12,11 @@ from django.contrib import admin
 from django.http import HttpRequest
 
 from studyplatform.admin.permissions import StudyScopedMixin
-from studyplatform.lib.techniques import describe_parameters, supported_kinds
+from studyplatform.lib.techniques import (
+    condition_item_kinds,
+    describe_condition,
+    supported_kinds,
+)
 from studyplatform.models import Condition
 from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS, Parameter
 
@@ -38,11 +42,11 @@ def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
     if parameter.type == "file":
         help_text += " A path on the rendering machine; empty: none."
         return forms.CharField(required=False, help_text=help_text, **common)
-    units = f" ({parameter.units})" if parameter.units else ""
     field = forms.IntegerField if parameter.type == "int" else forms.FloatField
+    default = parameter.label_of(parameter.default)  # with its units
     return field(
         min_value=parameter.minimum, max_value=parameter.maximum,
-        help_text=f"{help_text}{units} Default: {parameter.default:g}.", **common,
+        help_text=f"{help_text} Default: {default}.", **common,
     )  # fmt: skip
 
 
@@ -89,17 +93,16 @@ class ConditionForm(forms.ModelForm):
     def clean(self):
         cleaned = super().clean()
         extra = cleaned.get("parameters")
-        parameters = dict(extra) if isinstance(extra, dict) else {}
-        for _, declared in self.groups:
-            for parameter in declared:
-                value = cleaned.get(PREFIX + parameter.name)
-                if value is None or value == parameter.default:
-                    continue
-                if parameter.type == "file" and not value:
-                    continue
-                parameters[parameter.name] = value
-        if extra is not None and not isinstance(extra, dict):
-            parameters = extra  # the model's check names what is wrong with it
+        if extra is None or isinstance(extra, dict):
+            parameters = dict(extra or {})
+            for _, declared in self.groups:
+                for parameter in declared:
+                    value = cleaned.get(PREFIX + parameter.name)
+                    # A default (or an empty file) is not stored: it says nothing.
+                    if value not in (None, "", parameter.default):
+                        parameters[parameter.name] = value
+        else:
+            parameters = extra  # not a mapping: the model's check names what is wrong
         cleaned["parameters"] = parameters
         self.instance.parameters = parameters
         return cleaned
@@ -116,12 +119,6 @@ def condition_form(kinds) -> type[ConditionForm]:
     return type("ConditionForm", (ConditionForm,), {**fields, "groups": groups})
 
 
-def _kinds_of(obj: Condition | None) -> list[str]:
-    if obj is None or obj.study_id is None:
-        return []
-    return list(obj.study.items.values_list("kind", flat=True))
-
-
 @admin.register(Condition)
 class ConditionAdmin(StudyScopedMixin, admin.ModelAdmin):
     list_display = ("label", "key", "study", "is_simulated", "compares")
@@ -130,19 +127,17 @@ class ConditionAdmin(StudyScopedMixin, admin.ModelAdmin):
     readonly_fields = ("compares",)
 
     def get_form(self, request: HttpRequest, obj: Condition | None = None, **kwargs):
-        kwargs["form"] = condition_form(_kinds_of(obj))
+        kwargs["form"] = condition_form(condition_item_kinds(obj))
         return super().get_form(request, obj, **kwargs)
 
     def get_fieldsets(self, request: HttpRequest, obj: Condition | None = None):
         main = ("study", "position", "key", "label", "description", "is_simulated", "compares")
         fieldsets = [(None, {"fields": main})]
-        for title, parameters in technique_groups(_kinds_of(obj)):
+        for title, parameters in technique_groups(condition_item_kinds(obj)):
             fieldsets.append((title, {"fields": [PREFIX + p.name for p in parameters]}))
         fieldsets.append(("Other parameters", {"fields": ["parameters"], "classes": ["collapse"]}))
         return fieldsets
 
     @admin.display(description="What it compares")
     def compares(self, obj: Condition) -> str:
-        if obj is None or obj.pk is None:
-            return "—"
-        return "; ".join(describe_parameters(obj.parameters or {}, _kinds_of(obj)))
+        return describe_condition(obj)

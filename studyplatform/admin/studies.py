@@ -24,7 +24,7 @@ from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.lib.stimuli import stimuli_progress, study_manifest
-from studyplatform.lib.techniques import describe_parameters
+from studyplatform.lib.techniques import describe_condition
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
 
@@ -42,10 +42,7 @@ class ConditionInline(StudyInline):
 
     @admin.display(description="What it compares")
     def compares(self, obj: Condition) -> str:
-        if obj is None or obj.pk is None:
-            return "—"
-        kinds = obj.study.items.values_list("kind", flat=True)
-        return "; ".join(describe_parameters(obj.parameters or {}, kinds))
+        return describe_condition(obj)
 
 
 class ItemInline(StudyInline):

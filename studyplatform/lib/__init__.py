@@ -27,6 +27,8 @@ from studyplatform.lib.techniques import (
     check_condition,
     check_item,
     check_parameters,
+    condition_item_kinds,
+    describe_condition,
     describe_parameters,
 )
 
@@ -40,6 +42,8 @@ __all__ = [
     "clip_spec",
     "closed_reason",
     "completion_url",
+    "condition_item_kinds",
+    "describe_condition",
     "describe_parameters",
     "files_exist",
     "missing_answers",

@@ -50,13 +50,26 @@ def check_parameters(parameters: Any, kinds: Iterable[str]) -> None:
     raise errors[0]
 
 
+def condition_item_kinds(condition) -> list[str]:
+    """Return the item kinds of the condition's study (none for a condition not in one)."""
+    if condition is None or condition.study_id is None:
+        return []
+    return list(condition.study.items.values_list("kind", flat=True))
+
+
+def describe_condition(condition) -> str:
+    """Return what a saved condition compares, in plain words ("—" for a new one)."""
+    if condition is None or condition.pk is None:
+        return "—"
+    return "; ".join(
+        describe_parameters(condition.parameters or {}, condition_item_kinds(condition))
+    )
+
+
 def check_condition(condition) -> None:
     """Raise ValidationError on the parameters field if they do not suit the study's items."""
-    kinds = []
-    if condition.study_id is not None:
-        kinds = condition.study.items.values_list("kind", flat=True)
     try:
-        check_parameters(condition.parameters or {}, kinds)
+        check_parameters(condition.parameters or {}, condition_item_kinds(condition))
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None
 

@@ -33,3 +33,10 @@ def fingerspelling_posture(body: BodyModel, side: str, hand_dofs_rad: np.ndarray
     dofs[:, body.dof_names.index(f"{side}_shoulder_rotation")] -= tilt_side
     dofs[:, body.dof_names.index(f"{side}_elbow_flexion")] -= tilt_forward
     return body.clip(dofs)
+
+
+def hand_motion_on(rig, side: str, hand_dofs_rad: np.ndarray) -> np.ndarray:
+    """Return *rig*'s DOFs for hand-model DOFs: the hand itself, or a body holding it up."""
+    if isinstance(rig, HandModel):
+        return hand_dofs_rad
+    return fingerspelling_posture(rig, side, hand_dofs_rad)

@@ -33,12 +33,10 @@ def _finish_word(build: Build) -> Build:
 
     request = build.request
     if build.performance is None:
-        hand = spell(request.text, request.side, request.rate_hz, timing=build.timing)
-        if isinstance(build.rig, HandModel):
-            return build.but(motion=hand)
-        from synthesis.rigs.posture import fingerspelling_posture
+        from synthesis.rigs.posture import hand_motion_on
 
-        return build.but(motion=fingerspelling_posture(build.rig, request.side, hand))
+        hand = spell(request.text, request.side, request.rate_hz, timing=build.timing)
+        return build.but(motion=hand_motion_on(build.rig, request.side, hand))
     from synthesis.rigs.retarget import retarget
     from synthesis.skeleton.retime import resample
     from synthesis.timing.recordings import retime

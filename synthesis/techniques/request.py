@@ -114,18 +114,12 @@ def validate_parameters(kind: str, parameters: Mapping[str, Any]) -> dict[str, A
     Raise :class:`ClipError` naming the first unknown key, wrong type, out-of-range value
     or technique that does not apply to *kind*. Only the keys given are returned.
     """
-    if not isinstance(parameters, Mapping):
-        raise ClipError(f"Parameters must be a mapping of names to values, not {parameters!r}.")
-    techniques, checked = dict(parameters), {}
-    for parameter in REQUEST_PARAMETERS:
-        if parameter.name in techniques:
-            checked[parameter.name] = parameter.check(techniques.pop(parameter.name))
-    view = checked.get("view")
-    item_kind = _registry().kind(kind)
-    if view is not None and view not in item_kind.views:
-        raise ClipError(f"A {item_kind.label} renders in the {' or '.join(item_kind.views)} view.")
-    normalized = _registry().normalize(kind, techniques)
-    return {**checked, **{name: normalized[name] for name in techniques}}
+    # The request checks them as rendering would; the text plays no part in the check.
+    request = ClipRequest.from_parameters(kind, "parameters", parameters)
+    return {
+        name: getattr(request, name) if name in FIELDS else request.parameters[name]
+        for name in parameters
+    }
 
 
 @dataclass(frozen=True)
