@@ -10,9 +10,7 @@ hand's orientation). Row pairs: the engine's letter above, the human one below.
 """
 
 import argparse
-import csv
 import sys
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -23,23 +21,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from scripts.alphabet_sheet import FONT, _camera
 from synthesis.avatar.hand_mesh import hand_avatar
 from synthesis.capture import calibrate_scale, fit_hand, read_pose
+from synthesis.capture.lexicon import human_letter_files
 from synthesis.fingerspelling.alphabet import LETTERS, letter
 from synthesis.render.renderer import Renderer
 
 TILE = 220
 COLUMNS = 13
-
-
-def human_letter_files() -> dict[str, Path]:
-    """Return each ASL letter's recording in the installed spoken-to-signed package."""
-    root = Path(str(resources.files("spoken_to_signed") / "assets" / "fingerspelling_lexicon"))
-    files = {}
-    with open(root / "index.csv", encoding="utf-8") as handle:
-        for row in csv.DictReader(handle):
-            word = row["words"]
-            if row["signed_language"] == "ase" and len(word) == 1 and word.isalpha():
-                files.setdefault(word.upper(), root / row["path"])
-    return files
 
 
 def human_pose(model, path: Path) -> tuple[np.ndarray, float]:

@@ -42,3 +42,74 @@ def render_now(stimulus_id: int) -> str:
 def render_stimulus(stimulus_id: int) -> str:
     """Render one stimulus (Celery job)."""
     return render_now(stimulus_id)
+
+
+def prepare_now(recording_id: int) -> str:
+    """Capture (a video), fit and check one recording in this process; return its status.
+
+    A video's landmarks are found with MediaPipe; every recording is fitted to the rig
+    and its holds are extracted, so one that cannot be retimed fails here, with the
+    reason, instead of when its clips render.
+    """
+    from studyplatform.actions.recordings import (
+        do_fail_recording,
+        do_finish_recording,
+        do_report_capture_progress,
+    )
+    from studyplatform.models import Recording
+
+    recording = Recording.objects.filter(pk=recording_id).select_related("item").first()
+    if recording is None:
+        return "missing"
+    if recording.status == Recording.Status.READY:
+        return recording.status
+    try:
+        quality, pose = _prepare(recording, do_report_capture_progress)
+    except (ValueError, OSError) as error:  # the engine's errors name the problem
+        return do_fail_recording(recording, error)
+    return do_finish_recording(recording, quality, pose)
+
+
+def _prepare(recording, report_progress) -> tuple[dict, bytes | None]:
+    from studyplatform.lib.recordings import retimes_recordings
+    from synthesis.capture import captured_hand, format_pose, read_pose
+    from synthesis.skeleton.bvh import read_bvh
+    from synthesis.timing.recordings import Recording as Performance
+
+    item, path = recording.item, Path(recording.upload.path)
+    side = (item.parameters or {}).get("side", "right")
+    pose = None
+    if recording.is_video:
+        from synthesis.capture.video import capture_hands, expected_frames
+
+        total = expected_frames(path) or 0
+        step = max(1, total // 20)
+
+        def progress(done: int) -> None:
+            if total and done % step == 0:
+                report_progress(recording, min(99, round(100 * done / total)))
+
+        landmarks = capture_hands(path, mirrored=recording.mirrored, progress=progress,
+                                  one_hand=side if recording.one_hand else None)  # fmt: skip
+        pose = format_pose(landmarks)
+    elif path.suffix.lower() == ".pose":
+        landmarks = read_pose(path)
+    else:
+        landmarks = None
+        motion = read_bvh(path)
+        quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
+    if landmarks is not None:
+        hand = captured_hand(landmarks, side)
+        motion, quality = hand.motion, hand.quality(landmarks)
+    # Conditions that retime the recording need its holds: a recording in which they
+    # cannot be found (another word, say) fails now rather than when its clips render.
+    performance = Performance.from_motion(motion, item.text, side)
+    if retimes_recordings(item.study):
+        quality["holds_found"] = len(performance.extraction.timing.letters)
+    return quality, pose
+
+
+@shared_task(name="studyplatform.prepare_recording", acks_late=True, reject_on_worker_lost=True)
+def prepare_recording(recording_id: int) -> str:
+    """Capture, fit and check one recording (Celery job)."""
+    return prepare_now(recording_id)

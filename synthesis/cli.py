@@ -100,6 +100,8 @@ def _spell(args: argparse.Namespace) -> int:
     request = _request(args, "word", args.word, **values)
     build = build_motion(request)
     if args.timing_only:
+        if build.timing is None:
+            _ = build.performance.extraction  # raises ExtractionError naming why
         print(json.dumps(build.timing.to_dict(), indent=2))
         return 0
     if args.out is None:
@@ -108,7 +110,7 @@ def _spell(args: argparse.Namespace) -> int:
                           progress=_progress(f"spelling {args.word}"), build=build)  # fmt: skip
     print(
         f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, "
-        f"{build.timing.condition} timing)"
+        f"{build.timing.condition if build.timing is not None else 'as performed'} timing)"
     )
     return 0
 

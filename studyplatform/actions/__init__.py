@@ -13,6 +13,15 @@ from studyplatform.actions.participants import (
     do_set_participant_language,
 )
 from studyplatform.actions.prompts import do_attach_asl_video
+from studyplatform.actions.recordings import (
+    RecordingRejected,
+    do_attach_recording,
+    do_delete_recordings,
+    do_fail_recording,
+    do_finish_recording,
+    do_relabel_stand_ins,
+    do_report_capture_progress,
+)
 from studyplatform.actions.responses import do_save_response
 from studyplatform.actions.stimuli import (
     GenerationResult,
@@ -44,6 +53,7 @@ __all__ = [
     "GenerationResult",
     "ImportResult",
     "PageRejected",
+    "RecordingRejected",
     "RerenderRefused",
     "StudyImportError",
     "UploadOffsetMismatch",
@@ -51,14 +61,20 @@ __all__ = [
     "do_advance_participant",
     "do_append_signed_answer_chunk",
     "do_attach_asl_video",
+    "do_attach_recording",
+    "do_delete_recordings",
     "do_duplicate_study",
     "do_enroll_participant",
+    "do_fail_recording",
     "do_fail_stimulus",
+    "do_finish_recording",
     "do_generate_stimuli",
     "do_go_back_participant",
     "do_import_study",
     "do_log_media_events",
     "do_record_rendered_stimulus",
+    "do_relabel_stand_ins",
+    "do_report_capture_progress",
     "do_retry_stimuli",
     "do_save_response",
     "do_set_participant_language",

@@ -22,6 +22,7 @@ from studyplatform.actions.stimuli import do_generate_stimuli
 from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
+from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.lib.stimuli import stimuli_progress, study_manifest
 from studyplatform.lib.techniques import describe_condition
@@ -86,7 +87,8 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyScopedMixin, admin.ModelAdmin):
+class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyRecordingsMixin, StudyScopedMixin,
+                 admin.ModelAdmin):  # fmt: skip
     study_path = ""
     list_display = (
         "title",
@@ -237,7 +239,8 @@ class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyScopedMixin, admin.Model
                 name="studyplatform_study_preview",
             ),
         ]
-        return own + self.results_urls() + self.asl_urls() + super().get_urls()
+        return (own + self.results_urls() + self.asl_urls() + self.recordings_urls()
+                + super().get_urls())  # fmt: skip
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
         study = self.get_object(request, object_id)

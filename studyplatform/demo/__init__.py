@@ -1,8 +1,18 @@
 """Build the demo studies as study definitions (the format of :mod:`studyplatform.exchange`)."""
 
+from studyplatform.demo.alphabet import alphabet_legibility_study, attach_human_letters
 from studyplatform.demo.fingerspelling import fingerspelling_timing_study
 from studyplatform.demo.spine import spine_study
 
-DEMO_STUDIES = (fingerspelling_timing_study, spine_study)
+DEMO_STUDIES = (fingerspelling_timing_study, spine_study, alphabet_legibility_study)
+# What a demo study needs besides its definition, by slug: recordings to attach.
+DEMO_SETUP = {"alphabet-legibility": attach_human_letters}
 
-__all__ = ["DEMO_STUDIES", "fingerspelling_timing_study", "spine_study"]
+__all__ = [
+    "DEMO_SETUP",
+    "DEMO_STUDIES",
+    "alphabet_legibility_study",
+    "attach_human_letters",
+    "fingerspelling_timing_study",
+    "spine_study",
+]

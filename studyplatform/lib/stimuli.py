@@ -3,8 +3,14 @@
 import zlib
 from pathlib import Path
 
-from stimuli.clips import ClipSpec, RenderedClip
+from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
+from studyplatform.lib.recordings import (
+    current_recording,
+    recording_path,
+    uses_item_recording,
+    with_recording,
+)
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
 from synthesis.techniques import ClipRequest
 
@@ -14,10 +20,21 @@ def clip_spec(condition: Condition, item: Item) -> ClipSpec:
 
     The condition's parameters override the item's. The seed is the item's (its
     parameters' ``seed``, else a checksum of its key), so all conditions of an item share
-    one performance and one noise.
+    one performance and one noise. A word's recording, where it has one, is the
+    performance of the conditions that retime a capture (:mod:`studyplatform.lib.recordings`).
     """
     parameters = {**(item.parameters or {}), **(condition.parameters or {})}
     parameters.setdefault("seed", zlib.crc32(item.key.encode()))
+    if item.kind == Item.Kind.WORD and parameters.get("source") in ("recording", "simulated"):
+        recording = current_recording(item)
+        if recording is None and uses_item_recording(parameters):
+            raise ClipError(
+                f"{item.key} has no recording yet, and condition {condition.key!r} retimes "
+                "each word's recording: upload one on the item's Recordings, or wait for "
+                "its capture to finish."
+            )
+        path = recording_path(recording) if recording is not None else None
+        parameters = with_recording(parameters, item.kind, path)
     return ClipSpec.from_request(ClipRequest.from_parameters(item.kind, item.text, parameters))
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 from django.core.exceptions import ValidationError
 
+from studyplatform.lib.recordings import as_checked
 from synthesis.techniques import (
     FIELDS,
     REGISTRY,
@@ -62,14 +63,14 @@ def describe_condition(condition) -> str:
     if condition is None or condition.pk is None:
         return "—"
     return "; ".join(
-        describe_parameters(condition.parameters or {}, condition_item_kinds(condition))
+        describe_parameters(as_checked(condition.parameters or {}), condition_item_kinds(condition))
     )
 
 
 def check_condition(condition) -> None:
     """Raise ValidationError on the parameters field if they do not suit the study's items."""
     try:
-        check_parameters(condition.parameters or {}, condition_item_kinds(condition))
+        check_parameters(as_checked(condition.parameters or {}), condition_item_kinds(condition))
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None
 
@@ -88,7 +89,8 @@ def check_item(item) -> None:
         return
     for condition in item.study.conditions.all():
         try:
-            validate_parameters(item.kind, {**(item.parameters or {}), **condition.parameters})
+            parameters = as_checked({**(item.parameters or {}), **condition.parameters})
+            validate_parameters(item.kind, parameters)
         except ClipError as error:
             raise ValidationError(
                 {"kind": f"Condition {condition.key!r} cannot render this item: {error}"}

@@ -8,6 +8,7 @@ from studyplatform.models.participants import (
     new_randomization_seed,
 )
 from studyplatform.models.prompts import PARTICIPANT_FACING_FIELDS, AslVideo
+from studyplatform.models.recordings import Recording
 from studyplatform.models.responses import MediaEvent, Response
 from studyplatform.models.scope import STUDY_PATHS
 from studyplatform.models.stimuli import Stimulus
@@ -25,6 +26,7 @@ __all__ = [
     "Participant",
     "PersonalAnswer",
     "Question",
+    "Recording",
     "Response",
     "Stimulus",
     "Study",

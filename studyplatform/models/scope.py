@@ -11,6 +11,7 @@ STUDY_PATHS: dict[str, str] = {
     "block": "study",
     "trial": "study",
     "stimulus": "condition__study",
+    "recording": "item__study",
     "participant": "study",
     "personalanswer": "participant__study",
     "response": "participant__study",

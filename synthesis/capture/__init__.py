@@ -1,7 +1,9 @@
 """Human motion in: ``.pose`` landmark files, the hand model fitted to them, and
 markerless capture of hands from video (synthesis.capture.video, MediaPipe, imported lazily)."""
 
+from synthesis.capture.features import handshape_features, nearest_handshape
 from synthesis.capture.handfit import FitError, HandFit, calibrate_scale, fit_hand
+from synthesis.capture.lexicon import LexiconMissing, human_letter_files
 from synthesis.capture.posefile import (
     HAND_COMPONENTS,
     PoseFileError,
@@ -19,6 +21,7 @@ __all__ = [
     "CapturedHand",
     "FitError",
     "HandFit",
+    "LexiconMissing",
     "PoseFileError",
     "PoseRecording",
     "calibrate_scale",
@@ -26,6 +29,9 @@ __all__ = [
     "fit_hand",
     "format_pose",
     "from_hand_motion",
+    "handshape_features",
+    "human_letter_files",
+    "nearest_handshape",
     "parse_pose",
     "read_pose",
     "write_pose",

@@ -21,6 +21,8 @@ from synthesis.rigs.landmarks import LANDMARK_NAMES
 
 SUFFIXES = (".mp4", ".webm", ".mov", ".m4v", ".mkv", ".avi")
 MIN_FRAMES = 2
+# The rate a video without a frame rate of its own is sampled at (frames per second).
+UNTIMED_FPS = 30.0
 
 
 class CaptureError(ValueError):
@@ -52,17 +54,32 @@ def read_frames(path: str | Path):
         fps = float(meta.get("fps") or 0)
     except Exception as error:  # ffmpeg's errors come in many types
         raise CaptureError(f"{path}: not a readable video ({error}).") from None
-    if not np.isfinite(fps) or fps <= 0:
-        raise CaptureError(f"{path}: the video has no frame rate.")
+    # A browser's MediaRecorder writes WebM without a frame rate (frames carry their own
+    # times): ffmpeg then samples it at a fixed rate.
+    resample = not np.isfinite(fps) or fps <= 0
+    if resample:
+        fps = UNTIMED_FPS
 
     def frames():
+        import imageio
+
         try:
-            for frame in iio.imiter(path):
+            reader = imageio.get_reader(path, "ffmpeg", fps=fps) if resample else iio.imiter(path)
+            for frame in reader:
                 yield np.ascontiguousarray(frame[..., :3])
         except Exception as error:
             raise CaptureError(f"{path}: reading its frames failed ({error}).") from None
 
     return fps, frames()
+
+
+def expected_frames(path: str | Path) -> int | None:
+    """Return about how many frames the video has (from its duration), or None if unknown."""
+    fps, _ = read_frames(path)
+    import imageio.v3 as iio
+
+    duration_s = float(iio.immeta(path).get("duration") or 0)
+    return round(duration_s * fps) if np.isfinite(duration_s) and duration_s > 0 else None
 
 
 def capture_hands(

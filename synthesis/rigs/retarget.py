@@ -58,15 +58,24 @@ def _height(positions: np.ndarray) -> float:
     return float(np.ptp(positions, axis=0).max())
 
 
+def _same_skeleton(source, target) -> bool:
+    """Return whether *source* is the rig's own skeleton, as a BVH file of it reads back.
+
+    End Sites are compared by place only: the format does not name them.
+    """
+    if len(source) != len(target) or not np.array_equal(source.parents, target.parents):
+        return False
+    named = all(a.name == b.name or (a.is_end_site and b.is_end_site)
+                for a, b in zip(source.joints, target.joints, strict=True))  # fmt: skip
+    return named and np.allclose(source.offsets * source.metres_per_unit,
+                                 target.offsets * target.metres_per_unit, atol=1e-6)  # fmt: skip
+
+
 def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> Pose:
     """Return the rig's global transforms, (n_frames, n_joints, …), following *motion*."""
     source_skeleton = motion.skeleton
     target = rig.skeleton
-    if source_skeleton.names == target.names and np.allclose(
-        source_skeleton.offsets * source_skeleton.metres_per_unit,
-        target.offsets * target.metres_per_unit,
-        atol=1e-6,
-    ):
+    if _same_skeleton(source_skeleton, target):
         return forward_kinematics(motion)
     mapping = mapping or detect_mapping(source_skeleton)
     pairs = {

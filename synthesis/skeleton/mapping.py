@@ -115,6 +115,28 @@ class JointMapping:
         return sides.pop() if len(sides) == 1 else None
 
 
+def _tip_of(canonical: str) -> str | None:
+    """Return the fingertip beyond a finger's last joint (``index_dip`` → ``index_tip``)."""
+    for last in ("_dip", "thumb_ip"):
+        if canonical.endswith(last):
+            return canonical[: -len("ip")] + "tip" if last == "thumb_ip" else canonical[:-3] + "tip"
+    return None
+
+
+def _with_fingertips(skeleton: Skeleton, matched: dict[str, str]) -> dict[str, str]:
+    """Return *matched* with unnamed fingertips added: a BVH End Site after a finger's last
+    joint is its tip, whatever the site is called (the format gives End Sites no name)."""
+    result = dict(matched)
+    taken = set(matched.values())
+    for joint in skeleton.joints:
+        parent = skeleton.joints[joint.parent].name if joint.parent >= 0 else None
+        tip = _tip_of(matched.get(parent, "")) if parent else None
+        if joint.is_end_site and joint.name not in result and tip and tip not in taken:
+            result[joint.name] = tip
+            taken.add(tip)
+    return result
+
+
 def detect_mapping(skeleton: Skeleton, minimum: int = 4) -> JointMapping:
     """Return the convention whose names match most of *skeleton*'s joints.
 
@@ -132,6 +154,7 @@ def detect_mapping(skeleton: Skeleton, minimum: int = 4) -> JointMapping:
         scores.append((len(matched), convention, matched))
     scores.sort(key=lambda s: -s[0])
     count, convention, matched = scores[0]
+    matched = _with_fingertips(skeleton, matched)
     if count < minimum:
         sample = ", ".join(skeleton.names[:6])
         raise ValueError(

@@ -46,7 +46,8 @@ def _finish_word(build: Build) -> Build:
             "A recorded or simulated performance renders in the hand view for now: "
             "set view to 'hand' (--view hand)."
         )
-    plays_as_performed = build.timing is build.performance.extraction.timing
+    timing = build.timing
+    plays_as_performed = timing is None or timing is build.performance.extraction.timing
     motion = build.performance.motion if plays_as_performed else retime(build.performance,
                                                                         build.timing)  # fmt: skip
     if abs(motion.rate_hz - request.rate_hz) > 1e-9:

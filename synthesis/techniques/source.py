@@ -12,8 +12,8 @@ SOURCES = ("alphabet", "simulated", "recording")
 def _check(values) -> None:
     if values["source"] == "recording" and not values["recording"]:
         raise ClipError(
-            "source 'recording' needs the recording: set recording to a BVH file of the word "
-            "(--recording FILE.bvh)."
+            "source 'recording' needs the recording: set recording to a BVH or .pose file of "
+            "the word (--recording FILE.bvh)."
         )
     if values["recording"] and values["source"] != "recording":
         raise ClipError(f"recording is set but source is {values['source']!r}: set source "
@@ -55,7 +55,9 @@ TECHNIQUE = Technique(
                 "recording": "a recording",
             },
         ),
-        Parameter("recording", "file", "", "A BVH recording of the word (source 'recording')."),
+        Parameter(
+            "recording", "file", "", "A BVH or .pose recording of the word (source 'recording')."
+        ),
     ),
     source="seed 000 §4.3",
     order=10,

@@ -52,6 +52,7 @@ def _read_timing_file(path: str, word: str):
 def word_timing(values, text: str, performance=None):
     """Return the timing *values* choose for the word *text* (a performance's own for mocap)."""
     from synthesis.fingerspelling.spelling import simple_timing, word_letters
+    from synthesis.fingerspelling.word_timing import TimingError
     from synthesis.timing import constant_timing, normalized_constant_timing
 
     word = "".join(word_letters(text))
@@ -61,7 +62,12 @@ def word_timing(values, text: str, performance=None):
     constant = {"hold_ms": values["hold_ms"], "last_hold_ms": values["last_hold_ms"],
                 "transition_ms": values["transition_ms"]}  # fmt: skip
     if timing == "mocap":
-        return performance.extraction.timing
+        # As performed: the holds only describe it, and a recording whose holds cannot
+        # be found still plays (None).
+        try:
+            return performance.extraction.timing
+        except TimingError:
+            return None
     if timing == "constant":
         return constant_timing(word, **constant)
     if timing in ("variable", "normalized"):

@@ -6,7 +6,8 @@ recording time-warped so that its holds and transitions land on the predicted ti
 natural poses, new rhythm.
 """
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -25,11 +26,26 @@ from synthesis.timing.variable import VariableModel
 
 @dataclass(frozen=True)
 class Recording:
-    """A recorded word: the motion, its letters and what extraction found in it."""
+    """A recorded word: the motion, its letters and what extraction finds in it.
+
+    *known* holds the holds when they are known (a simulation's own); otherwise they
+    are extracted on first use, so a recording played as performed never needs them.
+    """
 
     word: str
     motion: Motion
-    extraction: Extraction
+    side: str = "right"
+    known: Extraction | None = field(default=None, repr=False)
+
+    @cached_property
+    def extraction(self) -> Extraction:
+        """Return the holds and transitions found in the motion (seed 000 §4.2).
+
+        Raise ExtractionError when the hand's poses do not show the word's letters.
+        """
+        if self.known is not None:
+            return self.known
+        return extract(self.motion, self.word, self.side)
 
     @classmethod
     def read(cls, path: str | Path, word: str | None = None, side: str = "right") -> "Recording":
@@ -48,7 +64,12 @@ class Recording:
             motion = captured_hand(read_pose(path), side).motion
         else:
             motion = read_bvh(path)
-        return cls(word, motion, extract(motion, word, side))
+        return cls.from_motion(motion, word, side)
+
+    @classmethod
+    def from_motion(cls, motion: Motion, word: str, side: str = "right") -> "Recording":
+        """Return *motion* as a recording of *word* (its holds are extracted when needed)."""
+        return cls(word.upper(), motion, side)
 
     @classmethod
     def simulate(
@@ -70,7 +91,7 @@ class Recording:
         timing = replace(truth, metadata=metadata)
         bounds = hold_times_s(timing, LEAD_MS)
         empty = np.zeros((0,))
-        return cls(truth.word, motion, Extraction(timing, bounds, empty, empty))
+        return cls(truth.word, motion, side, Extraction(timing, bounds, empty, empty))
 
     def hold_times_s(self) -> np.ndarray:
         """Return each hold's (start, end) in seconds, shape (n_letters, 2), sub-frame."""

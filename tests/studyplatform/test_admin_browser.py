@@ -3,6 +3,7 @@
 from pathlib import Path
 
 import pytest
+from playwright.sync_api import expect
 
 from studyplatform.actions import do_import_study
 from studyplatform.demo import fingerspelling_timing_study
@@ -26,11 +27,13 @@ def test_researcher_signs_in_and_previews_the_demo(page, live_server, researcher
     page.get_by_role("button", name="Log in").click()
     page.get_by_role("link", name="Studies").first.click()
     page.get_by_role("link", name="ASL fingerspelling timing (demo)").click()
+    expect(page.get_by_role("link", name="Preview")).to_be_visible()
     # The admin's own stylesheet is served, so the page is laid out, not bare HTML.
     assert page.locator("#header").evaluate("e => getComputedStyle(e).display") == "flex"
     page.get_by_role("link", name="Preview").click()
-    assert page.locator("section.preview-page").count() == 55
-    assert page.get_by_text("Page 55 of 55").is_visible()
+    # Assertions that wait: a click does not wait for the next page to load.
+    expect(page.locator("section.preview-page")).to_have_count(55)
+    expect(page.get_by_text("Page 55 of 55")).to_be_visible()
     # Clip slots keep their 4:3 box before any clip exists: no layout jump later.
     box = page.locator(".clip-slot").first.bounding_box()
     assert box["width"] > 100 and abs(box["width"] / box["height"] - 4 / 3) < 0.02
@@ -39,6 +42,7 @@ def test_researcher_signs_in_and_previews_the_demo(page, live_server, researcher
     # The ASL videos page lists what participants read, none signed yet in this import.
     page.go_back()
     page.get_by_role("link", name="ASL videos").click()
+    expect(page.locator("#asl-summary")).to_be_visible()
     rows = page.locator("#asl-prompts tbody tr")
     assert rows.count() > 10 and rows.count() == page.locator("tr.unsigned").count()
     assert page.locator("#asl-summary").text_content().strip().startswith(f"0 of {rows.count()}")
@@ -54,7 +58,7 @@ def test_import_form_reports_a_bad_file(page, live_server, researcher, tmp_path)
     page.get_by_role("button", name="Log in").click()
     page.get_by_label("Definition").set_input_files(str(bad))
     page.get_by_role("button", name="Import").click()
-    assert page.get_by_text("Not imported: Not a study definition").is_visible()
+    expect(page.get_by_text("Not imported: Not a study definition")).to_be_visible()
 
 
 def test_stimuli_page_shows_progress_live(page, live_server, researcher, settings, tmp_path,
@@ -90,3 +94,39 @@ def test_stimuli_page_shows_progress_live(page, live_server, researcher, setting
     failure.wait_for()
     assert "GUITAR" in failure.text_content() and "!" in failure.text_content()
     assert page.locator("#stimuli-failed").text_content() == "1"
+
+
+def test_a_word_is_recorded_with_the_camera_and_a_file_uploaded(
+    page, live_server, researcher, settings, tmp_path
+):
+    """The camera recorder posts a real WebM (Chromium's synthetic camera: no hand in
+    it, so its capture fails by name); a BVH file uploaded beside it is used."""
+    import numpy as np
+
+    from synthesis.skeleton.bvh import format_bvh
+    from synthesis.timing import simulate_recording
+
+    settings.MEDIA_ROOT = tmp_path / "media"
+    study = researcher.studies.get(slug="fingerspelling-timing")
+    page.goto(live_server.url + "/admin/login/?next=/admin/")
+    page.get_by_label("Username").fill("alice")
+    page.get_by_label("Password").fill("pw-alice")
+    page.get_by_role("button", name="Log in").click()
+    page.goto(f"{live_server.url}/admin/studyplatform/study/{study.pk}/")
+    page.get_by_role("link", name="Recordings").click()
+    expect(page.locator("#recordings-summary")).to_contain_text("0 of 9")
+    row = page.locator("tr", has=page.get_by_role("rowheader", name="GUITAR"))
+    row.get_by_role("button", name="Record with camera").click()
+    expect(row.get_by_role("button", name="Stop and save")).to_be_visible()
+    page.wait_for_timeout(1500)
+    row.get_by_role("button", name="Stop and save").click()
+    expect(row.locator(".errornote")).to_contain_text("no hand was found", timeout=60_000)
+    motion, _ = simulate_recording("HEAVEN", np.random.default_rng(1), rate_hz=30.0)
+    bvh = tmp_path / "HEAVEN.bvh"
+    bvh.write_text(format_bvh(motion))
+    row = page.locator("tr", has=page.get_by_role("rowheader", name="HEAVEN"))
+    row.get_by_label("File").set_input_files(str(bvh))
+    row.get_by_role("button", name="Upload").click()
+    expect(page.get_by_text("Recording of HEAVEN saved")).to_be_visible()
+    expect(page.locator("#recordings-summary")).to_contain_text("1 of 9")
+    page.screenshot(path=SCREENSHOTS / "admin-recordings.png")

@@ -8,7 +8,8 @@ from http.cookiejar import CookieJar
 import pytest
 from django.core.management import call_command
 
-from studyplatform.models import Study
+from studyplatform.lib.stimuli import clip_spec
+from studyplatform.models import Recording, Study
 
 pytestmark = pytest.mark.django_db
 
@@ -16,6 +17,7 @@ pytestmark = pytest.mark.django_db
 @pytest.fixture
 def seeded(settings, tmp_path, capsys):
     settings.VAR_DIR = tmp_path
+    settings.MEDIA_ROOT = tmp_path / "media"
     call_command("seed_demo")
     return capsys.readouterr().out
 
@@ -30,7 +32,8 @@ def test_seeding_again_changes_nothing_and_prints_the_same_login(seeded, capsys)
     counts = Study.objects.count()
     call_command("seed_demo")
     again = capsys.readouterr().out
-    assert Study.objects.count() == counts == 2
+    assert Study.objects.count() == counts == 3
+    assert Recording.objects.count() == 9  # the alphabet study's human letters, once
     assert re.search(r"Password:\s+(\S+)", again).group(1) == re.search(
         r"Password:\s+(\S+)", seeded
     ).group(1)
@@ -58,6 +61,16 @@ def test_fingerspelling_demo_is_the_spec_02_design(seeded):
     assert check.expected_answer == "3"
 
 
+def test_alphabet_demo_shows_each_letter_from_both_sources(seeded):
+    study = Study.objects.get(slug="alphabet-legibility")
+    trials = study.trials.filter(kind="intelligibility")
+    assert Counter(t.condition_a.key for t in trials) == {"engine": 9, "human": 9}
+    assert {t.item.key for t in trials} == set("ABCDLOSVY")
+    # Every letter carries a real signer's recording (prepared by a job after commit).
+    assert Recording.objects.filter(item__study=study).count() == 9
+    assert not study.conditions.filter(is_simulated=True).exists()
+
+
 def test_spine_demo_is_the_spec_03_design(seeded):
     study = Study.objects.get(slug="spine-motion")
     assert study.asl_first
@@ -71,6 +84,7 @@ def test_spine_demo_is_the_spec_03_design(seeded):
 @pytest.mark.django_db(transaction=True)
 def test_demo_serves_home_and_admin_over_http(live_server, settings, tmp_path, capsys):
     settings.VAR_DIR = tmp_path
+    settings.MEDIA_ROOT = tmp_path / "media"
     call_command("seed_demo")
     password = re.search(r"Password:\s+(\S+)", capsys.readouterr().out).group(1)
 
@@ -93,3 +107,8 @@ def test_demo_serves_home_and_admin_over_http(live_server, settings, tmp_path, c
     studies = opener.open(live_server.url + "/admin/studyplatform/study/").read().decode()
     assert "ASL fingerspelling timing (demo)" in studies
     assert "Automated spine motion in ASL sentences (demo)" in studies
+    # The alphabet study's human letters were captured (fitted) by the seeding's jobs.
+    human = Study.objects.get(slug="alphabet-legibility").conditions.get(key="human")
+    letter = human.study.items.get(key="B")
+    assert letter.recordings.get().status == Recording.Status.READY
+    assert clip_spec(human, letter).parameters["recording"].endswith(".pose")

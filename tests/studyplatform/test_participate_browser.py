@@ -10,6 +10,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from playwright.sync_api import expect
 
 from studyplatform.lib.stimuli import clip_spec, needed_pairs
 from studyplatform.models import MediaEvent, Participant, Response, Stimulus, Trial
@@ -134,7 +135,7 @@ def test_fingerspelling_study_from_link_to_completion_code(
         _wait_ready(page)
         number, key = _current(page)
         trial = Trial.objects.get(study=fingerspelling, key=key)
-        assert page.get_by_text(f"Page {number} of {total}").is_visible()
+        expect(page.get_by_text(f"Page {number} of {total}")).to_be_visible()
         if trial.item_id and trial.condition_a_id:
             video = page.locator("video.stimulus").first
             assert video.evaluate("v => v.readyState") >= 3  # preloaded before it shows
@@ -363,7 +364,7 @@ def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     page.reload()
     _wait_ready(page)
     assert page.locator(".signed-preview").get_attribute("src").endswith(".webm")
-    assert page.get_by_role("button", name="Record again").is_visible()
+    expect(page.get_by_role("button", name="Record again")).to_be_visible()
 
 
 def test_replay_limit_and_watching_to_the_end(page, live_server, fingerspelling, clips_dir,
@@ -384,7 +385,8 @@ def test_replay_limit_and_watching_to_the_end(page, live_server, fingerspelling,
     _wait_ready(page)
     assert page.locator(".clip-slot").first.bounding_box() == before  # no layout jump
     choice = page.locator('input[name="q-most-natural"][value="1"]')
-    assert choice.is_disabled() and page.get_by_text("watch each clip to its end").is_visible()
+    assert choice.is_disabled()
+    expect(page.get_by_text("watch each clip to its end")).to_be_visible()
     assert page.locator("video.stimulus").first.evaluate("v => v.controls") is False
     for clip in (1, 2):
         page.get_by_role("button", name=f"Play Clip {clip}").click()

@@ -120,3 +120,14 @@ def test_own_skeleton_is_used_as_it_is():
     dofs = letter_pose("F")[None]
     motion = Motion(model.skeleton, model.channel_values(dofs), 1 / 60)
     assert np.allclose(retarget(motion, model).positions_m, model.pose(dofs).positions_m)
+
+
+def test_an_end_site_after_a_fingers_last_joint_is_its_tip():
+    from synthesis.skeleton.bvh import format_bvh, parse_bvh
+
+    model = HandModel()
+    motion = Motion(model.skeleton, model.channel_values(model.neutral()[None]), 1 / 30)
+    read_back = parse_bvh(format_bvh(motion))
+    mapping = detect_mapping(read_back.skeleton)
+    assert mapping.to_canonical["index_dip_End"] == "index_tip"
+    assert mapping.to_canonical["thumb_ip_End"] == "thumb_tip"

@@ -56,3 +56,41 @@ def test_training_on_recordings_and_the_duration_table(tmp_path):
     table = format_table(rows)
     assert table.splitlines()[0].startswith("| word | mocap (ms) |")
     assert "| mean |error| |" in table
+
+
+def test_a_hand_motion_read_back_from_bvh_is_the_motion_written(tmp_path):
+    """BVH End Sites have no names; the hand still reads back as the rig's own skeleton,
+    so its poses (and the holds found in them) are exactly the written ones."""
+    from synthesis.rigs.retarget import retarget
+    from synthesis.skeleton.bvh import read_bvh
+    from synthesis.timing import simulate_recording
+
+    motion, _ = simulate_recording("PSYCHIATRY", np.random.default_rng(1), rate_hz=30.0)
+    write_bvh(motion, tmp_path / "PSYCHIATRY.bvh")
+    again = read_bvh(tmp_path / "PSYCHIATRY.bvh")
+    assert again.skeleton.names != motion.skeleton.names  # End Sites renamed
+    model = HandModel()
+    np.testing.assert_allclose(
+        retarget(again, model).quaternions, retarget(motion, model).quaternions, atol=1e-9
+    )
+    assert Recording.read(tmp_path / "PSYCHIATRY.bvh").extraction.timing.word == "PSYCHIATRY"
+
+
+def test_a_recording_whose_holds_are_not_found_plays_only_as_performed(tmp_path):
+    from synthesis.techniques import ClipRequest, build_motion
+    from synthesis.timing import ExtractionError
+
+    _save(tmp_path, "DAVID", np.random.default_rng(2))
+    path = str(tmp_path / "DAVID.bvh")
+    # Read as another word, the holds cannot be found: as performed it still plays...
+    mocap = ClipRequest.from_parameters(
+        "word", "HEAVEN", {"source": "recording", "recording": path, "timing": "mocap"}
+    )
+    build = build_motion(mocap)
+    assert build.timing is None and len(build.motion.quaternions) > 0
+    # ...but a condition that retimes it names the problem.
+    retimed = ClipRequest.from_parameters(
+        "word", "HEAVEN", {"source": "recording", "recording": path, "timing": "constant"}
+    )
+    with pytest.raises(ExtractionError, match="letters of HEAVEN"):
+        build_motion(retimed)

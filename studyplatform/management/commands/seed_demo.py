@@ -8,8 +8,9 @@ from django.core.management import call_command
 from django.core.management.base import BaseCommand
 
 from studyplatform.actions import do_import_study
-from studyplatform.demo import DEMO_STUDIES
+from studyplatform.demo import DEMO_SETUP, DEMO_STUDIES
 from studyplatform.models import Study
+from synthesis.capture.lexicon import LexiconMissing
 
 ADMIN_USERNAME = "admin"
 
@@ -28,17 +29,20 @@ class Command(BaseCommand):
 
     def handle(self, *args, url: str, render: bool, workers: int, **options) -> None:
         admin = self._ensure_admin()
+        ready = []
         for build in DEMO_STUDIES:
             data = build()
             slug = data["study"]["slug"]
-            if Study.objects.filter(slug=slug).exists():
+            study = Study.objects.filter(slug=slug).first()
+            if study is not None:
                 self.stdout.write(f"Demo study '{slug}' already loaded.")
-                continue
-            result = do_import_study(data, owner=admin, slug=slug)
-            self.stdout.write(self.style.SUCCESS(f"Loaded demo study '{result.study.title}'."))
+            else:
+                study = do_import_study(data, owner=admin, slug=slug).study
+                self.stdout.write(self.style.SUCCESS(f"Loaded demo study '{study.title}'."))
+            if self._set_up(study):
+                ready.append(slug)
         if render:
-            for build in DEMO_STUDIES:
-                slug = build()["study"]["slug"]
+            for slug in ready:
                 self.stdout.write(
                     f"Rendering the stimuli of '{slug}' (cached after the first run)…"
                 )
@@ -54,6 +58,21 @@ class Command(BaseCommand):
                 f"  Take part:       {url}s/{build()['study']['slug']}/\n" for build in DEMO_STUDIES
             )
         )
+
+    def _set_up(self, study: Study) -> bool:
+        """Attach what the demo study needs besides its definition; return whether it can
+        be rendered."""
+        setup = DEMO_SETUP.get(study.slug)
+        if setup is None:
+            return True
+        try:
+            attached = setup(study)
+        except LexiconMissing as error:
+            self.stderr.write(self.style.WARNING(f"'{study.slug}' is not rendered: {error}"))
+            return False
+        if attached:
+            self.stdout.write(f"Attached {attached} recording(s) to '{study.slug}'.")
+        return True
 
     def _ensure_admin(self):
         """Return the demo superuser, creating it (or resetting a lost password)."""

@@ -1,0 +1,149 @@
+"""Attach recordings to a study's words and turn them into the motion clips retime.
+
+:func:`do_attach_recording` stores an upload and queues its preparation (a Celery job
+sent on commit): a video is captured with MediaPipe into a ``.pose`` file, and every
+recording is fitted and its holds extracted before it is marked ready. Until then the
+item's older recording (or the simulated stand-in) stays in use.
+"""
+
+import hashlib
+
+from django.core.exceptions import ValidationError
+from django.core.files.base import ContentFile
+from django.db import transaction
+
+from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
+from studyplatform.models import Item, Recording, Study
+from studyplatform.models.recordings import MOTION_SUFFIXES, VIDEO_SUFFIXES
+
+MAX_RECORDING_BYTES = 300 * 1024 * 1024
+
+
+class RecordingRejected(ValidationError):
+    """An upload that cannot be a recording of the item; nothing was stored."""
+
+
+def _check_motion_file(name: str, data: bytes) -> None:
+    """Raise RecordingRejected if a .pose or BVH upload does not parse."""
+    from synthesis.capture import PoseFileError, parse_pose
+    from synthesis.skeleton.bvh import BvhError, parse_bvh
+
+    try:
+        if name.lower().endswith(".pose"):
+            recording = parse_pose(data, name)
+            if not any(recording.found_hands().values()):
+                raise PoseFileError(f"{name}: no hand in any frame.")
+        else:
+            parse_bvh(data.decode("utf-8"), name)
+    except UnicodeDecodeError:
+        raise RecordingRejected(f"“{name}” is not a BVH text file.") from None
+    except (PoseFileError, BvhError) as error:
+        raise RecordingRejected(str(error)) from None
+
+
+def do_attach_recording(item: Item, upload, mirrored: bool = False,
+                        one_hand: bool = False) -> Recording:  # fmt: skip
+    """Store *upload* as a recording of *item* and queue its preparation.
+
+    Raise RecordingRejected for an item that is not a word, a file that is neither a
+    video nor a .pose or BVH file, one over 300 MB, or a .pose or BVH file that does not
+    parse; nothing is stored then.
+    """
+    from studyplatform.tasks import prepare_recording
+
+    name = getattr(upload, "name", "") or ""
+    if item.kind != Item.Kind.WORD:
+        raise RecordingRejected(
+            f"{item.key} is a {item.get_kind_display().lower()}: only fingerspelled words "
+            "take recordings."
+        )
+    suffixes = VIDEO_SUFFIXES + MOTION_SUFFIXES
+    if not name.lower().endswith(suffixes):
+        raise RecordingRejected(
+            f"“{name}” is not a recording: upload a video ({', '.join(VIDEO_SUFFIXES)}), "
+            "a .pose file or a BVH file."
+        )
+    if upload.size > MAX_RECORDING_BYTES:
+        raise RecordingRejected("The recording is larger than 300 MB.")
+    data = upload.read()
+    if not name.lower().endswith(VIDEO_SUFFIXES):
+        _check_motion_file(name, data)
+    with transaction.atomic():
+        recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand,
+                              sha256=hashlib.sha256(data).hexdigest())  # fmt: skip
+        recording.upload.save(name, ContentFile(data), save=False)
+        recording.save()
+        transaction.on_commit(lambda: prepare_recording.delay(recording.pk))
+    return recording
+
+
+def do_report_capture_progress(recording: Recording, percent: int) -> None:
+    """Record how far the recording's capture has come (0–100)."""
+    Recording.objects.filter(pk=recording.pk, status=Recording.Status.CAPTURING).update(
+        progress_percent=max(0, min(100, int(percent)))
+    )
+
+
+def do_fail_recording(recording: Recording, error: Exception) -> str:
+    """Record why the recording cannot be used; return its status."""
+    Recording.objects.filter(pk=recording.pk).update(
+        status=Recording.Status.FAILED, error=str(error)
+    )
+    return Recording.Status.FAILED
+
+
+def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None = None) -> str:
+    """Mark the recording ready, with its captured landmarks (*pose*) for a video.
+
+    Older recordings of the item are removed with their files, and the study's stand-in
+    conditions are relabelled (:func:`do_relabel_stand_ins`).
+    """
+    with transaction.atomic():
+        recording = Recording.objects.select_for_update().get(pk=recording.pk)
+        if pose is not None:
+            stem = recording.upload.name.rsplit("/", 1)[-1].rsplit(".", 1)[0]
+            recording.motion.save(f"{stem}.pose", ContentFile(pose), save=False)
+        else:
+            recording.motion.name = recording.upload.name
+        recording.status = Recording.Status.READY
+        recording.progress_percent = 100
+        recording.quality = quality
+        recording.error = ""
+        recording.save()
+        older = list(Recording.objects.filter(item_id=recording.item_id).exclude(pk=recording.pk))
+        files = {f.name for old in older for f in (old.upload, old.motion) if f}
+        Recording.objects.filter(pk__in=[old.pk for old in older]).delete()
+        for name in files:
+            transaction.on_commit(lambda name=name: recording.upload.storage.delete(name))
+        do_relabel_stand_ins(recording.item.study)
+    return recording.status
+
+
+def do_delete_recordings(recordings) -> int:
+    """Delete recordings with their files and relabel their studies; return how many."""
+    with transaction.atomic():
+        recordings = list(Recording.objects.select_for_update().filter(
+            pk__in=[r.pk for r in recordings]).select_related("item__study"))  # fmt: skip
+        files = {f.name for r in recordings for f in (r.upload, r.motion) if f}
+        studies = {r.item.study for r in recordings}
+        Recording.objects.filter(pk__in=[r.pk for r in recordings]).delete()
+        for study in studies:
+            do_relabel_stand_ins(study)
+        storage = Recording._meta.get_field("upload").storage
+        for name in files:
+            transaction.on_commit(lambda name=name: storage.delete(name))
+    return len(recordings)
+
+
+def do_relabel_stand_ins(study: Study) -> int:
+    """Label the study's motion-capture stand-ins simulated exactly while a word lacks a
+    recording; return how many conditions changed."""
+    simulated = bool(words_without_recording(study))
+    changed = 0
+    with transaction.atomic():
+        for condition in stand_in_conditions(study):
+            if condition.is_simulated != simulated:
+                condition.is_simulated = simulated
+                condition.save(update_fields=["is_simulated"])
+                changed += 1
+    return changed

@@ -1,0 +1,138 @@
+"""Define the Alphabet legibility study: engine letters against human-captured letters.
+
+Participants see one letter per page on the same hand avatar and type which letter it
+is (scored automatically). Each letter comes twice: formed by the engine's alphabet, and
+as a real signer's recording (the spoken-to-signed package's ASL lexicon, fitted to the
+hand: :func:`attach_human_letters`). It measures how legible each source's handshapes
+are, the question behind seed 000 ch. 3's hand-fidelity work.
+"""
+
+from typing import Any
+
+from studyplatform.demo.common import definition, numbered, scale
+
+SLUG = "alphabet-legibility"
+# Letters of distinct families: fist (A, S), flat (B), curved (C, O), pointing (D, L),
+# two fingers (V), thumb and pinky (Y).
+LETTERS = ("A", "B", "C", "D", "L", "O", "S", "V", "Y")
+
+CONDITIONS = (
+    {
+        "key": "engine",
+        "label": "Engine alphabet",
+        "description": "The letter as the engine's hand alphabet forms it.",
+        "parameters": {"source": "alphabet", "timing": "constant", "last_hold_ms": 1200},
+    },
+    {
+        "key": "human",
+        "label": "Human-captured",
+        "description": (
+            "A real signer's recording of the letter (spoken-to-signed ASL lexicon), fitted "
+            "to the same hand and played as performed."
+        ),
+        "parameters": {"source": "recording", "timing": "mocap"},
+    },
+)
+
+
+def alphabet_legibility_study() -> dict[str, Any]:
+    """Return the definition of the 2 sources × 9 letters identification study."""
+    questions = numbered(
+        [
+            {
+                "key": "asl-fluency",
+                "kind": "choice",
+                "text": "How fluent are you in ASL?",
+                "options": scale(
+                    [
+                        "Completely fluent (native or primary language)",
+                        "Somewhat fluent (studied ASL)",
+                        "Know some ASL, but not fluent",
+                        "Do not know ASL",
+                    ]
+                ),
+            },
+            {
+                "key": "which-letter",
+                "kind": "intelligibility",
+                "text": "Which letter is the hand showing? Type the letter.",
+            },
+        ]
+    )
+    blocks = numbered(
+        [
+            {"key": "about-you", "kind": "demographics", "title": "About you"},
+            {
+                "key": "letters",
+                "kind": "trials",
+                "title": "Letters",
+                "intro_text": "Each page shows one fingerspelled letter. Type the letter you see.",
+                "randomize_order": True,
+            },
+        ]
+    )
+    trials = [
+        {
+            "key": "about-you",
+            "block": "about-you",
+            "kind": "demographic",
+            "questions": ["asl-fluency"],
+        }
+    ]
+    for letter in LETTERS:
+        for condition in CONDITIONS:
+            trials.append(
+                {
+                    "key": f"{letter.lower()}-{condition['key']}",
+                    "block": "letters",
+                    "kind": "intelligibility",
+                    "item": letter,
+                    "condition_a": condition["key"],
+                    "questions": ["which-letter"],
+                }
+            )
+    return definition(
+        {
+            "slug": SLUG,
+            "title": "ASL alphabet legibility (demo)",
+            "description": (
+                "Can signers read the avatar's letters? The engine's handshapes against "
+                "real signers' captured handshapes on the same hand."
+            ),
+            "status": "open",
+            "consent_text": (
+                "This study shows short animations of single ASL letters and asks which "
+                "letter you see. It takes about 5 minutes. Your answers are anonymous; you "
+                "may stop at any time. Continuing means you agree to take part."
+            ),
+            "completion_code": "ALPHABET-DEMO",
+        },
+        conditions=numbered(list(CONDITIONS)),
+        items=numbered([{"key": letter, "kind": "word", "text": letter} for letter in LETTERS]),
+        questions=questions,
+        blocks=blocks,
+        trials=numbered(trials),
+    )
+
+
+def attach_human_letters(study) -> int:
+    """Attach each letter's human recording to the study's items; return how many.
+
+    Raise LexiconMissing when the recordings' package is not installed. Letters that
+    already have a recording keep it.
+    """
+    from django.core.files import File
+
+    from studyplatform.actions import do_attach_recording
+    from synthesis.capture.lexicon import human_letter_files
+
+    files = human_letter_files()
+    attached = 0
+    for item in study.items.filter(recordings__isnull=True):
+        path = files.get(item.text.upper())
+        if path is None:
+            continue
+        with open(path, "rb") as handle:
+            do_attach_recording(item, File(handle, name=f"{item.key}.pose"))
+        attached += 1
+    return attached

@@ -1,0 +1,138 @@
+"""Read which recording an item's clips are made from, and which conditions it replaces.
+
+An item's performance is its newest ready recording. A condition whose performance is
+"a recording" without naming a file retimes each item's own recording; one whose
+performance is "a simulated capture" does so too where the item has a recording, so the
+simulated stand-in remains only where no recording exists (seed 000 §4.3).
+"""
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from studyplatform.models import Condition, Item, Recording, Study
+
+# Stands for "each item's own recording" when a condition's parameters are checked or
+# described; the real file is found when a clip is specified.
+ITEM_RECORDING = "each word's own recording"
+
+
+def current_recording(item: Item) -> Recording | None:
+    """Return the item's newest ready recording, or None."""
+    ready = item.recordings.filter(status=Recording.Status.READY).exclude(motion="")
+    return ready.order_by("-created_at", "-pk").first()
+
+
+def recording_path(recording: Recording) -> str:
+    """Return the file path of the motion a recording's clips are made from."""
+    return str(Path(recording.motion.path))
+
+
+def uses_item_recording(parameters: Mapping[str, Any]) -> bool:
+    """Return whether a condition with *parameters* retimes each item's own recording."""
+    return parameters.get("source") == "recording" and not parameters.get("recording")
+
+
+def as_checked(parameters: Mapping[str, Any]) -> dict:
+    """Return *parameters* as the registry checks them: a condition that retimes each
+    word's own recording names it by :data:`ITEM_RECORDING`."""
+    parameters = dict(parameters)
+    if uses_item_recording(parameters):
+        parameters["recording"] = ITEM_RECORDING
+    return parameters
+
+
+def with_recording(parameters: Mapping[str, Any], kind: str, path: str | None) -> dict:
+    """Return *parameters* with the item's recording at *path* as the performance.
+
+    Only words have performances; a condition naming its own recording file keeps it.
+    """
+    parameters = dict(parameters)
+    if kind != Item.Kind.WORD or path is None or parameters.get("recording"):
+        return parameters
+    if parameters.get("source") in ("recording", "simulated"):
+        parameters.update(source="recording", recording=path)
+    return parameters
+
+
+def is_simulated_stand_in(parameters: Mapping[str, Any]) -> bool:
+    """Return whether a condition shows the simulated capture as it is (its own timing).
+
+    That condition stands in for motion capture: it is labelled simulated exactly while
+    some word of its study has no recording.
+    """
+    return parameters.get("source") == "simulated" and parameters.get("timing") == "mocap"
+
+
+def words_without_recording(study: Study) -> list[Item]:
+    """Return the study's words that have no ready recording, in design order."""
+    ready = Recording.objects.filter(item__study=study, status=Recording.Status.READY)
+    recorded = set(ready.exclude(motion="").values_list("item_id", flat=True))
+    words = study.items.filter(kind=Item.Kind.WORD)
+    return [item for item in words if item.pk not in recorded]
+
+
+def stand_in_conditions(study: Study) -> list[Condition]:
+    """Return the study's conditions that stand in for motion capture."""
+    return [c for c in study.conditions.all() if is_simulated_stand_in(c.parameters or {})]
+
+
+def recordings_overview(study: Study) -> dict:
+    """Return each word of the study with the recording in use and the newest attempt.
+
+    For the admin's Recordings page and its progress poll: ``words`` lists per word its
+    key, text, the ready recording's quality and the newest upload's status, progress
+    and error; ``capturing`` counts uploads still being captured.
+    """
+    words = []
+    recordings = Recording.objects.filter(item__study=study).order_by("-created_at", "-pk")
+    newest: dict[int, Recording] = {}
+    ready: dict[int, Recording] = {}
+    for recording in recordings:
+        newest.setdefault(recording.item_id, recording)
+        if recording.status == Recording.Status.READY:
+            ready.setdefault(recording.item_id, recording)
+    for item in study.items.filter(kind=Item.Kind.WORD):
+        latest, used = newest.get(item.pk), ready.get(item.pk)
+        words.append({
+            "item": item.pk,
+            "key": item.key,
+            "text": item.text,
+            "used": _describe(used),
+            "latest": _describe(latest) if latest is not None and latest != used else None,
+        })  # fmt: skip
+    capturing = sum(1 for r in newest.values() if r.status == Recording.Status.CAPTURING)
+    return {
+        "words": words,
+        "recorded": sum(1 for word in words if word["used"]),
+        "capturing": capturing,
+    }
+
+
+def _describe(recording: Recording | None) -> dict | None:
+    if recording is None:
+        return None
+    quality = recording.quality or {}
+    found = quality.get("hands_found") or {}
+    return {
+        "id": recording.pk,
+        "file": recording.upload.name.rsplit("/", 1)[-1],
+        "url": recording.upload.url,
+        "status": recording.status,
+        "status_label": recording.get_status_display(),
+        "percent": recording.progress_percent,
+        "error": recording.error,
+        "frames": quality.get("frames"),
+        "hand_found_percent": round(100 * max(found.values())) if found else None,
+        "residual_mm": quality.get("residual_mm_median"),
+    }
+
+
+def retimes_recordings(study: Study) -> bool:
+    """Return whether a condition of the study retimes its words' recordings (so their
+    holds must be found), rather than only playing them as performed."""
+    return any(
+        (c.parameters or {}).get("source") in ("recording", "simulated")
+        and (c.parameters or {}).get("timing", "simple") != "mocap"
+        for c in study.conditions.all()
+    )

@@ -1,0 +1,67 @@
+"""Record a signer's performance of an item: the Motion capture its conditions retime."""
+
+from django.db import models
+
+from studyplatform.models.studies import Item
+
+VIDEO_SUFFIXES = (".mp4", ".webm", ".mov")
+MOTION_SUFFIXES = (".pose", ".bvh")
+
+
+class Recording(models.Model):
+    """A recording of one item (video, ``.pose`` or BVH) and the motion made from it.
+
+    An item's newest ready recording is its performance: every condition whose
+    performance is a simulated capture or a recording retimes it (seed 000 §4.3). An
+    older recording stays in use until a newer one is ready, so a failed capture loses
+    nothing.
+    """
+
+    class Status(models.TextChoices):
+        CAPTURING = "capturing", "Capturing"
+        READY = "ready", "Ready"
+        FAILED = "failed", "Failed"
+
+    item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="recordings")
+    upload = models.FileField(
+        upload_to="recordings/",
+        help_text="The file as uploaded: a video of the signer (MP4, WebM, MOV), a .pose "
+        "file of landmarks, or a BVH motion.",
+    )
+    motion = models.FileField(
+        upload_to="recordings/",
+        blank=True,
+        help_text="What clips are made from: the uploaded .pose or BVH file, or for a video "
+        "the hand landmarks captured from it (.pose).",
+    )
+    mirrored = models.BooleanField(
+        default=False, help_text="The video is mirrored (a front camera's selfie view)."
+    )
+    one_hand = models.BooleanField(
+        default=False,
+        help_text="The video is a close-up of the signing hand only (captured as that hand "
+        "whatever side it looks like).",
+    )
+    status = models.CharField(
+        max_length=10, choices=Status.choices, default=Status.CAPTURING, db_index=True
+    )
+    progress_percent = models.PositiveSmallIntegerField(default=0)
+    quality = models.JSONField(
+        default=dict,
+        blank=True,
+        help_text="Frames with the hand found, mean confidence, fit residual (mm), jitter.",
+    )
+    error = models.TextField(blank=True)
+    sha256 = models.CharField("SHA-256 of the upload", max_length=64, blank=True)
+    created_at = models.DateTimeField(auto_now_add=True)
+
+    class Meta:
+        ordering = ["item", "-created_at", "-pk"]
+
+    def __str__(self) -> str:
+        return f"{self.item.key}: {self.upload.name.rsplit('/', 1)[-1]}"
+
+    @property
+    def is_video(self) -> bool:
+        """Return whether the upload is a video (captured before use)."""
+        return self.upload.name.lower().endswith(VIDEO_SUFFIXES)

@@ -1,0 +1,215 @@
+"""Test words carrying their recordings: upload, capture, the four conditions made from
+them, the motion-capture condition's simulated label, and bad uploads.
+
+Recordings here are the engine's simulated captures written as BVH and as .pose
+landmarks (synthesis.timing.simulate), and one video rendered by the engine and captured
+back with MediaPipe.
+"""
+
+import numpy as np
+import pytest
+from django.core.files.uploadedfile import SimpleUploadedFile
+
+from stimuli.clips import ClipError, render
+from studyplatform.actions import (
+    RecordingRejected,
+    do_attach_recording,
+    do_delete_recordings,
+    do_generate_stimuli,
+)
+from studyplatform.lib.recordings import current_recording
+from studyplatform.lib.stimuli import clip_spec
+from studyplatform.models import Condition, Item, Recording, Stimulus, Trial
+from synthesis.capture import format_pose, from_hand_motion
+from synthesis.fingerspelling.spelling import spell
+from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.bvh import format_bvh
+from synthesis.timing import simulate_recording
+
+pytestmark = pytest.mark.django_db
+SMALL = {"width": 64, "height": 48, "rate_hz": 20.0}
+
+
+def _simulated(word: str, seed: int, rate_hz: float = 30.0):
+    motion, truth = simulate_recording(word, np.random.default_rng(seed), rate_hz=rate_hz)
+    return motion, truth
+
+
+def _bvh(word: str, seed: int = 1) -> SimpleUploadedFile:
+    motion, _ = _simulated(word, seed)
+    return SimpleUploadedFile(f"{word}.bvh", format_bvh(motion).encode())
+
+
+def _pose(word: str, seed: int = 1, rate_hz: float = 20.0) -> SimpleUploadedFile:
+    _, truth = _simulated(word, seed, rate_hz)
+    model = HandModel()
+    dofs = spell(word, "right", rate_hz, truth, 250.0)
+    return SimpleUploadedFile(f"{word}.pose", format_pose(from_hand_motion(model, dofs, rate_hz)))
+
+
+def _attach(item, upload, capture, **options) -> Recording:
+    with capture(execute=True):
+        recording = do_attach_recording(item, upload, **options)
+    recording.refresh_from_db()
+    return recording
+
+
+@pytest.fixture
+def media(settings, tmp_path):
+    settings.MEDIA_ROOT = tmp_path / "media"
+    return settings.MEDIA_ROOT
+
+
+def test_every_condition_retimes_the_words_recording(
+    fingerspelling, media, tmp_path, renderable, django_capture_on_commit_callbacks
+):
+    item = fingerspelling.items.get(key="DAVID")
+    recording = _attach(item, _pose("DAVID"), django_capture_on_commit_callbacks)
+    assert recording.status == Recording.Status.READY, recording.error
+    assert recording.motion.name == recording.upload.name  # a .pose is used as it is
+    assert recording.quality["residual_mm_median"] < 2.0
+    clips = {}
+    for condition in fingerspelling.conditions.all():
+        condition.parameters = {**condition.parameters, **SMALL}
+        spec = clip_spec(condition, item)
+        assert spec.parameters["source"] == "recording"
+        assert spec.parameters["recording"] == recording.motion.path
+        clips[condition.key] = render(spec, tmp_path / "clips")
+    assert len({clip.sha256 for clip in clips.values()}) == 4
+    # Motion capture is the recording as performed: its duration is the recording's.
+    performed, _ = _simulated("DAVID", 1, 20.0)
+    assert clips["mocap"].duration_ms == pytest.approx(1000 * performed.duration_s, abs=100)
+    assert clips["constant"].duration_ms != clips["variable"].duration_ms
+
+
+def test_the_stand_in_is_labelled_simulated_until_every_word_has_a_recording(
+    fingerspelling, media, django_capture_on_commit_callbacks
+):
+    mocap = fingerspelling.conditions.get(key="mocap")
+    assert mocap.is_simulated
+    words = list(fingerspelling.items.filter(kind=Item.Kind.WORD))
+    for number, item in enumerate(words):
+        _attach(item, _bvh(item.text), django_capture_on_commit_callbacks)
+        mocap.refresh_from_db()
+        assert item.recordings.get().status == Recording.Status.READY, item.recordings.get().error
+        assert mocap.is_simulated == (number < len(words) - 1)
+    assert str(mocap) == "Motion capture"
+    # Clips are now made from the recordings; removing one brings the label back.
+    spec = clip_spec(mocap, words[0])
+    assert spec.parameters["recording"].endswith(".bvh")
+    do_delete_recordings(words[0].recordings.all())
+    mocap.refresh_from_db()
+    assert mocap.is_simulated and current_recording(words[0]) is None
+    assert clip_spec(mocap, words[0]).parameters["source"] == "simulated"
+
+
+def test_a_new_recording_replaces_the_old_only_once_it_is_ready(
+    fingerspelling, media, django_capture_on_commit_callbacks
+):
+    item = fingerspelling.items.get(key="HEAVEN")
+    first = _attach(item, _bvh("HEAVEN"), django_capture_on_commit_callbacks)
+    # A BVH that parses but spells another word cannot be retimed: it fails, the first stays.
+    wrong = _attach(item, _bvh("A"), django_capture_on_commit_callbacks)
+    assert wrong.status == Recording.Status.FAILED and wrong.error
+    assert current_recording(item) == first and first.upload.storage.exists(first.upload.name)
+    second = _attach(item, _bvh("HEAVEN", seed=2), django_capture_on_commit_callbacks)
+    assert current_recording(item) == second
+    assert list(item.recordings.all()) == [second]
+    assert not first.upload.storage.exists(first.upload.name)
+
+
+@pytest.mark.parametrize(
+    ("name", "data", "message"),
+    [
+        ("notes.txt", b"hello", "is not a recording"),
+        ("HEAVEN.pose", b"\x00\x01 not a pose file", "HEAVEN.pose"),
+        ("HEAVEN.bvh", b"HIERARCHY\nROOT", "HEAVEN.bvh"),
+        ("HEAVEN.bvh", b"\xff\xfe\x00", "not a BVH text file"),
+    ],
+)
+def test_bad_uploads_are_named_and_store_nothing(fingerspelling, media, name, data, message):
+    item = fingerspelling.items.get(key="HEAVEN")
+    with pytest.raises(RecordingRejected, match=message):
+        do_attach_recording(item, SimpleUploadedFile(name, data))
+    assert not Recording.objects.exists()
+    assert not (media / "recordings").exists() or not any((media / "recordings").iterdir())
+
+
+def test_a_pose_file_without_hands_is_refused(fingerspelling, media):
+    model = HandModel()
+    recording = from_hand_motion(model, np.zeros((3, len(model.dofs))), 10)
+    empty = format_pose(type(recording)(recording.fps, recording.components, recording.points,
+                                        np.zeros_like(recording.confidence), 10, 10))  # fmt: skip
+    with pytest.raises(RecordingRejected, match="no hand"):
+        do_attach_recording(fingerspelling.items.get(key="HEAVEN"),
+                            SimpleUploadedFile("HEAVEN.pose", empty))  # fmt: skip
+
+
+def test_only_words_take_recordings(spine, media):
+    sentence = spine.items.first()
+    with pytest.raises(RecordingRejected, match="only fingerspelled words"):
+        do_attach_recording(sentence, _bvh("A"))
+
+
+def test_a_condition_on_each_words_recording_names_a_word_without_one(fingerspelling, media):
+    condition = Condition(study=fingerspelling, key="captured", label="Captured",
+                          parameters={"source": "recording", "timing": "mocap"})  # fmt: skip
+    condition.full_clean()  # valid: each word's own recording is found when rendering
+    condition.save()
+    trial = Trial.objects.filter(block__study=fingerspelling, kind="pairwise").first()
+    trial.condition_b = condition
+    trial.save()
+    with pytest.raises(ClipError, match=f"{trial.item.key} has no recording yet"):
+        do_generate_stimuli(fingerspelling, enqueue=False)
+    assert not Stimulus.objects.filter(condition=condition).exists()
+
+
+def test_a_video_is_captured_into_landmarks_with_progress(
+    fingerspelling, media, tmp_path, renderable, django_capture_on_commit_callbacks
+):
+    from synthesis.techniques import ClipRequest, render_request
+
+    video = tmp_path / "AB.mp4"
+    request = ClipRequest.from_parameters(
+        "word", "AB", {"timing": "constant", "view": "hand", "width": 320, "height": 240,
+                       "rate_hz": 15.0})  # fmt: skip
+    render_request(request, video)
+    item = Item.objects.create(study=fingerspelling, key="AB", text="AB")
+    upload = SimpleUploadedFile("AB.mp4", video.read_bytes())
+    recording = _attach(item, upload, django_capture_on_commit_callbacks, one_hand=True)
+    assert recording.status == Recording.Status.READY, recording.error
+    assert recording.motion.name.endswith(".pose") and recording.progress_percent == 100
+    assert recording.quality["hands_found"]["right"] > 0.8
+    assert (
+        clip_spec(fingerspelling.conditions.get(key="mocap"), item)
+        .parameters["recording"]
+        .endswith(".pose")
+    )
+
+
+def test_the_recordings_page_uploads_and_reports_progress(
+    client, alice, bob, fingerspelling, media, django_capture_on_commit_callbacks
+):
+    client.force_login(alice)
+    url = f"/admin/studyplatform/study/{fingerspelling.pk}/recordings/"
+    page = client.get(url)
+    assert page.status_code == 200
+    assert "0 of 9</strong> words have a recording" in page.text
+    item = fingerspelling.items.get(key="HEAVEN")
+    with django_capture_on_commit_callbacks(execute=True):
+        saved = client.post(url, {"item": item.pk, "recording": _bvh("HEAVEN")})
+    assert saved.status_code == 302
+    response = client.get(url)
+    assert "Recording of HEAVEN saved" in response.text
+    assert "1 of 9</strong> words have a recording" in response.text
+    progress = client.get(url + "progress.json").json()
+    heaven = next(word for word in progress["words"] if word["key"] == "HEAVEN")
+    assert heaven["used"]["status"] == "ready" and progress["capturing"] == 0
+    # A bad file is named; a word of another study, or another researcher, is refused.
+    bad = client.post(url, {"item": item.pk, "recording": SimpleUploadedFile("a.txt", b"x")},
+                      follow=True)  # fmt: skip
+    assert "Not saved: “a.txt” is not a recording" in bad.text
+    client.force_login(bob)
+    assert client.get(url).status_code == 404
+    assert client.post(url, {"item": item.pk, "recording": _bvh("HEAVEN")}).status_code == 404
+    assert Recording.objects.count() == 1
