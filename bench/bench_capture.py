@@ -1,6 +1,6 @@
 """Measure markerless capture: closed-loop accuracy, capture and fitting speed (issue 15).
 
-Renders the 8 study words of spec 02 (Constant timing, hand close-up, 640×480, 30 fps)
+Renders the 8 study words of spec 02 and the alphabet spelled A to Z (Constant timing, hand close-up, 640×480, 30 fps)
 whose DOFs are known, captures each video with MediaPipe Hands, fits the hand model
 back, and prints the finger joint-angle error (degrees; flexion of the four fingers,
 and all finger and thumb DOFs) and the fingertip error (mm, the fitted model's
@@ -31,7 +31,9 @@ from synthesis.rigs import HandModel
 from synthesis.rigs.landmarks import landmarks
 from synthesis.techniques import ClipRequest, build_motion, render_request
 
-WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
+WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR",
+         # The 26 letters, spelled in one clip.
+         "ABCDEFGHIJKLMNOPQRSTUVWXYZ")  # fmt: skip
 TIPS = (4, 8, 12, 16, 20)
 
 
@@ -55,7 +57,7 @@ def closed_loop(words: list[str]) -> None:
             capture_s += time.perf_counter() - started
             points, confidence = recording.hand("right")
             started = time.perf_counter()
-            fit = fit_hand(model, points, confidence)
+            fit = fit_hand(model, points, confidence, rate_hz=recording.fps)
             fit_s += time.perf_counter() - started
             n = min(len(build.motion), len(fit.dofs_rad))
             frames += recording.n_frames

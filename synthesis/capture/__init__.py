@@ -2,7 +2,7 @@
 markerless capture of hands from video (synthesis.capture.video, MediaPipe, imported lazily)."""
 
 from synthesis.capture.features import handshape_features, nearest_handshape
-from synthesis.capture.handfit import FitError, HandFit, calibrate_scale, fit_hand
+from synthesis.capture.handfit import FitError, HandFit, calibrate_bones, calibrate_scale, fit_hand
 from synthesis.capture.lexicon import LexiconMissing, human_letter_files
 from synthesis.capture.posefile import (
     HAND_COMPONENTS,
@@ -24,6 +24,7 @@ __all__ = [
     "LexiconMissing",
     "PoseFileError",
     "PoseRecording",
+    "calibrate_bones",
     "calibrate_scale",
     "captured_hand",
     "fit_hand",

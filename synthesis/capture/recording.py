@@ -47,7 +47,7 @@ def captured_hand(recording: PoseRecording, side: str = "right") -> CapturedHand
     """Fit the hand model to one hand of *recording*; return its motion at the file's rate."""
     model = HandModel(side)
     points, confidence = recording.hand(side)
-    fit = fit_hand(model, points, confidence, scale=None)
+    fit = fit_hand(model, points, confidence, scale=None, rate_hz=recording.fps)
     motion = Motion(model.skeleton, model.channel_values(fit.dofs_rad), 1.0 / recording.fps)
     return CapturedHand(motion, fit, side)
 

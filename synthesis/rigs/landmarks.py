@@ -31,10 +31,14 @@ PALM_CENTRE = (0, 5, 9, 13, 17)
 _TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
 
 
-def landmarks(model: HandModel, dofs_rad: np.ndarray) -> np.ndarray:
-    """Return landmarks (21, 3) for a DOF vector, or (n_frames, 21, 3) for (n_frames, n_dofs)."""
+def landmarks(model: HandModel, dofs_rad: np.ndarray,
+              bone_scale: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
+    """Return landmarks (21, 3) for a DOF vector, or (n_frames, 21, 3) for (n_frames, n_dofs).
+
+    *bone_scale* (n_joints,) as :meth:`synthesis.rigs.rig.Rig.pose` takes it.
+    """
     dofs = np.asarray(dofs_rad, dtype=np.float64)
-    positions = model.pose(dofs).positions_m
+    positions = model.pose(dofs, bone_scale).positions_m
     index = [model.skeleton.index(name) for name in LANDMARK_JOINTS]
     points = positions[:, index] * _TO_MEDIAPIPE
     points = points - points[:, PALM_CENTRE].mean(axis=1, keepdims=True)

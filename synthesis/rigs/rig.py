@@ -124,13 +124,18 @@ class Rig:
         angles = (dofs_rad @ matrix).reshape(*dofs_rad.shape[:-1], len(rest_q), 3)
         return quat_multiply(rest_q, quat_from_euler(angles, "ZXY"))
 
-    def pose(self, dofs_rad: np.ndarray) -> Pose:
-        """Return global joint transforms for DOF vectors, shape (n_frames, n_dofs) or (n_dofs,)."""
+    def pose(self, dofs_rad: np.ndarray, bone_scale: np.ndarray | None = None) -> Pose:
+        """Return global joint transforms for DOF vectors, shape (n_frames, n_dofs) or (n_dofs,).
+
+        *bone_scale* (n_joints,) lengthens each joint's offset from its parent (a
+        signer's own proportions); None keeps the rig's.
+        """
         dofs_rad = np.atleast_2d(dofs_rad)
         skeleton = self.skeleton
-        translations = np.broadcast_to(
-            skeleton.offsets * skeleton.metres_per_unit, (dofs_rad.shape[0], len(skeleton), 3)
-        )
+        offsets = skeleton.offsets * skeleton.metres_per_unit
+        if bone_scale is not None:
+            offsets = offsets * np.asarray(bone_scale, dtype=np.float64)[:, None]
+        translations = np.broadcast_to(offsets, (dofs_rad.shape[0], len(skeleton), 3))
         return forward_kinematics_arrays(skeleton, self.local_quaternions(dofs_rad), translations)
 
     def channel_values(self, dofs_rad: np.ndarray) -> np.ndarray:

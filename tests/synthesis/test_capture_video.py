@@ -40,9 +40,10 @@ def test_a_rendered_hand_is_captured_and_fitted_back(clip):
                if "flexion" in n and not n.startswith(("thumb", "wrist"))]  # fmt: skip
     n = min(len(truth), len(hand.fit.dofs_rad))
     error_deg = np.degrees(np.abs(hand.fit.dofs_rad[:n, fingers] - truth[:n, fingers]))
-    # Measured at 640×480: median 10°, where the target is 8° (not met yet; see
-    # bench/bench_capture.py): MediaPipe puts our mesh's fingertips less curled.
-    assert np.median(error_deg) < 15
+    # Measured: median 9.2° on this short clip of two fist letters (A, E), whose occluded
+    # fingertips MediaPipe guesses; over the 8 study words 7.7°, under the 8°
+    # target (bench/bench_capture.py).
+    assert np.median(error_deg) < 12
     assert hand.quality(recording)["residual_mm_median"] < 15
 
 
