@@ -1,13 +1,14 @@
 """Measure markerless capture: closed-loop accuracy, capture and fitting speed (issue 15).
 
-Renders the 8 study words of spec 02 and the alphabet spelled A to Z (Constant timing, hand close-up, 640×480, 30 fps)
-whose DOFs are known, captures each video with MediaPipe Hands, fits the hand model
-back, and prints the finger joint-angle error (degrees; flexion of the four fingers,
-and all finger and thumb DOFs) and the fingertip error (mm, the fitted model's
-fingertips against the true ones, both palm-centred), then capture throughput (video
-frames per second) and fitting speed (frames per second). Target: median finger error
-< 8°. Then the 26 human ASL letters of spoken-to-signed: the median landmark residual of
-each letter's middle frame after scale calibration.
+Renders the 8 study words of spec 02 and the alphabet spelled A to Z (Constant timing,
+hand close-up, 640×480, 30 fps) whose DOFs are known, captures each video with
+MediaPipe Hands, fits the hand model back, and prints the finger joint-angle error
+(degrees; flexion of the four fingers, and all finger and thumb DOFs) and the fingertip
+error (mm, the fitted model's fingertips against the true ones, both palm-centred),
+then capture throughput (video frames per second) and fitting speed (frames per
+second). Target: median finger error < 8°. Then the 26 human ASL letters of
+spoken-to-signed: the median landmark residual of each letter's middle frame after
+scale calibration.
 
     .venv/bin/python bench/bench_capture.py [--words GUITAR,HEAVEN]
 """
