@@ -64,13 +64,13 @@ def prepare_now(recording_id: int) -> str:
     if recording.status == Recording.Status.READY:
         return recording.status
     try:
-        quality, pose = _prepare(recording, do_report_capture_progress)
+        quality, pose, sheet = _prepare(recording, do_report_capture_progress)
     except (ValueError, OSError) as error:  # the engine's errors name the problem
         return do_fail_recording(recording, error)
-    return do_finish_recording(recording, quality, pose)
+    return do_finish_recording(recording, quality, pose, sheet)
 
 
-def _prepare(recording, report_progress) -> tuple[dict, bytes | None]:
+def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | None]:
     from studyplatform.lib.recordings import retimes_recordings
     from synthesis.capture import captured_hand, format_pose, read_pose
     from synthesis.skeleton.bvh import read_bvh
@@ -98,15 +98,32 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None]:
         landmarks = None
         motion = read_bvh(path)
         quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
+    sheet = None
     if landmarks is not None:
         hand = captured_hand(landmarks, side)
         motion, quality = hand.motion, hand.quality(landmarks)
+        if recording.is_video:
+            sheet = _contact_sheet(hand, path)
     # Conditions that retime the recording need its holds: a recording in which they
     # cannot be found (another word, say) fails now rather than when its clips render.
     performance = Performance.from_motion(motion, item.text, side)
     if retimes_recordings(item.study):
         quality["holds_found"] = len(performance.extraction.timing.letters)
-    return quality, pose
+    return quality, pose, sheet
+
+
+def _contact_sheet(hand, video: Path) -> bytes | None:
+    """Return the capture's contact sheet (PNG bytes), or None where nothing renders."""
+    import tempfile
+
+    from synthesis.capture.contact import write_contact_sheet
+    from synthesis.render.backend import RenderUnavailable
+
+    with tempfile.TemporaryDirectory() as directory:
+        try:
+            return write_contact_sheet(hand, video, Path(directory) / "sheet.png").read_bytes()
+        except RenderUnavailable:  # a worker without OpenGL still captures
+            return None
 
 
 @shared_task(name="studyplatform.prepare_recording", acks_late=True, reject_on_worker_lost=True)

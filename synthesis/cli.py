@@ -17,6 +17,7 @@ import json
 import sys
 from pathlib import Path
 
+from synthesis.cli_capture import capture_command, export_motion, render_pose_file_command
 from synthesis.fingerspelling.alphabet import AlphabetError, letter_pose
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import landmarks
@@ -30,6 +31,7 @@ from synthesis.techniques import (
 )
 from synthesis.techniques.flags import add_technique_flags, technique_values, techniques_help
 from synthesis.techniques.timing import TIMINGS
+from synthesis.terminal import frame_progress as _progress
 
 
 def _landmarks(args: argparse.Namespace) -> int:
@@ -51,20 +53,6 @@ def _size(text: str) -> tuple[int, int]:
     if width <= 0 or height <= 0 or width % 2 or height % 2:
         raise argparse.ArgumentTypeError(f"size must be positive and even, not {text!r}")
     return width, height
-
-
-def _progress(label: str):
-    """Return a progress callback: one updating line on a terminal, else every tenth."""
-    interactive = sys.stderr.isatty()
-
-    def report(done: int, total: int) -> None:
-        if interactive:
-            end = "\n" if done == total else ""
-            print(f"\r{label}: frame {done}/{total}", end=end, file=sys.stderr, flush=True)
-        elif done == total or done % max(1, total // 10) == 0:
-            print(f"{label}: frame {done}/{total}", file=sys.stderr, flush=True)
-
-    return report
 
 
 def _render_pose(args: argparse.Namespace) -> int:
@@ -99,6 +87,7 @@ def _spell(args: argparse.Namespace) -> int:
         args.seed = args.simulate
     request = _request(args, "word", args.word, **values)
     build = build_motion(request)
+    export_motion(build, request, args.export_pose, args.export_bvh)
     if args.timing_only:
         if build.timing is None:
             _ = build.performance.extraction  # raises ExtractionError naming why
@@ -118,6 +107,7 @@ def _spell(args: argparse.Namespace) -> int:
 def _sentence(args: argparse.Namespace) -> int:
     request = _request(args, "sentence", args.text)
     build = build_motion(request)
+    export_motion(build, request, args.export_pose, args.export_bvh)
     if args.plot is not None:
         from synthesis.signing.sentence_plots import torso_angles_figure
 
@@ -133,68 +123,6 @@ def _sentence(args: argparse.Namespace) -> int:
                           progress=_progress("signing"), build=build)  # fmt: skip
     spine = "on" if request.parameters["spine"] else "off"
     print(f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, spine {spine})")
-    return 0
-
-
-def _capture(args: argparse.Namespace) -> int:
-    from synthesis.capture import captured_hand, write_pose, write_report
-    from synthesis.capture.video import capture_hands
-    from synthesis.skeleton.bvh import write_bvh
-
-    one_hand = args.side if args.one_hand else None
-    recording = capture_hands(args.video, mirrored=args.mirrored, one_hand=one_hand,
-                              progress=_frames_progress(Path(args.video).name))  # fmt: skip
-    hand = captured_hand(recording, args.side)
-    if args.out is not None:
-        print(f"wrote {write_pose(recording, args.out)}")
-    if args.bvh is not None:
-        write_bvh(hand.motion, args.bvh)
-        print(f"wrote {args.bvh}")
-    if args.report is not None:
-        print(f"wrote {write_report(hand, recording, args.report)}/quality.json, quality.png")
-    quality = hand.quality(recording)
-    print(
-        f"{recording.n_frames} frames at {recording.fps:g} fps; {args.side} hand found in "
-        f"{quality['hands_found'].get(args.side, 0):.0%}; fit residual median "
-        f"{quality['residual_mm_median']:.1f} mm"
-    )
-    if args.word:
-        from synthesis.timing.extraction import extract
-
-        timing = extract(hand.motion, args.word, args.side).timing
-        print(json.dumps(timing.to_dict(), indent=2))
-    return 0
-
-
-def _frames_progress(label: str):
-    def report(done: int) -> None:
-        if done % 50 == 0:
-            print(f"{label}: frame {done}", file=sys.stderr, flush=True)
-
-    return report
-
-
-def _render_pose_file(args: argparse.Namespace) -> int:
-    from synthesis.capture import captured_hand, read_pose
-    from synthesis.render.clip import render_clip
-    from synthesis.rigs.retarget import retarget
-    from synthesis.skeleton.retime import resample
-
-    recording = read_pose(args.file)
-    hand = captured_hand(recording, args.side)
-    motion = hand.motion
-    if args.rate and abs(motion.rate_hz - args.rate) > 1e-9:
-        motion = resample(motion, args.rate)
-    avatar, camera = avatar_and_camera("hand", args.side)
-    info = render_clip(
-        avatar, retarget(motion, avatar.rig), camera, args.out, motion.rate_hz,
-        poster=args.poster, width=args.size[0], height=args.size[1],
-        progress=_progress(Path(args.file).name), workers=args.workers,
-    )  # fmt: skip
-    print(
-        f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; fit residual "
-        f"median {hand.fit.median_residual_mm():.1f} mm)"
-    )
     return 0
 
 
@@ -278,6 +206,12 @@ def parser() -> argparse.ArgumentParser:
         command.add_argument("--poster", type=Path, help="also write the first frame as a PNG")
         command.add_argument("--workers", type=int, default=1, help="render in this many processes")
 
+    def export_options(command: argparse.ArgumentParser) -> None:
+        command.add_argument("--export-pose", type=Path, metavar="FILE.pose",
+                             help="also write the motion as .pose landmarks")  # fmt: skip
+        command.add_argument("--export-bvh", type=Path, metavar="FILE.bvh",
+                             help="also write the motion as BVH")  # fmt: skip
+
     pose = rendering("render-pose", "render one letter's handshape to a PNG")
     pose.add_argument("--letter", required=True)
     pose.set_defaults(run=_render_pose)
@@ -297,6 +231,7 @@ def parser() -> argparse.ArgumentParser:
         "--timing-only", action="store_true", help="print the timing as JSON, render nothing"
     )
     clip_options(spell)
+    export_options(spell)
     spell.set_defaults(run=_spell)
 
     sentence = rendering("sentence", "render a signed sentence on the upper body",
@@ -308,6 +243,7 @@ def parser() -> argparse.ArgumentParser:
                           help="plot torso bend and twist, spine on vs off (PNG/PDF)")  # fmt: skip
     add_technique_flags(sentence, "sentence")
     clip_options(sentence)
+    export_options(sentence)
     sentence.set_defaults(run=_sentence)
 
     version = commands.add_parser(
@@ -332,14 +268,14 @@ def parser() -> argparse.ArgumentParser:
     capture.add_argument("--one-hand", action="store_true",
                          help="the video shows only that hand (a close-up)")  # fmt: skip
     capture.add_argument("--mirrored", action="store_true", help="the video is a selfie view")
-    capture.set_defaults(run=_capture)
+    capture.set_defaults(run=capture_command)
 
-    pose_file = rendering("render-pose-file", "render a .pose file's hand on the avatar",
-                          view="hand")  # fmt: skip
+    pose_file = rendering("render-pose-file", "render a .pose file's hand (or, with --view "
+                          "upper-body, its arms and hands) on the avatar", view="hand")  # fmt: skip
     pose_file.add_argument("file", type=Path)
     pose_file.add_argument("--rate", type=float, default=None, help="resample to this rate")
     clip_options(pose_file)
-    pose_file.set_defaults(run=_render_pose_file)
+    pose_file.set_defaults(run=render_pose_file_command)
 
     bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
     bvh.add_argument("file", type=Path)

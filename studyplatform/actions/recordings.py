@@ -92,17 +92,21 @@ def do_fail_recording(recording: Recording, error: Exception) -> str:
     return Recording.Status.FAILED
 
 
-def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None = None) -> str:
-    """Mark the recording ready, with its captured landmarks (*pose*) for a video.
+def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None = None,
+                        sheet: bytes | None = None) -> str:  # fmt: skip
+    """Mark the recording ready, with its captured landmarks (*pose*) and contact sheet
+    (*sheet*, PNG) for a video.
 
     Older recordings of the item are removed with their files, and the study's stand-in
     conditions are relabelled (:func:`do_relabel_stand_ins`).
     """
     with transaction.atomic():
         recording = Recording.objects.select_for_update().get(pk=recording.pk)
+        stem = recording.upload.name.rsplit("/", 1)[-1].rsplit(".", 1)[0]
         if pose is not None:
-            stem = recording.upload.name.rsplit("/", 1)[-1].rsplit(".", 1)[0]
             recording.motion.save(f"{stem}.pose", ContentFile(pose), save=False)
+        if sheet is not None:
+            recording.sheet.save(f"{stem}-contact.png", ContentFile(sheet), save=False)
         else:
             recording.motion.name = recording.upload.name
         recording.status = Recording.Status.READY
@@ -111,7 +115,7 @@ def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None 
         recording.error = ""
         recording.save()
         older = list(Recording.objects.filter(item_id=recording.item_id).exclude(pk=recording.pk))
-        files = {f.name for old in older for f in (old.upload, old.motion) if f}
+        files = {f.name for old in older for f in (old.upload, old.motion, old.sheet) if f}
         Recording.objects.filter(pk__in=[old.pk for old in older]).delete()
         for name in files:
             transaction.on_commit(lambda name=name: recording.upload.storage.delete(name))
@@ -124,7 +128,7 @@ def do_delete_recordings(recordings) -> int:
     with transaction.atomic():
         recordings = list(Recording.objects.select_for_update().filter(
             pk__in=[r.pk for r in recordings]).select_related("item__study"))  # fmt: skip
-        files = {f.name for r in recordings for f in (r.upload, r.motion) if f}
+        files = {f.name for r in recordings for f in (r.upload, r.motion, r.sheet) if f}
         studies = {r.item.study for r in recordings}
         Recording.objects.filter(pk__in=[r.pk for r in recordings]).delete()
         for study in studies:

@@ -118,6 +118,7 @@ def _describe(recording: Recording | None) -> dict | None:
         "id": recording.pk,
         "file": recording.upload.name.rsplit("/", 1)[-1],
         "url": recording.upload.url,
+        "sheet_url": recording.sheet.url if recording.sheet else None,
         "status": recording.status,
         "status_label": recording.get_status_display(),
         "percent": recording.progress_percent,

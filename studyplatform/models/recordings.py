@@ -34,6 +34,11 @@ class Recording(models.Model):
         help_text="What clips are made from: the uploaded .pose or BVH file, or for a video "
         "the hand landmarks captured from it (.pose).",
     )
+    sheet = models.FileField(
+        upload_to="recordings/",
+        blank=True,
+        help_text="For a video: a contact sheet of video frames above the hand fitted to them.",
+    )
     mirrored = models.BooleanField(
         default=False, help_text="The video is mirrored (a front camera's selfie view)."
     )

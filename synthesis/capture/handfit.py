@@ -40,9 +40,9 @@ DIP_PIP_RATIO = 2 / 3
 # on rendered clips captured back (bench/bench_capture.py), it halves the 95th
 # percentile of the finger error and brings its median under 8°.
 COUPLING = 0.03
-# The smoothing window (5 frames at 30 fps): short enough to keep a 200 ms hold, long
+# The smoothing window (7 frames at 30 fps): short enough to keep a 200 ms hold, long
 # enough to damp frame-to-frame tracking noise.
-SMOOTH_S = 0.17
+SMOOTH_S = 0.24
 
 
 class FitError(ValueError):

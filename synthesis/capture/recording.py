@@ -52,8 +52,10 @@ def captured_hand(recording: PoseRecording, side: str = "right") -> CapturedHand
     return CapturedHand(motion, fit, side)
 
 
-def write_report(hand: CapturedHand, recording: PoseRecording, directory: str | Path) -> Path:
-    """Write quality.json and quality.png (residual and hand found, per frame) into *directory*."""
+def write_report(hand: CapturedHand, recording: PoseRecording, directory: str | Path,
+                 video: str | Path | None = None) -> Path:  # fmt: skip
+    """Write quality.json and quality.png (residual and hand found, per frame) into
+    *directory*, and with the *video* captured, contact.png (synthesis.capture.contact)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -74,4 +76,8 @@ def write_report(hand: CapturedHand, recording: PoseRecording, directory: str | 
     figure.tight_layout()
     figure.savefig(directory / "quality.png", dpi=110)
     plt.close(figure)
+    if video is not None:
+        from synthesis.capture.contact import write_contact_sheet
+
+        write_contact_sheet(hand, video, directory / "contact.png")
     return directory

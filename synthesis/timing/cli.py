@@ -95,7 +95,12 @@ def parser() -> argparse.ArgumentParser:
     fit = commands.add_parser(
         "train", help="train a Variable model from recordings or annotated CSV files"
     )
-    fit.add_argument("recordings", nargs="*", type=Path, help="BVH recordings of words")
+    fit.add_argument(
+        "recordings",
+        nargs="*",
+        type=Path,
+        help="recordings of words: BVH, or .pose landmarks (fitted first)",
+    )
     fit.add_argument("--words", help="the recordings' words, comma-separated, in order")
     fit.add_argument("--holds", type=Path, help="CSV: word, index, hold_ms")
     fit.add_argument("--transitions", type=Path, help="CSV: word, index, transition_ms")

@@ -179,6 +179,7 @@ def test_a_video_is_captured_into_landmarks_with_progress(
     recording = _attach(item, upload, django_capture_on_commit_callbacks, one_hand=True)
     assert recording.status == Recording.Status.READY, recording.error
     assert recording.motion.name.endswith(".pose") and recording.progress_percent == 100
+    assert recording.sheet.name.endswith("-contact.png") and recording.sheet.size > 1000
     assert recording.quality["hands_found"]["right"] > 0.8
     assert (
         clip_spec(fingerspelling.conditions.get(key="mocap"), item)

@@ -60,6 +60,8 @@ def test_capture_on_the_command_line_writes_pose_bvh_report_and_timing(clip, tmp
     assert read_pose(pose).n_frames > 60 and bvh.stat().st_size > 0
     quality = json.loads((report / "quality.json").read_text())
     assert quality["hands_found"]["right"] > 0.9 and (report / "quality.png").exists()
+    sheet = iio.imread(report / "contact.png")
+    assert sheet.shape[0] == 400 and sheet.shape[1] == 8 * 200  # 8 frames, filmed over fitted
     out = tmp_path / "again.mp4"
     assert main(["render-pose-file", str(pose), "--out", str(out), "--size", "96x72"]) == 0
     assert iio.improps(out).shape[0] > 60

@@ -71,6 +71,7 @@ def test_predict_prints_a_timing(capsys):
 
 
 def test_train_and_compare_from_recordings(tmp_path, capsys):
+    from synthesis.capture import from_hand_motion, write_pose
     from synthesis.fingerspelling.spelling import spell
     from synthesis.rigs.hand import HandModel
     from synthesis.skeleton.bvh import write_bvh
@@ -78,10 +79,13 @@ def test_train_and_compare_from_recordings(tmp_path, capsys):
 
     model = HandModel()
     paths = []
-    for word in ("DAVID", "VICTOR", "HEAVEN"):
+    for word in ("DAVID", "VICTOR"):
         dofs = spell(word, rate_hz=60, timing=None, lead_ms=300)
         paths.append(tmp_path / f"take-{word.lower()}.bvh")
         write_bvh(Motion(model.skeleton, model.channel_values(dofs), 1 / 60), paths[-1])
+    # A captured recording trains like a BVH one: landmarks in a .pose file, fitted first.
+    dofs = spell("HEAVEN", rate_hz=30, timing=None, lead_ms=300)
+    paths.append(write_pose(from_hand_motion(model, dofs, 30), tmp_path / "take-heaven.pose"))
     out = tmp_path / "model.json"
     args = ["train", *map(str, paths), "--words", "DAVID,VICTOR,HEAVEN", "--out", str(out)]
     assert main(args) == 0

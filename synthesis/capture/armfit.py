@@ -1,0 +1,192 @@
+"""Fit the upper-body model's arms to pose landmarks, and export body motions as them.
+
+MediaPipe Pose (and Holistic) gives each shoulder, elbow and wrist; the hands give 21
+landmarks each. Per frame and arm, the observed arm is scaled to the model's arm
+length (a per-signer calibration: the median over the frames of shoulder → elbow →
+wrist), its wrist becomes the target of the analytic arm IK
+(:func:`synthesis.rigs.ik.solve_arm`), the elbow's place on its circle gives the
+swivel, and the hand's landmarks give the wrist's orientation (palm normal and finger
+direction), hence forearm twist and wrist; the fingers are fitted by
+:func:`synthesis.capture.handfit.fit_hand`. The trunk stays at rest.
+
+Axes: files use MediaPipe's (x right, y down, z away from the camera); the engine's
+world has y up and z toward the viewer.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from synthesis.capture.posefile import (
+    EXPORT_METRES_PER_UNIT,
+    EXPORT_SIZE,
+    HAND_COMPONENTS,
+    PoseFileError,
+    PoseRecording,
+)
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES
+
+POSE_COMPONENT = "POSE_LANDMARKS"
+ARM_POINTS = {
+    side: tuple(f"{side.upper()}_{part}" for part in ("SHOULDER", "ELBOW", "WRIST"))
+    for side in ("right", "left")
+}
+POSE_POINTS = (*ARM_POINTS["left"], *ARM_POINTS["right"])
+_TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
+MIN_CONFIDENCE = 0.2
+# Hand landmarks (MediaPipe order) that frame the palm: wrist, index and pinky MCPs.
+_WRIST, _INDEX_MCP, _MIDDLE_MCP, _PINKY_MCP = 0, 5, 9, 17
+
+
+@dataclass(frozen=True)
+class ArmFit:
+    """Body DOFs fitted to pose landmarks and how far the fitted joints are from them.
+
+    *dofs_rad* (n_frames, n_body_dofs); *residual_mm* (n_frames, 6) the fitted shoulder,
+    elbow and wrist of the left then right arm against the observed ones, both scaled
+    to the model and placed at the model's shoulders; *found* (n_frames, 2) whether
+    each arm (left, right) was seen.
+    """
+
+    dofs_rad: np.ndarray
+    residual_mm: np.ndarray
+    found: np.ndarray
+
+
+def _joint(body: BodyModel, side: str, part: str) -> int:
+    return body.skeleton.index(f"{side}_{part.lower()}")
+
+
+def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> PoseRecording:
+    """Return body DOFs (n_frames, n_dofs) as a .pose recording: shoulders, elbows and
+    wrists (POSE_LANDMARKS) and both hands' 21 landmarks, in millimetres.
+
+    The shoulders' midpoint sits at the middle of a 1000 × 1000 "image".
+    """
+    positions = body.pose(np.atleast_2d(dofs_rad)).positions_m
+    index = body.skeleton.index
+    pose = positions[:, [index(name.lower()) for name in POSE_POINTS]]
+    hands = [positions[:, [index(f"{side}_{joint}") for joint in LANDMARK_JOINTS]]
+             for side in ("left", "right")]  # fmt: skip
+    points = np.concatenate([pose, *hands], axis=1) * _TO_MEDIAPIPE
+    centre = points[:, : len(POSE_POINTS)][:, [0, 3]].mean(axis=1, keepdims=True)
+    units = (points - centre) / EXPORT_METRES_PER_UNIT + np.array([EXPORT_SIZE / 2] * 2 + [0.0])
+    components = (
+        (POSE_COMPONENT, POSE_POINTS),
+        (HAND_COMPONENTS["left"], LANDMARK_NAMES),
+        (HAND_COMPONENTS["right"], LANDMARK_NAMES),
+    )
+    return PoseRecording(float(rate_hz), components, units, np.ones(units.shape[:2]),
+                         EXPORT_SIZE, EXPORT_SIZE, EXPORT_METRES_PER_UNIT)  # fmt: skip
+
+
+def _engine(points: np.ndarray) -> np.ndarray:
+    return points * _TO_MEDIAPIPE  # the flip is its own inverse
+
+
+def _palm_frame(hand: np.ndarray) -> np.ndarray:
+    """Return the palm's frames (n, 3, 3) from hand landmarks (n, 21, 3), engine axes:
+    y along the fingers (wrist → middle MCP), z across the palm's normal."""
+    from synthesis.rigs.ik import hand_frame
+
+    fingers = hand[:, _MIDDLE_MCP] - hand[:, _WRIST]
+    across = hand[:, _INDEX_MCP] - hand[:, _PINKY_MCP]
+    return np.stack([hand_frame(p, f) for p, f in
+                     zip(np.cross(fingers, across), fingers, strict=True)])  # fmt: skip
+
+
+def _wrist_in_palm(body: BodyModel, side: str) -> np.ndarray:
+    """Return the wrist joint's frame in the palm frame (3, 3), read off the model at rest."""
+    from synthesis.skeleton.rotations import quat_to_matrix
+
+    pose = body.pose(body.neutral())
+    marks = pose.positions_m[:, [body.skeleton.index(f"{side}_{j}") for j in LANDMARK_JOINTS]]
+    wrist = quat_to_matrix(pose.quaternions[0, body.skeleton.index(f"{side}_wrist")])
+    return _palm_frame(marks)[0].T @ wrist
+
+
+def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
+             hands: bool = True) -> ArmFit:  # fmt: skip
+    """Fit *body*'s arms (and with *hands*, fingers and wrists) to *recording*'s landmarks.
+
+    Raise PoseFileError if the recording has no pose landmarks or no arm in any frame.
+    """
+    from synthesis.capture.handfit import FitError, fit_hand
+    from synthesis.rigs.hand import HandModel
+    from synthesis.rigs.ik import solve_arm
+
+    points, confidence = recording.component(POSE_COMPONENT, POSE_POINTS)
+    points = _engine(points.astype(np.float64))
+    n = recording.n_frames
+    dofs = np.zeros((n, len(body.dofs)))
+    rest = body.pose(body.neutral()).positions_m[0]
+    found = np.zeros((n, 2), dtype=bool)
+    residual = np.full((n, 6), np.nan)
+    fitted_any = False
+    for column, side in enumerate(("left", "right")):
+        if side not in sides:
+            continue
+        s, e, w = (3 * column + k for k in range(3))
+        seen = confidence[:, [s, e, w]].min(axis=1) >= MIN_CONFIDENCE
+        found[:, column] = seen
+        if not seen.any():
+            continue
+        fitted_any = True
+        shoulder = rest[_joint(body, side, "shoulder")]
+        model_arm = (np.linalg.norm(rest[_joint(body, side, "elbow")] - shoulder)
+                     + np.linalg.norm(rest[_joint(body, side, "wrist")]
+                                      - rest[_joint(body, side, "elbow")]))  # fmt: skip
+        upper = points[:, e] - points[:, s]
+        lower = points[:, w] - points[:, e]
+        observed_arm = np.median(np.linalg.norm(upper[seen], axis=1)
+                                 + np.linalg.norm(lower[seen], axis=1))  # fmt: skip
+        scale = model_arm / observed_arm
+        elbow_t = shoulder + upper * scale
+        wrist_t = elbow_t + lower * scale
+        rotation = None
+        if hands and recording.has_component(HAND_COMPONENTS[side]):
+            marks, marks_confidence = recording.hand(side)
+            hand_seen = marks_confidence.min(axis=1) >= MIN_CONFIDENCE
+            if hand_seen.any():
+                engine_marks = _engine(marks.astype(np.float64))
+                rotation = _palm_frame(engine_marks) @ _wrist_in_palm(body, side)
+                # Frames without the hand keep the nearest seen hand's orientation.
+                nearest = np.flatnonzero(hand_seen)[
+                    np.abs(np.arange(n)[:, None] - np.flatnonzero(hand_seen)[None]).argmin(1)
+                ]
+                rotation = rotation[nearest]
+                try:
+                    fit = fit_hand(HandModel(side), marks, marks_confidence,
+                                   rate_hz=recording.fps)  # fmt: skip
+                    dofs = body.with_hand(dofs, side, fit.dofs_rad)
+                except FitError:
+                    pass
+        swivel = _swivel(shoulder, elbow_t, wrist_t, side)
+        dofs = solve_arm(body, dofs, side, wrist_t, rotation, swivel)
+        fitted = body.pose(dofs).positions_m
+        for k, (target, part) in enumerate(((np.broadcast_to(shoulder, wrist_t.shape), "shoulder"),
+                                            (elbow_t, "elbow"), (wrist_t, "wrist"))):  # fmt: skip
+            miss = np.linalg.norm(fitted[:, _joint(body, side, part)] - target, axis=1) * 1000
+            residual[:, 3 * column + k] = np.where(seen, miss, np.nan)
+    if not fitted_any:
+        raise PoseFileError("No arm was found in any frame (shoulder, elbow and wrist).")
+    return ArmFit(dofs, residual, found)
+
+
+def _swivel(shoulder: np.ndarray, elbow: np.ndarray, wrist: np.ndarray, side: str) -> np.ndarray:
+    """Return the swivel angle (n,) that puts the IK's elbow where the observed one is.
+
+    Measured as :func:`synthesis.rigs.ik.solve_arm` defines it: from straight down on
+    the elbow's circle, positive away from the body.
+    """
+    n = wrist - shoulder
+    n = n / np.linalg.norm(n, axis=1, keepdims=True).clip(1e-12)
+    down = np.array([0.0, -1.0, 0.0]) + n[:, 1:2] * n
+    vertical = np.linalg.norm(down, axis=1) < 1e-6
+    down[vertical] = np.array([0.0, 0.0, 1.0]) - n[vertical, 2:3] * n[vertical]
+    down = down / np.linalg.norm(down, axis=1, keepdims=True).clip(1e-12)
+    outward = -1.0 if side == "right" else 1.0
+    sideways = outward * np.cross(n, down)
+    offset = elbow - shoulder
+    return np.arctan2(np.sum(offset * sideways, axis=1), np.sum(offset * down, axis=1))

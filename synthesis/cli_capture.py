@@ -1,0 +1,125 @@
+"""The command line's capture commands: capture a video, render a .pose file, and
+export an engine motion as .pose landmarks and BVH (``python -m synthesis``)."""
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from synthesis.rigs.hand import HandModel
+from synthesis.techniques import avatar_and_camera
+from synthesis.terminal import frame_progress as _progress
+
+
+def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None) -> None:
+    """Write a clip's motion as .pose landmarks (*pose_path*) and as BVH (*bvh_path*)."""
+    if pose_path is None and bvh_path is None:
+        return
+    import numpy as np
+
+    from synthesis.capture import from_hand_motion, write_pose
+    from synthesis.capture.armfit import from_body_motion
+    from synthesis.skeleton.bvh import write_bvh
+    from synthesis.skeleton.motion import Motion
+
+    dofs = build.motion
+    if not isinstance(dofs, np.ndarray):
+        raise ValueError("Only the engine's own motions export (not a retargeted recording).")
+    if pose_path is not None:
+        if isinstance(build.rig, HandModel):
+            landmarks = from_hand_motion(build.rig, dofs, request.rate_hz)
+        else:
+            landmarks = from_body_motion(build.rig, dofs, request.rate_hz)
+        print(f"wrote {write_pose(landmarks, pose_path)}")
+    if bvh_path is not None:
+        rig = build.rig
+        write_bvh(Motion(rig.skeleton, rig.channel_values(dofs), 1.0 / request.rate_hz),
+                  bvh_path)  # fmt: skip
+        print(f"wrote {bvh_path}")
+
+
+def capture_command(args: argparse.Namespace) -> int:
+    """Run ``python -m synthesis capture``: a video's hands to .pose, BVH and a report."""
+    from synthesis.capture import captured_hand, write_pose, write_report
+    from synthesis.capture.video import capture_hands
+    from synthesis.skeleton.bvh import write_bvh
+
+    one_hand = args.side if args.one_hand else None
+    recording = capture_hands(args.video, mirrored=args.mirrored, one_hand=one_hand,
+                              progress=_frames_progress(Path(args.video).name))  # fmt: skip
+    hand = captured_hand(recording, args.side)
+    if args.out is not None:
+        print(f"wrote {write_pose(recording, args.out)}")
+    if args.bvh is not None:
+        write_bvh(hand.motion, args.bvh)
+        print(f"wrote {args.bvh}")
+    if args.report is not None:
+        written = write_report(hand, recording, args.report, video=args.video)
+        print(f"wrote {written}/quality.json, quality.png, contact.png")
+    quality = hand.quality(recording)
+    print(
+        f"{recording.n_frames} frames at {recording.fps:g} fps; {args.side} hand found in "
+        f"{quality['hands_found'].get(args.side, 0):.0%}; fit residual median "
+        f"{quality['residual_mm_median']:.1f} mm"
+    )
+    if args.word:
+        from synthesis.timing.extraction import extract
+
+        timing = extract(hand.motion, args.word, args.side).timing
+        print(json.dumps(timing.to_dict(), indent=2))
+    return 0
+
+
+def _frames_progress(label: str):
+    def report(done: int) -> None:
+        if done % 50 == 0:
+            print(f"{label}: frame {done}", file=sys.stderr, flush=True)
+
+    return report
+
+
+def render_pose_file_command(args: argparse.Namespace) -> int:
+    """Run ``python -m synthesis render-pose-file``: a .pose file's motion on the avatar."""
+    from synthesis.capture import captured_hand, read_pose
+    from synthesis.render.clip import render_clip
+    from synthesis.rigs.retarget import retarget
+    from synthesis.skeleton.retime import resample
+
+    recording = read_pose(args.file)
+    if args.view == "upper-body":
+        return _render_pose_file_body(args, recording)
+    hand = captured_hand(recording, args.side)
+    motion = hand.motion
+    if args.rate and abs(motion.rate_hz - args.rate) > 1e-9:
+        motion = resample(motion, args.rate)
+    avatar, camera = avatar_and_camera("hand", args.side)
+    info = render_clip(
+        avatar, retarget(motion, avatar.rig), camera, args.out, motion.rate_hz,
+        poster=args.poster, width=args.size[0], height=args.size[1],
+        progress=_progress(Path(args.file).name), workers=args.workers,
+    )  # fmt: skip
+    print(
+        f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; fit residual "
+        f"median {hand.fit.median_residual_mm():.1f} mm)"
+    )
+    return 0
+
+
+def _render_pose_file_body(args: argparse.Namespace, recording) -> int:
+    """Render a .pose file's arms and hands on the upper body (synthesis.capture.armfit)."""
+    from synthesis.capture.armfit import fit_arms
+    from synthesis.render.clip import render_clip
+
+    if args.rate and abs(recording.fps - args.rate) > 1e-9:
+        raise ValueError("--rate resamples hand motions only; leave it out with --view upper-body.")
+    avatar, camera = avatar_and_camera("upper-body", args.side)
+    fit = fit_arms(avatar.rig, recording)
+    info = render_clip(
+        avatar, fit.dofs_rad, camera, args.out, recording.fps, poster=args.poster,
+        width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),
+        workers=args.workers,
+    )  # fmt: skip
+    found = ", ".join(f"{side} arm {share:.0%}" for side, share in
+                      zip(("left", "right"), fit.found.mean(axis=0), strict=True))  # fmt: skip
+    print(f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; found: {found})")
+    return 0

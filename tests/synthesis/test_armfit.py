@@ -1,0 +1,70 @@
+"""Test arms from pose landmarks: an engine sentence exported as .pose and fitted back."""
+
+from functools import cache
+
+import numpy as np
+import pytest
+
+from synthesis.capture import PoseFileError, format_pose, from_hand_motion, parse_pose
+from synthesis.capture.armfit import fit_arms, from_body_motion
+from synthesis.cli import main
+from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.rotations import quat_to_matrix
+from synthesis.techniques import ClipRequest, build_motion
+
+SENTENCE = "INFORM-YOU BLUE MY FAVORITE COLOR."
+
+
+@cache
+def _signed():
+    """The spine-off sentence at 30 fps: the trunk at rest, as the arm fit assumes."""
+    build = build_motion(ClipRequest.from_parameters(
+        "sentence", SENTENCE, {"rate_hz": 30.0, "spine": False, "liveliness": False}))  # fmt: skip
+    return build.rig, np.asarray(build.motion)
+
+
+def test_a_sentence_exported_as_pose_landmarks_fits_back():
+    body, truth = _signed()
+    recording = parse_pose(format_pose(from_body_motion(body, truth, 30.0)))
+    assert {c for c, _ in recording.components} == {
+        "POSE_LANDMARKS", "LEFT_HAND_LANDMARKS", "RIGHT_HAND_LANDMARKS"}  # fmt: skip
+    fit = fit_arms(body, recording)
+    assert fit.found.all() and np.nanmax(fit.residual_mm) < 1.0
+    true_pose, fitted_pose = body.pose(truth), body.pose(fit.dofs_rad)
+    for side in ("right", "left"):
+        for joint in ("elbow", "wrist", "index_tip", "thumb_tip"):
+            j = body.skeleton.index(f"{side}_{joint}")
+            miss_mm = np.linalg.norm(fitted_pose.positions_m[:, j] - true_pose.positions_m[:, j],
+                                     axis=1) * 1000  # fmt: skip
+            assert np.median(miss_mm) < 2.0 and miss_mm.max() < 10.0, (side, joint)
+        w = body.skeleton.index(f"{side}_wrist")
+        turned = np.transpose(quat_to_matrix(true_pose.quaternions[:, w]), (0, 2, 1)) @ (
+            quat_to_matrix(fitted_pose.quaternions[:, w]))  # fmt: skip
+        angle_deg = np.degrees(np.arccos(np.clip((np.trace(turned, axis1=1, axis2=2) - 1) / 2,
+                                                 -1, 1)))  # fmt: skip
+        assert np.median(angle_deg) < 1.0, side
+
+
+def test_files_without_arms_are_refused_by_name():
+    hand = parse_pose(format_pose(from_hand_motion(HandModel(), np.zeros((3, 30)), 10)))
+    body, truth = _signed()
+    with pytest.raises(PoseFileError, match="no component POSE_LANDMARKS"):
+        fit_arms(body, hand)
+    recording = from_body_motion(body, truth[:3], 30.0)
+    unseen = type(recording)(recording.fps, recording.components, recording.points,
+                             np.zeros_like(recording.confidence), 10, 10)  # fmt: skip
+    with pytest.raises(PoseFileError, match="No arm was found"):
+        fit_arms(body, unseen)
+
+
+def test_the_command_line_exports_a_sentence_and_renders_it_back(tmp_path, renderable):
+    from synthesis.render.video import count_frames
+    from synthesis.skeleton.bvh import read_bvh
+
+    pose, bvh, out = tmp_path / "s.pose", tmp_path / "s.bvh", tmp_path / "s.mp4"
+    assert main(["sentence", "MY FAVORITE COLOR.", "--rate", "15", "--export-pose", str(pose),
+                 "--export-bvh", str(bvh)]) == 0  # fmt: skip
+    assert read_bvh(bvh).n_frames == parse_pose(pose.read_bytes()).n_frames > 10
+    assert main(["render-pose-file", str(pose), "--view", "upper-body", "--out", str(out),
+                 "--size", "96x72"]) == 0  # fmt: skip
+    assert count_frames(out) == read_bvh(bvh).n_frames
