@@ -268,6 +268,9 @@ def parser() -> argparse.ArgumentParser:
     capture.add_argument("--one-hand", action="store_true",
                          help="the video shows only that hand (a close-up)")  # fmt: skip
     capture.add_argument("--mirrored", action="store_true", help="the video is a selfie view")
+    capture.add_argument(
+        "--body", action="store_true", help="capture the body (MediaPipe Holistic), fit the arms"
+    )
     capture.set_defaults(run=capture_command)
 
     pose_file = rendering("render-pose-file", "render a .pose file's hand (or, with --view "

@@ -38,12 +38,38 @@ def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None)
         print(f"wrote {bvh_path}")
 
 
+def _capture_body(args: argparse.Namespace) -> int:
+    """Capture the body and hands (MediaPipe Holistic) and fit the upper body's arms."""
+    from synthesis.capture import write_pose
+    from synthesis.capture.armfit import fit_arms
+    from synthesis.capture.video import capture_body
+    from synthesis.rigs.body import BodyModel
+    from synthesis.skeleton.bvh import write_bvh
+    from synthesis.skeleton.motion import Motion
+
+    recording = capture_body(args.video, progress=_frames_progress(Path(args.video).name))
+    if args.out is not None:
+        print(f"wrote {write_pose(recording, args.out)}")
+    body = BodyModel(args.side)
+    fit = fit_arms(body, recording)
+    if args.bvh is not None:
+        motion = Motion(body.skeleton, body.channel_values(fit.dofs_rad), 1.0 / recording.fps)
+        write_bvh(motion, args.bvh)
+        print(f"wrote {args.bvh}")
+    found = ", ".join(f"{side} arm {share:.0%}" for side, share in
+                      zip(("left", "right"), fit.found.mean(axis=0), strict=True))  # fmt: skip
+    print(f"{recording.n_frames} frames at {recording.fps:g} fps; found: {found}")
+    return 0
+
+
 def capture_command(args: argparse.Namespace) -> int:
     """Run ``python -m synthesis capture``: a video's hands to .pose, BVH and a report."""
     from synthesis.capture import captured_hand, write_pose, write_report
     from synthesis.capture.video import capture_hands
     from synthesis.skeleton.bvh import write_bvh
 
+    if args.body:
+        return _capture_body(args)
     one_hand = args.side if args.one_hand else None
     recording = capture_hands(args.video, mirrored=args.mirrored, one_hand=one_hand,
                               progress=_frames_progress(Path(args.video).name))  # fmt: skip

@@ -28,6 +28,7 @@ from synthesis.rigs.body import BodyModel
 from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES
 
 POSE_COMPONENT = "POSE_LANDMARKS"
+POSE_WORLD_COMPONENT = "POSE_WORLD_LANDMARKS"
 ARM_POINTS = {
     side: tuple(f"{side.upper()}_{part}" for part in ("SHOULDER", "ELBOW", "WRIST"))
     for side in ("right", "left")
@@ -116,7 +117,11 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
     from synthesis.rigs.hand import HandModel
     from synthesis.rigs.ik import solve_arm
 
-    points, confidence = recording.component(POSE_COMPONENT, POSE_POINTS)
+    # Holistic's metric pose, where the file has it: its depth is far surer than the
+    # image landmarks' (the arm fit only needs directions and proportions).
+    component = POSE_WORLD_COMPONENT if recording.has_component(POSE_WORLD_COMPONENT) else (
+        POSE_COMPONENT)  # fmt: skip
+    points, confidence = recording.component(component, POSE_POINTS)
     points = _engine(points.astype(np.float64))
     n = recording.n_frames
     dofs = np.zeros((n, len(body.dofs)))

@@ -21,6 +21,10 @@ from synthesis.rigs.landmarks import LANDMARK_NAMES
 
 SUFFIXES = (".mp4", ".webm", ".mov", ".m4v", ".mkv", ".avi")
 MIN_FRAMES = 2
+# Holistic's metric pose (hip-centred, MediaPipe's axes), stored in millimetres: its
+# depth is the model's metric estimate, much surer than the image landmarks' z.
+POSE_WORLD_COMPONENT = "POSE_WORLD_LANDMARKS"
+WORLD_UNITS_PER_M = 1000.0
 # The rate a video without a frame rate of its own is sampled at (frames per second).
 UNTIMED_FPS = 30.0
 
@@ -29,15 +33,19 @@ class CaptureError(ValueError):
     """A video that cannot be captured: unreadable, too short, or without hands."""
 
 
-def _hands_solution():
+def _solution(name: str):
     try:
-        from mediapipe.python.solutions import hands
+        from mediapipe.python import solutions
     except ImportError as error:  # pragma: no cover - depends on the install
         raise CaptureError(
             f"MediaPipe cannot be imported ({error}); run 'make install' to install it "
             "(requirements/capture.txt)."
         ) from error
-    return hands
+    return getattr(solutions, name)
+
+
+def _hands_solution():
+    return _solution("hands")
 
 
 def read_frames(path: str | Path):
@@ -135,4 +143,68 @@ def capture_hands(
     components = tuple((HAND_COMPONENTS[side], LANDMARK_NAMES) for side in ("left", "right"))
     data = np.concatenate([np.array(points["left"]), np.array(points["right"])], axis=1)
     confidence = np.concatenate([np.array(scores["left"]), np.array(scores["right"])], axis=1)
+    return PoseRecording(fps, components, data, confidence, width, height)
+
+
+def capture_body(
+    path: str | Path, progress: Callable[[int], None] | None = None, model_complexity: int = 1
+) -> PoseRecording:
+    """Return the body and hands MediaPipe Holistic finds in the video, frame by frame.
+
+    The POSE_LANDMARKS component holds Holistic's 33 pose points in the image
+    (confidence: their visibility), POSE_WORLD_LANDMARKS the same points in metric
+    space (millimetres, hip-centred); the hand components as :func:`capture_hands`
+    writes them. Holistic
+    names the signer's own left and right. Raise CaptureError for an unreadable file, a
+    video shorter than two frames, or one in which no body is found.
+    """
+    holistic = _solution("holistic")
+    names = tuple(landmark.name for landmark in holistic.PoseLandmark)
+    fps, frames = read_frames(path)
+    pose, pose_seen, world = [], [], []
+    hands = {"left": [], "right": []}
+    hands_seen = {"left": [], "right": []}
+    width = height = 0
+    with holistic.Holistic(static_image_mode=False, model_complexity=model_complexity,
+                           min_detection_confidence=0.3,
+                           min_tracking_confidence=0.3) as tracker:  # fmt: skip
+        for number, frame in enumerate(frames, start=1):
+            height, width = frame.shape[:2]
+            found = tracker.process(frame)
+            scale = np.array([width, height, width])
+            if found.pose_landmarks is not None:
+                marks = found.pose_landmarks.landmark
+                pose.append(np.array([(m.x, m.y, m.z) for m in marks]) * scale)
+                pose_seen.append(np.array([m.visibility for m in marks]))
+                metric = found.pose_world_landmarks.landmark
+                world.append(np.array([(m.x, m.y, m.z) for m in metric]) * WORLD_UNITS_PER_M)
+            else:
+                pose.append(np.zeros((len(names), 3)))
+                pose_seen.append(np.zeros(len(names)))
+                world.append(np.zeros((len(names), 3)))
+            for side in ("left", "right"):
+                marks = getattr(found, f"{side}_hand_landmarks")
+                seen = marks is not None
+                xyz = (np.array([(m.x, m.y, m.z) for m in marks.landmark]) * scale if seen
+                       else np.zeros((21, 3)))  # fmt: skip
+                hands[side].append(xyz)
+                hands_seen[side].append(np.full(21, 1.0 if seen else 0.0))
+            if progress is not None:
+                progress(number)
+    n = len(pose)
+    if n < MIN_FRAMES:
+        raise CaptureError(f"{path}: the video is too short ({n} frame(s)).")
+    if not np.max(pose_seen) > 0:
+        raise CaptureError(f"{path}: no body was found in any of its {n} frames.")
+    components = (
+        ("POSE_LANDMARKS", names),
+        (POSE_WORLD_COMPONENT, names),
+        (HAND_COMPONENTS["left"], LANDMARK_NAMES),
+        (HAND_COMPONENTS["right"], LANDMARK_NAMES),
+    )
+    data = np.concatenate([np.array(pose), np.array(world), np.array(hands["left"]),
+                           np.array(hands["right"])], axis=1)  # fmt: skip
+    confidence = np.concatenate([np.array(pose_seen), np.array(pose_seen),
+                                 np.array(hands_seen["left"]), np.array(hands_seen["right"])],
+                                axis=1)  # fmt: skip
     return PoseRecording(fps, components, data, confidence, width, height)
