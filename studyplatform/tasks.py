@@ -114,16 +114,13 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
 
 def _contact_sheet(hand, video: Path) -> bytes | None:
     """Return the capture's contact sheet (PNG bytes), or None where nothing renders."""
-    import tempfile
-
-    from synthesis.capture.contact import write_contact_sheet
+    from synthesis.capture.contact import contact_sheet_png
     from synthesis.render.backend import RenderUnavailable
 
-    with tempfile.TemporaryDirectory() as directory:
-        try:
-            return write_contact_sheet(hand, video, Path(directory) / "sheet.png").read_bytes()
-        except RenderUnavailable:  # a worker without OpenGL still captures
-            return None
+    try:
+        return contact_sheet_png(hand, video)
+    except RenderUnavailable:  # a worker without OpenGL still captures
+        return None
 
 
 @shared_task(name="studyplatform.prepare_recording", acks_late=True, reject_on_worker_lost=True)

@@ -56,9 +56,7 @@ def _capture_body(args: argparse.Namespace) -> int:
         motion = Motion(body.skeleton, body.channel_values(fit.dofs_rad), 1.0 / recording.fps)
         write_bvh(motion, args.bvh)
         print(f"wrote {args.bvh}")
-    found = ", ".join(f"{side} arm {share:.0%}" for side, share in
-                      zip(("left", "right"), fit.found.mean(axis=0), strict=True))  # fmt: skip
-    print(f"{recording.n_frames} frames at {recording.fps:g} fps; found: {found}")
+    print(f"{recording.n_frames} frames at {recording.fps:g} fps; found: {_arms_found(fit)}")
     return 0
 
 
@@ -145,7 +143,13 @@ def _render_pose_file_body(args: argparse.Namespace, recording) -> int:
         width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),
         workers=args.workers,
     )  # fmt: skip
-    found = ", ".join(f"{side} arm {share:.0%}" for side, share in
-                      zip(("left", "right"), fit.found.mean(axis=0), strict=True))  # fmt: skip
-    print(f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; found: {found})")
+    print(f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; "
+          f"found: {_arms_found(fit)})")  # fmt: skip
     return 0
+
+
+def _arms_found(fit) -> str:
+    """Say in how many frames each arm was seen ("left arm 100%, right arm 97%")."""
+    shares = fit.found.mean(axis=0)
+    return ", ".join(f"{side} arm {share:.0%}" for side, share in
+                     zip(("left", "right"), shares, strict=True))  # fmt: skip

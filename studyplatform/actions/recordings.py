@@ -65,13 +65,17 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
         )
     if upload.size > MAX_RECORDING_BYTES:
         raise RecordingRejected("The recording is larger than 300 MB.")
-    data = upload.read()
+    digest = hashlib.sha256()
+    for chunk in upload.chunks():  # a video may be large: never all in memory
+        digest.update(chunk)
     if not name.lower().endswith(VIDEO_SUFFIXES):
-        _check_motion_file(name, data)
+        upload.seek(0)
+        _check_motion_file(name, upload.read())
+    upload.seek(0)
     with transaction.atomic():
         recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand,
-                              sha256=hashlib.sha256(data).hexdigest())  # fmt: skip
-        recording.upload.save(name, ContentFile(data), save=False)
+                              sha256=digest.hexdigest())  # fmt: skip
+        recording.upload.save(name, upload, save=False)
         recording.save()
         transaction.on_commit(lambda: prepare_recording.delay(recording.pk))
     return recording
@@ -105,20 +109,16 @@ def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None 
         stem = recording.upload.name.rsplit("/", 1)[-1].rsplit(".", 1)[0]
         if pose is not None:
             recording.motion.save(f"{stem}.pose", ContentFile(pose), save=False)
-        if sheet is not None:
-            recording.sheet.save(f"{stem}-contact.png", ContentFile(sheet), save=False)
         else:
             recording.motion.name = recording.upload.name
+        if sheet is not None:
+            recording.sheet.save(f"{stem}-contact.png", ContentFile(sheet), save=False)
         recording.status = Recording.Status.READY
         recording.progress_percent = 100
         recording.quality = quality
         recording.error = ""
         recording.save()
-        older = list(Recording.objects.filter(item_id=recording.item_id).exclude(pk=recording.pk))
-        files = {f.name for old in older for f in (old.upload, old.motion, old.sheet) if f}
-        Recording.objects.filter(pk__in=[old.pk for old in older]).delete()
-        for name in files:
-            transaction.on_commit(lambda name=name: recording.upload.storage.delete(name))
+        _remove(Recording.objects.filter(item_id=recording.item_id).exclude(pk=recording.pk))
         do_relabel_stand_ins(recording.item.study)
     return recording.status
 
@@ -128,15 +128,20 @@ def do_delete_recordings(recordings) -> int:
     with transaction.atomic():
         recordings = list(Recording.objects.select_for_update().filter(
             pk__in=[r.pk for r in recordings]).select_related("item__study"))  # fmt: skip
-        files = {f.name for r in recordings for f in (r.upload, r.motion, r.sheet) if f}
-        studies = {r.item.study for r in recordings}
-        Recording.objects.filter(pk__in=[r.pk for r in recordings]).delete()
-        for study in studies:
+        _remove(recordings)
+        for study in {r.item.study for r in recordings}:
             do_relabel_stand_ins(study)
-        storage = Recording._meta.get_field("upload").storage
-        for name in files:
-            transaction.on_commit(lambda name=name: storage.delete(name))
     return len(recordings)
+
+
+def _remove(recordings) -> None:
+    """Delete *recordings*' rows now and their files once the transaction commits."""
+    recordings = list(recordings)
+    files = {f.name for r in recordings for f in (r.upload, r.motion, r.sheet) if f}
+    Recording.objects.filter(pk__in=[r.pk for r in recordings]).delete()
+    storage = Recording._meta.get_field("upload").storage
+    for name in files:
+        transaction.on_commit(lambda name=name: storage.delete(name))
 
 
 def do_relabel_stand_ins(study: Study) -> int:

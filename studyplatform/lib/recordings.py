@@ -12,6 +12,8 @@ from typing import Any
 
 from studyplatform.models import Condition, Item, Recording, Study
 
+# The performances a recording replaces: a recording, or the simulated stand-in for one.
+RETIMED_SOURCES = ("recording", "simulated")
 # Stands for "each item's own recording" when a condition's parameters are checked or
 # described; the real file is found when a clip is specified.
 ITEM_RECORDING = "each word's own recording"
@@ -21,11 +23,6 @@ def current_recording(item: Item) -> Recording | None:
     """Return the item's newest ready recording, or None."""
     ready = item.recordings.filter(status=Recording.Status.READY).exclude(motion="")
     return ready.order_by("-created_at", "-pk").first()
-
-
-def recording_path(recording: Recording) -> str:
-    """Return the file path of the motion a recording's clips are made from."""
-    return str(Path(recording.motion.path))
 
 
 def uses_item_recording(parameters: Mapping[str, Any]) -> bool:
@@ -42,16 +39,29 @@ def as_checked(parameters: Mapping[str, Any]) -> dict:
     return parameters
 
 
-def with_recording(parameters: Mapping[str, Any], kind: str, path: str | None) -> dict:
-    """Return *parameters* with the item's recording at *path* as the performance.
+def with_item_recording(parameters: Mapping[str, Any], item: Item, condition_key: str) -> dict:
+    """Return a word's clip *parameters* with its recording as the performance.
 
-    Only words have performances; a condition naming its own recording file keeps it.
+    Conditions retiming a capture (:data:`RETIMED_SOURCES`) without a file of their own
+    take the item's newest ready recording; a simulated capture stays where there is
+    none. Raise ClipError when a condition retimes each word's recording and this word
+    has none.
     """
+    from stimuli.clips import ClipError
+
     parameters = dict(parameters)
-    if kind != Item.Kind.WORD or path is None or parameters.get("recording"):
+    retimes = parameters.get("source") in RETIMED_SOURCES and not parameters.get("recording")
+    if item.kind != Item.Kind.WORD or not retimes:
         return parameters
-    if parameters.get("source") in ("recording", "simulated"):
-        parameters.update(source="recording", recording=path)
+    recording = current_recording(item)
+    if recording is not None:
+        parameters.update(source="recording", recording=str(Path(recording.motion.path)))
+    elif uses_item_recording(parameters):
+        raise ClipError(
+            f"{item.key} has no recording yet, and condition {condition_key!r} retimes "
+            "each word's recording: upload one on the item's Recordings, or wait for "
+            "its capture to finish."
+        )
     return parameters
 
 
@@ -132,8 +142,11 @@ def _describe(recording: Recording | None) -> dict | None:
 def retimes_recordings(study: Study) -> bool:
     """Return whether a condition of the study retimes its words' recordings (so their
     holds must be found), rather than only playing them as performed."""
+    from synthesis.techniques import REGISTRY
+
+    default = REGISTRY.parameters(Item.Kind.WORD)["timing"][0].default
     return any(
-        (c.parameters or {}).get("source") in ("recording", "simulated")
-        and (c.parameters or {}).get("timing", "simple") != "mocap"
+        (c.parameters or {}).get("source") in RETIMED_SOURCES
+        and (c.parameters or {}).get("timing", default) != "mocap"
         for c in study.conditions.all()
     )

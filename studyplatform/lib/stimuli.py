@@ -3,14 +3,9 @@
 import zlib
 from pathlib import Path
 
-from stimuli.clips import ClipError, ClipSpec, RenderedClip
+from stimuli.clips import ClipSpec, RenderedClip
 from stimuli.manifest import Entry
-from studyplatform.lib.recordings import (
-    current_recording,
-    recording_path,
-    uses_item_recording,
-    with_recording,
-)
+from studyplatform.lib.recordings import with_item_recording
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
 from synthesis.techniques import ClipRequest
 
@@ -25,16 +20,7 @@ def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     """
     parameters = {**(item.parameters or {}), **(condition.parameters or {})}
     parameters.setdefault("seed", zlib.crc32(item.key.encode()))
-    if item.kind == Item.Kind.WORD and parameters.get("source") in ("recording", "simulated"):
-        recording = current_recording(item)
-        if recording is None and uses_item_recording(parameters):
-            raise ClipError(
-                f"{item.key} has no recording yet, and condition {condition.key!r} retimes "
-                "each word's recording: upload one on the item's Recordings, or wait for "
-                "its capture to finish."
-            )
-        path = recording_path(recording) if recording is not None else None
-        parameters = with_recording(parameters, item.kind, path)
+    parameters = with_item_recording(parameters, item, condition.key)
     return ClipSpec.from_request(ClipRequest.from_parameters(item.kind, item.text, parameters))
 
 

@@ -21,14 +21,14 @@ from synthesis.capture.posefile import (
     EXPORT_METRES_PER_UNIT,
     EXPORT_SIZE,
     HAND_COMPONENTS,
+    POSE_COMPONENT,
+    POSE_WORLD_COMPONENT,
     PoseFileError,
     PoseRecording,
 )
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES
 
-POSE_COMPONENT = "POSE_LANDMARKS"
-POSE_WORLD_COMPONENT = "POSE_WORLD_LANDMARKS"
 ARM_POINTS = {
     side: tuple(f"{side.upper()}_{part}" for part in ("SHOULDER", "ELBOW", "WRIST"))
     for side in ("right", "left")
@@ -165,7 +165,7 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
                     fit = fit_hand(HandModel(side), marks, marks_confidence,
                                    rate_hz=recording.fps)  # fmt: skip
                     dofs = body.with_hand(dofs, side, fit.dofs_rad)
-                except FitError:
+                except FitError:  # no confident frame: the fingers keep their rest pose
                     pass
         swivel = _swivel(shoulder, elbow_t, wrist_t, side)
         dofs = solve_arm(body, dofs, side, wrist_t, rotation, swivel)

@@ -24,9 +24,11 @@ def contact_frames(hand: CapturedHand, n: int = N_FRAMES) -> np.ndarray:
     return found[np.unique(np.round(picks).astype(int))]
 
 
-def write_contact_sheet(hand: CapturedHand, video: str | Path, out: str | Path,
-                        n: int = N_FRAMES, tile_px: int = TILE_PX) -> Path:  # fmt: skip
-    """Write the contact sheet PNG of *hand* captured from *video* to *out*; return it."""
+def contact_sheet_png(hand: CapturedHand, video: str | Path, n: int = N_FRAMES,
+                      tile_px: int = TILE_PX) -> bytes:  # fmt: skip
+    """Return the contact sheet of *hand* captured from *video*, as PNG bytes."""
+    import io
+
     from PIL import Image, ImageDraw
 
     from synthesis.avatar.hand_mesh import hand_avatar
@@ -58,7 +60,14 @@ def write_contact_sheet(hand: CapturedHand, video: str | Path, out: str | Path,
             residual = float(np.median(hand.fit.residual_mm[number]))
             draw.text((x + 6, 4), f"frame {number}", fill="black")
             draw.text((x + 6, tile_px + 4), f"fit {residual:.1f} mm", fill="white")
+    buffer = io.BytesIO()
+    sheet.save(buffer, format="PNG", optimize=True)
+    return buffer.getvalue()
+
+
+def write_contact_sheet(hand: CapturedHand, video: str | Path, out: str | Path) -> Path:
+    """Write the contact sheet PNG of *hand* captured from *video* to *out*; return it."""
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    sheet.save(out, optimize=True)
+    out.write_bytes(contact_sheet_png(hand, video))
     return out

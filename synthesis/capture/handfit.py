@@ -21,7 +21,7 @@ from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from synthesis.rigs.hand import HandModel
-from synthesis.rigs.landmarks import PALM_CENTRE, landmarks
+from synthesis.rigs.landmarks import LANDMARK_JOINTS, PALM_CENTRE, landmarks
 
 WRIST, MIDDLE_MCP = 0, 9
 # DOFs the fit leaves at rest: the free rotation stands for the forearm and wrist.
@@ -114,8 +114,6 @@ def calibrate_bones(
     within :data:`BONE_RATIO_LIMITS`. Needs landmarks with depth: a projection
     foreshortens segments.
     """
-    from synthesis.rigs.landmarks import LANDMARK_JOINTS
-
     skeleton = model.skeleton
     parents = skeleton.parents
     rest = landmarks(model, model.neutral())

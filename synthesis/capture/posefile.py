@@ -19,6 +19,10 @@ from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import LANDMARK_NAMES, landmarks
 
 HAND_COMPONENTS = {"right": "RIGHT_HAND_LANDMARKS", "left": "LEFT_HAND_LANDMARKS"}
+POSE_COMPONENT = "POSE_LANDMARKS"
+# Holistic's metric pose (Holistic's pose_world_landmarks): its depth is the model's
+# metric estimate, much surer than the image landmarks' z.
+POSE_WORLD_COMPONENT = "POSE_WORLD_LANDMARKS"
 # Files this engine writes: one unit is a millimetre, in a 1000 × 1000 "image" whose
 # centre holds the palm centre.
 EXPORT_SIZE = 1000

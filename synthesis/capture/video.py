@@ -16,14 +16,17 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.capture.posefile import HAND_COMPONENTS, PoseRecording
+from synthesis.capture.posefile import (
+    HAND_COMPONENTS,
+    POSE_COMPONENT,
+    POSE_WORLD_COMPONENT,
+    PoseRecording,
+)
 from synthesis.rigs.landmarks import LANDMARK_NAMES
 
 SUFFIXES = (".mp4", ".webm", ".mov", ".m4v", ".mkv", ".avi")
 MIN_FRAMES = 2
-# Holistic's metric pose (hip-centred, MediaPipe's axes), stored in millimetres: its
-# depth is the model's metric estimate, much surer than the image landmarks' z.
-POSE_WORLD_COMPONENT = "POSE_WORLD_LANDMARKS"
+# Holistic's metric pose (hip-centred, MediaPipe's axes) is stored in millimetres.
 WORLD_UNITS_PER_M = 1000.0
 # The rate a video without a frame rate of its own is sampled at (frames per second).
 UNTIMED_FPS = 30.0
@@ -48,20 +51,26 @@ def _hands_solution():
     return _solution("hands")
 
 
-def read_frames(path: str | Path):
-    """Return the video's frame rate and an iterator of its RGB frames (h, w, 3) uint8."""
+def _metadata(path: Path) -> dict:
+    """Return the video's metadata (ffmpeg's), or raise CaptureError naming the problem."""
     import imageio.v3 as iio
 
-    path = Path(path)
     if not path.is_file():
         raise CaptureError(f"{path}: no such video file.")
     if path.suffix.lower() not in SUFFIXES:
         raise CaptureError(f"{path}: not a video ({', '.join(SUFFIXES)}).")
     try:
-        meta = iio.immeta(path)
-        fps = float(meta.get("fps") or 0)
+        return iio.immeta(path)
     except Exception as error:  # ffmpeg's errors come in many types
         raise CaptureError(f"{path}: not a readable video ({error}).") from None
+
+
+def read_frames(path: str | Path):
+    """Return the video's frame rate and an iterator of its RGB frames (h, w, 3) uint8."""
+    import imageio.v3 as iio
+
+    path = Path(path)
+    fps = float(_metadata(path).get("fps") or 0)
     # A browser's MediaRecorder writes WebM without a frame rate (frames carry their own
     # times): ffmpeg then samples it at a fixed rate.
     resample = not np.isfinite(fps) or fps <= 0
@@ -83,11 +92,10 @@ def read_frames(path: str | Path):
 
 def expected_frames(path: str | Path) -> int | None:
     """Return about how many frames the video has (from its duration), or None if unknown."""
-    fps, _ = read_frames(path)
-    import imageio.v3 as iio
-
-    duration_s = float(iio.immeta(path).get("duration") or 0)
-    return round(duration_s * fps) if np.isfinite(duration_s) and duration_s > 0 else None
+    meta = _metadata(Path(path))
+    fps, duration_s = float(meta.get("fps") or 0), float(meta.get("duration") or 0)
+    known = np.isfinite(duration_s * fps) and duration_s > 0 and fps > 0
+    return round(duration_s * fps) if known else None
 
 
 def capture_hands(
@@ -197,7 +205,7 @@ def capture_body(
     if not np.max(pose_seen) > 0:
         raise CaptureError(f"{path}: no body was found in any of its {n} frames.")
     components = (
-        ("POSE_LANDMARKS", names),
+        (POSE_COMPONENT, names),
         (POSE_WORLD_COMPONENT, names),
         (HAND_COMPONENTS["left"], LANDMARK_NAMES),
         (HAND_COMPONENTS["right"], LANDMARK_NAMES),

@@ -117,9 +117,8 @@ class JointMapping:
 
 def _tip_of(canonical: str) -> str | None:
     """Return the fingertip beyond a finger's last joint (``index_dip`` → ``index_tip``)."""
-    for last in ("_dip", "thumb_ip"):
-        if canonical.endswith(last):
-            return canonical[: -len("ip")] + "tip" if last == "thumb_ip" else canonical[:-3] + "tip"
+    if canonical.endswith(("_dip", "thumb_ip")):
+        return canonical[: canonical.rindex("_") + 1] + "tip"
     return None
 
 

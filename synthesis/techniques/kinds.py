@@ -48,8 +48,7 @@ def _finish_word(build: Build) -> Build:
         )
     timing = build.timing
     plays_as_performed = timing is None or timing is build.performance.extraction.timing
-    motion = build.performance.motion if plays_as_performed else retime(build.performance,
-                                                                        build.timing)  # fmt: skip
+    motion = build.performance.motion if plays_as_performed else retime(build.performance, timing)
     if abs(motion.rate_hz - request.rate_hz) > 1e-9:
         motion = resample(motion, request.rate_hz)
     return build.but(motion=retarget(motion, build.rig))

@@ -214,3 +214,17 @@ def test_the_recordings_page_uploads_and_reports_progress(
     assert client.get(url).status_code == 404
     assert client.post(url, {"item": item.pk, "recording": _bvh("HEAVEN")}).status_code == 404
     assert Recording.objects.count() == 1
+
+
+def test_a_video_captured_without_a_contact_sheet_keeps_its_landmarks(fingerspelling, media):
+    """A worker without OpenGL captures but draws no sheet: clips still use the .pose."""
+    from studyplatform.actions import do_finish_recording
+
+    item = fingerspelling.items.get(key="HEAVEN")
+    video = Recording(item=item)
+    video.upload.save("HEAVEN.mp4", SimpleUploadedFile("HEAVEN.mp4", b"video"), save=True)
+    pose = _pose("HEAVEN").read()
+    assert do_finish_recording(video, {"frames": 3}, pose=pose, sheet=None) == "ready"
+    video.refresh_from_db()
+    assert video.motion.name.endswith(".pose") and video.motion.read() == pose
+    assert not video.sheet
