@@ -4,11 +4,12 @@ Each frame is a bounded least-squares problem (scipy.optimize.least_squares, joi
 limits as bounds): the finger and thumb DOFs, and a free rotation of the whole hand
 (captures see the hand from any side; the model's forearm and wrist stay at rest), so
 that the model's landmarks match the observed ones. Before that, the observed hand is
-centred on its palm and scaled so that the signer's wrist → middle-finger MCP length
-(median over confident frames) equals the model's: a per-signer bone-length
-calibration that also turns image units into metres. Residuals are weighted by
-confidence; frames without the hand are interpolated from their neighbours; each frame
-starts from the previous frame's answer, so a held handshape stays still.
+centred on its palm and scaled so that the signer's palm (median over confident
+frames) is the model's size: a per-signer calibration that also turns image units into
+metres. Residuals are weighted by confidence; frames without the hand are interpolated
+from their neighbours. The stillest frame is fitted from several starts; from it each
+frame starts from its neighbour's answer, forwards and backwards, so a held handshape
+stays still.
 
 The Jacobian comes from one batched forward-kinematics call per iteration (the model
 poses all perturbed DOF vectors at once), which keeps a frame to a few milliseconds.
@@ -20,15 +21,19 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from synthesis.rigs.hand import HandModel
+from synthesis.rigs.hand import FINGERS, HandModel
 from synthesis.rigs.landmarks import LANDMARK_JOINTS, PALM_CENTRE, landmarks
 
 WRIST, MIDDLE_MCP = 0, 9
+# The palm: the wrist and the four finger MCPs, nearly coplanar.
+PALM_POINTS = (0, 5, 9, 13, 17)
 # DOFs the fit leaves at rest: the free rotation stands for the forearm and wrist.
 FIXED = ("forearm_tilt_side", "forearm_tilt_forward", "forearm_twist", "wrist_deviation",
          "wrist_flexion")  # fmt: skip
 MIN_CONFIDENCE = 0.2
 STEP_RAD = 1e-4
+# The finger flexion of the curled start, degrees (a loose fist).
+CURLED_DEG = 70.0
 # Each landmark's parent in the hand's tree (MediaPipe's connections from the wrist).
 LANDMARK_PARENTS = (-1, 0, 1, 2, 3, 0, 5, 6, 7, 0, 9, 10, 11, 0, 13, 14, 15, 0, 17, 18, 19)
 # How far a signer's bone may differ from the model's, as a ratio of lengths.
@@ -87,18 +92,32 @@ def has_depth(points: np.ndarray, confidence: np.ndarray) -> bool:
 def calibrate_scale(
     model: HandModel, points: np.ndarray, confidence: np.ndarray, planar: bool = False
 ) -> float:
-    """Return metres per observed unit from the wrist → middle MCP length (median).
+    """Return metres per observed unit from the palm's size (median over the frames).
 
-    *planar* landmarks are projections: their longest wrist → MCP length over the frames
-    (the least foreshortened) stands for the true one.
+    With depth, the size is the wrist → middle MCP length. *planar* landmarks are
+    projections, which foreshorten the palm along its tilt: the palm (wrist and four
+    MCPs, nearly flat) maps to its projection by a 2-D linear map whose larger singular
+    value is the scale whatever the tilt, so that value stands for the palm's size.
     """
     rest = landmarks(model, model.neutral())
-    model_length = np.linalg.norm(rest[MIDDLE_MCP] - rest[WRIST])
-    seen = np.minimum(confidence[:, WRIST], confidence[:, MIDDLE_MCP]) >= MIN_CONFIDENCE
+    palm = list(PALM_POINTS)
+    seen = (confidence[:, palm] >= MIN_CONFIDENCE).all(axis=1)
     if not seen.any():
-        raise FitError("The hand was not found in any frame (no confident wrist and MCP).")
+        raise FitError("The hand was not found in any frame (no confident wrist and MCPs).")
+    if planar:
+        # The model palm in its own plane (the rest hand's x and y: its palm faces z).
+        model_palm = rest[palm, :2] - rest[palm, :2].mean(axis=0)
+        observed = points[seen][:, palm, :2]
+        observed = observed - observed.mean(axis=1, keepdims=True)
+        maps = np.linalg.pinv(model_palm) @ observed  # (frames, 2, 2): model → image
+        sizes = np.linalg.svd(maps, compute_uv=False)[:, 0]  # image units per metre
+        size = float(np.median(sizes))
+        if not size > 0:
+            raise FitError("The hand's palm landmarks coincide: not a hand.")
+        return 1.0 / size
+    model_length = np.linalg.norm(rest[MIDDLE_MCP] - rest[WRIST])
     lengths = np.linalg.norm(points[seen, MIDDLE_MCP] - points[seen, WRIST], axis=-1)
-    length = float(np.percentile(lengths, 90) if planar else np.median(lengths))
+    length = float(np.median(lengths))
     if not length > 0:
         raise FitError("The hand's wrist and middle MCP coincide: not a hand.")
     return float(model_length / length)
@@ -149,6 +168,12 @@ class _Problem:
         self.lower = np.concatenate([np.full(3, -np.inf), lower[self.free]])
         self.upper = np.concatenate([np.full(3, np.inf), upper[self.free]])
         self.base = model.neutral()
+        # A start with the fingers curled (their flexions at CURLED_DEG, within limits).
+        curled = self.base.copy()
+        for i in self.free:
+            if names[i].split("_")[0] in FINGERS and names[i].endswith("_flexion"):
+                curled[i] = np.clip(np.radians(CURLED_DEG), lower[i], upper[i])
+        self.curled = curled[self.free]
         # The DIP–PIP coupling prior: rows of (dip − ratio·pip), weighted, in x's columns.
         column = {names[i]: 3 + k for k, i in enumerate(self.free)}
         rows = []
@@ -201,27 +226,40 @@ class _Problem:
 
 def _initial_rotation(problem: _Problem, target: np.ndarray) -> np.ndarray:
     """Return the rotation vector aligning the rest hand's palm to the observed palm (Kabsch)."""
-    palm = [WRIST, 5, 9, 13, 17]
+    palm = list(PALM_POINTS)
     rest = problem.predict(np.concatenate([np.zeros(3), problem.base[problem.free]])[None])[0]
     rotation, _ = Rotation.align_vectors(target[palm], rest[palm])
     return rotation.as_rotvec()
 
 
+def _stillest(points: np.ndarray, seen: np.ndarray) -> int:
+    """Return the seen frame whose landmarks move least (from the previous seen frame)."""
+    if len(seen) < 3:
+        return int(seen[0])
+    palm = points[seen][:, list(PALM_CENTRE)].mean(axis=1, keepdims=True)
+    shape = points[seen] - palm
+    motion = np.linalg.norm(np.diff(shape, axis=0), axis=-1).mean(axis=1)
+    # A frame's stillness: its motion to both neighbours (the two ends are not chosen).
+    both = np.concatenate([[np.inf], motion]) + np.concatenate([motion, [np.inf]])
+    return int(seen[np.argmin(both)])
+
+
 def _first_fit(problem: _Problem, target: np.ndarray, weights: np.ndarray, axes: np.ndarray):
-    """Fit the first frame from several orientations; return the best solution.
+    """Fit a frame afresh from several starts; return the best solution.
 
     The palm alone leaves the hand's orientation ambiguous (in a projection, a hand and
     its depth-flipped twin look alike), so the palm-aligned start is tried as it is and
-    turned half round each axis.
+    turned half round each axis; and curled fingers seen end-on are reached from a
+    curled start, not from open ones, so each turn starts open and curled.
     """
     aligned = Rotation.from_rotvec(_initial_rotation(problem, target))
     best = None
-    for turn in (np.zeros(3), [np.pi, 0, 0], [0, np.pi, 0], [0, 0, np.pi]):
-        start = (Rotation.from_rotvec(turn) * aligned).as_rotvec()
-        solution = problem.fit(target, weights, np.concatenate([start, problem.base[problem.free]]),
-                               axes)  # fmt: skip
-        if best is None or solution.cost < best.cost:
-            best = solution
+    for fingers in (problem.base[problem.free], problem.curled):
+        for turn in (np.zeros(3), [np.pi, 0, 0], [0, np.pi, 0], [0, 0, np.pi]):
+            start = (Rotation.from_rotvec(turn) * aligned).as_rotvec()
+            solution = problem.fit(target, weights, np.concatenate([start, fingers]), axes)
+            if best is None or solution.cost < best.cost:
+                best = solution
     return best
 
 
@@ -282,16 +320,19 @@ def fit_hand(
     problem = _Problem(model, bone_scale, coupling)
     n = len(points)
     solutions = np.full((n, 3 + len(problem.free)), np.nan)
-    previous = None
-    for frame in np.flatnonzero(found):
-        weights = np.maximum(confidence[frame], 1e-3)
-        palm = points[frame, list(PALM_CENTRE)].mean(axis=0)
-        target = (points[frame] - palm) * scale
-        if previous is None:
-            solution = _first_fit(problem, target, weights, axes)
-        else:
-            solution = problem.fit(target, weights, previous, axes)
-        solutions[frame] = previous = solution.x
+    targets = (points - points[:, list(PALM_CENTRE)].mean(axis=1, keepdims=True)) * scale
+    weights = np.maximum(confidence, 1e-3)
+    # Fit the stillest frame afresh, then track from it forwards and backwards: a
+    # recording's first frames are often a transition, whose shape, carried into the
+    # hold by tracking, can hold the fit in a wrong answer.
+    seen = np.flatnonzero(found)
+    anchor = _stillest(points, seen)
+    solutions[anchor] = _first_fit(problem, targets[anchor], weights[anchor], axes).x
+    for run in (seen[seen > anchor], seen[seen < anchor][::-1]):
+        previous = solutions[anchor]
+        for frame in run:
+            previous = problem.fit(targets[frame], weights[frame], previous, axes).x
+            solutions[frame] = previous
     # Frames without the hand: interpolated between the fitted ones (held at the ends).
     frames = np.arange(n)
     for column in range(solutions.shape[1]):
@@ -301,6 +342,5 @@ def fit_hand(
     dofs = problem.dofs(solutions)
     rotations = Rotation.from_rotvec(solutions[:, :3]).as_matrix()
     fitted = problem.predict(solutions)
-    palms = points[:, list(PALM_CENTRE)].mean(axis=1, keepdims=True)
-    residual_mm = np.linalg.norm((fitted - (points - palms) * scale) * axes, axis=-1) * 1000
+    residual_mm = np.linalg.norm((fitted - targets) * axes, axis=-1) * 1000
     return HandFit(dofs, rotations, scale, residual_mm, found, bool(axes[2]), bone_scale)
