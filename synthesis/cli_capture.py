@@ -149,7 +149,9 @@ def _render_pose_file_body(args: argparse.Namespace, recording) -> int:
 
 
 def _arms_found(fit) -> str:
-    """Say in how many frames each arm was seen ("left arm 100%, right arm 97%")."""
-    shares = fit.found.mean(axis=0)
-    return ", ".join(f"{side} arm {share:.0%}" for side, share in
-                     zip(("left", "right"), shares, strict=True))  # fmt: skip
+    """Say in how many frames each arm, the trunk and the head were seen ("left arm 100%,
+    right arm 97%, trunk 100%, head 99%"; no trunk or head for a file without them)."""
+    parts = list(zip(("left arm", "right arm"), fit.found.mean(axis=0), strict=True))
+    if fit.trunk is not None:
+        parts += zip(("trunk", "head"), fit.trunk.found.mean(axis=0), strict=True)
+    return ", ".join(f"{part} {share:.0%}" for part, share in parts)

@@ -7,7 +7,10 @@ wrist), its wrist becomes the target of the analytic arm IK
 (:func:`synthesis.rigs.ik.solve_arm`), the elbow's place on its circle gives the
 swivel, and the hand's landmarks give the wrist's orientation (palm normal and finger
 direction), hence forearm twist and wrist; the fingers are fitted by
-:func:`synthesis.capture.handfit.fit_hand`. The trunk stays at rest.
+:func:`synthesis.capture.handfit.fit_hand`. Before the arms, the spine, neck and head
+are fitted where the shoulders, hips, ears and nose are seen
+(:func:`synthesis.capture.trunkfit.fit_trunk`); the arms hang from the shoulders it
+places.
 
 Axes: files use MediaPipe's (x right, y down, z away from the camera); the engine's
 world has y up and z toward the viewer.
@@ -26,6 +29,7 @@ from synthesis.capture.posefile import (
     PoseFileError,
     PoseRecording,
 )
+from synthesis.capture.trunkfit import BODY_POINTS, TrunkFit, body_points, fit_trunk
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES
 
@@ -36,6 +40,9 @@ ARM_POINTS = {
 POSE_POINTS = (*ARM_POINTS["left"], *ARM_POINTS["right"])
 _TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
 MIN_CONFIDENCE = 0.2
+_names = list(BODY_POINTS)
+# The trunk's and head's points that are not also an arm's (BODY_POINTS positions).
+_HEAD_AND_HIPS = tuple(k for k, name in enumerate(_names) if name not in POSE_POINTS)
 # Hand landmarks (MediaPipe order) that frame the palm: wrist, index and pinky MCPs.
 _WRIST, _INDEX_MCP, _MIDDLE_MCP, _PINKY_MCP = 0, 5, 9, 17
 
@@ -47,12 +54,14 @@ class ArmFit:
     *dofs_rad* (n_frames, n_body_dofs); *residual_mm* (n_frames, 6) the fitted shoulder,
     elbow and wrist of the left then right arm against the observed ones, both scaled
     to the model and placed at the model's shoulders; *found* (n_frames, 2) whether
-    each arm (left, right) was seen.
+    each arm (left, right) was seen; *trunk* the spine, neck and head fit (None when
+    the recording has no head or hips: the trunk then stays at rest).
     """
 
     dofs_rad: np.ndarray
     residual_mm: np.ndarray
     found: np.ndarray
+    trunk: TrunkFit | None = None
 
 
 def _joint(body: BodyModel, side: str, part: str) -> int:
@@ -60,21 +69,23 @@ def _joint(body: BodyModel, side: str, part: str) -> int:
 
 
 def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> PoseRecording:
-    """Return body DOFs (n_frames, n_dofs) as a .pose recording: shoulders, elbows and
-    wrists (POSE_LANDMARKS) and both hands' 21 landmarks, in millimetres.
+    """Return body DOFs (n_frames, n_dofs) as a .pose recording: shoulders, elbows,
+    wrists, nose, ears and hips (POSE_LANDMARKS) and both hands' 21 landmarks, in
+    millimetres.
 
     The shoulders' midpoint sits at the middle of a 1000 × 1000 "image".
     """
     positions = body.pose(np.atleast_2d(dofs_rad)).positions_m
     index = body.skeleton.index
-    pose = positions[:, [index(name.lower()) for name in POSE_POINTS]]
+    arms = positions[:, [index(name.lower()) for name in POSE_POINTS]]
+    pose = np.concatenate([arms, body_points(body, dofs_rad)[:, list(_HEAD_AND_HIPS)]], axis=1)
     hands = [positions[:, [index(f"{side}_{joint}") for joint in LANDMARK_JOINTS]]
              for side in ("left", "right")]  # fmt: skip
     points = np.concatenate([pose, *hands], axis=1) * _TO_MEDIAPIPE
     centre = points[:, : len(POSE_POINTS)][:, [0, 3]].mean(axis=1, keepdims=True)
     units = (points - centre) / EXPORT_METRES_PER_UNIT + np.array([EXPORT_SIZE / 2] * 2 + [0.0])
     components = (
-        (POSE_COMPONENT, POSE_POINTS),
+        (POSE_COMPONENT, (*POSE_POINTS, *(_names[k] for k in _HEAD_AND_HIPS))),
         (HAND_COMPONENTS["left"], LANDMARK_NAMES),
         (HAND_COMPONENTS["right"], LANDMARK_NAMES),
     )
@@ -124,8 +135,11 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
     points, confidence = recording.component(component, POSE_POINTS)
     points = _engine(points.astype(np.float64))
     n = recording.n_frames
-    dofs = np.zeros((n, len(body.dofs)))
+    trunk = _fit_trunk(body, recording, component)
+    dofs = np.zeros((n, len(body.dofs))) if trunk is None else trunk.dofs_rad.copy()
     rest = body.pose(body.neutral()).positions_m[0]
+    # The shoulders where the fitted trunk puts them.
+    posed = body.pose(dofs).positions_m
     found = np.zeros((n, 2), dtype=bool)
     residual = np.full((n, 6), np.nan)
     fitted_any = False
@@ -138,8 +152,9 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
         if not seen.any():
             continue
         fitted_any = True
-        shoulder = rest[_joint(body, side, "shoulder")]
-        model_arm = (np.linalg.norm(rest[_joint(body, side, "elbow")] - shoulder)
+        shoulder = posed[:, _joint(body, side, "shoulder")]
+        model_arm = (np.linalg.norm(rest[_joint(body, side, "elbow")]
+                                    - rest[_joint(body, side, "shoulder")])
                      + np.linalg.norm(rest[_joint(body, side, "wrist")]
                                       - rest[_joint(body, side, "elbow")]))  # fmt: skip
         upper = points[:, e] - points[:, s]
@@ -170,13 +185,28 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
         swivel = _swivel(shoulder, elbow_t, wrist_t, side)
         dofs = solve_arm(body, dofs, side, wrist_t, rotation, swivel)
         fitted = body.pose(dofs).positions_m
-        for k, (target, part) in enumerate(((np.broadcast_to(shoulder, wrist_t.shape), "shoulder"),
-                                            (elbow_t, "elbow"), (wrist_t, "wrist"))):  # fmt: skip
+        for k, (target, part) in enumerate(((shoulder, "shoulder"), (elbow_t, "elbow"),
+                                            (wrist_t, "wrist"))):  # fmt: skip
             miss = np.linalg.norm(fitted[:, _joint(body, side, part)] - target, axis=1) * 1000
             residual[:, 3 * column + k] = np.where(seen, miss, np.nan)
     if not fitted_any:
         raise PoseFileError("No arm was found in any frame (shoulder, elbow and wrist).")
-    return ArmFit(dofs, residual, found)
+    return ArmFit(dofs, residual, found, trunk)
+
+
+def _fit_trunk(body: BodyModel, recording: PoseRecording, component: str):
+    """Return the trunk and head fitted to *component*'s points, or None if it has none
+    of the head and hips (a file of arms only keeps the trunk at rest)."""
+    names = dict(recording.components)[component]
+    present = [name for name in BODY_POINTS if name in names]
+    if not any(_names.index(name) in _HEAD_AND_HIPS for name in present):
+        return None
+    points, confidence = recording.component(component, tuple(present))
+    full = np.zeros((recording.n_frames, len(BODY_POINTS), 3))
+    seen = np.zeros((recording.n_frames, len(BODY_POINTS)))
+    columns = [_names.index(name) for name in present]
+    full[:, columns], seen[:, columns] = points, confidence
+    return fit_trunk(body, full, seen)
 
 
 def _swivel(shoulder: np.ndarray, elbow: np.ndarray, wrist: np.ndarray, side: str) -> np.ndarray:

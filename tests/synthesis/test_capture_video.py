@@ -102,6 +102,8 @@ def test_a_rendered_signer_is_captured_with_holistic_and_its_arms_fitted(tmp_pat
     assert recording.has_component("POSE_WORLD_LANDMARKS")
     fit = fit_arms(build.rig, recording)
     assert fit.found.mean() > 0.9
+    # Holistic sees the shoulders, ears and nose: the trunk and head are fitted too.
+    assert fit.trunk is not None and fit.trunk.found.mean() > 0.9
     truth, fitted = build.rig.pose(np.asarray(build.motion)), build.rig.pose(fit.dofs_rad)
     elbow = build.rig.skeleton.index("right_elbow")
     miss_mm = np.linalg.norm(fitted.positions_m[:, elbow] - truth.positions_m[:, elbow], axis=1)
