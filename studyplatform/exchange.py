@@ -2,13 +2,14 @@
 
 The format is versioned (``format``/``version`` keys) and refers to objects by their
 keys, never by database ids, so a file moves between installations. Stimuli are not
-part of a definition: they are rendered again from it. ASL prompt videos are
-referenced by their media file names. :func:`studyplatform.actions.do_import_study`
-writes a definition to the database.
+part of a definition: they are rendered again from it. ASL prompt videos and each
+word's recording in use are referenced by their media file names.
+:func:`studyplatform.actions.do_import_study` writes a definition to the database.
 """
 
 from typing import Any
 
+from studyplatform.lib.recordings import current_recording
 from studyplatform.models import Study
 
 FORMAT = "signstudy.study"
@@ -67,6 +68,8 @@ TRIAL_FIELDS = (
 # Foreign keys of a trial, exported as the key of the object they point to.
 TRIAL_REFERENCES = ("block", "item", "condition_a", "condition_b")
 ASL_VIDEO_FIELDS = ("field_name", "transcript")
+RECORDING_FIELDS = ("mirrored", "one_hand", "quality", "sha256")
+RECORDING_FILES = ("upload", "motion", "sheet")
 
 
 def _values(obj: Any, fields: tuple[str, ...]) -> dict[str, Any]:
@@ -99,12 +102,14 @@ def export_study(study: Study) -> dict[str, Any]:
         for option in question.options.all():
             asl_videos.extend(option.asl_videos.all())
 
+    items = list(study.items.all())
+    recordings = [(item, current_recording(item)) for item in items]
     return {
         "format": FORMAT,
         "version": VERSION,
         "study": _values(study, STUDY_FIELDS),
         "conditions": [_values(c, CONDITION_FIELDS) for c in study.conditions.all()],
-        "items": [_values(i, ITEM_FIELDS) for i in study.items.all()],
+        "items": [_values(i, ITEM_FIELDS) for i in items],
         "questions": [
             {
                 **_values(q, QUESTION_FIELDS),
@@ -134,6 +139,15 @@ def export_study(study: Study) -> dict[str, Any]:
                 "poster": v.poster.name,
             }
             for v in asl_videos
+        ],
+        "recordings": [
+            {
+                "item": item.key,
+                **_values(recording, RECORDING_FIELDS),
+                **{name: getattr(recording, name).name for name in RECORDING_FILES},
+            }
+            for item, recording in recordings
+            if recording is not None
         ],
     }
 

@@ -135,10 +135,14 @@ def do_delete_recordings(recordings) -> int:
 
 
 def _remove(recordings) -> None:
-    """Delete *recordings*' rows now and their files once the transaction commits."""
+    """Delete *recordings*' rows now and their files once the transaction commits, but
+    not files another recording still uses (a duplicated study shares its files)."""
     recordings = list(recordings)
     files = {f.name for r in recordings for f in (r.upload, r.motion, r.sheet) if f}
     Recording.objects.filter(pk__in=[r.pk for r in recordings]).delete()
+    for field in ("upload", "motion", "sheet"):
+        still_used = Recording.objects.filter(**{f"{field}__in": files})
+        files -= set(still_used.values_list(field, flat=True))
     storage = Recording._meta.get_field("upload").storage
     for name in files:
         transaction.on_commit(lambda name=name: storage.delete(name))

@@ -8,6 +8,7 @@ from django.core.files.storage import default_storage
 from django.db import models, transaction
 
 from studyplatform import exchange
+from studyplatform.actions.recordings import do_relabel_stand_ins
 from studyplatform.models import (
     AnswerOption,
     AslVideo,
@@ -15,6 +16,7 @@ from studyplatform.models import (
     Condition,
     Item,
     Question,
+    Recording,
     Study,
     Trial,
 )
@@ -105,8 +107,9 @@ def do_import_study(
 
     *slug*, *title* and *status* override the definition's. Without *slug*, the
     definition's slug is used, or a free variant of it when a study already has it.
-    ASL videos whose files are not in this installation's media are left out, with a
-    warning each.
+    ASL videos and recordings whose files are not in this installation's media are left
+    out, with a warning each; the motion-capture stand-ins are then labelled by the
+    recordings that came (:func:`do_relabel_stand_ins`).
     """
     if not isinstance(data, dict):
         raise StudyImportError("A study definition must be a JSON object.")
@@ -219,6 +222,24 @@ def do_import_study(
                 video.poster = ""
                 warnings.append(f"{where}: poster {poster_name!r} is not in media; left out.")
             _save(video, where)
+        for index, row in enumerate(_rows(data, "recordings")):
+            where = f"recordings[{index}]"
+            values = _pick(row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
+                           where)  # fmt: skip
+            item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
+            files = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
+            missing = [name for name in ("upload", "motion")
+                       if not files[name] or not default_storage.exists(files[name])]  # fmt: skip
+            if missing:
+                warnings.append(f"{where}: {missing[0]} file {files[missing[0]]!r} of {item.key} "
+                                "is not in media; left out.")  # fmt: skip
+                continue
+            if files["sheet"] and not default_storage.exists(files["sheet"]):
+                files["sheet"] = ""
+            recording = Recording(item=item, status=Recording.Status.READY,
+                                  progress_percent=100, **files, **values)  # fmt: skip
+            _save(recording, where)
+        do_relabel_stand_ins(study)
     return ImportResult(study=study, warnings=tuple(warnings))
 
 

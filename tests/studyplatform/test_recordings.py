@@ -15,8 +15,11 @@ from studyplatform.actions import (
     RecordingRejected,
     do_attach_recording,
     do_delete_recordings,
+    do_duplicate_study,
     do_generate_stimuli,
+    do_import_study,
 )
+from studyplatform.exchange import export_study
 from studyplatform.lib.recordings import current_recording
 from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Item, Recording, Stimulus, Trial
@@ -228,3 +231,44 @@ def test_a_video_captured_without_a_contact_sheet_keeps_its_landmarks(fingerspel
     video.refresh_from_db()
     assert video.motion.name.endswith(".pose") and video.motion.read() == pose
     assert not video.sheet
+
+
+def test_a_copied_study_keeps_its_words_recordings_and_shares_their_files(
+    fingerspelling, media, alice, django_capture_on_commit_callbacks
+):
+    words = list(fingerspelling.items.filter(kind=Item.Kind.WORD))
+    for item in words:
+        _attach(item, _bvh(item.text), django_capture_on_commit_callbacks)
+    exported = export_study(fingerspelling)
+    assert [row["item"] for row in exported["recordings"]] == [w.key for w in words]
+    with django_capture_on_commit_callbacks(execute=True):
+        copy = do_duplicate_study(fingerspelling, owner=alice)
+    assert not copy.conditions.get(key="mocap").is_simulated  # every word came with its own
+    original, copied = (
+        current_recording(words[0]),
+        current_recording(copy.items.get(key=words[0].key)),
+    )
+    assert copied.pk != original.pk and copied.motion.name == original.motion.name
+    assert copied.status == Recording.Status.READY
+    # Deleting the original's recording keeps the file the copy still uses.
+    with django_capture_on_commit_callbacks(execute=True):
+        do_delete_recordings([original])
+    assert (media / copied.motion.name).exists()
+    assert clip_spec(copy.conditions.get(key="mocap"), copied.item).parameters["recording"] == (
+        copied.motion.path)  # fmt: skip
+
+
+def test_an_imported_recording_whose_file_is_missing_is_left_out_by_name(
+    fingerspelling, media, alice, django_capture_on_commit_callbacks
+):
+    item = fingerspelling.items.get(key="DAVID")
+    _attach(item, _bvh("DAVID"), django_capture_on_commit_callbacks)
+    exported = export_study(fingerspelling)
+    (media / exported["recordings"][0]["motion"]).unlink()
+    result = do_import_study(exported, owner=alice, slug="elsewhere")
+    assert result.warnings == (
+        f"recordings[0]: upload file {exported['recordings'][0]['upload']!r} of DAVID is not in "
+        "media; left out.",
+    )
+    assert not Recording.objects.filter(item__study=result.study).exists()
+    assert result.study.conditions.get(key="mocap").is_simulated
