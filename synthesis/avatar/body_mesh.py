@@ -110,7 +110,17 @@ def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad) -> np.
 
 @cache
 def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int = 35000) -> Avatar:
-    """Build the upper-body avatar (built once per process, then cached)."""
+    """Return the upper-body avatar (built once per engine version, then kept on disk by
+    :mod:`synthesis.avatar.store`, and once per process in memory)."""
+    from synthesis.avatar.store import cached_avatar
+
+    return cached_avatar(f"upper-body-{dominant}-{voxel_mm:g}mm-{max_faces}",
+                         BodyModel(dominant),
+                         lambda: _build_body_avatar(dominant, voxel_mm, max_faces))  # fmt: skip
+
+
+def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar:
+    """Build the upper-body avatar."""
     model = BodyModel(dominant)
     bind = bind_dofs(model)
     primitives = body_primitives(model, bind)

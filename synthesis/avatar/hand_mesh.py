@@ -175,7 +175,16 @@ def hand_nails(
 
 @cache
 def hand_avatar(side: str = "right", voxel_mm: float = 1.2, max_faces: int = 20000) -> Avatar:
-    """Build the hand-and-forearm avatar (built once per process, then cached)."""
+    """Return the hand-and-forearm avatar (built once per engine version, then kept on disk
+    by :mod:`synthesis.avatar.store`, and once per process in memory)."""
+    from synthesis.avatar.store import cached_avatar
+
+    return cached_avatar(f"hand-{side}-{voxel_mm:g}mm-{max_faces}", HandModel(side),
+                         lambda: _build_hand_avatar(side, voxel_mm, max_faces))  # fmt: skip
+
+
+def _build_hand_avatar(side: str, voxel_mm: float, max_faces: int) -> Avatar:
+    """Build the hand-and-forearm avatar."""
     model = HandModel(side)
     bind = bind_dofs(model)
     primitives = hand_primitives(model, bind, side)
