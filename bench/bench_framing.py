@@ -1,0 +1,59 @@
+"""Measure how the two views frame the avatar (issue 16's framing targets), from the mesh.
+
+    .venv/bin/python bench/bench_framing.py
+
+No rendering: each motion is posed, its skin projected through the view's camera at
+640×480 (synthesis.render.framing). The fingerspelling close-up, per study word of
+spec 02 (the Constant timing) and the alphabet spelled A–Z: the hand's height as a share
+of the frame's (target ≥ 45 % at every hold; here the smallest over all frames and the
+median), and the frames with a hand vertex outside the frame (target 0). The signing
+view, per story sentence of spec 03 (spine on): frames with a hand outside, and the
+face's height in pixels (target ≥ 90 px).
+"""
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from synthesis.render.framing import measure_framing
+from synthesis.signing.stories import SPINE_STORY
+from synthesis.techniques import ClipRequest, avatar_and_camera, build_motion
+
+WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR",
+         "ABCDEFGHIJKLMNOPQRSTUVWXYZ")  # fmt: skip
+
+
+def main() -> int:
+    started = time.perf_counter()
+    print("fingerspelling close-up, 640×480:")
+    shares, outside = [], 0
+    for word in WORDS:
+        request = ClipRequest("word", word, {"timing": "constant"}, rate_hz=30)
+        avatar, camera = avatar_and_camera(request.view, request.side)
+        framing = measure_framing(avatar, camera, np.asarray(build_motion(request).motion))
+        shares.append(framing.hand_share)
+        outside += int(framing.hand_outside.sum())
+        print(f"  {word:<11} hand height {framing.hand_share.min():4.0%} (smallest) – "
+              f"{np.median(framing.hand_share):4.0%} (median) of the frame; "
+              f"frames with the hand outside: {framing.hand_outside.sum()}")  # fmt: skip
+    shares = np.concatenate(shares)
+    print(f"  all: smallest {shares.min():.0%}, median {np.median(shares):.0%}; "
+          f"frames with the hand outside: {outside} (targets: ≥ 45 % at holds, 0)")  # fmt: skip
+    print("signing view, 640×480 (spine on):")
+    for number, text in enumerate(SPINE_STORY, start=1):
+        request = ClipRequest.from_parameters("sentence", text, {"rate_hz": 30.0})
+        avatar, camera = avatar_and_camera(request.view, request.side)
+        framing = measure_framing(avatar, camera, np.asarray(build_motion(request).motion))
+        print(f"  sentence {number}: frames with a hand outside {framing.hand_outside.sum()} "
+              f"of {len(framing.hand_outside)}; face {np.nanmin(framing.face_px):.0f} px tall "
+              "(target ≥ 90 px)")  # fmt: skip
+    print(f"({time.perf_counter() - started:.0f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,39 @@
+"""Test framing measured from the projected mesh against what the renderer draws."""
+
+from dataclasses import replace
+
+import numpy as np
+
+from synthesis.avatar import hand_avatar
+from synthesis.fingerspelling import letter_pose
+from synthesis.render.framing import measure_framing, project_px
+from synthesis.render.scene import hand_close_up
+
+
+def test_the_projected_mesh_covers_the_rendered_pixels(renderable):
+    from synthesis.render.renderer import Renderer
+
+    avatar, camera, dofs = hand_avatar(), hand_close_up("right"), letter_pose("A")
+    with Renderer(avatar, camera, 320, 240) as renderer:
+        image = renderer.frame(dofs).astype(int)
+    drawn = np.abs(image - image[0, 0]).sum(axis=-1) > 30
+    rows, columns = np.nonzero(drawn)
+    vertices = np.concatenate([v for v, _ in avatar.deform(dofs[None])], axis=1)[0]
+    pixels = project_px(camera, vertices, 320, 240)
+    # Measured: within a pixel on every side (the forearm runs out at the bottom).
+    assert abs(np.nanmin(pixels[:, 0]) - columns.min()) < 2
+    assert abs(np.nanmax(pixels[:, 0]) - columns.max()) < 2
+    assert abs(np.nanmin(pixels[:, 1]) - rows.min()) < 2
+    assert rows.max() == 239 and np.nanmax(pixels[:, 1]) > 239
+
+
+def test_a_camera_too_close_puts_the_hand_outside_and_makes_it_taller():
+    avatar, camera = hand_avatar(), hand_close_up("right")
+    poses = np.stack([letter_pose("A"), letter_pose("B")])
+    far = measure_framing(avatar, camera, poses)
+    near = measure_framing(avatar, replace(camera, eye_m=(0.08, 0.3, 0.25)), poses)
+    assert not far.hand_outside.any() and near.hand_outside.all()
+    assert (near.hand_share > far.hand_share).all()
+    # B (fingers up) is taller than A (a fist); the hand avatar has no face.
+    assert far.hand_share[1] > far.hand_share[0] and np.isnan(far.face_px).all()
+    assert far.to_dict()["frames_hand_outside"] == 0
