@@ -1,11 +1,12 @@
-"""Measure how a camera frames an avatar's hands and face, from the projected mesh.
+"""Measure how a camera frames an avatar's hands and head, from the projected mesh.
 
 Issue 16's framing targets are stated in pixels of the rendered frame: the hand's
 height as a share of the frame's in the close-up, no hand vertex outside the frame in
-any frame, the face's height in the signing view. The posed skin is projected through
-the camera preset as the renderer's perspective camera sees it (vertical field of view,
-the frame's aspect), and each part's vertices are told by the joint that weighs most
-on them (the hands: wrist and finger joints; the face: the head).
+any frame, the face's height in the signing view (measured here as the head's: the
+avatar has no face yet). The posed skin is projected through the camera preset as the
+renderer's perspective camera sees it (vertical field of view, the frame's aspect), and
+each part's vertices are told by the joint that weighs most on them (the hands: wrist
+and finger joints; the head: the head joint).
 """
 
 from dataclasses import dataclass
@@ -53,19 +54,19 @@ def _is_hand(name: str) -> bool:
 @dataclass(frozen=True)
 class Framing:
     """Per frame: the hands' bounding box height over the frame's (*hand_share*), whether
-    any hand vertex lies outside the frame (*hand_outside*), and the face's bounding box
-    height in pixels (*face_px*; NaN for an avatar without a head)."""
+    any hand vertex lies outside the frame (*hand_outside*), and the head's bounding box
+    height in pixels (*head_px*; NaN for an avatar without a head)."""
 
     hand_share: np.ndarray
     hand_outside: np.ndarray
-    face_px: np.ndarray
+    head_px: np.ndarray
 
     def to_dict(self) -> dict:
         return {
             "hand_share_min": float(np.min(self.hand_share)),
             "hand_share_median": float(np.median(self.hand_share)),
             "frames_hand_outside": int(self.hand_outside.sum()),
-            "face_px_min": float(np.nanmin(self.face_px)) if np.isfinite(self.face_px).any()
+            "head_px_min": float(np.nanmin(self.head_px)) if np.isfinite(self.head_px).any()
             else None,
             "n_frames": len(self.hand_share),
         }  # fmt: skip
@@ -81,16 +82,16 @@ def measure_framing(
     if frames is not None:
         dofs = dofs[np.asarray(frames)]
     posed = [vertices for vertices, _ in avatar.deform(dofs)]
-    hands, faces = _owned(avatar, _is_hand), _owned(avatar, lambda name: name == "head")
+    hands, heads = _owned(avatar, _is_hand), _owned(avatar, lambda name: name == "head")
     hand = np.concatenate([v[:, m] for v, m in zip(posed, hands, strict=True)], axis=1)
     pixels = project_px(camera, hand, width, height)
     share = (np.nanmax(pixels[..., 1], axis=1) - np.nanmin(pixels[..., 1], axis=1)) / height
     outside = ((pixels[..., 0] < 0) | (pixels[..., 0] > width) | (pixels[..., 1] < 0)
                | (pixels[..., 1] > height) | np.isnan(pixels).any(axis=-1)).any(axis=1)  # fmt: skip
-    face = np.concatenate([v[:, m] for v, m in zip(posed, faces, strict=True)], axis=1)
-    if face.shape[1]:
-        face_y = project_px(camera, face, width, height)[..., 1]
-        face_px = np.nanmax(face_y, axis=1) - np.nanmin(face_y, axis=1)
+    head = np.concatenate([v[:, m] for v, m in zip(posed, heads, strict=True)], axis=1)
+    if head.shape[1]:
+        head_y = project_px(camera, head, width, height)[..., 1]
+        head_px = np.nanmax(head_y, axis=1) - np.nanmin(head_y, axis=1)
     else:
-        face_px = np.full(len(dofs), np.nan)
-    return Framing(share, outside, face_px)
+        head_px = np.full(len(dofs), np.nan)
+    return Framing(share, outside, head_px)

@@ -85,10 +85,14 @@ def hand_close_up(side: str = "right") -> CameraPreset:
 def upper_body_front(side: str = "right") -> CameraPreset:
     """Return the sentence camera: the signer from the hips to above the head, front on.
 
-    *side* names the dominant hand; the view is symmetric, as in signing videos.
+    *side* names the dominant hand; the view is symmetric, as in signing videos. Placed
+    so that, measured on the projected mesh at 640×480 (bench/bench_framing.py), both
+    hands stay inside the frame in every frame of the story's sentences, spine on and
+    off, and the head is still over 90 px tall (issue 16; the camera 1.7 m away cut a
+    raised hand off at the top and a resting one at the bottom).
     """
     del side
-    return CameraPreset("upper body", (0.0, 1.45, 1.7), (0.0, 1.43, 0.0), 30.0)
+    return CameraPreset("upper body", (0.0, 1.40, 2.2), (0.0, 1.38, 0.0), 30.0)
 
 
 CAMERA_PRESETS = {"hand": hand_close_up, "upper-body": upper_body_front}

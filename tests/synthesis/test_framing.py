@@ -35,5 +35,5 @@ def test_a_camera_too_close_puts_the_hand_outside_and_makes_it_taller():
     assert not far.hand_outside.any() and near.hand_outside.all()
     assert (near.hand_share > far.hand_share).all()
     # B (fingers up) is taller than A (a fist); the hand avatar has no face.
-    assert far.hand_share[1] > far.hand_share[0] and np.isnan(far.face_px).all()
+    assert far.hand_share[1] > far.hand_share[0] and np.isnan(far.head_px).all()
     assert far.to_dict()["frames_hand_outside"] == 0
