@@ -1,6 +1,7 @@
 """Create studies from definitions: import, duplicate."""
 
 from dataclasses import dataclass
+from pathlib import PurePosixPath
 from typing import Any
 
 from django.core.exceptions import ValidationError
@@ -227,7 +228,14 @@ def do_import_study(
             values = _pick(row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
                            where)  # fmt: skip
             item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
+            if item is None or item.kind != Item.Kind.WORD:
+                raise StudyImportError(f"{where}.item: recordings belong to words; "
+                                       f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
             files = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
+            for name, file_name in files.items():
+                if file_name and not _is_recording_file(file_name):
+                    raise StudyImportError(f"{where}.{name}: {file_name!r} is not a recording's "
+                                           "file (recordings/<name> in media).")  # fmt: skip
             missing = [name for name in ("upload", "motion")
                        if not files[name] or not default_storage.exists(files[name])]  # fmt: skip
             if missing:
@@ -241,6 +249,14 @@ def do_import_study(
             _save(recording, where)
         do_relabel_stand_ins(study)
     return ImportResult(study=study, warnings=tuple(warnings))
+
+
+def _is_recording_file(name: Any) -> bool:
+    """Return whether *name* is a file name the recordings' storage gives (no way out)."""
+    if not isinstance(name, str):
+        return False
+    parts = PurePosixPath(name).parts
+    return len(parts) == 2 and parts[0] == "recordings" and parts[1] not in ("", ".", "..")
 
 
 def do_duplicate_study(study: Study, *, owner) -> Study:

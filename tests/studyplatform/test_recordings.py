@@ -6,6 +6,8 @@ landmarks (synthesis.timing.simulate), and one video rendered by the engine and 
 back with MediaPipe.
 """
 
+import re
+
 import numpy as np
 import pytest
 from django.core.files.uploadedfile import SimpleUploadedFile
@@ -13,6 +15,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 from stimuli.clips import ClipError, render
 from studyplatform.actions import (
     RecordingRejected,
+    StudyImportError,
     do_attach_recording,
     do_delete_recordings,
     do_duplicate_study,
@@ -272,3 +275,27 @@ def test_an_imported_recording_whose_file_is_missing_is_left_out_by_name(
     )
     assert not Recording.objects.filter(item__study=result.study).exists()
     assert result.study.conditions.get(key="mocap").is_simulated
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (
+            {"motion": "../settings.py"},
+            "recordings[0].motion: '../settings.py' is not a recording's",
+        ),
+        ({"upload": "recordings/../../x.pose"}, "recordings[0].upload: 'recordings/../../x.pose'"),
+        ({"item": "NOPE"}, "recordings[0].item: unknown item 'NOPE'"),
+        ({"item": None}, "recordings[0].item: recordings belong to words; None is not one"),
+    ],
+)
+def test_a_tampered_recording_in_a_definition_is_refused_by_name(
+    fingerspelling, media, alice, django_capture_on_commit_callbacks, change, message
+):
+    item = fingerspelling.items.get(key="DAVID")
+    _attach(item, _bvh("DAVID"), django_capture_on_commit_callbacks)
+    exported = export_study(fingerspelling)
+    exported["recordings"][0].update(change)
+    with pytest.raises(StudyImportError, match=re.escape(message)):
+        do_import_study(exported, owner=alice, slug="elsewhere")
+    assert not fingerspelling.__class__.objects.filter(slug="elsewhere").exists()
