@@ -214,6 +214,11 @@ def do_import_study(
             else:
                 raise StudyImportError(f"{where}.target: unknown model {model!r}.")
             video_name = values.pop("video", "")
+            for name in ("video", "poster"):
+                file_name = video_name if name == "video" else values.get("poster")
+                if file_name and not _is_media_file(file_name, "asl"):
+                    raise StudyImportError(f"{where}.{name}: {file_name!r} is not an ASL "
+                                           "video's file (asl/<name> in media).")  # fmt: skip
             if not video_name or not default_storage.exists(video_name):
                 warnings.append(f"{where}: video file {video_name!r} is not in media; left out.")
                 continue
@@ -233,7 +238,7 @@ def do_import_study(
                                        f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
             files = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
             for name, file_name in files.items():
-                if file_name and not _is_recording_file(file_name):
+                if file_name and not _is_media_file(file_name, "recordings"):
                     raise StudyImportError(f"{where}.{name}: {file_name!r} is not a recording's "
                                            "file (recordings/<name> in media).")  # fmt: skip
             missing = [name for name in ("upload", "motion")
@@ -251,12 +256,13 @@ def do_import_study(
     return ImportResult(study=study, warnings=tuple(warnings))
 
 
-def _is_recording_file(name: Any) -> bool:
-    """Return whether *name* is a file name the recordings' storage gives (no way out)."""
+def _is_media_file(name: Any, folder: str) -> bool:
+    """Return whether *name* is a file name that storage gives a file of *folder*
+    (``folder/<name>``: no way out of media, nothing a definition could point elsewhere)."""
     if not isinstance(name, str):
         return False
     parts = PurePosixPath(name).parts
-    return len(parts) == 2 and parts[0] == "recordings" and parts[1] not in ("", ".", "..")
+    return len(parts) == 2 and parts[0] == folder and parts[1] not in ("", ".", "..")
 
 
 def do_duplicate_study(study: Study, *, owner) -> Study:

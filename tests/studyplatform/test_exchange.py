@@ -156,3 +156,16 @@ def test_bad_definition_names_the_problem_and_saves_nothing(alice, break_it, mes
 def test_not_an_object_is_rejected(alice):
     with pytest.raises(StudyImportError, match="must be a JSON object"):
         do_import_study(["a", "list"], owner=alice)
+
+
+@pytest.mark.parametrize(
+    ("field", "name"), [("video", "../db.sqlite3"), ("poster", "asl/../../x.png"), ("video", 7)]
+)
+def test_an_asl_video_pointing_out_of_its_folder_is_refused(fingerspelling, bob, field, name):
+    data = export_study(fingerspelling)
+    row = {"target": ["study", None], "field_name": "consent_text", "transcript": "",
+           "video": "asl/fine.mp4", "poster": ""}  # fmt: skip
+    data["asl_videos"] = [{**row, field: name}]
+    with pytest.raises(StudyImportError, match=rf"asl_videos\[0\]\.{field}: .* is not an ASL"):
+        do_import_study(data, owner=bob, slug="elsewhere")
+    assert not Study.objects.filter(slug="elsewhere").exists()
