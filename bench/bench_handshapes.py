@@ -4,8 +4,8 @@ features: does the fitted hand still show the letter the signer made?
     .venv/bin/python bench/bench_handshapes.py
 
 The human letters are the spoken-to-signed package's ASL lexicon (a test dependency).
-Each recording's middle frame is fitted (synthesis.capture.fit_hand); the fitted hand's
-landmarks, turned as the fit turned them and seen in the image plane like the
+Each recording's middle frame is fitted (synthesis.capture.fidelity.view_of); the fitted
+hand's landmarks, turned as the fit turned them and seen in the image plane like the
 recording (its files have no depth), are classified by nearest features
 (synthesis.capture.features) among the 26 human letters. Prints each letter's
 residual and the letter it is taken for, then the count right. Then each whole
@@ -21,8 +21,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.capture import calibrate_scale, fit_hand, read_pose
+from synthesis.capture import fit_hand, read_pose
 from synthesis.capture.features import handshape_features, nearest_handshape
+from synthesis.capture.fidelity import seen_as, view_of
 from synthesis.capture.lexicon import human_letter_files
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import landmarks
@@ -30,20 +31,13 @@ from synthesis.rigs.landmarks import landmarks
 
 def main() -> int:
     model = HandModel()
-    human, fitted, residuals = {}, {}, {}
     started = time.perf_counter()
-    for letter, path in human_letter_files().items():
-        points, confidence = read_pose(path).hand("right")
-        middle = len(points) // 2
-        frame = points[middle].copy()
-        frame[:, 2] = 0.0
-        scale = calibrate_scale(model, points * [1, 1, 0], confidence, planar=True)
-        fit = fit_hand(model, frame[None], confidence[middle : middle + 1], scale)
-        marks = np.einsum("ij,kj->ki", fit.rotations[0], landmarks(model, fit.dofs_rad[0]))
-        marks[:, 2] = 0.0
-        human[letter] = handshape_features(frame)
-        fitted[letter] = handshape_features(marks)
-        residuals[letter] = fit.median_residual_mm()
+    views = {
+        k: view_of(model, *read_pose(p).hand("right")) for k, p in human_letter_files().items()
+    }
+    human = {letter: view.features for letter, view in views.items()}
+    fitted = {letter: seen_as(model, view.dofs_rad, view) for letter, view in views.items()}
+    residuals = {letter: view.residual_mm for letter, view in views.items()}
     elapsed = time.perf_counter() - started
     right = 0
     for letter in human:

@@ -20,7 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from scripts.alphabet_sheet import FONT, _camera
 from synthesis.avatar.hand_mesh import hand_avatar
-from synthesis.capture import calibrate_scale, fit_hand, read_pose
+from synthesis.capture import read_pose
+from synthesis.capture.fidelity import view_of
 from synthesis.capture.lexicon import human_letter_files
 from synthesis.fingerspelling.alphabet import LETTERS, letter
 from synthesis.render.renderer import Renderer
@@ -31,13 +32,8 @@ COLUMNS = 13
 
 def human_pose(model, path: Path) -> tuple[np.ndarray, float]:
     """Return the fitted DOFs of a recording's middle frame and its median residual (mm)."""
-    points, confidence = read_pose(path).hand(model.side)
-    flat = points.copy()
-    flat[..., 2] = 0.0
-    scale = calibrate_scale(model, flat, confidence, planar=True)
-    middle = len(points) // 2
-    fit = fit_hand(model, points[middle : middle + 1], confidence[middle : middle + 1], scale)
-    return fit.dofs_rad[0], fit.median_residual_mm()
+    view = view_of(model, *read_pose(path).hand(model.side))
+    return view.dofs_rad, view.residual_mm
 
 
 def main() -> int:

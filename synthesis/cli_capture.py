@@ -3,7 +3,6 @@ export an engine motion as .pose landmarks and BVH (``python -m synthesis``)."""
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
 from synthesis.rigs.hand import HandModel
@@ -20,7 +19,6 @@ def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None)
     from synthesis.capture import from_hand_motion, write_pose
     from synthesis.capture.armfit import from_body_motion
     from synthesis.skeleton.bvh import write_bvh
-    from synthesis.skeleton.motion import Motion
 
     dofs = build.motion
     if not isinstance(dofs, np.ndarray):
@@ -32,9 +30,7 @@ def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None)
             landmarks = from_body_motion(build.rig, dofs, request.rate_hz)
         print(f"wrote {write_pose(landmarks, pose_path)}")
     if bvh_path is not None:
-        rig = build.rig
-        write_bvh(Motion(rig.skeleton, rig.channel_values(dofs), 1.0 / request.rate_hz),
-                  bvh_path)  # fmt: skip
+        write_bvh(build.rig.as_motion(dofs, request.rate_hz), bvh_path)
         print(f"wrote {bvh_path}")
 
 
@@ -45,16 +41,14 @@ def _capture_body(args: argparse.Namespace) -> int:
     from synthesis.capture.video import capture_body
     from synthesis.rigs.body import BodyModel
     from synthesis.skeleton.bvh import write_bvh
-    from synthesis.skeleton.motion import Motion
 
-    recording = capture_body(args.video, progress=_frames_progress(Path(args.video).name))
+    recording = capture_body(args.video, progress=_progress(Path(args.video).name))
     if args.out is not None:
         print(f"wrote {write_pose(recording, args.out)}")
     body = BodyModel(args.side)
     fit = fit_arms(body, recording)
     if args.bvh is not None:
-        motion = Motion(body.skeleton, body.channel_values(fit.dofs_rad), 1.0 / recording.fps)
-        write_bvh(motion, args.bvh)
+        write_bvh(body.as_motion(fit.dofs_rad, recording.fps), args.bvh)
         print(f"wrote {args.bvh}")
     print(f"{recording.n_frames} frames at {recording.fps:g} fps; found: {_arms_found(fit)}")
     return 0
@@ -70,7 +64,7 @@ def capture_command(args: argparse.Namespace) -> int:
         return _capture_body(args)
     one_hand = args.side if args.one_hand else None
     recording = capture_hands(args.video, mirrored=args.mirrored, one_hand=one_hand,
-                              progress=_frames_progress(Path(args.video).name))  # fmt: skip
+                              progress=_progress(Path(args.video).name))  # fmt: skip
     hand = captured_hand(recording, args.side)
     if args.out is not None:
         print(f"wrote {write_pose(recording, args.out)}")
@@ -92,14 +86,6 @@ def capture_command(args: argparse.Namespace) -> int:
         timing = extract(hand.motion, args.word, args.side).timing
         print(json.dumps(timing.to_dict(), indent=2))
     return 0
-
-
-def _frames_progress(label: str):
-    def report(done: int) -> None:
-        if done % 50 == 0:
-            print(f"{label}: frame {done}", file=sys.stderr, flush=True)
-
-    return report
 
 
 def render_pose_file_command(args: argparse.Namespace) -> int:

@@ -3,12 +3,19 @@
 import sys
 
 
-def frame_progress(label: str):
-    """Return a progress callback: one updating line on a terminal, else every tenth."""
+def frame_progress(label: str, every: int = 50):
+    """Return a progress callback: one updating line on a terminal, else every tenth.
+
+    Called without a *total* (a video's frame count is not known ahead), it says the
+    frames done every *every* frames.
+    """
     interactive = sys.stderr.isatty()
 
-    def report(done: int, total: int) -> None:
-        if interactive:
+    def report(done: int, total: int | None = None) -> None:
+        if total is None:
+            if done % every == 0:
+                print(f"{label}: frame {done}", file=sys.stderr, flush=True)
+        elif interactive:
             end = "\n" if done == total else ""
             print(f"\r{label}: frame {done}/{total}", end=end, file=sys.stderr, flush=True)
         elif done == total or done % max(1, total // 10) == 0:

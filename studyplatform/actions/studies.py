@@ -214,11 +214,8 @@ def do_import_study(
             else:
                 raise StudyImportError(f"{where}.target: unknown model {model!r}.")
             video_name = values.pop("video", "")
-            for name in ("video", "poster"):
-                file_name = video_name if name == "video" else values.get("poster")
-                if file_name and not _is_media_file(file_name, "asl"):
-                    raise StudyImportError(f"{where}.{name}: {file_name!r} is not an ASL "
-                                           "video's file (asl/<name> in media).")  # fmt: skip
+            _check_media_file(video_name, "asl", "an ASL video's", f"{where}.video")
+            _check_media_file(values.get("poster"), "asl", "an ASL video's", f"{where}.poster")
             if not video_name or not default_storage.exists(video_name):
                 warnings.append(f"{where}: video file {video_name!r} is not in media; left out.")
                 continue
@@ -238,9 +235,7 @@ def do_import_study(
                                        f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
             files = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
             for name, file_name in files.items():
-                if file_name and not _is_media_file(file_name, "recordings"):
-                    raise StudyImportError(f"{where}.{name}: {file_name!r} is not a recording's "
-                                           "file (recordings/<name> in media).")  # fmt: skip
+                _check_media_file(file_name, "recordings", "a recording's", f"{where}.{name}")
             missing = [name for name in ("upload", "motion")
                        if not files[name] or not default_storage.exists(files[name])]  # fmt: skip
             if missing:
@@ -256,13 +251,14 @@ def do_import_study(
     return ImportResult(study=study, warnings=tuple(warnings))
 
 
-def _is_media_file(name: Any, folder: str) -> bool:
-    """Return whether *name* is a file name that storage gives a file of *folder*
+def _check_media_file(name: Any, folder: str, whose: str, where: str) -> None:
+    """Refuse a file name (empty: none) that is not one storage gives a file of *folder*
     (``folder/<name>``: no way out of media, nothing a definition could point elsewhere)."""
-    if not isinstance(name, str):
-        return False
-    parts = PurePosixPath(name).parts
-    return len(parts) == 2 and parts[0] == folder and parts[1] not in ("", ".", "..")
+    if not name:
+        return
+    parts = PurePosixPath(name).parts if isinstance(name, str) else ()
+    if not (len(parts) == 2 and parts[0] == folder and parts[1] not in ("", ".", "..")):
+        raise StudyImportError(f"{where}: {name!r} is not {whose} file ({folder}/<name> in media).")
 
 
 def do_duplicate_study(study: Study, *, owner) -> Study:

@@ -31,14 +31,13 @@ from synthesis.capture.posefile import (
 )
 from synthesis.capture.trunkfit import BODY_POINTS, TrunkFit, body_points, fit_trunk
 from synthesis.rigs.body import BodyModel
-from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES
+from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES, to_mediapipe
 
 ARM_POINTS = {
     side: tuple(f"{side.upper()}_{part}" for part in ("SHOULDER", "ELBOW", "WRIST"))
     for side in ("right", "left")
 }
 POSE_POINTS = (*ARM_POINTS["left"], *ARM_POINTS["right"])
-_TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
 MIN_CONFIDENCE = 0.2
 _names = list(BODY_POINTS)
 # The trunk's and head's points that are not also an arm's (BODY_POINTS positions).
@@ -81,7 +80,7 @@ def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> P
     pose = np.concatenate([arms, body_points(body, dofs_rad)[:, list(_HEAD_AND_HIPS)]], axis=1)
     hands = [positions[:, [index(f"{side}_{joint}") for joint in LANDMARK_JOINTS]]
              for side in ("left", "right")]  # fmt: skip
-    points = np.concatenate([pose, *hands], axis=1) * _TO_MEDIAPIPE
+    points = to_mediapipe(np.concatenate([pose, *hands], axis=1))
     centre = points[:, : len(POSE_POINTS)][:, [0, 3]].mean(axis=1, keepdims=True)
     units = (points - centre) / EXPORT_METRES_PER_UNIT + np.array([EXPORT_SIZE / 2] * 2 + [0.0])
     components = (
@@ -91,10 +90,6 @@ def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> P
     )
     return PoseRecording(float(rate_hz), components, units, np.ones(units.shape[:2]),
                          EXPORT_SIZE, EXPORT_SIZE, EXPORT_METRES_PER_UNIT)  # fmt: skip
-
-
-def _engine(points: np.ndarray) -> np.ndarray:
-    return points * _TO_MEDIAPIPE  # the flip is its own inverse
 
 
 def _palm_frame(hand: np.ndarray) -> np.ndarray:
@@ -133,7 +128,7 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
     component = POSE_WORLD_COMPONENT if recording.has_component(POSE_WORLD_COMPONENT) else (
         POSE_COMPONENT)  # fmt: skip
     points, confidence = recording.component(component, POSE_POINTS)
-    points = _engine(points.astype(np.float64))
+    points = to_mediapipe(points)
     n = recording.n_frames
     trunk = _fit_trunk(body, recording, component)
     dofs = np.zeros((n, len(body.dofs))) if trunk is None else trunk.dofs_rad.copy()
@@ -169,13 +164,9 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
             marks, marks_confidence = recording.hand(side)
             hand_seen = marks_confidence.min(axis=1) >= MIN_CONFIDENCE
             if hand_seen.any():
-                engine_marks = _engine(marks.astype(np.float64))
-                rotation = _palm_frame(engine_marks) @ _wrist_in_palm(body, side)
+                rotation = _palm_frame(to_mediapipe(marks)) @ _wrist_in_palm(body, side)
                 # Frames without the hand keep the nearest seen hand's orientation.
-                nearest = np.flatnonzero(hand_seen)[
-                    np.abs(np.arange(n)[:, None] - np.flatnonzero(hand_seen)[None]).argmin(1)
-                ]
-                rotation = rotation[nearest]
+                rotation = rotation[_nearest_seen(hand_seen)]
                 try:
                     fit = fit_hand(HandModel(side), marks, marks_confidence,
                                    rate_hz=recording.fps)  # fmt: skip
@@ -192,6 +183,20 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
     if not fitted_any:
         raise PoseFileError("No arm was found in any frame (shoulder, elbow and wrist).")
     return ArmFit(dofs, residual, found, trunk)
+
+
+def _nearest_seen(seen: np.ndarray) -> np.ndarray:
+    """Return, per frame, the nearest frame (n,) where *seen* (n,) holds (ties: earlier).
+
+    Linear in the frames (a long video's frames by its seen frames would not fit in
+    memory).
+    """
+    seen_at = np.flatnonzero(seen)
+    after = np.clip(np.searchsorted(seen_at, np.arange(len(seen))), 0, len(seen_at) - 1)
+    before = np.clip(after - 1, 0, len(seen_at) - 1)
+    frames = np.arange(len(seen))
+    closer_before = np.abs(frames - seen_at[before]) <= np.abs(seen_at[after] - frames)
+    return np.where(closer_before, seen_at[before], seen_at[after])
 
 
 def _fit_trunk(body: BodyModel, recording: PoseRecording, component: str):

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from synthesis.capture.features import handshape_features, nearest_handshape
-from synthesis.capture.handfit import calibrate_scale, fit_hand
+from synthesis.capture.handfit import FIXED, calibrate_scale, fit_hand
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import landmarks
 
@@ -86,12 +86,13 @@ def score_handshapes(
 @dataclass(frozen=True)
 class LetterView:
     """How a recording shows its letter: the middle frame's features (30,), in the image
-    plane, the hand's orientation there (3, 3) and our hand's DOFs (n_dofs,) fitted to it
-    (the files keep no depth)."""
+    plane, the hand's orientation there (3, 3), our hand's DOFs (n_dofs,) fitted to it
+    (the files keep no depth) and the fit's median landmark residual (mm)."""
 
     features: np.ndarray
     rotation: np.ndarray
     dofs_rad: np.ndarray
+    residual_mm: float
 
 
 def view_of(model: HandModel, points: np.ndarray, confidence: np.ndarray) -> LetterView:
@@ -101,14 +102,15 @@ def view_of(model: HandModel, points: np.ndarray, confidence: np.ndarray) -> Let
     middle = len(flat) // 2
     scale = calibrate_scale(model, flat, confidence, planar=True)
     fit = fit_hand(model, flat[middle : middle + 1], confidence[middle : middle + 1], scale)
-    return LetterView(handshape_features(flat[middle]), fit.rotations[0], fit.dofs_rad[0])
+    return LetterView(handshape_features(flat[middle]), fit.rotations[0], fit.dofs_rad[0],
+                      fit.median_residual_mm())  # fmt: skip
 
 
 def seen_as(model: HandModel, dofs_rad: np.ndarray, view: LetterView) -> np.ndarray:
     """Return the features (30,) of hand DOFs (n_dofs,) turned and projected as *view*'s
     hand is (the forearm and wrist at rest: the view's rotation stands for them)."""
     dofs = np.array(dofs_rad, dtype=np.float64)
-    placement = [i for i, n in enumerate(model.dof_names) if n.startswith(("forearm", "wrist"))]
+    placement = [model.dof_names.index(name) for name in FIXED]
     dofs[placement] = model.neutral()[placement]
     marks = landmarks(model, dofs) @ view.rotation.T
     marks[:, 2] = 0.0

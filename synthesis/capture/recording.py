@@ -48,7 +48,7 @@ def captured_hand(recording: PoseRecording, side: str = "right") -> CapturedHand
     model = HandModel(side)
     points, confidence = recording.hand(side)
     fit = fit_hand(model, points, confidence, scale=None, rate_hz=recording.fps)
-    motion = Motion(model.skeleton, model.channel_values(fit.dofs_rad), 1.0 / recording.fps)
+    motion = model.as_motion(fit.dofs_rad, recording.fps)
     return CapturedHand(motion, fit, side)
 
 

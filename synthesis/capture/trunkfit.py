@@ -1,8 +1,8 @@
 """Fit the upper-body model's spine, neck and head to pose landmarks, where they are seen.
 
-The trunk's turn, side bend and forward bend are read from the shoulder line and, when
-the hips are in the picture, from the hips → shoulders direction; the head's from the
-line between the ears and the ears → nose direction. Each is spread evenly over the
+The trunk's posture shows in the shoulder line and, when the hips are in the picture,
+the hips → shoulders direction; the head's in the line between the ears and the ears →
+nose direction. Each is spread evenly over the
 joints that carry it (the three spine joints; neck and head), as the engine's spine
 extension spreads its posture (seed 003 §3.2), and solved per frame by bounded least
 squares (scipy.optimize.least_squares, joint limits as bounds) on those directions, so
@@ -21,6 +21,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from synthesis.rigs.body import BodyModel
+from synthesis.rigs.landmarks import to_mediapipe
 from synthesis.skeleton.rotations import quat_rotate
 
 # MediaPipe pose points of the trunk and head, as fixed places on the model: a joint and
@@ -35,7 +36,6 @@ BODY_POINTS = {
     "RIGHT_SHOULDER": ("right_shoulder", (0.0, 0.0, 0.0)),
 }
 MIN_CONFIDENCE = 0.5
-_TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
 _PARTS = {"trunk": ("spine_lower", "spine_middle", "spine_upper"), "head": ("neck", "head")}
 _MOTIONS = ("flexion", "side_bend", "rotation")
 STEP_RAD = 1e-4
@@ -150,7 +150,7 @@ class _Shares:
 def fit_trunk(body: BodyModel, points: np.ndarray, confidence: np.ndarray) -> TrunkFit:
     """Fit *body*'s spine, neck and head to pose points (n_frames, k, 3) in BODY_POINTS
     order, MediaPipe axes, any unit, with *confidence* (n_frames, k)."""
-    points = np.asarray(points, dtype=np.float64) * _TO_MEDIAPIPE  # the flip is its own inverse
+    points = to_mediapipe(points)
     observed = _directions(points)
     seen = _seen(np.asarray(confidence)) & np.isfinite(observed).all(axis=-1)
     problem = _Shares(body)

@@ -31,6 +31,12 @@ PALM_CENTRE = (0, 5, 9, 13, 17)
 _TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
 
 
+def to_mediapipe(points: np.ndarray) -> np.ndarray:
+    """Return engine-world points (..., 3) in MediaPipe's axes, or MediaPipe's in the
+    engine's: the flip (y and z) is its own inverse."""
+    return np.asarray(points, dtype=np.float64) * _TO_MEDIAPIPE
+
+
 def landmarks(model: HandModel, dofs_rad: np.ndarray,
               bone_scale: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
     """Return landmarks (21, 3) for a DOF vector, or (n_frames, 21, 3) for (n_frames, n_dofs).
@@ -40,6 +46,6 @@ def landmarks(model: HandModel, dofs_rad: np.ndarray,
     dofs = np.asarray(dofs_rad, dtype=np.float64)
     positions = model.pose(dofs, bone_scale).positions_m
     index = [model.skeleton.index(name) for name in LANDMARK_JOINTS]
-    points = positions[:, index] * _TO_MEDIAPIPE
+    points = to_mediapipe(positions[:, index])
     points = points - points[:, PALM_CENTRE].mean(axis=1, keepdims=True)
     return points[0] if dofs.ndim == 1 else points

@@ -13,6 +13,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from synthesis.skeleton.kinematics import Pose, forward_kinematics_arrays
+from synthesis.skeleton.motion import Motion
 from synthesis.skeleton.rotations import euler_angles, quat_from_euler, quat_multiply
 from synthesis.skeleton.skeleton import Joint, Skeleton
 
@@ -145,6 +146,10 @@ class Rig:
         rotations = Rotation.from_quat(quaternions[:, with_channels].reshape(-1, 4))
         angles = euler_angles(rotations, "ZXY", degrees=True)
         return angles.reshape(quaternions.shape[0], -1)
+
+    def as_motion(self, dofs_rad: np.ndarray, rate_hz: float) -> Motion:
+        """Return DOF vectors (n_frames, n_dofs) sampled at *rate_hz* as a BVH-ready Motion."""
+        return Motion(self.skeleton, self.channel_values(dofs_rad), 1.0 / rate_hz)
 
 
 def mirror_dof(dof: Dof) -> Dof:

@@ -112,4 +112,4 @@ def simulate_recording(
     hand = HandModel(side)
     dofs = spell(word, side, rate_hz, timing, lead_ms)
     dofs = hand.clip(dofs + noise.sample(*dofs.shape, rate_hz, rng))
-    return Motion(hand.skeleton, hand.channel_values(dofs), 1.0 / rate_hz), timing
+    return hand.as_motion(dofs, rate_hz), timing
