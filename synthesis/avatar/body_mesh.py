@@ -23,6 +23,11 @@ EYE_RGB = (0.08, 0.06, 0.05)
 # Bones under the top; the forearm's sleeve ends this far from the wrist.
 CLOTHED = ("hips", "spine_lower", "spine_middle", "spine_upper", "clavicle", "shoulder", "elbow")
 CUFF_M = 0.065
+# The neckline: a circle this far below the neck joint, of this radius about the neck,
+# across the bones that meet there.
+COLLAR_BELOW_NECK_M = 0.03
+COLLAR_RADIUS_M = 0.075
+COLLARED = ("spine_upper", "neck", "right_clavicle", "left_clavicle")
 
 
 def bind_dofs(model: BodyModel) -> np.ndarray:
@@ -90,22 +95,40 @@ def _eyes(model: BodyModel, dofs_rad: np.ndarray):
     return vertices, np.concatenate(faces), np.full(len(vertices), head)
 
 
-def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad) -> np.ndarray:
-    """Return per-vertex colours: the top over the trunk and arms, skin elsewhere."""
+def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad):
+    """Return the skin's colour edge (see SkinnedPart): skin colour, the signed distance
+    (m) into the skin from the edge of the top, and the top's colour.
+
+    The neckline is a circle round the neck and each cuff a plane across the forearm, so
+    their edges run straight through the decimated mesh's large triangles (a colour per
+    vertex drew those triangles' ragged edges along the neckline and the wrists).
+    """
     names = model.skeleton.names
     dominant = weights.joints[np.arange(len(vertices_m)), np.argmax(weights.weights, axis=1)]
     clothed = np.array([any(name.endswith(c) for c in CLOTHED) for name in names])[dominant]
+    # Signed distance (m) into the skin from the edge of the top: negative under cloth.
+    into_skin = np.where(clothed, -np.inf, np.inf)
     positions = model.pose(dofs_rad).positions_m[0]
+    neck = positions[model.skeleton.index("neck")]
+    up = positions[model.skeleton.index("head")] - neck
+    up /= np.linalg.norm(up)
+    relative = vertices_m - neck
+    height = relative @ up - COLLAR_BELOW_NECK_M
+    radial = np.linalg.norm(relative - np.outer(relative @ up, up), axis=1)
+    collar = np.minimum(height, COLLAR_RADIUS_M - radial)
+    trunk = np.isin(dominant, [model.skeleton.index(n) for n in COLLARED])
+    into_skin[trunk] = collar[trunk]
     for side in SIDES:
         forearm = model.skeleton.index(f"{side}_forearm")
         wrist = positions[model.skeleton.index(f"{side}_wrist")]
         elbow = positions[forearm]
         along = (vertices_m - wrist) @ (elbow - wrist) / np.linalg.norm(elbow - wrist)
-        clothed |= (dominant == forearm) & (along > CUFF_M)
-    colours = np.empty((len(vertices_m), 3))
-    colours[:] = SKIN_RGB
-    colours[clothed] = TOP_RGB
-    return colours
+        on_forearm = dominant == forearm
+        into_skin[on_forearm] = CUFF_M - along[on_forearm]
+    n = len(vertices_m)
+    # Far from any edge the distance only needs its sign.
+    return (np.broadcast_to(np.asarray(SKIN_RGB), (n, 3)), np.clip(into_skin, -1.0, 1.0),
+            np.broadcast_to(np.asarray(TOP_RGB), (n, 3)))  # fmt: skip
 
 
 @cache
@@ -129,13 +152,9 @@ def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar
     vertices = np.asarray(vertices, dtype=np.float64)
     index = {name: i for i, name in enumerate(model.skeleton.names)}
     weights = skin_weights(vertices, primitives, index)
-    skin = SkinnedPart(
-        "skin",
-        vertices,
-        np.asarray(faces, dtype=np.int64),
-        _colours(model, vertices, weights, bind),
-        weights,
-    )
+    colours, edge_m, across_rgb = _colours(model, vertices, weights, bind)
+    skin = SkinnedPart("skin", vertices, np.asarray(faces, dtype=np.int64), colours, weights,
+                       edge_m=edge_m, across_rgb=across_rgb)  # fmt: skip
     parts = [skin, rigid_part("eyes", *_eyes(model, bind), EYE_RGB)]
     for side in SIDES:
         parts.append(

@@ -21,7 +21,15 @@ TOP_RGB = (0.11, 0.12, 0.15)
 
 @dataclass(frozen=True, eq=False)
 class SkinnedPart:
-    """One mesh of the avatar at the bind pose: vertices (n, 3) m, faces, colours, weights."""
+    """One mesh of the avatar at the bind pose: vertices (n, 3) m, faces, colours, weights.
+
+    A part may carry a sharp colour edge (a neckline, a cuff) that does not follow its
+    triangles: *edge_m* (n,) is each vertex's signed distance to the edge; the surface
+    shows *colors_rgb* where the distance is ≥ 0 and *across_rgb* (n, 3) where it is
+    negative. The distance is interpolated across a triangle and the edge drawn where
+    it crosses zero, so a distance linear in position draws a straight edge through
+    triangles.
+    """
 
     name: str
     vertices_m: np.ndarray
@@ -29,11 +37,19 @@ class SkinnedPart:
     colors_rgb: np.ndarray
     weights: SkinWeights
     normals: np.ndarray = field(default=None)
+    edge_m: np.ndarray | None = None
+    across_rgb: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         if self.normals is None:
             mesh = trimesh.Trimesh(self.vertices_m, self.faces, process=False)
             object.__setattr__(self, "normals", np.asarray(mesh.vertex_normals, dtype=np.float64))
+
+    def vertex_rgb(self) -> np.ndarray:
+        """Return the colour (n, 3) the surface shows at each vertex."""
+        if self.edge_m is None:
+            return np.asarray(self.colors_rgb)
+        return np.where((self.edge_m >= 0)[:, None], self.colors_rgb, self.across_rgb)
 
     def trimesh(self, vertices_m: np.ndarray | None = None) -> trimesh.Trimesh:
         """Return the part as a trimesh (at the bind pose unless *vertices_m* is given)."""

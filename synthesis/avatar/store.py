@@ -30,6 +30,7 @@ CACHE_ENV = "SIGNSTUDY_AVATAR_CACHE"
 # The libraries that mesh, simplify and weight a skin: another version may build another.
 MESH_LIBRARIES = ("numpy", "scipy", "scikit-image", "trimesh", "fast-simplification")
 _FIELDS = ("vertices_m", "faces", "colors_rgb", "normals")
+_OPTIONAL_FIELDS = ("edge_m", "across_rgb")
 
 
 def cache_directory() -> Path | None:
@@ -76,6 +77,9 @@ def _save(avatar: Avatar, path: Path) -> None:
     for k, part in enumerate(avatar.parts):
         for field in _FIELDS:
             arrays[f"{k}.{field}"] = np.asarray(getattr(part, field))
+        for field in _OPTIONAL_FIELDS:
+            if getattr(part, field) is not None:
+                arrays[f"{k}.{field}"] = np.asarray(getattr(part, field))
         arrays[f"{k}.joints"], arrays[f"{k}.weights"] = part.weights.joints, part.weights.weights
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
@@ -97,6 +101,7 @@ def _load(path: Path, rig) -> Avatar:
                 *(stored[f"{k}.{field}"] for field in _FIELDS[:3]),
                 SkinWeights(stored[f"{k}.joints"], stored[f"{k}.weights"]),
                 stored[f"{k}.normals"],
+                *(stored.get(f"{k}.{field}") for field in _OPTIONAL_FIELDS),
             )
             for k, name in enumerate(stored["part_names"])
         )

@@ -7,7 +7,7 @@ import numpy as np
 from synthesis.avatar.model import Avatar
 from synthesis.render.parallel import render_frames
 from synthesis.render.renderer import Progress, Renderer
-from synthesis.render.scene import CameraPreset
+from synthesis.render.scene import CameraPath, CameraPreset
 from synthesis.render.video import VideoInfo, write_mp4, write_png
 from synthesis.skeleton.kinematics import Pose
 
@@ -15,12 +15,14 @@ from synthesis.skeleton.kinematics import Pose
 def render_still(
     avatar: Avatar,
     dofs_rad: np.ndarray,
-    camera: CameraPreset,
+    camera: CameraPreset | CameraPath,
     out: str | Path,
     width: int = 640,
     height: int = 480,
 ) -> Path:
-    """Render one pose to a PNG file."""
+    """Render one pose to a PNG file (through a path's first camera, if given a path)."""
+    if isinstance(camera, CameraPath):
+        camera = camera.at(0)
     with Renderer(avatar, camera, width, height) as renderer:
         return write_png(renderer.frame(dofs_rad), out)
 
@@ -28,7 +30,7 @@ def render_still(
 def render_clip(
     avatar: Avatar,
     motion: np.ndarray | Pose,
-    camera: CameraPreset,
+    camera: CameraPreset | CameraPath,
     out: str | Path,
     rate_hz: float = 60.0,
     poster: str | Path | None = None,
@@ -41,6 +43,7 @@ def render_clip(
     """Render a motion to an H.264 MP4, and a poster PNG if asked.
 
     *motion* is DOF vectors (n_frames, n_dofs) or a Pose of the avatar's skeleton;
+    *camera* one camera or a path with a camera per frame;
     *progress* receives (frames done, total) as frames are rendered and encoded;
     *workers* > 1 renders in that many processes (see :mod:`synthesis.render.parallel`).
     """

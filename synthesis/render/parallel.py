@@ -16,7 +16,7 @@ import numpy as np
 
 from synthesis.avatar.model import Avatar
 from synthesis.render.renderer import Progress, Renderer
-from synthesis.render.scene import CameraPreset
+from synthesis.render.scene import CameraPath, CameraPreset
 from synthesis.skeleton.kinematics import Pose
 
 QUEUE_FRAMES = 6
@@ -33,6 +33,11 @@ def _every(motion, start: int, step: int):
     if isinstance(motion, Pose):
         return Pose(motion.quaternions[start::step], motion.positions_m[start::step])
     return motion[start::step]
+
+
+def _share(camera, start: int, step: int):
+    """Return a worker's camera: a path's frames start, start + step, …; or the camera."""
+    return camera.every(start, step) if isinstance(camera, CameraPath) else camera
 
 
 def _work(avatar, camera, motion, width, height, queue) -> None:
@@ -62,7 +67,7 @@ def _next(queue, process):
 
 def render_frames(
     avatar: Avatar,
-    camera: CameraPreset,
+    camera: CameraPreset | CameraPath,
     motion: np.ndarray | Pose,
     width: int = 640,
     height: int = 480,
@@ -87,7 +92,14 @@ def render_frames(
     processes = [
         context.Process(
             target=_work,
-            args=(avatar, camera, _every(motion, k, workers), width, height, queues[k]),
+            args=(
+                avatar,
+                _share(camera, k, workers),
+                _every(motion, k, workers),
+                width,
+                height,
+                queues[k],
+            ),
             daemon=True,
         )
         for k in range(workers)

@@ -111,12 +111,15 @@ def vertex_buffer(primitive) -> int | None:
 
 
 def render_color(pyrender, offscreen, scene, flags, width: int, height: int,
-                 before_draw=None) -> np.ndarray:  # fmt: skip
+                 before_draw=None, after_draw=None) -> np.ndarray:  # fmt: skip
     """Draw *scene* with *offscreen* and return its colours (height, width, 3) uint8.
 
     ``OffscreenRenderer.render`` also reads and linearises the depth buffer, a tenth of
     the frame time that clips never use; this is its colour-only path. *before_draw* runs
-    with the context current (to update buffers).
+    with the context current (to update buffers); *after_draw* too, on a platform without
+    framebuffers (OSMesa), between drawing and reading (to post-process the frame). On a
+    platform with framebuffers (EGL) pyrender draws into a 4× multisampled one and
+    resolves it itself, so there is nothing left to post-process.
     """
     inner = offscreen._renderer
     offscreen._platform.make_current()
@@ -128,7 +131,19 @@ def render_color(pyrender, offscreen, scene, flags, width: int, height: int,
             color, _ = inner.render(scene, flags | pyrender.RenderFlags.OFFSCREEN)
         else:
             inner.render(scene, flags)
+            if after_draw is not None:
+                after_draw()
             color = inner.read_color_buf()
     finally:
         offscreen._platform.make_uncurrent()
     return np.ascontiguousarray(color[..., :3])
+
+
+def set_shadow_map_size(pyrender, size_px: int) -> None:
+    """Make pyrender's shadow maps *size_px* square (its default, 2048, for all processes).
+
+    pyrender reads the size from a module constant when it makes a light's shadow
+    texture and sets the shadow pass's viewport, so this applies to lights made after it.
+    """
+    pyrender.renderer.SHADOW_TEX_SZ = size_px
+    pyrender.light.SHADOW_TEX_SZ = size_px

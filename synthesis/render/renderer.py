@@ -8,11 +8,21 @@ import numpy as np
 from synthesis.avatar.model import Avatar
 from synthesis.render import pyrender_compat as compat
 from synthesis.render.backend import import_pyrender
-from synthesis.render.scene import CameraPreset, Light, look_at, portrait_lighting
+from synthesis.render.scene import (
+    CameraPath,
+    CameraPreset,
+    Light,
+    look_at,
+    portrait_lighting,
+    project_px,
+)
 from synthesis.skeleton.kinematics import Pose
 
 BACKGROUND_RGB = (0.42, 0.47, 0.53)
 SHADERS = Path(__file__).with_name("shaders")
+# The key light's shadow map: the hands' shadows on the torso stay sharp at 1024 px (a
+# texel is about 2 mm over the scene), and pyrender's 2048 cost a tenth of a frame.
+SHADOW_MAP_PX = 1024
 # Frames deformed together: large enough to vectorise skinning, small enough to keep
 # memory flat on long clips.
 BATCH_FRAMES = 32
@@ -20,24 +30,44 @@ BATCH_FRAMES = 32
 Progress = Callable[[int, int], None]
 
 
+def _edge_attributes(part) -> dict:
+    """Return a part's colour edge as pyrender texture coordinates: (distance, red) and
+    (green, blue) of the colour across; none for a part without an edge."""
+    if part.edge_m is None:
+        return {}
+    across = np.asarray(part.across_rgb, dtype=np.float32)
+    edge = np.asarray(part.edge_m, dtype=np.float32)
+    return {"texcoord_0": np.column_stack([edge, across[:, 0]]), "texcoord_1": across[:, 1:3]}
+
+
 class Renderer:
-    """Render an avatar through one camera; use as a context manager or call close()."""
+    """Render an avatar through one camera; use as a context manager or call close().
+
+    *camera* is one camera, or a :class:`~synthesis.render.scene.CameraPath` whose
+    frame k films frame k of :meth:`frames`. *antialias* smooths edges with one FXAA
+    pass (:mod:`synthesis.render.antialias`).
+    """
 
     def __init__(
         self,
         avatar: Avatar,
-        camera: CameraPreset,
+        camera: CameraPreset | CameraPath,
         width: int = 640,
         height: int = 480,
         lights: tuple[Light, ...] | None = None,
         background_rgb=BACKGROUND_RGB,
+        antialias: bool = True,
     ) -> None:
         if width <= 0 or height <= 0 or width % 2 or height % 2:
             raise ValueError(f"Frame size must be positive and even, not {width}×{height}.")
         pyrender = import_pyrender()
+        compat.set_shadow_map_size(pyrender, SHADOW_MAP_PX)
         self._pyrender = pyrender
         self.avatar, self.width, self.height = avatar, width, height
         self._fixed_lights = lights
+        self.path = camera if isinstance(camera, CameraPath) else None
+        if self.path is not None:
+            camera = self.path.at(0)
         self.scene = pyrender.Scene(bg_color=(*background_rgb, 1.0), ambient_light=(0.0,) * 3)
         self._camera_node = self.scene.add(
             pyrender.PerspectiveCamera(
@@ -55,11 +85,15 @@ class Renderer:
             for part in avatar.parts
         ]
         self._colors = [np.asarray(part.colors_rgb, dtype=np.float32) for part in avatar.parts]
+        self._edges = [_edge_attributes(part) for part in avatar.parts]
         self._primitives: list = []
         self._mesh = None
         self._staging: list[np.ndarray] | None = None
         self._uploaded = True
         self._flags = pyrender.RenderFlags.SHADOWS_DIRECTIONAL
+        self.antialias = antialias
+        self._fxaa = None
+        self._extent_m: np.ndarray | None = None
         self._renderer = pyrender.OffscreenRenderer(width, height)
         # pyrender looks its shaders up by file name in its program cache; pointing the
         # cache at the project's own shaders swaps the PBR model for a much cheaper one
@@ -73,7 +107,18 @@ class Renderer:
         self.scene.set_pose(self._camera_node, camera.pose())
         target = np.asarray(camera.target_m)
         distance = float(np.linalg.norm(np.asarray(camera.eye_m) - target))
-        self.lights = self._fixed_lights or portrait_lighting(target, distance)
+        lights = self._fixed_lights or portrait_lighting(target, distance)
+        same = [(light.name, light.kind) for light in lights] == [
+            (light.name, light.kind) for light in getattr(self, "lights", ())
+        ]
+        self.lights = lights
+        if same:
+            # The same lights elsewhere: move them, which keeps their shadow maps (a
+            # moving camera moves its lights every frame).
+            for node, light in zip(self._light_nodes, lights, strict=True):
+                node.light.intensity, node.light.color = light.intensity, light.color_rgb
+                self.scene.set_pose(node, look_at(np.asarray(light.position_m), target))
+            return
         for node in self._light_nodes:
             self.scene.remove_node(node)
         self._light_nodes = []
@@ -107,8 +152,9 @@ class Renderer:
     def close(self) -> None:
         """Release the OpenGL context."""
         if self._renderer is not None:
-            self._renderer.delete()
+            self._renderer.delete()  # frees the anti-aliasing pass with the context
             self._renderer = None
+            self._fxaa = None
 
     def _show(self, meshes: list[tuple[np.ndarray, np.ndarray]]) -> None:
         """Put the avatar's parts in the scene with these vertices and normals.
@@ -118,6 +164,10 @@ class Renderer:
         (building primitives and buffers for every frame cost about a tenth of an
         upper-body frame).
         """
+        self._extent_m = np.array([
+            np.min([vertices.min(axis=0) for vertices, _ in meshes], axis=0),
+            np.max([vertices.max(axis=0) for vertices, _ in meshes], axis=0),
+        ])  # fmt: skip
         if self._primitives:
             for primitive, (vertices, normals) in zip(self._primitives, meshes, strict=True):
                 primitive.positions = vertices  # also forgets the primitive's bounds
@@ -135,9 +185,15 @@ class Renderer:
                 indices=part.faces,
                 color_0=colors,
                 material=material,
+                **edge,
             )
-            for part, (vertices, normals), material, colors in zip(
-                self.avatar.parts, meshes, self._materials, self._colors, strict=True
+            for part, (vertices, normals), material, colors, edge in zip(
+                self.avatar.parts,
+                meshes,
+                self._materials,
+                self._colors,
+                self._edges,
+                strict=True,
             )
         ]
         # One mesh, so that the parts are drawn in list order: pyrender keeps a scene's
@@ -150,9 +206,9 @@ class Renderer:
     def _upload(self) -> None:
         """Write the primitives' changed vertex data into their buffers (context current).
 
-        pyrender's vertex buffer interleaves position (3), normal (3) and colour (4)
-        floats per vertex for primitives like ours, without tangents or texture
-        coordinates; the colour columns never change.
+        pyrender's vertex buffer interleaves position (3), normal (3), texture
+        coordinates (2 + 2, here a colour edge) and colour (4) floats per vertex for
+        primitives like ours, without tangents; only positions and normals change.
         """
         if self._uploaded or compat.vertex_buffer(self._primitives[0]) is None:
             return
@@ -167,15 +223,17 @@ class Renderer:
         self._uploaded = True
 
     def _interleaved(self) -> list[np.ndarray]:
-        """Return one (n_vertices, 10) float32 array per primitive, colours filled in."""
+        """Return one float32 array per primitive as its vertex buffer lays it out, the
+        columns that never change filled in."""
         if self._staging is None:
             self._staging = []
             for primitive in self._primitives:
-                if primitive.tangents is not None or primitive.texcoord_0 is not None:
-                    raise RuntimeError("In-place vertex updates expect no tangents or UVs.")
-                staging = np.empty((len(primitive.positions), 10), dtype=np.float32)
-                staging[:, 6:10] = primitive.color_0
-                self._staging.append(staging)
+                if primitive.tangents is not None:
+                    raise RuntimeError("In-place vertex updates expect no tangents.")
+                fixed = [primitive.texcoord_0, primitive.texcoord_1, primitive.color_0]
+                self._staging.append(np.hstack(
+                    [primitive.positions, primitive.normals] + [c for c in fixed if c is not None]
+                ).astype(np.float32))  # fmt: skip
         return self._staging
 
     def frame(self, dofs_rad: np.ndarray) -> np.ndarray:
@@ -186,8 +244,36 @@ class Renderer:
 
     def _draw(self) -> np.ndarray:
         """Draw the scene and read back its colours, (height, width, 3) uint8."""
+        after_draw = self._antialias if self.antialias else None
         return compat.render_color(self._pyrender, self._renderer, self.scene, self._flags,
-                                   self.width, self.height, before_draw=self._upload)  # fmt: skip
+                                   self.width, self.height, before_draw=self._upload,
+                                   after_draw=after_draw)  # fmt: skip
+
+    def _antialias(self) -> None:
+        """Smooth the drawn frame's edges (context current)."""
+        if self._fxaa is None:
+            from synthesis.render.antialias import Fxaa
+
+            self._fxaa = Fxaa()
+        self._fxaa.apply(self.width, self.height, self._screen_box())
+
+    def _screen_box(self) -> tuple[int, int, int, int] | None:
+        """Return the avatar's box on screen (left, bottom, right, top), OpenGL's pixels.
+
+        The projected corners of the posed mesh's bounding box, two pixels wider for the
+        edge pixels just outside the silhouette; None (the whole frame) when a corner is
+        behind the camera.
+        """
+        corners = self._extent_m[np.indices((2, 2, 2)).reshape(3, -1).T, [0, 1, 2]]
+        pixels = project_px(self.camera, corners, self.width, self.height)
+        if np.isnan(pixels).any():
+            return None
+        pad = 2
+        left = int(np.clip(np.floor(pixels[:, 0].min()) - pad, 0, self.width))
+        right = int(np.clip(np.ceil(pixels[:, 0].max()) + pad, 0, self.width))
+        top = int(np.clip(self.height - np.floor(pixels[:, 1].min()) + pad, 0, self.height))
+        bottom = int(np.clip(self.height - np.ceil(pixels[:, 1].max()) - pad, 0, self.height))
+        return left, bottom, right, top
 
     def frames(
         self, motion: np.ndarray | Pose, progress: Progress | None = None
@@ -210,9 +296,13 @@ class Renderer:
             def deform(start: int, stop: int):
                 return self.avatar.deform(motion[start:stop])
 
+        if self.path is not None and len(self.path) != total:
+            raise ValueError(f"The camera path has {len(self.path)} frames, the motion {total}.")
         for start in range(0, total, BATCH_FRAMES):
             batch = deform(start, start + BATCH_FRAMES)
             for k in range(len(batch[0][0])):
+                if self.path is not None:
+                    self.set_camera(self.path.at(start + k))
                 self._show([(v[k], n[k]) for v, n in batch])
                 yield self._draw()
                 if progress is not None:

@@ -38,6 +38,38 @@ class CameraPreset:
         return look_at(np.asarray(self.eye_m), np.asarray(self.target_m))
 
 
+@dataclass(frozen=True, eq=False)
+class CameraPath:
+    """A camera that moves: one eye and target per frame, (n_frames, 3) m each, and one
+    vertical field of view; frame k is seen as :meth:`at` (k) gives it."""
+
+    name: str
+    eye_m: np.ndarray
+    target_m: np.ndarray
+    yfov_deg: float
+
+    def __post_init__(self) -> None:
+        eye, target = np.asarray(self.eye_m, float), np.asarray(self.target_m, float)
+        if eye.ndim != 2 or eye.shape[1] != 3 or eye.shape != target.shape:
+            raise ValueError(f"A camera path needs (n, 3) eyes and targets, not {eye.shape} "
+                             f"and {target.shape}.")  # fmt: skip
+        object.__setattr__(self, "eye_m", eye)
+        object.__setattr__(self, "target_m", target)
+
+    def __len__(self) -> int:
+        return len(self.eye_m)
+
+    def at(self, frame: int) -> CameraPreset:
+        """Return the camera of one frame."""
+        return CameraPreset(self.name, tuple(self.eye_m[frame]), tuple(self.target_m[frame]),
+                            self.yfov_deg)  # fmt: skip
+
+    def every(self, start: int, step: int) -> "CameraPath":
+        """Return the path of frames start, start + step, … (a render worker's share)."""
+        return CameraPath(self.name, self.eye_m[start::step], self.target_m[start::step],
+                          self.yfov_deg)  # fmt: skip
+
+
 def look_at(eye_m: np.ndarray, target_m: np.ndarray, up=(0.0, 1.0, 0.0)) -> np.ndarray:
     """Return the transform (4, 4) of an object at *eye_m* whose −z points at *target_m*."""
     back = eye_m - target_m
@@ -48,6 +80,21 @@ def look_at(eye_m: np.ndarray, target_m: np.ndarray, up=(0.0, 1.0, 0.0)) -> np.n
     pose = np.eye(4)
     pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = right, true_up, back, eye_m
     return pose
+
+
+def project_px(camera: CameraPreset, points_m: np.ndarray, width: int, height: int) -> np.ndarray:
+    """Return image coordinates (..., 2) in pixels (x right, y down) of world points (..., 3).
+
+    Points behind the camera come out as NaN.
+    """
+    to_camera = np.linalg.inv(camera.pose())
+    points = np.asarray(points_m, dtype=np.float64) @ to_camera[:3, :3].T + to_camera[:3, 3]
+    depth = -points[..., 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        focal = 1.0 / np.tan(np.radians(camera.yfov_deg) / 2)
+        x_ndc = np.where(depth > 0, points[..., 0] / depth * focal * height / width, np.nan)
+        y_ndc = np.where(depth > 0, points[..., 1] / depth * focal, np.nan)
+    return np.stack([(x_ndc + 1) / 2 * width, (1 - y_ndc) / 2 * height], axis=-1)
 
 
 def portrait_lighting(target_m, distance_m: float) -> tuple[Light, ...]:

@@ -113,9 +113,9 @@ def test_upper_body_skin_is_one_watertight_mesh_with_a_dark_top(body):
     nearest_head = np.linalg.norm(skin.vertices_m - head, axis=1).argmin()
     fingertip = rig.pose(body.bind_dofs_rad).positions_m[0, rig.skeleton.index("left_index_tip")]
     nearest_tip = np.linalg.norm(skin.vertices_m - fingertip, axis=1).argmin()
-    assert np.allclose(skin.colors_rgb[nearest_chest], TOP_RGB)
-    assert not np.allclose(skin.colors_rgb[nearest_head], TOP_RGB)
-    assert not np.allclose(skin.colors_rgb[nearest_tip], TOP_RGB)
+    assert np.allclose(skin.vertex_rgb()[nearest_chest], TOP_RGB)
+    assert not np.allclose(skin.vertex_rgb()[nearest_head], TOP_RGB)
+    assert not np.allclose(skin.vertex_rgb()[nearest_tip], TOP_RGB)
     assert {p.name for p in body.parts} >= {"skin", "eyes", "right nails", "left nails"}
 
 

@@ -1,5 +1,7 @@
 """Test the on-disk avatar store: stored once per engine version, loaded back the same."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -25,7 +27,9 @@ def _builder():
         vertices = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0, 0, 0.01]])
         faces = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
         part = rigid_part("nails", vertices, faces, np.full(4, 3), (0.8, 0.6, 0.6))
-        return Avatar("tiny", model, model.neutral(), (part,))
+        edged = dataclasses.replace(part, name="cuffed", edge_m=vertices[:, 0] - 0.005,
+                                    across_rgb=np.zeros((4, 3)))  # fmt: skip
+        return Avatar("tiny", model, model.neutral(), (part, edged))
 
     return build, calls
 
@@ -41,10 +45,11 @@ def test_an_avatar_is_built_once_then_loaded_the_same(store):
     np.testing.assert_array_equal(loaded.bind_dofs_rad, built.bind_dofs_rad)
     for ours, theirs in zip(loaded.parts, built.parts, strict=True):
         assert ours.name == theirs.name
-        for field in ("vertices_m", "faces", "colors_rgb", "normals"):
+        for field in ("vertices_m", "faces", "colors_rgb", "normals", "edge_m", "across_rgb"):
             np.testing.assert_array_equal(getattr(ours, field), getattr(theirs, field))
         np.testing.assert_array_equal(ours.weights.joints, theirs.weights.joints)
         np.testing.assert_array_equal(ours.weights.weights, theirs.weights.weights)
+    assert loaded.parts[0].edge_m is None and loaded.parts[1].edge_m is not None
 
 
 def test_an_unreadable_file_is_built_again_and_replaced(store):

@@ -123,23 +123,54 @@ def test_upper_body_camera_frames_the_signer():
     assert mask[:, 60:100].mean() > 0.3  # the torso fills the middle
 
 
+def test_the_cuff_is_a_straight_edge_through_the_meshs_triangles():
+    """The sleeve ends in a smooth line across the forearm (within 1.5 px of an arc; it
+    used to follow the decimated mesh's triangle edges, a zigzag of about 10 px here)."""
+    from synthesis.avatar.body_mesh import body_avatar
+    from synthesis.render.scene import CameraPreset
+
+    body = body_avatar("right")
+    camera = CameraPreset("cuff", (-0.22, 0.97, 0.3), (-0.22, 0.97, 0.0), 30.0)
+    with Renderer(body, camera, 640, 480) as renderer:
+        frame = renderer.frame(np.zeros(len(body.rig.dofs))).astype(float)
+    dark = frame.sum(axis=-1) < 200  # the top; skin and background are brighter
+    skin = (frame[..., 0] - frame[..., 2]) > 40
+    rows = []
+    for column in range(frame.shape[1]):
+        # Where the column passes from the sleeve straight onto skin.
+        above = np.zeros_like(skin[:, column])
+        for gap in range(1, 9):
+            above[gap:] |= dark[:-gap, column]
+        onto_skin = skin[:, column] & above
+        if onto_skin.any() and skin[:, column].sum() > 100:
+            rows.append((column, np.argmax(onto_skin)))
+    assert len(rows) > 60, "the sleeve should end on skin across the forearm"
+    # The middle of the forearm: at its sides the arc turns out of view.
+    columns, first = np.array(rows[len(rows) // 10 : -len(rows) // 10]).T
+    # Seen from a little above, the cuff round the forearm is an arc.
+    arc = np.polyval(np.polyfit(columns, first, 2), columns)
+    assert np.abs(first - arc).max() <= 1.5
+
+
 def test_odd_frame_sizes_are_refused():
     with pytest.raises(ValueError, match="even"):
         Renderer(hand_avatar("right"), hand_close_up(), 161, 120)
 
 
 def test_clips_are_byte_identical_across_runs_and_worker_counts(tmp_path):
-    """Same inputs, same bytes (spec 01): in one process, or split over two."""
+    """Same inputs, same bytes (spec 01): in one process, or split over two (each worker
+    filmed by its share of the close-up's camera path)."""
     from synthesis.fingerspelling.spelling import spell
     from synthesis.render.clip import render_clip
+    from synthesis.render.follow import follow_hand
 
     avatar = hand_avatar("right")
     motion = spell("NAIL", rate_hz=30)
     assert len(motion) >= 48  # enough frames for two workers
+    camera = follow_hand(avatar, motion, hand_close_up(), 30, 96, 72)
     paths = [tmp_path / f"clip{k}.mp4" for k in range(3)]
     for path, workers in zip(paths, (1, 1, 2), strict=True):
-        render_clip(avatar, motion, hand_close_up(), path, 30, width=96, height=72,
-                    workers=workers)  # fmt: skip
+        render_clip(avatar, motion, camera, path, 30, width=96, height=72, workers=workers)
     first = paths[0].read_bytes()
     assert paths[1].read_bytes() == first
     assert paths[2].read_bytes() == first

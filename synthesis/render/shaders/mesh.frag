@@ -38,6 +38,10 @@ uniform vec3 ambient_light;
 in vec3 world_position;
 in vec3 world_normal;
 in vec3 albedo_srgb;
+#ifdef TEXCOORD_0_LOC
+in float edge_m;
+in vec3 across_srgb;
+#endif
 
 out vec4 frag_color;
 
@@ -73,7 +77,13 @@ float lit_fraction(mat4 light_matrix, sampler2D shadow_map, float facing)
 
 void main()
 {
-    vec3 albedo = pow(albedo_srgb * material.base_color_factor.rgb, vec3(2.2));
+    vec3 surface_srgb = albedo_srgb;
+#ifdef TEXCOORD_0_LOC
+    // The edge where the interpolated distance crosses zero, blended over one pixel.
+    float pixel_m = max(fwidth(edge_m), 1e-6);
+    surface_srgb = mix(across_srgb, albedo_srgb, clamp(0.5 + edge_m / pixel_m, 0.0, 1.0));
+#endif
+    vec3 albedo = pow(surface_srgb * material.base_color_factor.rgb, vec3(2.2));
     vec3 n = normalize(world_normal);
     vec3 v = normalize(cam_pos - world_position);
     if (dot(n, v) < 0.0) {

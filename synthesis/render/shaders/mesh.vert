@@ -8,6 +8,14 @@ layout(location = NORMAL_LOC) in vec3 normal;
 #ifdef COLOR_0_LOC
 layout(location = COLOR_0_LOC) in vec4 color_0;
 #endif
+#ifdef TEXCOORD_0_LOC
+// A colour edge through the mesh: (signed distance to it, red) and (green, blue) of the
+// colour on its negative side.
+layout(location = TEXCOORD_0_LOC) in vec2 texcoord_0;
+layout(location = TEXCOORD_1_LOC) in vec2 texcoord_1;
+out float edge_m;
+out vec3 across_srgb;
+#endif
 layout(location = INST_M_LOC) in mat4 inst_m;
 
 uniform mat4 M;
@@ -34,6 +42,10 @@ void main()
     albedo_srgb = color_0.rgb;
 #else
     albedo_srgb = vec3(1.0);
+#endif
+#ifdef TEXCOORD_0_LOC
+    edge_m = texcoord_0.x;
+    across_srgb = vec3(texcoord_0.y, texcoord_1);
 #endif
     gl_Position = P * V * world;
 }
