@@ -27,6 +27,7 @@ from synthesis.techniques import (
     ClipRequest,
     avatar_and_camera,
     build_motion,
+    filming,
     render_request,
 )
 from synthesis.techniques.flags import add_technique_flags, technique_values, techniques_help
@@ -57,12 +58,12 @@ def _size(text: str) -> tuple[int, int]:
 
 def _render_pose(args: argparse.Namespace) -> int:
     from synthesis.render.clip import render_still
-
-    avatar, camera = avatar_and_camera(args.view, args.side)
     from synthesis.rigs.posture import hand_motion_on
 
-    dofs = hand_motion_on(avatar.rig, args.side, letter_pose(args.letter, args.side)[None])[0]
-    path = render_still(avatar, dofs, camera, args.out, *args.size)
+    rig = avatar_and_camera(args.view, args.side)[0].rig
+    dofs = hand_motion_on(rig, args.side, letter_pose(args.letter, args.side)[None])
+    avatar, camera = filming(args.view, args.side, dofs, 1.0, *args.size)
+    path = render_still(avatar, dofs[0], camera, args.out, *args.size)
     print(f"wrote {path}")
     return 0
 
@@ -139,8 +140,9 @@ def _render_bvh(args: argparse.Namespace) -> int:
     mapping = detect_mapping(motion.skeleton)
     view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
     side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
-    avatar, camera = avatar_and_camera(view, side)
-    pose = retarget(motion, avatar.rig, mapping)
+    rig = avatar_and_camera(view, side)[0].rig
+    pose = retarget(motion, rig, mapping)
+    avatar, camera = filming(view, side, pose, motion.rate_hz, *args.size)
     info = render_clip(
         avatar, pose, camera, args.out, motion.rate_hz, poster=args.poster,
         width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),

@@ -14,26 +14,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from synthesis.avatar.model import Avatar
-from synthesis.render.scene import CameraPreset
+from synthesis.render.scene import CameraPath, CameraPreset, project_px
 from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.kinematics import Pose
 
 # The hand's joints, as the hand model names them (a body's are these behind a side).
 HAND_JOINTS = tuple(name for name in HandModel().skeleton.names if name != "forearm")
 
-
-def project_px(camera: CameraPreset, points_m: np.ndarray, width: int, height: int) -> np.ndarray:
-    """Return image coordinates (..., 2) in pixels (x right, y down) of world points (..., 3).
-
-    Points behind the camera come out as NaN.
-    """
-    to_camera = np.linalg.inv(camera.pose())
-    points = np.asarray(points_m, dtype=np.float64) @ to_camera[:3, :3].T + to_camera[:3, 3]
-    depth = -points[..., 2]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        focal = 1.0 / np.tan(np.radians(camera.yfov_deg) / 2)
-        x_ndc = np.where(depth > 0, points[..., 0] / depth * focal * height / width, np.nan)
-        y_ndc = np.where(depth > 0, points[..., 1] / depth * focal, np.nan)
-    return np.stack([(x_ndc + 1) / 2 * width, (1 - y_ndc) / 2 * height], axis=-1)
+__all__ = ["HAND_JOINTS", "Framing", "hand_vertices", "measure_framing", "project_px"]
 
 
 def _owned(avatar: Avatar, wanted) -> list[np.ndarray]:
@@ -72,26 +60,66 @@ class Framing:
         }  # fmt: skip
 
 
+def _posed(avatar: Avatar, motion: np.ndarray | Pose) -> list[np.ndarray]:
+    if isinstance(motion, Pose):
+        return [vertices for vertices, _ in avatar.deform_pose(motion)]
+    return [vertices for vertices, _ in avatar.deform(np.atleast_2d(motion))]
+
+
+def _gather(posed: list[np.ndarray], masks: list[np.ndarray]) -> np.ndarray:
+    return np.concatenate([v[:, m] for v, m in zip(posed, masks, strict=True)], axis=1)
+
+
+def hand_vertices(avatar: Avatar, motion: np.ndarray | Pose, batch: int = 64) -> np.ndarray:
+    """Return the posed hands' vertices (n_frames, n, 3) m for DOF vectors or a Pose,
+    posing *batch* frames at a time (all at once is slower: the whole skin's arrays)."""
+    masks = _owned(avatar, _is_hand)
+    if isinstance(motion, Pose):
+        total = motion.quaternions.shape[0]
+        chunks = (Pose(motion.quaternions[k : k + batch], motion.positions_m[k : k + batch])
+                  for k in range(0, total, batch))  # fmt: skip
+    else:
+        motion = np.atleast_2d(motion)
+        chunks = (motion[k : k + batch] for k in range(0, len(motion), batch))
+    return np.concatenate([_gather(_posed(avatar, chunk), masks) for chunk in chunks])
+
+
+def _project(camera: CameraPreset | CameraPath, points_m: np.ndarray, width: int,
+             height: int) -> np.ndarray:  # fmt: skip
+    """Project points (n_frames, n, 3) through a camera, or frame by frame a path's."""
+    if isinstance(camera, CameraPreset):
+        return project_px(camera, points_m, width, height)
+    return np.stack([project_px(camera.at(k), frame, width, height)
+                     for k, frame in enumerate(points_m)])  # fmt: skip
+
+
 def measure_framing(
-    avatar: Avatar, camera: CameraPreset, dofs_rad: np.ndarray, width: int = 640,
-    height: int = 480, frames: np.ndarray | None = None,
+    avatar: Avatar, camera: CameraPreset | CameraPath, dofs_rad: np.ndarray | Pose,
+    width: int = 640, height: int = 480, frames: np.ndarray | None = None,
 ) -> Framing:  # fmt: skip
-    """Return how *camera* frames *avatar* posed by *dofs_rad* (n_frames, n_dofs), at
-    *width* × *height*; *frames* (indices) picks the frames to measure (all by default)."""
-    dofs = np.atleast_2d(dofs_rad)
+    """Return how *camera* (one, or a path of one per frame) frames *avatar* posed by
+    *dofs_rad* (n_frames, n_dofs) or a Pose, at *width* × *height*; *frames* (indices)
+    picks the frames to measure (all by default)."""
+    motion = dofs_rad if isinstance(dofs_rad, Pose) else np.atleast_2d(dofs_rad)
     if frames is not None:
-        dofs = dofs[np.asarray(frames)]
-    posed = [vertices for vertices, _ in avatar.deform(dofs)]
-    hands, heads = _owned(avatar, _is_hand), _owned(avatar, lambda name: name == "head")
-    hand = np.concatenate([v[:, m] for v, m in zip(posed, hands, strict=True)], axis=1)
-    pixels = project_px(camera, hand, width, height)
+        frames = np.asarray(frames)
+        if isinstance(motion, Pose):
+            motion = Pose(motion.quaternions[frames], motion.positions_m[frames])
+        else:
+            motion = motion[frames]
+        if isinstance(camera, CameraPath):
+            camera = CameraPath(camera.name, camera.eye_m[frames], camera.target_m[frames],
+                                camera.yfov_deg)  # fmt: skip
+    posed = _posed(avatar, motion)
+    hand = _gather(posed, _owned(avatar, _is_hand))
+    pixels = _project(camera, hand, width, height)
     share = (np.nanmax(pixels[..., 1], axis=1) - np.nanmin(pixels[..., 1], axis=1)) / height
     outside = ((pixels[..., 0] < 0) | (pixels[..., 0] > width) | (pixels[..., 1] < 0)
                | (pixels[..., 1] > height) | np.isnan(pixels).any(axis=-1)).any(axis=1)  # fmt: skip
-    head = np.concatenate([v[:, m] for v, m in zip(posed, heads, strict=True)], axis=1)
+    head = _gather(posed, _owned(avatar, lambda name: name == "head"))
     if head.shape[1]:
-        head_y = project_px(camera, head, width, height)[..., 1]
+        head_y = _project(camera, head, width, height)[..., 1]
         head_px = np.nanmax(head_y, axis=1) - np.nanmin(head_y, axis=1)
     else:
-        head_px = np.full(len(dofs), np.nan)
+        head_px = np.full(len(hand), np.nan)
     return Framing(share, outside, head_px)

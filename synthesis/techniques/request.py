@@ -188,6 +188,18 @@ def avatar_and_camera(view: str, side: str):
     return body_avatar(side), upper_body_front(side)
 
 
+def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int):
+    """Return the avatar of *view* and the camera that films *motion* (DOF vectors or a
+    Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`), the upper
+    body's stands still."""
+    avatar, camera = avatar_and_camera(view, side)
+    if view == "hand":
+        from synthesis.render.follow import follow_hand
+
+        camera = follow_hand(avatar, motion, camera, rate_hz, width, height)
+    return avatar, camera
+
+
 def render_request(
     request: ClipRequest, out: str | Path, poster: str | Path | None = None,
     progress=None, workers: int = 1, build: Build | None = None,
@@ -199,7 +211,8 @@ def render_request(
     from synthesis.render.clip import render_clip
 
     build = build or build_motion(request)
-    avatar, camera = avatar_and_camera(request.view, request.side)
+    avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
+                             request.width, request.height)  # fmt: skip
     return render_clip(
         avatar, build.motion, camera, out, request.rate_hz, poster=poster, width=request.width,
         height=request.height, progress=progress, workers=workers,
