@@ -38,6 +38,11 @@ HOLD_SHARE = 0.46
 YFOV_DEG = 10.0
 # The hand is still while no vertex moves faster than this (a hold's tremor is slower).
 STILL_M_S = 0.05
+STILL_NOISY_M_S = 0.15
+# A movement this long (a J or Z path with its way in and out) is filmed from one place
+# in its middle where one place shows all of it.
+LONG_MOVE_MS = 400.0
+PAUSE_EASE_MS = 150.0
 
 
 def _extremes(points: np.ndarray, tangent: float, axis: int) -> tuple[np.ndarray, np.ndarray]:
@@ -48,6 +53,16 @@ def _extremes(points: np.ndarray, tangent: float, axis: int) -> tuple[np.ndarray
     return (along + tangent * depth).max(axis=1), (along - tangent * depth).min(axis=1)
 
 
+def _needed(points: np.ndarray, extremes, tangents) -> np.ndarray:
+    """Return per frame the nearest camera distance (n_frames,) at which some centre
+    keeps every point inside, on both axes."""
+    needed = np.max(
+        [(upper - lower) / (2 * t) for (upper, lower), t in zip(extremes, tangents, strict=True)],
+        axis=0,
+    )
+    return np.maximum(needed, points[..., 2].max(axis=1) + 0.05)
+
+
 def _runs(still: np.ndarray) -> list[tuple[int, int, bool]]:
     """Return the runs (start, stop, still) of equal values of *still* (n_frames,)."""
     edges = np.flatnonzero(np.diff(still.astype(np.int8))) + 1
@@ -55,9 +70,14 @@ def _runs(still: np.ndarray) -> list[tuple[int, int, bool]]:
     return [(int(a), int(b), bool(still[a])) for a, b in itertools.pairwise(bounds)]
 
 
-def _ease(values_at_rest: np.ndarray, runs) -> np.ndarray:
+def _ease(values_at_rest: np.ndarray, runs, ends: float | None = None,
+          pauses: dict | None = None, ease_frames: float = np.inf) -> np.ndarray:  # fmt: skip
     """Return per frame the value of its still run, eased (smoothstep) across each moving
-    run from the still value before it to the one after (held at the clip's ends)."""
+    run from the still value before it to the one after; before the first still run and
+    after the last, from and to *ends* (the nearest still value if None). A moving run
+    that *pauses* maps (by its start) to a value eases to it over its first quarter (at
+    most *ease_frames*), holds it and eases on over as many frames at its end."""
+    pauses = pauses or {}
     out = np.empty(len(values_at_rest))
     rests = [(a, b) for a, b, still in runs if still]
     for a, b, still in runs:
@@ -66,12 +86,22 @@ def _ease(values_at_rest: np.ndarray, runs) -> np.ndarray:
             continue
         before = [r for r in rests if r[1] <= a]
         after = [r for r in rests if r[0] >= b]
-        first = values_at_rest[before[-1][0]] if before else None
-        last = values_at_rest[after[0][0]] if after else None
+        first = values_at_rest[before[-1][0]] if before else ends
+        last = values_at_rest[after[0][0]] if after else ends
         first = last if first is None else first
         last = first if last is None else last
-        u = (np.arange(a, b) - a + 1) / (b - a + 1)
-        out[a:b] = first + (last - first) * u * u * (3 - 2 * u)
+        # A stretch at the clip's start begins on its first value, one at its end
+        # finishes on its last; between still stretches both are the neighbours'.
+        lead, tail = (1 if before else 0), (1 if after else 0)
+        u = (np.arange(a, b) - a + lead) / max(b - a - 1 + lead + tail, 1)
+        if a in pauses:
+            middle = pauses[a]
+            share = min(0.25, ease_frames / (b - a + 1))
+            into, out_of = np.clip(u / share, 0, 1), np.clip((u - 1) / share + 1, 0, 1)
+            out[a:b] = (first + (middle - first) * into * into * (3 - 2 * into)
+                        + (last - middle) * out_of * out_of * (3 - 2 * out_of))  # fmt: skip
+        else:
+            out[a:b] = first + (last - first) * u * u * (3 - 2 * u)
     return out
 
 
@@ -94,12 +124,20 @@ def follow_hand(
     margin_share: float = MARGIN_SHARE,
     hold_share: float = HOLD_SHARE,
     yfov_deg: float = YFOV_DEG,
+    scale_poses: np.ndarray | None = None,
+    rest_pose: np.ndarray | None = None,
 ) -> CameraPath:
     """Return a camera path (one camera per frame of *motion*) that follows the hand.
 
     *motion* is DOF vectors (n_frames, n_dofs) or a Pose of *avatar*'s skeleton at
     *rate_hz*; the path looks along −z through a *yfov_deg* lens at *width* × *height*.
-    *base* is the fixed close-up the path replaces (its name is kept).
+    *base* is the fixed close-up the path replaces (its name is kept). *scale_poses*
+    (n, n_dofs), if given, set the camera's distance: the nearest at which each of them
+    fits (the alphabet's letters, so that every clip of the close-up is filmed at one
+    scale and the conditions of an item open and close on the same frame); without
+    them, the clip's own holds set it. *rest_pose* (n_dofs,), if given, is where the
+    camera starts and ends when the clip's hand is not still there (a recording's first
+    and last frames), so that every clip of an item opens and closes on one framing.
     """
     points = hand_vertices(avatar, motion)
     half = np.tan(np.radians(yfov_deg) / 2)
@@ -109,28 +147,65 @@ def follow_hand(
     if len(points) > 1:
         step = np.linalg.norm(np.diff(points, axis=0), axis=-1).max(axis=1) * rate_hz
         speed = np.maximum(np.concatenate([[step[0]], step]), np.concatenate([step, [step[-1]]]))
-    runs = _runs(speed < STILL_M_S)
+    # A capture's hand trembles while it holds: still is slower than STILL_M_S, or than
+    # thrice the clip's slowest frames' speed, up to STILL_NOISY_M_S.
+    floor = 3.0 * float(np.percentile(speed, 5))
+    runs = _runs(speed < max(STILL_M_S, min(floor, STILL_NOISY_M_S)))
+    if not any(still for _, _, still in runs):
+        # Never still (a noisy recording): one stretch, filmed from one place where
+        # the hand allows it.
+        runs = [(0, len(points), True)]
     extremes = [_extremes(points, tangent, axis) for axis, tangent in enumerate(tangents)]
-    # The nearest distance per frame at which some centre fits the hand, on either axis.
-    needed = np.max(
-        [(upper - lower) / (2 * t) for (upper, lower), t in zip(extremes, tangents, strict=True)],
-        axis=0,
-    )
-    needed = np.maximum(needed, points[..., 2].max(axis=1) + 0.05)
+    needed = _needed(points, extremes, tangents)
     # One distance for the clip where it can be; nearer where a held letter would be
     # small. A hand that needs the camera at z (filling 1 − 2·margin of the frame) fills
     # hold_share of it from depth + (z − depth)·(1 − 2·margin) / hold_share.
     depth = points[..., 2].mean(axis=1)
     close_enough = depth + (needed - depth) * (1 - 2 * margin_share) / hold_share
-    at_rest = _per_run(np.minimum(needed.max(), close_enough), runs, np.min)
-    eye_z = np.maximum(_ease(np.maximum(at_rest, _per_run(needed, runs, np.max)), runs), needed)
+    # The clip's distance comes from still hands alone (a transition that needs more
+    # room backs off for its own frames).
+    if scale_poses is not None:
+        scale = hand_vertices(avatar, np.atleast_2d(scale_poses))
+        distance = _needed(scale, [_extremes(scale, t, axis) for axis, t in enumerate(tangents)],
+                           tangents).max()  # fmt: skip
+    else:
+        still = np.zeros(len(points), dtype=bool)
+        for a, b, is_still in runs:
+            still[a:b] = is_still
+        distance = needed[still].max()
+    at_rest = _per_run(np.minimum(distance, close_enough), runs, np.min)
+    rest = None
+    if rest_pose is not None:
+        rest = hand_vertices(avatar, np.atleast_2d(rest_pose))
+        rest_extremes = [_extremes(rest, t, axis) for axis, t in enumerate(tangents)]
+    held_z = np.maximum(at_rest, _per_run(needed, runs, np.max))
+    if rest is not None:
+        for a, b, still in (runs[0], runs[-1]):
+            if still:
+                held_z[a:b] = distance
+    eye_z = np.maximum(_ease(held_z, runs, None if rest is None else distance), needed)
     centre = []
-    for (upper, lower), tangent in zip(extremes, tangents, strict=True):
+    for axis, ((upper, lower), tangent) in enumerate(zip(extremes, tangents, strict=True)):
         low, high = upper - tangent * eye_z, lower + tangent * eye_z
+        ends = None
+        if rest is not None:
+            rest_upper, rest_lower = rest_extremes[axis]
+            ends = float((rest_upper[0] + rest_lower[0]) / 2)  # its middle at any distance
         common_low, common_high = _per_run(low, runs, np.max), _per_run(high, runs, np.min)
-        aim = np.where(common_low <= common_high, (common_low + common_high) / 2,
-                       (low + high) / 2)  # fmt: skip
-        centre.append(np.clip(_ease(aim, runs), low, high))
+        # Where no one centre suits a whole stretch, its frames' mean middle does, and
+        # the clamp below pans just enough.
+        middle = _per_run((low + high) / 2, runs, np.mean)
+        aim = np.where(common_low <= common_high, (common_low + common_high) / 2, middle)
+        if ends is not None:
+            # The clip opens and closes on the rest pose's framing.
+            for a, b, still in (runs[0], runs[-1]):
+                if still:
+                    aim[a:b] = ends
+        pauses = {a: (low[a:b].max() + high[a:b].min()) / 2 for a, b, still in runs
+                  if not still and (b - a) * 1000 / rate_hz >= LONG_MOVE_MS
+                  and low[a:b].max() <= high[a:b].min()}  # fmt: skip
+        eased = _ease(aim, runs, ends, pauses, PAUSE_EASE_MS * rate_hz / 1000)
+        centre.append(np.clip(eased, low, high))
     eye = np.column_stack([centre[0], centre[1], eye_z])
     target = eye.copy()
     target[:, 2] = 0.0

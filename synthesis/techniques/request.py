@@ -190,13 +190,19 @@ def avatar_and_camera(view: str, side: str):
 
 def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int):
     """Return the avatar of *view* and the camera that films *motion* (DOF vectors or a
-    Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`), the upper
-    body's stands still."""
+    Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`) at the scale
+    that fits every letter of the alphabet, from the rest pose's framing at both ends;
+    the upper body's stands still."""
     avatar, camera = avatar_and_camera(view, side)
     if view == "hand":
+        import numpy as np
+
+        from synthesis.fingerspelling.alphabet import LETTERS, letter_pose, rest_pose
         from synthesis.render.follow import follow_hand
 
-        camera = follow_hand(avatar, motion, camera, rate_hz, width, height)
+        letters = np.stack([letter_pose(c, side) for c in LETTERS] + [rest_pose(side)])
+        camera = follow_hand(avatar, motion, camera, rate_hz, width, height,
+                             scale_poses=letters, rest_pose=rest_pose(side))  # fmt: skip
     return avatar, camera
 
 
