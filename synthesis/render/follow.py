@@ -11,12 +11,15 @@ letters, never letting a vertex of the hand leave the frame.
 How: with the camera looking along −z from (cx, cy, cz), a point p is inside the frame
 while |p_x − cx| ≤ X·(cz − p_z) and |p_y − cy| ≤ Y·(cz − p_z) (X, Y the tangents of the
 half fields of view less a margin), so each frame's hand vertices bound the centre to an
-interval per axis. The distance cz is one for the clip, the nearest at which every
-frame's interval is open, except nearer where a held letter would be small. The hand
-is still (a hold) or moving; on each still stretch the camera stands at the middle of
-the centres common to the stretch, and over each moving stretch between two it eases
-from one to the other, clamped into each frame's own interval, so a hold is filmed by
-a camera at rest and a J or Z draws its path across the frame.
+interval per axis, and the nearest distance at which that interval is open has a
+closed form. The distance is one for every clip (the nearest that fits each letter of
+the alphabet), except nearer where a held letter would be small and farther for the
+frames of a movement that needs the room. The hand is still (a hold) or moving; on
+each still stretch the camera stands at the middle of the centres common to the
+stretch, over each moving stretch it eases from one still stretch's to the next's
+(pausing halfway through a long one, a J or Z path, where one place shows it all), and
+every frame is clamped into its own interval. A clip opens and closes on the rest
+pose's framing, so the conditions of an item share their first and last frames.
 """
 
 import itertools
@@ -36,11 +39,12 @@ HOLD_SHARE = 0.46
 # A long lens: at 30° the camera stood 25 cm from the hand, and a letter pointing at
 # it (P, Q) loomed twice as large as an upright one.
 YFOV_DEG = 10.0
-# The hand is still while no vertex moves faster than this (a hold's tremor is slower).
+# The hand is still while no vertex moves faster than this; in a capture, whose holds
+# tremble, than thrice its slowest frames' speed, up to the second figure.
 STILL_M_S = 0.05
 STILL_NOISY_M_S = 0.15
 # A movement this long (a J or Z path with its way in and out) is filmed from one place
-# in its middle where one place shows all of it.
+# in its middle where one place shows all of it, reached and left over PAUSE_EASE_MS.
 LONG_MOVE_MS = 400.0
 PAUSE_EASE_MS = 150.0
 
@@ -147,8 +151,6 @@ def follow_hand(
     if len(points) > 1:
         step = np.linalg.norm(np.diff(points, axis=0), axis=-1).max(axis=1) * rate_hz
         speed = np.maximum(np.concatenate([[step[0]], step]), np.concatenate([step, [step[-1]]]))
-    # A capture's hand trembles while it holds: still is slower than STILL_M_S, or than
-    # thrice the clip's slowest frames' speed, up to STILL_NOISY_M_S.
     floor = 3.0 * float(np.percentile(speed, 5))
     runs = _runs(speed < max(STILL_M_S, min(floor, STILL_NOISY_M_S)))
     if not any(still for _, _, still in runs):
