@@ -37,7 +37,7 @@ def main() -> int:
         build = build_motion(request)
         motion = np.asarray(build.motion)
         avatar, camera = filming(request.view, request.side, motion, request.rate_hz,
-                                 request.width, request.height)  # fmt: skip
+                                 request.width, request.height, word)  # fmt: skip
         framing = measure_framing(avatar, camera, motion)
         middles = np.round(hold_times_s(build.timing).mean(axis=1) * request.rate_hz)
         at_holds = framing.hand_share[middles.astype(int)]

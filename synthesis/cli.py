@@ -62,7 +62,7 @@ def _render_pose(args: argparse.Namespace) -> int:
 
     rig = avatar_and_camera(args.view, args.side)[0].rig
     dofs = hand_motion_on(rig, args.side, letter_pose(args.letter, args.side)[None])
-    avatar, camera = filming(args.view, args.side, dofs, 1.0, *args.size)
+    avatar, camera = filming(args.view, args.side, dofs, 1.0, *args.size, word=args.letter)
     path = render_still(avatar, dofs[0], camera, args.out, *args.size)
     print(f"wrote {path}")
     return 0

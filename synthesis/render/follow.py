@@ -12,8 +12,8 @@ How: with the camera looking along −z from (cx, cy, cz), a point p is inside t
 while |p_x − cx| ≤ X·(cz − p_z) and |p_y − cy| ≤ Y·(cz − p_z) (X, Y the tangents of the
 half fields of view less a margin), so each frame's hand vertices bound the centre to an
 interval per axis, and the nearest distance at which that interval is open has a
-closed form. The distance is one for every clip (the nearest that fits each letter of
-the alphabet), except nearer where a held letter would be small and farther for the
+closed form. The distance is one for every clip of a word (the nearest that fits each
+of its letters), except nearer where a held letter would be small and farther for the
 frames of a movement that needs the room. The hand is still (a hold) or moving; on
 each still stretch the camera stands at the middle of the centres common to the
 stretch, over each moving stretch it eases from one still stretch's to the next's
@@ -137,8 +137,8 @@ def follow_hand(
     *rate_hz*; the path looks along −z through a *yfov_deg* lens at *width* × *height*.
     *base* is the fixed close-up the path replaces (its name is kept). *scale_poses*
     (n, n_dofs), if given, set the camera's distance: the nearest at which each of them
-    fits (the alphabet's letters, so that every clip of the close-up is filmed at one
-    scale and the conditions of an item open and close on the same frame); without
+    fits (a word's letters, so that every clip of the word is filmed at one scale and
+    its conditions open and close on the same frame); without
     them, the clip's own holds set it. *rest_pose* (n_dofs,), if given, is where the
     camera starts and ends when the clip's hand is not still there (a recording's first
     and last frames), so that every clip of an item opens and closes on one framing.

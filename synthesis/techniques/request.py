@@ -188,19 +188,28 @@ def avatar_and_camera(view: str, side: str):
     return body_avatar(side), upper_body_front(side)
 
 
-def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int):
+def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int,
+            word: str | None = None):  # fmt: skip
     """Return the avatar of *view* and the camera that films *motion* (DOF vectors or a
     Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`) at the scale
-    that fits every letter of the alphabet, from the rest pose's framing at both ends;
-    the upper body's stands still."""
+    that fits every letter of *word* (so all conditions of a word share it) and from the
+    rest pose's framing at both ends; the upper body's stands still."""
     avatar, camera = avatar_and_camera(view, side)
     if view == "hand":
         import numpy as np
 
-        from synthesis.fingerspelling.alphabet import LETTERS, letter_pose, rest_pose
+        from synthesis.fingerspelling.alphabet import letter, rest_pose
+        from synthesis.fingerspelling.spelling import word_letters
         from synthesis.render.follow import follow_hand
 
-        letters = np.stack([letter_pose(c, side) for c in LETTERS] + [rest_pose(side)])
+        # The word's letters are solved for spelling it anyway; the whole alphabet
+        # would cost every render process seconds.
+        letters = None
+        if word:
+            shapes = [letter(c, side) for c in word_letters(word)]
+            # A J's or Z's path keys too: the camera keeps a path in view from one place.
+            letters = np.vstack([s.dofs_rad if s.path_rad is None else s.path_rad
+                                 for s in shapes] + [rest_pose(side)[None]])  # fmt: skip
         camera = follow_hand(avatar, motion, camera, rate_hz, width, height,
                              scale_poses=letters, rest_pose=rest_pose(side))  # fmt: skip
     return avatar, camera
@@ -218,7 +227,8 @@ def render_request(
 
     build = build or build_motion(request)
     avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
-                             request.width, request.height)  # fmt: skip
+                             request.width, request.height,
+                             request.text if request.kind == "word" else None)  # fmt: skip
     return render_clip(
         avatar, build.motion, camera, out, request.rate_hz, poster=poster, width=request.width,
         height=request.height, progress=progress, workers=workers,

@@ -39,15 +39,15 @@ def test_every_letter_stays_inside_and_fills_the_frame(avatar, word):
     assert fixed.hand_share[middles].min() < 0.3
 
 
-def _filmed(motion):
+def _filmed(motion, word):
     from synthesis.techniques import filming
 
-    return filming("hand", "right", motion, RATE_HZ, 640, 480)[1]
+    return filming("hand", "right", motion, RATE_HZ, 640, 480, word)[1]
 
 
 def test_the_camera_holds_still_on_letters_and_leaves_a_z_its_path(avatar):
     motion, holds = _word("AZ")
-    path = _filmed(motion)
+    path = _filmed(motion, "AZ")
     moved_m = np.linalg.norm(np.diff(path.eye_m, axis=0), axis=1)
     start, end = np.round(holds * RATE_HZ).astype(int)[1]  # the Z's hold: its path
     # The fingertip draws the Z; the camera moves a seventh as far meanwhile at most
@@ -60,7 +60,7 @@ def test_the_camera_holds_still_on_letters_and_leaves_a_z_its_path(avatar):
     # Between letters the camera pans (up to 56 mm a frame in PSYCHIATRY); once the hand
     # has arrived on a letter, the camera stands still until it leaves.
     motion, holds = _word("PSYCHIATRY")
-    path = _filmed(motion)
+    path = _filmed(motion, "PSYCHIATRY")
     moved_m = np.linalg.norm(np.diff(path.eye_m, axis=0), axis=1)
     assert moved_m.max() > 0.03
     for start, end in np.round(holds * RATE_HZ).astype(int):
@@ -82,7 +82,7 @@ def test_a_hand_that_is_never_still_is_filmed_from_one_place_where_it_can_be(ava
 
 def test_conditions_of_a_word_open_and_close_on_the_same_frame():
     """Clip hygiene: every timing of a word starts and ends with the same hand seen by
-    the same camera (the close-up's scale is the alphabet's, not the clip's); so does
+    the same camera (the close-up's scale is the word's letters', not the clip's); so does
     the camera of its simulated capture, whose hand carries the capture's noise."""
     from synthesis.render.framing import hand_vertices
     from synthesis.techniques import filming
@@ -92,7 +92,7 @@ def test_conditions_of_a_word_open_and_close_on_the_same_frame():
                        {"timing": "mocap", "source": "simulated"}):  # fmt: skip
         request = ClipRequest("word", "DAVID", parameters, rate_hz=RATE_HZ)
         motion = build_motion(request).motion
-        avatar, path = filming("hand", "right", motion, RATE_HZ, 640, 480)
+        avatar, path = filming("hand", "right", motion, RATE_HZ, 640, 480, "DAVID")
         hand = hand_vertices(avatar, motion)
         ends.append((path.eye_m[[0, -1]], hand[[0, -1]]))
     for eyes, _ in ends[1:]:
