@@ -70,18 +70,20 @@ def _gather(posed: list[np.ndarray], masks: list[np.ndarray]) -> np.ndarray:
     return np.concatenate([v[:, m] for v, m in zip(posed, masks, strict=True)], axis=1)
 
 
+def _take(motion: np.ndarray | Pose, frames) -> np.ndarray | Pose:
+    """Return some frames (a slice or indices) of DOF vectors or a Pose."""
+    if isinstance(motion, Pose):
+        return Pose(motion.quaternions[frames], motion.positions_m[frames])
+    return np.atleast_2d(motion)[frames]
+
+
 def hand_vertices(avatar: Avatar, motion: np.ndarray | Pose, batch: int = 64) -> np.ndarray:
     """Return the posed hands' vertices (n_frames, n, 3) m for DOF vectors or a Pose,
     posing *batch* frames at a time (all at once is slower: the whole skin's arrays)."""
     masks = _owned(avatar, _is_hand)
-    if isinstance(motion, Pose):
-        total = motion.quaternions.shape[0]
-        chunks = (Pose(motion.quaternions[k : k + batch], motion.positions_m[k : k + batch])
-                  for k in range(0, total, batch))  # fmt: skip
-    else:
-        motion = np.atleast_2d(motion)
-        chunks = (motion[k : k + batch] for k in range(0, len(motion), batch))
-    return np.concatenate([_gather(_posed(avatar, chunk), masks) for chunk in chunks])
+    total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(np.atleast_2d(motion))
+    return np.concatenate([_gather(_posed(avatar, _take(motion, slice(k, k + batch))), masks)
+                           for k in range(0, total, batch)])  # fmt: skip
 
 
 def _project(camera: CameraPreset | CameraPath, points_m: np.ndarray, width: int,
@@ -103,13 +105,9 @@ def measure_framing(
     motion = dofs_rad if isinstance(dofs_rad, Pose) else np.atleast_2d(dofs_rad)
     if frames is not None:
         frames = np.asarray(frames)
-        if isinstance(motion, Pose):
-            motion = Pose(motion.quaternions[frames], motion.positions_m[frames])
-        else:
-            motion = motion[frames]
+        motion = _take(motion, frames)
         if isinstance(camera, CameraPath):
-            camera = CameraPath(camera.name, camera.eye_m[frames], camera.target_m[frames],
-                                camera.yfov_deg)  # fmt: skip
+            camera = camera.take(frames)
     posed = _posed(avatar, motion)
     hand = _gather(posed, _owned(avatar, _is_hand))
     pixels = _project(camera, hand, width, height)

@@ -93,7 +93,6 @@ class Renderer:
         self._flags = pyrender.RenderFlags.SHADOWS_DIRECTIONAL
         self.antialias = antialias
         self._fxaa = None
-        self._extent_m: np.ndarray | None = None
         self._renderer = pyrender.OffscreenRenderer(width, height)
         # pyrender looks its shaders up by file name in its program cache; pointing the
         # cache at the project's own shaders swaps the PBR model for a much cheaper one
@@ -164,10 +163,6 @@ class Renderer:
         (building primitives and buffers for every frame cost about a tenth of an
         upper-body frame).
         """
-        self._extent_m = np.array([
-            np.min([vertices.min(axis=0) for vertices, _ in meshes], axis=0),
-            np.max([vertices.max(axis=0) for vertices, _ in meshes], axis=0),
-        ])  # fmt: skip
         if self._primitives:
             for primitive, (vertices, normals) in zip(self._primitives, meshes, strict=True):
                 primitive.positions = vertices  # also forgets the primitive's bounds
@@ -264,7 +259,11 @@ class Renderer:
         edge pixels just outside the silhouette; None (the whole frame) when a corner is
         behind the camera.
         """
-        corners = self._extent_m[np.indices((2, 2, 2)).reshape(3, -1).T, [0, 1, 2]]
+        # The shown vertices are the primitives' (only an anti-aliased frame needs them).
+        positions = [primitive.positions for primitive in self._primitives]
+        extent = np.array([np.min([p.min(axis=0) for p in positions], axis=0),
+                           np.max([p.max(axis=0) for p in positions], axis=0)])  # fmt: skip
+        corners = extent[np.indices((2, 2, 2)).reshape(3, -1).T, [0, 1, 2]]
         pixels = project_px(self.camera, corners, self.width, self.height)
         if np.isnan(pixels).any():
             return None

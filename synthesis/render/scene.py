@@ -64,10 +64,13 @@ class CameraPath:
         return CameraPreset(self.name, tuple(self.eye_m[frame]), tuple(self.target_m[frame]),
                             self.yfov_deg)  # fmt: skip
 
+    def take(self, frames) -> "CameraPath":
+        """Return the path of some frames (a slice or indices)."""
+        return CameraPath(self.name, self.eye_m[frames], self.target_m[frames], self.yfov_deg)
+
     def every(self, start: int, step: int) -> "CameraPath":
         """Return the path of frames start, start + step, … (a render worker's share)."""
-        return CameraPath(self.name, self.eye_m[start::step], self.target_m[start::step],
-                          self.yfov_deg)  # fmt: skip
+        return self.take(slice(start, None, step))
 
 
 def look_at(eye_m: np.ndarray, target_m: np.ndarray, up=(0.0, 1.0, 0.0)) -> np.ndarray:
