@@ -1,6 +1,7 @@
 """Measure rendering speed at 640×480: the hand close-up and the upper body.
 
-Target (issue 3): ≥ 30 fps on the 2-core reference machine. Prints, per view: avatar
+Target (issue 3, and issue 16 for the upper body with its face): ≥ 30 fps on the 2-core
+reference machine. Prints, per view: avatar
 build time, frames per second of one renderer (skinning + drawing, Mesa's threads on
 all cores), of the parallel path render_clip uses (one process per core), and of a whole
 clip written to MP4 with those workers (rendering + H.264 encoding). Parallel figures

@@ -1,25 +1,32 @@
 """The default upper-body avatar: torso, neck, head, arms and both hands in one skin.
 
 A plain dark long-sleeved top against skin-coloured hands, neck and face, the signing
-video convention (spec 01), with simple eyes and a nose so that the head's orientation
-reads. The skin is meshed at the bind pose (arms lifted away from the torso, fingers
+video convention (spec 01), with a face that moves (synthesis.avatar.face_mesh). The
+skin is meshed at the bind pose (arms lifted away from the torso, fingers
 apart) so that limbs do not fuse with the body, then decimated for rendering speed.
 """
 
 from functools import cache
 
 import numpy as np
-import trimesh
 
+from synthesis.avatar.face_mesh import face_part, face_skin_weights
 from synthesis.avatar.hand_mesh import BIND_DEGREES as HAND_BIND_DEGREES
 from synthesis.avatar.hand_mesh import hand_nails, hand_primitives
-from synthesis.avatar.model import NAIL_RGB, SKIN_RGB, TOP_RGB, Avatar, SkinnedPart, rigid_part
+from synthesis.avatar.model import (
+    NAIL_RGB,
+    SKIN_RGB,
+    TOP_RGB,
+    Avatar,
+    SkinnedPart,
+    merge_parts,
+    rigid_part,
+)
 from synthesis.avatar.sdf import Primitive, RoundCone, mesh_primitives, simplify
 from synthesis.avatar.skinning import skin_weights
 from synthesis.rigs.body import SIDES, BodyModel
 from synthesis.skeleton.rotations import quat_rotate
 
-EYE_RGB = (0.08, 0.06, 0.05)
 # Bones under the top; the forearm's sleeve ends this far from the wrist.
 CLOTHED = ("hips", "spine_lower", "spine_middle", "spine_upper", "clavicle", "shoulder", "elbow")
 CUFF_M = 0.065
@@ -82,19 +89,6 @@ def body_primitives(model: BodyModel, dofs_rad: np.ndarray) -> tuple[Primitive, 
     return tuple(primitives)
 
 
-def _eyes(model: BodyModel, dofs_rad: np.ndarray):
-    pose = model.pose(dofs_rad)
-    head = model.skeleton.index("head")
-    sphere = trimesh.creation.icosphere(subdivisions=2, radius=0.011)
-    vertices, faces = [], []
-    for k, x in enumerate((-0.032, 0.032)):
-        local = sphere.vertices + np.array([x, 0.108, 0.068])
-        vertices.append(pose.positions_m[0, head] + quat_rotate(pose.quaternions[0, head], local))
-        faces.append(sphere.faces + k * len(sphere.vertices))
-    vertices = np.concatenate(vertices)
-    return vertices, np.concatenate(faces), np.full(len(vertices), head)
-
-
 def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad):
     """Return the skin's colour edge (see SkinnedPart): skin colour, the signed distance
     (m) into the skin from the edge of the top, and the top's colour.
@@ -132,9 +126,14 @@ def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad):
 
 
 @cache
-def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int = 35000) -> Avatar:
+def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int = 20000) -> Avatar:
     """Return the upper-body avatar (built once per engine version, then kept on disk by
-    :mod:`synthesis.avatar.store`, and once per process in memory)."""
+    :mod:`synthesis.avatar.store`, and once per process in memory).
+
+    The skin is decimated to *max_faces* triangles: at the signing view's 640×480, hands
+    and face look alike at 20,000 and 35,000 (the face's features are parts of their
+    own), and 20,000 render the frame about a sixth faster (bench/bench_render.py).
+    """
     from synthesis.avatar.store import cached_avatar
 
     return cached_avatar(f"upper-body-{dominant}-{voxel_mm:g}mm-{max_faces}",
@@ -151,13 +150,15 @@ def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar
     vertices, faces = simplify(vertices, faces, max_faces)
     vertices = np.asarray(vertices, dtype=np.float64)
     index = {name: i for i, name in enumerate(model.skeleton.names)}
-    weights = skin_weights(vertices, primitives, index)
+    weights = face_skin_weights(model, bind, vertices, skin_weights(vertices, primitives, index))
     colours, edge_m, across_rgb = _colours(model, vertices, weights, bind)
     skin = SkinnedPart("skin", vertices, np.asarray(faces, dtype=np.int64), colours, weights,
                        edge_m=edge_m, across_rgb=across_rgb)  # fmt: skip
-    parts = [skin, rigid_part("eyes", *_eyes(model, bind), EYE_RGB)]
-    for side in SIDES:
-        parts.append(
-            rigid_part(f"{side} nails", *hand_nails(model, bind, side, side + "_"), NAIL_RGB)
-        )
-    return Avatar(f"upper-body-{dominant}", model, bind, tuple(parts))
+    # Three parts, three draw calls a pass: pyrender's per-draw overhead in Python was a
+    # tenth of a frame with the face's features and each hand's nails apart.
+    nails = merge_parts("nails", [
+        rigid_part(f"{side} nails", *hand_nails(model, bind, side, side + "_"), NAIL_RGB)
+        for side in SIDES
+    ])  # fmt: skip
+    return Avatar(f"upper-body-{dominant}", model, bind,
+                  (skin, face_part(model, bind, primitives), nails))  # fmt: skip

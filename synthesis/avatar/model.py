@@ -58,6 +58,35 @@ class SkinnedPart:
         )
 
 
+def merge_parts(name: str, parts) -> SkinnedPart:
+    """Return one part made of several (drawn at once: a part is one draw call a pass).
+
+    A part without a colour edge keeps its colours everywhere in the merged one.
+    """
+    offsets = np.cumsum([0] + [len(part.vertices_m) for part in parts[:-1]])
+    edged = any(part.edge_m is not None for part in parts)
+
+    def stack(field, fill=None):
+        return np.concatenate([
+            np.asarray(getattr(part, field)) if getattr(part, field) is not None else fill(part)
+            for part in parts
+        ])  # fmt: skip
+
+    return SkinnedPart(
+        name,
+        stack("vertices_m"),
+        np.concatenate([part.faces + offset for part, offset in zip(parts, offsets, strict=True)]),
+        stack("colors_rgb"),
+        SkinWeights(
+            np.concatenate([part.weights.joints for part in parts]),
+            np.concatenate([part.weights.weights for part in parts]),
+        ),
+        stack("normals"),
+        stack("edge_m", lambda part: np.ones(len(part.vertices_m))) if edged else None,
+        stack("across_rgb", lambda part: np.asarray(part.colors_rgb)) if edged else None,
+    )
+
+
 def rigid_part(name: str, vertices_m, faces, owners, color_rgb) -> SkinnedPart:
     """Return a part whose every vertex follows one bone (*owners*: joint index per vertex)."""
     weights = np.zeros((len(owners), 4))

@@ -15,6 +15,7 @@ import numpy as np
 
 from synthesis.avatar.model import Avatar
 from synthesis.render.scene import CameraPath, CameraPreset, project_px
+from synthesis.rigs.face import FACE_JOINT_NAMES
 from synthesis.rigs.hand import HandModel
 from synthesis.skeleton.kinematics import Pose
 
@@ -42,22 +43,30 @@ def _is_hand(name: str) -> bool:
 @dataclass(frozen=True)
 class Framing:
     """Per frame: the hands' bounding box height over the frame's (*hand_share*), whether
-    any hand vertex lies outside the frame (*hand_outside*), and the head's bounding box
-    height in pixels (*head_px*; NaN for an avatar without a head)."""
+    any hand vertex lies outside the frame (*hand_outside*), the head's bounding box
+    height in pixels, crown to chin (*head_px*; NaN for an avatar without a head), and
+    the face's, brows to chin (*face_px*: what the face's bones move)."""
 
     hand_share: np.ndarray
     hand_outside: np.ndarray
     head_px: np.ndarray
+    face_px: np.ndarray | None = None
 
     def to_dict(self) -> dict:
         return {
             "hand_share_min": float(np.min(self.hand_share)),
             "hand_share_median": float(np.median(self.hand_share)),
             "frames_hand_outside": int(self.hand_outside.sum()),
-            "head_px_min": float(np.nanmin(self.head_px)) if np.isfinite(self.head_px).any()
-            else None,
+            "head_px_min": _least(self.head_px),
+            "face_px_min": _least(self.face_px),
             "n_frames": len(self.hand_share),
         }  # fmt: skip
+
+
+def _least(values: np.ndarray | None) -> float | None:
+    if values is None or not np.isfinite(values).any():
+        return None
+    return float(np.nanmin(values))
 
 
 def _posed(avatar: Avatar, motion: np.ndarray | Pose) -> list[np.ndarray]:
@@ -114,10 +123,13 @@ def measure_framing(
     share = (np.nanmax(pixels[..., 1], axis=1) - np.nanmin(pixels[..., 1], axis=1)) / height
     outside = ((pixels[..., 0] < 0) | (pixels[..., 0] > width) | (pixels[..., 1] < 0)
                | (pixels[..., 1] > height) | np.isnan(pixels).any(axis=-1)).any(axis=1)  # fmt: skip
-    head = _gather(posed, _owned(avatar, lambda name: name == "head"))
-    if head.shape[1]:
-        head_y = _project(camera, head, width, height)[..., 1]
-        head_px = np.nanmax(head_y, axis=1) - np.nanmin(head_y, axis=1)
-    else:
-        head_px = np.full(len(hand), np.nan)
-    return Framing(share, outside, head_px)
+    heights = []
+    for owned in (lambda name: name == "head" or name in FACE_JOINT_NAMES,
+                  lambda name: name in FACE_JOINT_NAMES):  # fmt: skip
+        points = _gather(posed, _owned(avatar, owned))
+        if points.shape[1]:
+            y = _project(camera, points, width, height)[..., 1]
+            heights.append(np.nanmax(y, axis=1) - np.nanmin(y, axis=1))
+        else:
+            heights.append(np.full(len(hand), np.nan))
+    return Framing(share, outside, *heights)

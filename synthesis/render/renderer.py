@@ -80,7 +80,7 @@ class Renderer:
             pyrender.MetallicRoughnessMaterial(
                 baseColorFactor=(1.0, 1.0, 1.0, 1.0),
                 metallicFactor=0.0,
-                roughnessFactor=0.55 if part.name == "nails" else 0.75,
+                roughnessFactor=0.55 if part.name.endswith("nails") else 0.75,
             )
             for part in avatar.parts
         ]

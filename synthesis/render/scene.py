@@ -145,4 +145,10 @@ def upper_body_front(side: str = "right") -> CameraPreset:
     return CameraPreset("upper body", (0.0, 1.40, 2.2), (0.0, 1.38, 0.0), 30.0)
 
 
+def face_close_up() -> CameraPreset:
+    """Return a camera on the face of the upper-body avatar at rest: chin to crown in
+    a 640×480 frame, for the face's contact sheet and its MediaPipe test."""
+    return CameraPreset("face", (0.0, 1.70, 0.9), (0.0, 1.70, 0.0), 20.0)
+
+
 CAMERA_PRESETS = {"hand": hand_close_up, "upper-body": upper_body_front}

@@ -2,7 +2,8 @@
 
 Joints (seed 003 §3.2–3.3): hips (root), three spine joints (lower, middle, upper),
 neck, head; per side a clavicle with two DOFs (raise, forward), shoulder (3), elbow
-(flexion), forearm twist, wrist (2) and the full hand of :class:`~synthesis.rigs.hand.HandModel`.
+(flexion), forearm twist, wrist (2) and the full hand of :class:`~synthesis.rigs.hand.HandModel`;
+under the head the face's bones (:mod:`synthesis.rigs.face`).
 Seed 003's torso frame is x right, y forward, z up; the engine's world is x to the
 viewer's right, y up, z toward the viewer, with the signer facing the viewer, so the
 signer's right arm hangs at −x.
@@ -20,6 +21,7 @@ from functools import cached_property
 
 import numpy as np
 
+from synthesis.rigs.face import face_dofs, face_joints
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.rig import MIRROR_X, Dof, JointSpec, Rig, mirror_dof
 
@@ -117,12 +119,14 @@ class BodyModel(Rig):
 
     @cached_property
     def _parts(self) -> tuple[tuple[JointSpec, ...], tuple[Dof, ...]]:
-        joints, dofs = list(_TRUNK), _trunk_dofs()
+        # The face's joints follow the head's (a depth-first order, as BVH writes it);
+        # its DOFs, the face channels, come last.
+        joints, dofs = [*_TRUNK, *face_joints()], _trunk_dofs()
         for side in SIDES:
             arm_joints, arm_dofs = _arm(side)
             joints += arm_joints
             dofs += arm_dofs
-        return tuple(joints), tuple(dofs)
+        return tuple(joints), (*dofs, *face_dofs())
 
     @property
     def joint_specs(self) -> tuple[JointSpec, ...]:

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from synthesis.rigs.body import BodyModel
+from synthesis.rigs.face import EYE_DOF_NAMES, is_face_dof
 from synthesis.signing.noise import band_limited_noise
 
 # Per joint group: (peak amplitude in degrees, cutoff frequency in Hz), proximal to
@@ -30,7 +31,12 @@ DEFAULT_GROUPS = {
 
 
 def joint_group(dof_name: str) -> str:
-    """Return the liveliness group of a body DOF ("spine", "shoulder", "fingers", …)."""
+    """Return the liveliness group of a body DOF ("spine", "shoulder", "fingers", …);
+    the face's are "eyes" and "face" (synthesis.rigs.face)."""
+    if dof_name in EYE_DOF_NAMES:
+        return "eyes"
+    if is_face_dof(dof_name):
+        return "face"
     name = dof_name.removeprefix("right_").removeprefix("left_")
     head = name.split("_")[0]
     if head in ("spine", "neck", "head", "clavicle", "shoulder", "elbow", "forearm", "wrist"):
@@ -48,8 +54,13 @@ class Liveliness:
     def sample(
         self, body: BodyModel, n_frames: int, rate_hz: float, rng: np.random.Generator
     ) -> np.ndarray:
-        """Return noise (n_frames, n_dofs) in radians, each DOF peaking at its amplitude."""
-        names = body.dof_names
+        """Return noise (n_frames, n_dofs) in radians, each DOF peaking at its amplitude.
+
+        The face channels get none: the face moves as the face technique says (its
+        blinks, its non-manual signals), and the body's noise is drawn as before.
+        """
+        body_dofs = np.array([not is_face_dof(name) for name in body.dof_names])
+        names = [name for name, kept in zip(body.dof_names, body_dofs, strict=True) if kept]
         weak = "left_" if body.dominant == "right" else "right_"
         amplitude = np.empty(len(names))
         cutoff = np.empty(len(names))
@@ -60,4 +71,6 @@ class Liveliness:
         noise = band_limited_noise(n_frames, len(names), cutoff, rate_hz, rng)
         # Scaled to the peak, like Perlin noise's bounded range, so no frame overshoots.
         noise /= np.abs(noise).max(axis=0, keepdims=True).clip(1e-12)
-        return noise * np.radians(amplitude)
+        out = np.zeros((n_frames, len(body.dof_names)))
+        out[:, body_dofs] = noise * np.radians(amplitude)
+        return out

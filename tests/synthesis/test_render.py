@@ -124,8 +124,10 @@ def test_upper_body_camera_frames_the_signer():
 
 
 def test_the_cuff_is_a_straight_edge_through_the_meshs_triangles():
-    """The sleeve ends in a smooth line across the forearm (within 1.5 px of an arc; it
-    used to follow the decimated mesh's triangle edges, a zigzag of about 10 px here)."""
+    """The sleeve ends in a smooth line across the forearm (within 2.5 px of an arc at
+    this close-up's 4 px a millimetre, where the 20,000-triangle skin's facets turn the
+    arc into a polygon; it used to follow the decimated mesh's triangle edges, a zigzag
+    of about 10 px here)."""
     from synthesis.avatar.body_mesh import body_avatar
     from synthesis.render.scene import CameraPreset
 
@@ -149,7 +151,7 @@ def test_the_cuff_is_a_straight_edge_through_the_meshs_triangles():
     columns, first = np.array(rows[len(rows) // 10 : -len(rows) // 10]).T
     # Seen from a little above, the cuff round the forearm is an arc.
     arc = np.polyval(np.polyfit(columns, first, 2), columns)
-    assert np.abs(first - arc).max() <= 1.5
+    assert np.abs(first - arc).max() <= 2.5
 
 
 def test_odd_frame_sizes_are_refused():

@@ -56,9 +56,14 @@ vec3 reflected(vec3 n, vec3 v, vec3 l, vec3 radiance, vec3 albedo)
 }
 
 #ifdef DIRECTIONAL_LIGHT_SHADOWS
-float lit_fraction(mat4 light_matrix, sampler2D shadow_map, float facing)
+float lit_fraction(mat4 light_matrix, sampler2D shadow_map, vec3 n, float facing)
 {
-    vec4 projected = light_matrix * vec4(world_position, 1.0);
+    // Looked up a little off the surface, along its normal, the more so the more the
+    // surface turns from the light (normal-offset shadows): a 1024-px map's texel is
+    // about 2 mm over the scene, and without the offset a face's slopes shadowed
+    // themselves in texel-sized steps.
+    vec3 lifted = world_position + n * (0.0015 + 0.005 * (1.0 - facing));
+    vec4 projected = light_matrix * vec4(lifted, 1.0);
     vec3 coords = projected.xyz / projected.w * 0.5 + 0.5;
     if (coords.z > 1.0) {
         return 1.0;
@@ -99,7 +104,7 @@ void main()
         vec3 light = reflected(n, v, l, radiance, albedo);
 #ifdef DIRECTIONAL_LIGHT_SHADOWS
         light *= lit_fraction(directional_lights[i].light_matrix,
-                              directional_lights[i].shadow_map,
+                              directional_lights[i].shadow_map, n,
                               clamp(dot(n, l), 0.0, 1.0));
 #endif
         color += light;
