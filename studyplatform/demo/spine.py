@@ -3,14 +3,10 @@
 from typing import Any
 
 from studyplatform.demo.common import definition, likert5, numbered, scale
+from synthesis.signing.stories import SPINE_STORY
 
-SENTENCES = (
-    "LOOKING-BACK REMEMBER ME SMALL, HAVE LITTLE T-O-Y C-A-R.",
-    "I LOST WHERE. I SEARCH, SEARCH, CAN'T FIND — SAD.",
-    "BUT SURPRISE — MY BROTHER GET NEW C-A-R, BIG, BLUE, GIVE-ME.",
-    "INFORM-YOU BLUE MY FAVORITE COLOR.",
-    "FINALLY HAVE C-A-R AGAIN — HAPPY!",
-)
+# The story glossed with its non-manual signals (the engine's copy).
+SENTENCES = SPINE_STORY
 
 # Seed 003 Table 2 (back translation of the ASL questions and their scale ends).
 RATINGS = (

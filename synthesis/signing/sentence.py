@@ -27,14 +27,28 @@ from scipy.interpolate import PchipInterpolator
 
 from synthesis.fingerspelling.alphabet import AlphabetError
 from synthesis.rigs.body import BodyModel
+from synthesis.rigs.face import gaze_degrees, is_face_dof
 from synthesis.rigs.ik import hand_frame, solve_arm
 from synthesis.signing.liveliness import Liveliness, joint_group
+from synthesis.signing.nonmanual import (
+    NonmanualError,
+    Span,
+    Track,
+    blink_channels,
+    nonmanual_channels,
+    parse_spans,
+)
 from synthesis.signing.signs import SignError, SignLibrary, default_library
 from synthesis.signing.spine import SpineParams, spine_motion
 
 SPINE_JOINTS = ("spine_lower", "spine_middle", "spine_upper")
 REST_HOLD_MS = 150.0
 LEAD_MS = 450.0
+# The eyes turn this share of a keyed head turn or nod, ahead of the head (gaze leads).
+GAZE_SHARE = 0.5
+# A phrase-boundary blink starts this long after the phrase's last sign.
+BLINK_AFTER_MS = 60.0
+FACE_MODES = ("on", "neutral", "off")
 # Seed 003's torso frame (x right, y forward, z up) in the engine's world (x to the
 # viewer's right = the signer's left, y up, z toward the viewer).
 TORSO_TO_WORLD = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
@@ -45,20 +59,27 @@ class Stagger:
     """Onset offsets (ms; negative starts earlier than the key) per joint group.
 
     Seed 003 §3.5: gaze → neck → spine/hips → clavicle → arm, one to two frames apart
-    at 30 fps (50 ms here), tighter within the spine (hips lead the upper spine).
+    at 30 fps (50 ms here), tighter within the spine (hips lead the upper spine). The
+    eyes lead the head they turn with.
     """
 
     head_ms: float = -200.0
     neck_ms: float = -175.0
     spine_ms: tuple[float, float, float] = (-135.0, -120.0, -105.0)  # lower, middle, upper
     clavicle_ms: float = -50.0
+    eyes_ms: float = -250.0
 
 
 @dataclass(frozen=True)
 class SentenceOptions:
-    """How to synthesize: spine condition, tuning, frame rate, noise seed."""
+    """How to synthesize: spine condition, face, tuning, frame rate, noise seed.
+
+    *face*: ``on`` (non-manual signals, blinks, gaze), ``neutral`` (blinks and gaze, no
+    non-manual signals) or ``off`` (a still face: every face channel at rest).
+    """
 
     spine: bool = True
+    face: str = "on"
     params: SpineParams = field(default_factory=SpineParams)
     stagger: Stagger = field(default_factory=Stagger)
     liveliness: Liveliness | None = field(default_factory=Liveliness)
@@ -72,7 +93,8 @@ class Sentence:
     """A synthesized sentence: body DOFs per frame and what produced them.
 
     *dofs_rad* (n_frames, n_dofs); *automated_rad* the automated spine and clavicle part
-    (zero with the spine off); *key_times_s* (n_keys,); *glosses* the parsed tokens.
+    (zero with the spine off); *key_times_s* (n_keys,); *glosses* the parsed tokens;
+    *tracks* the non-manual signals placed in time and *blinks_ms* the blinks' starts.
     """
 
     body: BodyModel
@@ -81,6 +103,8 @@ class Sentence:
     rate_hz: float
     key_times_s: np.ndarray
     glosses: tuple[str, ...]
+    tracks: tuple[Track, ...] = ()
+    blinks_ms: tuple[float, ...] = ()
 
     @property
     def duration_s(self) -> float:
@@ -88,7 +112,12 @@ class Sentence:
 
 
 def parse_glosses(text: str) -> tuple[str, ...]:
-    """Return a sentence's tokens: glosses and fingerspelled words (``T-O-Y``)."""
+    """Return a sentence's tokens: glosses and fingerspelled words (``T-O-Y``), without
+    the non-manual spans the text marks."""
+    try:
+        text = parse_spans(text)[0]
+    except NonmanualError as error:
+        raise SignError(str(error)) from None
     tokens = []
     for word in re.split(r"\s+", text.strip()):
         word = word.strip(',.!?;:—–"').upper()
@@ -112,13 +141,16 @@ class _Key:
     head_deg: dict
 
 
-def _timeline(glosses, library: SignLibrary) -> list[_Key]:
-    """Return the sentence's keys in time order, holds written out as repeated keys."""
+def _timeline(glosses, library: SignLibrary) -> tuple[list[_Key], list[tuple[float, float]]]:
+    """Return the sentence's keys in time order, holds written out as repeated keys, and
+    each token's first and last key (ms)."""
     rest = {side: library.hand(side, library.rest, "rest") for side in ("right", "left")}
     keys = [_Key(0.0, dict(rest), {}, {}), _Key(REST_HOLD_MS, dict(rest), {}, {})]
     t = LEAD_MS
     spelling = library.spelling
+    tokens_ms = []
     for token in glosses:
+        first = len(keys)
         if _is_spelled(token):
             for character in token.split("-"):
                 hand = library.hand("right", {**spelling, "shape": character}, token)
@@ -127,6 +159,7 @@ def _timeline(glosses, library: SignLibrary) -> list[_Key]:
                          _Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
                 t = keys[-1].ms + float(spelling.get("transition_ms", 110))
             t += library.transition_ms - float(spelling.get("transition_ms", 110))
+            tokens_ms.append((keys[first].ms, keys[-1].ms))
             continue
         sign = library.sign(token)
         used = {side for key in sign for side in key.hands}
@@ -138,8 +171,9 @@ def _timeline(glosses, library: SignLibrary) -> list[_Key]:
             if key.hold_ms > 0:
                 keys.append(_Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
         t = keys[-1].ms + library.transition_ms
+        tokens_ms.append((keys[first].ms, keys[-1].ms))
     keys += [_Key(t, dict(rest), {}, {}), _Key(t + REST_HOLD_MS, dict(rest), {}, {})]
-    return keys
+    return keys, tokens_ms
 
 
 class _Solver:
@@ -169,6 +203,10 @@ class _Solver:
                 dofs[self.names.index(f"{joint}_{name}")] += np.radians(value) * weight
         for name, value in head_deg.items():
             dofs[self.names.index(f"head_{name}")] += np.radians(value)
+        gaze = gaze_degrees(GAZE_SHARE * head_deg.get("rotation", 0.0),
+                            GAZE_SHARE * head_deg.get("flexion", 0.0))  # fmt: skip
+        for name, value in gaze.items():
+            dofs[self.names.index(name)] += np.radians(value)
         return dofs
 
     def keys(self, keys: list[_Key], automated: np.ndarray) -> np.ndarray:
@@ -206,7 +244,9 @@ def _offsets_ms(names: list[str], stagger: Stagger) -> np.ndarray:
     offsets = np.zeros(len(names))
     for i, name in enumerate(names):
         group = joint_group(name)
-        if group == "head":
+        if group == "eyes":
+            offsets[i] = stagger.eyes_ms
+        elif group == "head":
             offsets[i] = stagger.head_ms
         elif group == "neck":
             offsets[i] = stagger.neck_ms
@@ -233,12 +273,22 @@ def _interpolate(times_s, values, offsets_ms, at_s) -> np.ndarray:
 def synthesize(
     text: str, options: SentenceOptions | None = None, library: SignLibrary | None = None
 ) -> Sentence:
-    """Return the sentence *text* synthesized on the upper body (spec 03)."""
+    """Return the sentence *text* synthesized on the upper body (spec 03).
+
+    *text* may mark non-manual signals over spans of glosses (``I LOST [rhq WHERE]``;
+    synthesis.signing.nonmanual).
+    """
     options = options or SentenceOptions()
     library = library or default_library()
-    glosses = parse_glosses(text)
+    if options.face not in FACE_MODES:
+        raise SignError(f"face must be one of {', '.join(FACE_MODES)}, not {options.face!r}.")
     try:
-        keys = _timeline(glosses, library)
+        plain, spans, boundaries = parse_spans(text)
+    except NonmanualError as error:
+        raise SignError(str(error)) from None
+    glosses = parse_glosses(plain)
+    try:
+        keys, tokens_ms = _timeline(glosses, library)
     except AlphabetError as error:
         raise SignError(str(error)) from None
     body = BodyModel(options.dominant)
@@ -255,9 +305,32 @@ def synthesize(
     offsets = _offsets_ms(names, options.stagger)
     dofs = _interpolate(times_s, keyed, offsets, at_s)
     automated = _interpolate(times_s, auto_keys, offsets, at_s)
+    tracks = _tracks(glosses, spans, tokens_ms, library) if options.face == "on" else ()
+    blinks = tuple(tokens_ms[i][1] + BLINK_AFTER_MS for i in sorted(boundaries))
+    if options.face == "off":
+        blinks = ()
+        dofs[:, [is_face_dof(name) for name in names]] = 0.0
+    dofs = dofs + nonmanual_channels(names, library.nonmanuals, tracks, at_s)
+    dofs = dofs + blink_channels(names, blinks, at_s)
     if options.dominant == "left":
         dofs, automated = body.mirror_pose(dofs), body.mirror_pose(automated)
     if options.liveliness is not None:
         rng = np.random.default_rng(options.seed)
         dofs = dofs + options.liveliness.sample(body, count, options.rate_hz, rng)
-    return Sentence(body, body.clip(dofs), automated, options.rate_hz, times_s, glosses)
+    return Sentence(body, body.clip(dofs), automated, options.rate_hz, times_s, glosses,
+                    tracks, blinks)  # fmt: skip
+
+
+def _tracks(glosses, spans, tokens_ms, library: SignLibrary) -> tuple[Track, ...]:
+    """Return the non-manual signals of the text's spans and of its signs, in time."""
+    marked = list(spans)
+    for k, token in enumerate(glosses):
+        marked += [Span(name, k, k) for name in library.sign_nonmanuals.get(token, ())]
+    tracks = []
+    for span in marked:
+        if span.marker not in library.nonmanuals:
+            known = ", ".join(sorted(library.nonmanuals))
+            raise SignError(f"Unknown non-manual signal {span.marker!r} (known: {known}).")
+        tracks.append(Track(span.marker, tokens_ms[span.first][0], tokens_ms[span.last][1],
+                            span.intensity))  # fmt: skip
+    return tuple(sorted(tracks, key=lambda track: (track.start_ms, track.marker)))

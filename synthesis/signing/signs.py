@@ -8,7 +8,7 @@ format is ``data/signs.yaml``'s: positions and directions in the signer's torso 
 """
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -18,6 +18,7 @@ import yaml
 
 from synthesis.fingerspelling.alphabet import AlphabetError, letter, rest_pose
 from synthesis.rigs.hand import HandModel
+from synthesis.signing.nonmanual import NonmanualError, parse_markers
 
 FORMAT = "signstudy.sign-library"
 FORMAT_VERSION = 1
@@ -64,7 +65,9 @@ class SignKey:
 
 @dataclass(frozen=True)
 class SignLibrary:
-    """Signs by gloss, with the library's shared settings."""
+    """Signs by gloss, with the library's shared settings; *nonmanuals* the non-manual
+    signals by name (synthesis.signing.nonmanual) and *sign_nonmanuals* those a gloss
+    carries itself."""
 
     signs: dict
     rest: dict
@@ -72,6 +75,8 @@ class SignLibrary:
     transition_ms: float
     shapes: dict
     locations: dict
+    nonmanuals: dict = field(default_factory=dict)
+    sign_nonmanuals: dict = field(default_factory=dict)
 
     def sign(self, gloss: str) -> tuple[SignKey, ...]:
         """Return a sign's keys; SignError names an unknown gloss."""
@@ -149,10 +154,21 @@ def parse_library(data) -> SignLibrary:
         shapes = _shapes(data.get("handshapes"))
     except AlphabetError as error:
         raise SignError(str(error)) from None
+    try:
+        nonmanuals = parse_markers(data.get("nonmanuals"))
+    except (NonmanualError, TypeError, ValueError, AttributeError) as error:
+        raise SignError(f"Non-manual signals: {error}") from None
     library = SignLibrary({}, data.get("rest") or {}, data.get("spelling") or {},
                           float(data.get("transition_ms", 200)), shapes,
-                          dict(data.get("locations") or {}))  # fmt: skip
+                          dict(data.get("locations") or {}), nonmanuals)  # fmt: skip
     for gloss, entry in (data.get("signs") or {}).items():
+        carried = (entry or {}).get("nonmanual") or ()
+        carried = (carried,) if isinstance(carried, str) else tuple(carried)
+        for name in carried:
+            if name not in nonmanuals:
+                raise SignError(f"{gloss}: unknown non-manual signal {name!r}.")
+        if carried:
+            library.sign_nonmanuals[str(gloss).upper()] = carried
         keys = []
         for k, key in enumerate((entry or {}).get("keys") or []):
             where = f"{gloss} key {k + 1}"

@@ -1,9 +1,15 @@
-"""The five-sentence story of the spine study (spec 03 §5; seed 003 Fig. 13/14)."""
+"""The five-sentence story of the spine study (spec 03 §5; seed 003 Fig. 13/14).
+
+Glossed with its non-manual signals (synthesis.signing.nonmanual; the sign library adds
+LITTLE's OO, SAD's and HAPPY's faces, SURPRISE's raised brows and BIG's CHA): the
+childhood time clause as a topic, WHERE as a rhetorical question (raised brows in ASL),
+a head shake over the negation, the colour as a topic and a nod asserting it.
+"""
 
 SPINE_STORY = (
-    "LOOKING-BACK REMEMBER ME SMALL, HAVE LITTLE T-O-Y C-A-R.",
-    "I LOST WHERE. I SEARCH, SEARCH, CAN'T FIND — SAD.",
+    "[top LOOKING-BACK REMEMBER ME SMALL], HAVE LITTLE T-O-Y C-A-R.",
+    "I LOST [rhq WHERE]. I SEARCH, SEARCH, [neg CAN'T FIND] — SAD.",
     "BUT SURPRISE — MY BROTHER GET NEW C-A-R, BIG, BLUE, GIVE-ME.",
-    "INFORM-YOU BLUE MY FAVORITE COLOR.",
+    "INFORM-YOU [top BLUE] [assert MY FAVORITE COLOR].",
     "FINALLY HAVE C-A-R AGAIN — HAPPY!",
 )

@@ -171,7 +171,7 @@ class Registry:
 
 def default_registry() -> Registry:
     """Return the engine's item kinds and techniques, in pipeline order."""
-    from synthesis.techniques import kinds, liveliness, signs, source, spine, timing
+    from synthesis.techniques import face, kinds, liveliness, signs, source, spine, timing
 
     return Registry(
         kinds={kind.name: kind for kind in (kinds.WORD, kinds.SENTENCE)},
@@ -180,6 +180,7 @@ def default_registry() -> Registry:
             timing.TECHNIQUE,
             signs.TECHNIQUE,
             spine.TECHNIQUE,
+            face.TECHNIQUE,
             liveliness.TECHNIQUE,
         ],
     )
