@@ -16,8 +16,12 @@ import numpy as np
 import yaml
 from scipy.optimize import least_squares
 
+from synthesis.diskcache import cache_path, load_arrays, save_arrays
 from synthesis.rigs.hand import FINGERS, HandModel
 from synthesis.skeleton.rotations import quat_rotate
+
+# The libraries whose versions a solved letter depends on (synthesis.diskcache).
+SOLVER_LIBRARIES = ("numpy", "scipy")
 
 LETTERS = tuple("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
 # Shorthand groups of the data file → DOF names.
@@ -167,8 +171,12 @@ def _check_file(data) -> None:
         raise AlphabetError(f"The alphabet file lacks {', '.join(missing)}.")
 
 
-def parse_letter(letter: str, entry: dict, model: HandModel) -> Letter:
-    """Build one letter from its data-file entry, solving its contacts."""
+def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Letter:
+    """Build one letter from its data-file entry, solving its contacts.
+
+    *solved* (``dofs_rad`` and, for a letter with a path, ``path_rad``) gives the
+    solution found before; ValueError if it does not fit the entry.
+    """
     where = f"letter {letter}"
     if not isinstance(entry, dict):
         raise AlphabetError(f"{where}: expected a mapping of angles.")
@@ -192,19 +200,26 @@ def parse_letter(letter: str, entry: dict, model: HandModel) -> Letter:
     ]
     if unknown:
         raise AlphabetError(f"{where}: unknown joint(s) {', '.join(unknown)} in contacts.")
-    dofs = solve_contacts(model, dofs, contacts)
+    if solved is not None:
+        dofs = np.array(solved["dofs_rad"], dtype=np.float64)
+        if dofs.shape != (len(model.dofs),):
+            raise ValueError(f"{where}: a stored solution of another shape.")
+    else:
+        dofs = solve_contacts(model, dofs, contacts)
     path = times = None
     if "path" in entry:
         keys = entry["path"]
         times = np.array([float(k["t"]) for k in keys])
-        path = np.stack(
-            [
-                solve_contacts(
-                    model, _angles({**entry, **k.get("pose", {})}, model, where), contacts
-                )
+        if solved is not None:
+            path = np.array(solved["path_rad"], dtype=np.float64)
+            if path.shape != (len(keys), len(model.dofs)):
+                raise ValueError(f"{where}: a stored path of another shape.")
+        else:
+            path = np.stack([
+                solve_contacts(model, _angles({**entry, **k.get("pose", {})}, model, where),
+                               contacts)
                 for k in keys
-            ]
-        )
+            ])  # fmt: skip
         path.setflags(write=False)
     dofs.setflags(write=False)
     return Letter(letter, entry.get("description", ""), dofs, path, times, contacts)
@@ -220,11 +235,25 @@ def _data() -> dict:
 
 @cache
 def letter(letter: str, side: str = "right") -> Letter:
-    """Return one letter of the alphabet (solved on first use, then cached)."""
+    """Return one letter of the alphabet (solved on first use, then cached in memory and
+    in the engine's disk cache, synthesis.diskcache: solving a letter's contacts takes
+    a quarter of a second, and every render process solved the letters it spells)."""
     key = letter.upper() if isinstance(letter, str) else letter
     if key not in LETTERS:
         raise AlphabetError(f"{letter!r} is not a letter of the ASL manual alphabet (A–Z).")
-    return parse_letter(key, _data()[key], HandModel(side))
+    path = cache_path(f"letter-{side}-{key}", SOLVER_LIBRARIES)
+    stored = load_arrays(path)
+    if stored is not None:
+        try:
+            return parse_letter(key, _data()[key], HandModel(side), solved=stored)
+        except (KeyError, ValueError):
+            pass  # written by something else: solve it again
+    solved = parse_letter(key, _data()[key], HandModel(side))
+    arrays = {"dofs_rad": solved.dofs_rad}
+    if solved.path_rad is not None:
+        arrays["path_rad"] = solved.path_rad
+    save_arrays(path, arrays)
+    return solved
 
 
 def alphabet(side: str = "right") -> dict[str, Letter]:
