@@ -8,8 +8,9 @@ wide, the upper lid's edge dark with lashes; brows are flat strips lying on the
 forehead; the lips are two tubes along the mouth line whose ends follow the mouth
 corners and whose middles follow the upper lip and the jaw, with the mouth's inside
 (dark, upper teeth at its top) stretched between them. The chin's skin goes with the
-jaw and the cheeks' with their bones (:func:`face_skin_weights`), so an open mouth
-drops the chin and puffed cheeks bulge.
+jaw, the forehead's under each brow with it and the cheeks' with their bones
+(:func:`face_skin_weights`), so an open mouth drops the chin, a raised brow never sinks
+into the skin and puffed cheeks bulge.
 
 Geometry is built at the bind pose, in the head's frame (x the signer's left, y up, z
 forward, metres), features laid onto the skin's surface found from its distance field.
