@@ -13,10 +13,13 @@ Each key posture becomes body DOFs (seed 003 §3):
   so the versions differ in the spine, the clavicles and the arm angles that make up
   for them, not in where the hands go (spec 03).
 
-The body's onsets are staggered: gaze (the head) → neck → hips and spine, lower to
-upper → clavicle → arm. Keys are joined by monotone cubics (PCHIP, C¹, eased into and
-out of held postures); liveliness noise (synthesis.signing.liveliness) is added last, the same
-in both conditions for a given seed.
+The body's onsets are staggered: gaze (the eyes, which turn with a keyed head turn)
+→ head → neck → hips and spine, lower to upper → clavicle → arm. Keys are joined by
+monotone cubics (PCHIP, C¹, eased into and out of held postures). The face's channels
+come from the text's and the signs' non-manual signals and the blinks at phrase
+boundaries (synthesis.signing.nonmanual), as the face option says; liveliness noise
+(synthesis.signing.liveliness) is added last, the same in all conditions for a given
+seed.
 """
 
 import re
