@@ -308,7 +308,10 @@ def synthesize(
     offsets = _offsets_ms(names, options.stagger)
     dofs = _interpolate(times_s, keyed, offsets, at_s)
     automated = _interpolate(times_s, auto_keys, offsets, at_s)
-    tracks = _tracks(glosses, spans, tokens_ms, library) if options.face == "on" else ()
+    # Checked whatever the face shows: a misspelt signal is an error in every condition.
+    tracks = _tracks(glosses, spans, tokens_ms, library)
+    if options.face != "on":
+        tracks = ()
     blinks = tuple(tokens_ms[i][1] + BLINK_AFTER_MS for i in sorted(boundaries))
     if options.face == "off":
         blinks = ()

@@ -47,9 +47,10 @@ def test_malformed_spans_are_refused_naming_the_problem(text, message):
         synthesize(text)
 
 
-def test_an_unknown_marker_is_refused_naming_it_and_the_known_ones():
+@pytest.mark.parametrize("face", ["on", "neutral", "off"])
+def test_an_unknown_marker_is_refused_naming_it_and_the_known_ones(face):
     with pytest.raises(SignError, match=r"'shrug'.*known: .*whq"):
-        synthesize("I [shrug LOST]")
+        synthesize("I [shrug LOST]", SentenceOptions(face=face))
 
 
 def test_the_envelope_rises_before_the_span_holds_and_falls_after():
