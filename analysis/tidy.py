@@ -170,7 +170,14 @@ def read_responses(path_or_file: str | Path | IO[str]) -> pd.DataFrame:
     except (pd.errors.ParserError, UnicodeDecodeError) as error:
         first_line = str(error).strip().splitlines()[0]
         raise TidyFormatError(f"{source}: not a readable CSV file ({first_line}).") from None
-    return check_responses(frame, source)
+    return check_responses(unescape_cells(frame), source)
+
+
+def unescape_cells(frame: pd.DataFrame) -> pd.DataFrame:
+    """Return a table read from CSV with the spreadsheet escape taken off: one leading
+    apostrophe, which SignStudy's export puts before a cell a spreadsheet would run as
+    a formula, and before a cell that starts with an apostrophe (docs/tidy-format.md)."""
+    return frame.apply(lambda column: column.where(~column.str.startswith("'"), column.str[1:]))
 
 
 def participant_attributes(frame: pd.DataFrame) -> list[str]:

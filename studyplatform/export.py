@@ -7,6 +7,7 @@ participant columns; identifying answers (name, e-mail) are never exported.
 
 import csv
 import io
+import re
 from collections import defaultdict
 from collections.abc import Iterator
 
@@ -131,11 +132,30 @@ def _flags(participant: Participant, trial: Trial, failed_attention: bool) -> li
     return flags
 
 
+# What a spreadsheet reads as a formula when a cell starts with it (OWASP, "CSV
+# injection"), and the apostrophe that makes a cell text.
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+_NUMBER = re.compile(r"[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?")
+
+
+def spreadsheet_safe(cell: str) -> str:
+    """Return a CSV cell that no spreadsheet runs as a formula.
+
+    A cell starting with ``= + - @``, a tab or a carriage return, unless it is a plain
+    number, gets a leading apostrophe, which Excel and LibreOffice read as "text" and do
+    not show; so does a cell already starting with one, so that a reader takes exactly
+    one off (:func:`analysis.tidy.read_responses` does).
+    """
+    if cell.startswith("'") or (cell.startswith(FORMULA_STARTS) and not _NUMBER.fullmatch(cell)):
+        return "'" + cell
+    return cell
+
+
 def tidy_csv(study: Study) -> str:
-    """Return *study*'s responses as tidy CSV text."""
+    """Return *study*'s responses as tidy CSV text, safe to open in a spreadsheet."""
     columns, rows = tidy_rows(study)
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, fieldnames=columns, lineterminator="\n")
     writer.writeheader()
-    writer.writerows(rows)
+    writer.writerows({key: spreadsheet_safe(value) for key, value in row.items()} for row in rows)
     return buffer.getvalue()

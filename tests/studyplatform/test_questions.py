@@ -88,3 +88,21 @@ def test_the_preview_shows_the_participants_own_widgets(client, alice, fingerspe
     assert 'class="question" data-question="most-natural"' in html
     assert 'name="q-most-natural"' in html and 'name="q-age"' in html
     assert 'class="question scale" data-question="compare-clips"' in html
+
+
+def test_a_formula_answer_is_exported_as_text_and_read_back_unchanged(spine):
+    """OWASP CSV injection (issue 19): a text answer a spreadsheet would run is escaped
+    with an apostrophe, which the analysis reader takes off again."""
+    from analysis import read_responses
+
+    comments = spine.trials.get(key="comments")
+    question = comments.questions.get()
+    answers = ['=HYPERLINK("http://example.org","click")', "'quoted", "+1 (555) 0100", "-2"]
+    for text in answers:
+        do_save_response(do_enroll_participant(spine), comments, question, Answer(text=text))
+    exported = tidy_csv(spine)
+    cells = [row["text"] for row in csv.DictReader(io.StringIO(exported)) if row["text"]]
+    assert sorted(cells) == sorted(['\'=HYPERLINK("http://example.org","click")', "''quoted",
+                                    "'+1 (555) 0100", "-2"])  # fmt: skip
+    table = read_responses(io.StringIO(exported))
+    assert sorted(table.loc[table["text"].ne(""), "text"]) == sorted(answers)
