@@ -4,7 +4,9 @@ A participant is known by the token in their link (``/p/<token>/``), which is al
 remembered in the browser session, so the study's own link (``/s/<slug>/``) leads back
 to where they stopped. Every answer is saved as soon as it is given (``answer/``, JSON)
 and again with the page's form; both are idempotent, so a reload, a double click or a
-re-posted form neither loses nor duplicates anything.
+re-posted form neither loses nor duplicates anything. No participant response may be
+cached (``Cache-Control: no-store``, Django's never_cache): a lab's shared computer keeps
+no copy of someone's answers, and a back button asks the server again.
 """
 
 import json
@@ -14,6 +16,7 @@ from django.core.exceptions import ValidationError
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect, render
 from django.urls import reverse
+from django.views.decorators.cache import never_cache
 from django.views.decorators.http import require_http_methods, require_POST
 
 from studyplatform.actions import (
@@ -94,6 +97,7 @@ def _device_problem(study: Study, user_agent: str) -> str:
     return ""
 
 
+@never_cache
 @require_http_methods(["GET", "POST"])
 def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     """Show the study's welcome and consent page; starting enrolls the participant."""
@@ -148,6 +152,7 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     )
 
 
+@never_cache
 def resume(request: HttpRequest, token: str) -> HttpResponse:
     """Send the participant to the page they are on."""
     participant = _participant(token)
@@ -185,6 +190,7 @@ def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str
     return errors
 
 
+@never_cache
 @require_http_methods(["GET", "POST"])
 def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
     """Show page *number*; its form saves the answers and moves on (or back)."""
@@ -271,6 +277,7 @@ def _json_body(request: HttpRequest):
         return None
 
 
+@never_cache
 @require_POST
 def save_answer(request: HttpRequest, token: str) -> JsonResponse:
     """Save one answer now (JSON ``{page, trial, question, value, rt_ms}``)."""
@@ -293,6 +300,7 @@ def save_answer(request: HttpRequest, token: str) -> JsonResponse:
     return JsonResponse({"saved": True, "revision": getattr(saved, "revision", 1)})
 
 
+@never_cache
 @require_http_methods(["GET", "POST"])
 def upload_signed_answer(
     request: HttpRequest, token: str, number: int, question: str
@@ -327,6 +335,7 @@ def upload_signed_answer(
     return JsonResponse({"offset": stored, "saved": response is not None})
 
 
+@never_cache
 @require_POST
 def log_events(request: HttpRequest, token: str) -> JsonResponse:
     """Log a batch of media and page events (JSON ``{"events": [...]}``)."""
@@ -341,6 +350,7 @@ def log_events(request: HttpRequest, token: str) -> JsonResponse:
     return JsonResponse({"logged": logged})
 
 
+@never_cache
 @require_POST
 def set_language(request: HttpRequest, token: str) -> HttpResponse:
     """Switch between ASL + English and English only, then show the same page."""
@@ -354,6 +364,7 @@ def set_language(request: HttpRequest, token: str) -> HttpResponse:
     return redirect(_page_url(participant, max(participant.position, 1)))
 
 
+@never_cache
 def done(request: HttpRequest, token: str) -> HttpResponse:
     """Thank the participant: the completion code, or the way back to the recruiter."""
     participant = _participant(token)

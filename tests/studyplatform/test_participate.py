@@ -424,3 +424,23 @@ def test_next_waits_for_every_clip_watched_to_the_end(client, fingerspelling):
     client.post(reverse("participant_events", args=[participant.token]),
                 json.dumps({"events": events}), content_type="application/json")  # fmt: skip
     assert client.post(url, {"nav": "next"}).status_code == 302
+
+
+def test_no_participant_response_may_be_cached(client, fingerspelling):
+    """Issue 19: participant pages lacked Cache-Control: no-store."""
+    welcome = client.get(reverse("study_welcome", args=[fingerspelling.slug]))
+    participant = _start(client, fingerspelling)
+    responses = [
+        welcome,
+        client.get(reverse("participant_resume", args=[participant.token])),
+        client.get(reverse("participant_page", args=[participant.token, 1])),
+        _save(client, participant, trial="nope", question="nope", value="1"),
+        client.post(
+            reverse("participant_events", args=[participant.token]),
+            "[]",
+            content_type="application/json",
+        ),
+        client.get(reverse("participant_done", args=[participant.token])),
+    ]
+    for response in responses:
+        assert "no-store" in response["Cache-Control"], response.request["PATH_INFO"]
