@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from synthesis.avatar.body_mesh import body_avatar
 from synthesis.render.renderer import Renderer
-from synthesis.render.scene import CameraPreset, project_px, upper_body_front
+from synthesis.render.scene import face_close_up, project_px, upper_body_front
 from synthesis.rigs.face import EXPRESSIONS
 
 TILE = 300
@@ -34,11 +34,9 @@ def main() -> int:
     args = parser.parse_args()
     avatar = body_avatar("right")
     rig = avatar.rig
-    head = rig.pose(rig.neutral()).positions_m[0, rig.skeleton.index("head")]
-    face = head + np.array([0.0, 0.085, 0.0])
-    close = CameraPreset("face", tuple(face + np.array([0.0, 0.0, 0.75])), tuple(face), 20.0)
+    close = face_close_up()
     signing = upper_body_front()
-    centre = project_px(signing, face, 640, 480)
+    centre = project_px(signing, np.asarray(close.target_m), 640, 480)
     left, top = int(centre[0] - SMALL / 2), int(centre[1] - SMALL / 2)
     names = list(EXPRESSIONS)
     rows = -(-len(names) // COLUMNS)

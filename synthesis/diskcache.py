@@ -17,15 +17,18 @@ import hashlib
 import os
 import tempfile
 import zipfile
+from collections.abc import Callable
 from functools import cache
 from importlib import metadata
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 
 from synthesis.identity import engine_digest
 
 CACHE_ENV = "SIGNSTUDY_AVATAR_CACHE"
+T = TypeVar("T")
 
 
 def cache_directory() -> Path | None:
@@ -84,3 +87,21 @@ def save_arrays(path: Path | None, arrays: dict[str, np.ndarray]) -> None:
         except BaseException:
             Path(temporary).unlink(missing_ok=True)
             raise
+
+
+def cached(key: str, libraries: tuple[str, ...], compute: Callable[[], T],
+           encode: Callable[[T], dict[str, np.ndarray]],
+           decode: Callable[[dict[str, np.ndarray]], T]) -> T:  # fmt: skip
+    """Return the result kept under *key* (computed with *libraries*), decoded from its
+    arrays; else compute it and keep its arrays. A file that does not decode (KeyError,
+    ValueError: written by something else) is computed again and replaced."""
+    path = cache_path(key, libraries)
+    stored = load_arrays(path)
+    if stored is not None:
+        try:
+            return decode(stored)
+        except (KeyError, ValueError):
+            pass
+    result = compute()
+    save_arrays(path, encode(result))
+    return result

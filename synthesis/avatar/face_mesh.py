@@ -258,24 +258,21 @@ def _mouth(head: _Head) -> SkinnedPart:
 
 def _merge(name: str, head: _Head, pieces) -> SkinnedPart:
     """Return one part from pieces (vertices, faces, rgb, joints, weights), head frame."""
-    vertices, faces, colours, joints, weights = [], [], [], [], []
-    offset = 0
-    for local, piece_faces, rgb, piece_joints, piece_weights in pieces:
-        n = len(local)
-        vertices.append(local)
-        faces.append(np.asarray(piece_faces) + offset)
-        colours.append(np.broadcast_to(np.asarray(rgb, dtype=np.float64), (n, 3)))
-        joints.append(_pad(np.atleast_2d(piece_joints)))
-        weights.append(_pad(np.atleast_2d(piece_weights), fill=0.0))
-        offset += n
-    weights = np.vstack(weights)
-    vertices, faces = head.world(np.vstack(vertices)), np.vstack(faces).astype(np.int64)
+    return merge_parts(name, [_piece(name, head, *piece) for piece in pieces])
+
+
+def _piece(name: str, head: _Head, local_m, faces, rgb, joints, weights) -> SkinnedPart:
+    """Return one piece (head-frame vertices, faces, colours, up to MAX_BONES joints and
+    weights per vertex) as a part at the bind pose."""
+    vertices, faces = head.world(local_m), np.asarray(faces, dtype=np.int64)
+    weights = _pad(np.atleast_2d(weights), fill=0.0)
     normals = np.array(trimesh.Trimesh(vertices, faces, process=False).vertex_normals)
     # The mouth's inside is closed flat at rest: it faces forward.
     flat = np.linalg.norm(normals, axis=1) < 0.5
     normals[flat] = head.world(np.array([0.0, 0.0, 1.0])) - head.world(np.zeros(3))
-    return SkinnedPart(name, vertices, faces, np.ascontiguousarray(np.vstack(colours)),
-                       SkinWeights(np.vstack(joints).astype(np.intp),
+    colours = np.broadcast_to(np.asarray(rgb, dtype=np.float64), (len(vertices), 3))
+    return SkinnedPart(name, vertices, faces, np.ascontiguousarray(colours),
+                       SkinWeights(_pad(np.atleast_2d(joints)).astype(np.intp),
                                    weights / weights.sum(axis=1, keepdims=True)),
                        normals=normals)  # fmt: skip
 

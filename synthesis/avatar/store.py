@@ -14,7 +14,7 @@ import numpy as np
 
 from synthesis.avatar.model import Avatar, SkinnedPart
 from synthesis.avatar.skinning import SkinWeights
-from synthesis.diskcache import CACHE_ENV, cache_directory, cache_path, load_arrays, save_arrays
+from synthesis.diskcache import CACHE_ENV, cache_directory, cached
 
 __all__ = ["CACHE_ENV", "MESH_LIBRARIES", "cache_directory", "cached_avatar"]
 
@@ -27,16 +27,7 @@ _OPTIONAL_FIELDS = ("edge_m", "across_rgb")
 def cached_avatar(key: str, rig, build: Callable[[], Avatar]) -> Avatar:
     """Return the avatar stored under *key* for this engine, built by *build* if it is not
     there (and then stored). *rig* is the avatar's rig (not stored: it is code)."""
-    path = cache_path(key, MESH_LIBRARIES)
-    stored = load_arrays(path)
-    if stored is not None:
-        try:
-            return _avatar(stored, rig)
-        except (KeyError, ValueError):
-            pass  # written by something else: build it again
-    avatar = build()
-    save_arrays(path, _arrays(avatar))
-    return avatar
+    return cached(key, MESH_LIBRARIES, build, _arrays, lambda stored: _avatar(stored, rig))
 
 
 def _arrays(avatar: Avatar) -> dict[str, np.ndarray]:

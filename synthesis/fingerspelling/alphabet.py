@@ -16,7 +16,7 @@ import numpy as np
 import yaml
 from scipy.optimize import least_squares
 
-from synthesis.diskcache import cache_path, load_arrays, save_arrays
+from synthesis.diskcache import cached
 from synthesis.rigs.hand import FINGERS, HandModel
 from synthesis.skeleton.rotations import quat_rotate
 
@@ -241,19 +241,17 @@ def letter(letter: str, side: str = "right") -> Letter:
     key = letter.upper() if isinstance(letter, str) else letter
     if key not in LETTERS:
         raise AlphabetError(f"{letter!r} is not a letter of the ASL manual alphabet (A–Z).")
-    path = cache_path(f"letter-{side}-{key}", SOLVER_LIBRARIES)
-    stored = load_arrays(path)
-    if stored is not None:
-        try:
-            return parse_letter(key, _data()[key], HandModel(side), solved=stored)
-        except (KeyError, ValueError):
-            pass  # written by something else: solve it again
-    solved = parse_letter(key, _data()[key], HandModel(side))
-    arrays = {"dofs_rad": solved.dofs_rad}
-    if solved.path_rad is not None:
-        arrays["path_rad"] = solved.path_rad
-    save_arrays(path, arrays)
-    return solved
+    model = HandModel(side)
+    return cached(f"letter-{side}-{key}", SOLVER_LIBRARIES,
+                  lambda: parse_letter(key, _data()[key], model), _solution,
+                  lambda stored: parse_letter(key, _data()[key], model, solved=stored))  # fmt: skip
+
+
+def _solution(solved: Letter) -> dict[str, np.ndarray]:
+    """Return a solved letter's arrays, as the disk cache keeps them."""
+    if solved.path_rad is None:
+        return {"dofs_rad": solved.dofs_rad}
+    return {"dofs_rad": solved.dofs_rad, "path_rad": solved.path_rad}
 
 
 def alphabet(side: str = "right") -> dict[str, Letter]:
