@@ -159,6 +159,6 @@ def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar
     nails = merge_parts("nails", [
         rigid_part(f"{side} nails", *hand_nails(model, bind, side, side + "_"), NAIL_RGB)
         for side in SIDES
-    ])  # fmt: skip
+    ], casts_shadow=False)  # fmt: skip
     return Avatar(f"upper-body-{dominant}", model, bind,
                   (skin, face_part(model, bind, primitives), nails))  # fmt: skip

@@ -288,7 +288,8 @@ def face_part(model, bind_dofs_rad: np.ndarray, primitives) -> SkinnedPart:
     """Return the face's features at the bind pose as one part: eyes, eyelids, brows,
     mouth (one draw call a pass)."""
     head = _Head(model, bind_dofs_rad, primitives)
-    return merge_parts("face", [_eyeballs(head), _lids(head), _brows(head), _mouth(head)])
+    return merge_parts("face", [_eyeballs(head), _lids(head), _brows(head), _mouth(head)],
+                       casts_shadow=False)  # fmt: skip
 
 
 def face_skin_weights(model, bind_dofs_rad, vertices_m, weights: SkinWeights) -> SkinWeights:

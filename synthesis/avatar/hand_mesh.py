@@ -157,7 +157,7 @@ def hand_nails(
         base = pose.positions_m[0, index]
         end = pose.positions_m[0, rig.skeleton.index(prefix + tip)]
         length = np.linalg.norm(end - base)
-        nail = trimesh.creation.icosphere(subdivisions=2)
+        nail = trimesh.creation.icosphere(subdivisions=1)
         scale = np.array([radius * 0.68, length * 0.3, radius * 0.16])
         local = nail.vertices * scale + np.array([0.0, length * 0.5, -radius * 0.9])
         if finger == "thumb":
@@ -199,5 +199,5 @@ def _build_hand_avatar(side: str, voxel_mm: float, max_faces: int) -> Avatar:
         np.broadcast_to(np.asarray(SKIN_RGB), vertices.shape),
         skin_weights(vertices, primitives, index),
     )
-    nails = rigid_part("nails", *hand_nails(model, bind, side), NAIL_RGB)
+    nails = rigid_part("nails", *hand_nails(model, bind, side), NAIL_RGB, casts_shadow=False)
     return Avatar(f"hand-{side}", model, bind, (skin, nails))

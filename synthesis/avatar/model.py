@@ -28,7 +28,8 @@ class SkinnedPart:
     shows *colors_rgb* where the distance is ≥ 0 and *across_rgb* (n, 3) where it is
     negative. The distance is interpolated across a triangle and the edge drawn where
     it crosses zero, so a distance linear in position draws a straight edge through
-    triangles.
+    triangles. A part lying on another's surface (nails, the face's features) need not
+    *cast_shadow*: the surface under it casts the shadow, and the shadow pass skips it.
     """
 
     name: str
@@ -39,6 +40,7 @@ class SkinnedPart:
     normals: np.ndarray = field(default=None)
     edge_m: np.ndarray | None = None
     across_rgb: np.ndarray | None = None
+    casts_shadow: bool = True
 
     def __post_init__(self) -> None:
         if self.normals is None:
@@ -58,7 +60,7 @@ class SkinnedPart:
         )
 
 
-def merge_parts(name: str, parts) -> SkinnedPart:
+def merge_parts(name: str, parts, casts_shadow: bool = True) -> SkinnedPart:
     """Return one part made of several (drawn at once: a part is one draw call a pass).
 
     A part without a colour edge keeps its colours everywhere in the merged one.
@@ -84,10 +86,12 @@ def merge_parts(name: str, parts) -> SkinnedPart:
         stack("normals"),
         stack("edge_m", lambda part: np.ones(len(part.vertices_m))) if edged else None,
         stack("across_rgb", lambda part: np.asarray(part.colors_rgb)) if edged else None,
+        casts_shadow,
     )
 
 
-def rigid_part(name: str, vertices_m, faces, owners, color_rgb) -> SkinnedPart:
+def rigid_part(name: str, vertices_m, faces, owners, color_rgb, casts_shadow: bool = True
+               ) -> SkinnedPart:  # fmt: skip
     """Return a part whose every vertex follows one bone (*owners*: joint index per vertex)."""
     weights = np.zeros((len(owners), 4))
     weights[:, 0] = 1.0
@@ -97,6 +101,7 @@ def rigid_part(name: str, vertices_m, faces, owners, color_rgb) -> SkinnedPart:
         np.asarray(faces, dtype=np.int64),
         np.broadcast_to(np.asarray(color_rgb, dtype=np.float64), (len(owners), 3)),
         SkinWeights(np.repeat(np.asarray(owners)[:, None], 4, axis=1), weights),
+        casts_shadow=casts_shadow,
     )
 
 
@@ -123,12 +128,22 @@ class Avatar:
         """Return, per part, posed vertices and normals (n_frames, n, 3) for DOF vectors."""
         return self.deform_pose(self.rig.pose(np.atleast_2d(dofs_rad)))
 
-    def deform_pose(self, pose: Pose) -> list[tuple[np.ndarray, np.ndarray]]:
-        """Return, per part, posed vertices and normals for joint transforms (n_frames, …)."""
+    def deform_pose(self, pose: Pose, select: list[np.ndarray] | None = None
+                    ) -> list[tuple[np.ndarray, np.ndarray]]:  # fmt: skip
+        """Return, per part, posed vertices and normals for joint transforms (n_frames, …).
+
+        *select*, per part a boolean mask (n,) or indices, poses only those vertices.
+        """
         transforms = skin_transforms(pose, self.bind_pose)
+        if select is None:
+            return [
+                linear_blend_skinning(part.vertices_m, part.normals, matrix, transforms)
+                for part, matrix in zip(self.parts, self._weight_matrices, strict=True)
+            ]
+        chosen = zip(self.parts, self._weight_matrices, select, strict=True)
         return [
-            linear_blend_skinning(part.vertices_m, part.normals, matrix, transforms)
-            for part, matrix in zip(self.parts, self._weight_matrices, strict=True)
+            linear_blend_skinning(part.vertices_m[k], part.normals[k], matrix[k], transforms)
+            for part, matrix, k in chosen
         ]
 
     @property

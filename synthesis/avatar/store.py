@@ -33,7 +33,8 @@ def cached_avatar(key: str, rig, build: Callable[[], Avatar]) -> Avatar:
 def _arrays(avatar: Avatar) -> dict[str, np.ndarray]:
     """Return *avatar*'s arrays, as stored."""
     arrays = {"name": np.array(avatar.name), "bind_dofs_rad": avatar.bind_dofs_rad,
-              "part_names": np.array([part.name for part in avatar.parts])}  # fmt: skip
+              "part_names": np.array([part.name for part in avatar.parts]),
+              "casts_shadow": np.array([part.casts_shadow for part in avatar.parts])}  # fmt: skip
     for k, part in enumerate(avatar.parts):
         for field in _FIELDS:
             arrays[f"{k}.{field}"] = np.asarray(getattr(part, field))
@@ -53,6 +54,7 @@ def _avatar(stored: dict[str, np.ndarray], rig) -> Avatar:
             SkinWeights(stored[f"{k}.joints"], stored[f"{k}.weights"]),
             stored[f"{k}.normals"],
             *(stored.get(f"{k}.{field}") for field in _OPTIONAL_FIELDS),
+            bool(stored["casts_shadow"][k]),
         )
         for k, name in enumerate(stored["part_names"])
     )

@@ -27,13 +27,10 @@ __all__ = ["HAND_JOINTS", "Framing", "hand_vertices", "measure_framing", "projec
 
 def _owned(avatar: Avatar, wanted) -> list[np.ndarray]:
     """Return, per part, which vertices (n,) are owned most by a joint that *wanted* takes."""
-    names = avatar.rig.skeleton.names
-    masks = []
-    for part in avatar.parts:
-        owner = part.weights.joints[np.arange(len(part.weights.joints)),
-                                    part.weights.weights.argmax(axis=1)]  # fmt: skip
-        masks.append(np.array([wanted(names[j]) for j in owner], dtype=bool))
-    return masks
+    taken = np.array([wanted(name) for name in avatar.rig.skeleton.names], dtype=bool)
+    return [taken[part.weights.joints[np.arange(len(part.weights.joints)),
+                                      part.weights.weights.argmax(axis=1)]]
+            for part in avatar.parts]  # fmt: skip
 
 
 def _is_hand(name: str) -> bool:
@@ -69,14 +66,10 @@ def _least(values: np.ndarray | None) -> float | None:
     return float(np.nanmin(values))
 
 
-def _posed(avatar: Avatar, motion: np.ndarray | Pose) -> list[np.ndarray]:
-    if isinstance(motion, Pose):
-        return [vertices for vertices, _ in avatar.deform_pose(motion)]
-    return [vertices for vertices, _ in avatar.deform(np.atleast_2d(motion))]
-
-
-def _gather(posed: list[np.ndarray], masks: list[np.ndarray]) -> np.ndarray:
-    return np.concatenate([v[:, m] for v, m in zip(posed, masks, strict=True)], axis=1)
+def _posed(avatar: Avatar, motion: np.ndarray | Pose, masks: list[np.ndarray]) -> np.ndarray:
+    """Return the vertices that *masks* (per part) pick, posed: (n_frames, n, 3) m."""
+    pose = motion if isinstance(motion, Pose) else avatar.rig.pose(np.atleast_2d(motion))
+    return np.concatenate([vertices for vertices, _ in avatar.deform_pose(pose, masks)], axis=1)
 
 
 def _take(motion: np.ndarray | Pose, frames) -> np.ndarray | Pose:
@@ -91,7 +84,7 @@ def hand_vertices(avatar: Avatar, motion: np.ndarray | Pose, batch: int = 64) ->
     posing *batch* frames at a time (all at once is slower: the whole skin's arrays)."""
     masks = _owned(avatar, _is_hand)
     total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(np.atleast_2d(motion))
-    return np.concatenate([_gather(_posed(avatar, _take(motion, slice(k, k + batch))), masks)
+    return np.concatenate([_posed(avatar, _take(motion, slice(k, k + batch)), masks)
                            for k in range(0, total, batch)])  # fmt: skip
 
 
@@ -117,8 +110,9 @@ def measure_framing(
         motion = _take(motion, frames)
         if isinstance(camera, CameraPath):
             camera = camera.take(frames)
-    posed = _posed(avatar, motion)
-    hand = _gather(posed, _owned(avatar, _is_hand))
+    if not isinstance(motion, Pose):
+        motion = avatar.rig.pose(motion)  # posed once for the hands, the head and the face
+    hand = _posed(avatar, motion, _owned(avatar, _is_hand))
     pixels = _project(camera, hand, width, height)
     share = (np.nanmax(pixels[..., 1], axis=1) - np.nanmin(pixels[..., 1], axis=1)) / height
     outside = ((pixels[..., 0] < 0) | (pixels[..., 0] > width) | (pixels[..., 1] < 0)
@@ -126,7 +120,7 @@ def measure_framing(
     heights = []
     for owned in (lambda name: name == "head" or name in FACE_JOINT_NAMES,
                   lambda name: name in FACE_JOINT_NAMES):  # fmt: skip
-        points = _gather(posed, _owned(avatar, owned))
+        points = _posed(avatar, motion, _owned(avatar, owned))
         if points.shape[1]:
             y = _project(camera, points, width, height)[..., 1]
             heights.append(np.nanmax(y, axis=1) - np.nanmin(y, axis=1))

@@ -38,13 +38,16 @@ def check_version() -> str:
 check_version()
 
 
-def install_program_cache(pyrender, offscreen, shader_dir: str) -> None:
+def install_program_cache(pyrender, offscreen, shader_dir: str, extra_defines=None) -> None:
     """Give *offscreen*'s renderer a shader program cache that compiles each program once.
 
     pyrender keys its cache on the current context object, and OSMesa hands out a new
     pointer object on every make-current, so with pyrender's own key every frame missed
     the cache, compiled its shaders again and kept the old programs (a tenth of the frame
     time, and a leak). One renderer owns one context, so the key here leaves it out.
+    *extra_defines*, if given, returns defines (name → value) added to pyrender's for
+    every program; pyrender replaces a define's name by its value throughout a shader's
+    text, so a name must not be part of another.
     """
 
     class ProgramCache(pyrender.shader_program.ShaderProgramCache):
@@ -54,7 +57,7 @@ def install_program_cache(pyrender, offscreen, shader_dir: str) -> None:
 
         def get_program(self, vertex_shader, fragment_shader, geometry_shader=None,
                         defines=None):  # fmt: skip
-            defines = defines or {}
+            defines = {**(defines or {}), **(extra_defines() if extra_defines else {})}
             key = (vertex_shader, fragment_shader, geometry_shader, tuple(sorted(defines.items())))
             if key not in self._compiled:
                 self._compiled[key] = super().get_program(
@@ -97,6 +100,29 @@ def forget_bounds(mesh, scene) -> None:
     """
     mesh._bounds = None
     scene._bounds = None
+
+
+def cast_shadows_from(offscreen, mesh, casters: list) -> None:
+    """Draw only *casters*, some of *mesh*'s primitives, into *offscreen*'s shadow maps.
+
+    pyrender's shadow pass draws every primitive of every mesh; the pass here hands it
+    the mesh with the casters alone. The scene's bounds, which place the directional
+    lights' shadow volume, are taken first with every primitive, as the colour pass
+    sees them.
+    """
+    inner = offscreen._renderer
+    shadow_pass = type(inner)._shadow_mapping_pass
+
+    def casters_only(scene, light_node, flags):
+        scene.bounds  # noqa: B018 (cached on the scene for the rest of the frame)
+        drawn = mesh._primitives
+        mesh._primitives = casters
+        try:
+            shadow_pass(inner, scene, light_node, flags)
+        finally:
+            mesh._primitives = drawn
+
+    inner._shadow_mapping_pass = casters_only
 
 
 def vertex_buffer(primitive) -> int | None:

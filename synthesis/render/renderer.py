@@ -97,7 +97,7 @@ class Renderer:
         # pyrender looks its shaders up by file name in its program cache; pointing the
         # cache at the project's own shaders swaps the PBR model for a much cheaper one
         # (private attributes of the pinned pyrender-maintained 1.0.1).
-        compat.install_program_cache(pyrender, self._renderer, str(SHADERS))
+        compat.install_program_cache(pyrender, self._renderer, str(SHADERS), self._light_counts)
 
     def set_camera(self, camera: CameraPreset) -> None:
         """Move the camera (and, unless lights were given, the portrait lights with it)."""
@@ -129,6 +129,17 @@ class Renderer:
             )
             self.scene.add_node(node)
             self._light_nodes.append(node)
+
+    def _light_counts(self) -> dict[str, int]:
+        """Return the scene's number of lights of each kind, as the skin shader's defines.
+
+        A constant count lets the shader's light loops unroll: llvmpipe indexed the
+        light uniforms in loops bounded by a uniform count slowly, a sixth of the
+        upper body's frame time (bench/bench_render.py).
+        """
+        kinds = [light.kind for light in self.lights]
+        return {"LIGHT_COUNT_DIRECTIONAL": kinds.count("directional"),
+                "LIGHT_COUNT_POINT": kinds.count("point")}  # fmt: skip
 
     def _light(self, light: Light):
         pyrender = self._pyrender
@@ -196,6 +207,13 @@ class Renderer:
         # pixels where two parts meet at equal depth (nails on fingertips).
         self._mesh = pyrender.Mesh(self._primitives)
         self.scene.add(self._mesh)
+        casters = [
+            primitive
+            for primitive, part in zip(self._primitives, self.avatar.parts, strict=True)
+            if part.casts_shadow
+        ]
+        if len(casters) < len(self._primitives):
+            compat.cast_shadows_from(self._renderer, self._mesh, casters)
         self._uploaded = True  # pyrender uploads a new mesh itself
 
     def _upload(self) -> None:

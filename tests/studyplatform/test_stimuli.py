@@ -116,6 +116,15 @@ def test_the_command_renders_and_reports(small_study, capsys, django_capture_on_
         call_command("generate_stimuli", "nope")
 
 
+def test_the_command_takes_several_studies_and_checks_them_all_first(small_study, capsys):
+    with pytest.raises(CommandError, match="No study with the slug 'nope'"):
+        call_command("generate_stimuli", small_study.slug, "nope")
+    assert not Stimulus.objects.exists()  # nothing recorded before every slug was found
+    with pytest.raises(CommandError, match="--manifest writes one study's manifest"):
+        call_command("generate_stimuli", small_study.slug, small_study.slug,
+                     "--manifest", "m.json")  # fmt: skip
+
+
 def test_the_admin_action_renders_and_shows_progress(
     small_study, client, alice, bob, django_capture_on_commit_callbacks
 ):

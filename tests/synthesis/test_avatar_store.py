@@ -26,9 +26,10 @@ def _builder():
         model = HandModel()
         vertices = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0, 0, 0.01]])
         faces = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
-        part = rigid_part("nails", vertices, faces, np.full(4, 3), (0.8, 0.6, 0.6))
+        part = rigid_part("nails", vertices, faces, np.full(4, 3), (0.8, 0.6, 0.6),
+                          casts_shadow=False)  # fmt: skip
         edged = dataclasses.replace(part, name="cuffed", edge_m=vertices[:, 0] - 0.005,
-                                    across_rgb=np.zeros((4, 3)))  # fmt: skip
+                                    across_rgb=np.zeros((4, 3)), casts_shadow=True)  # fmt: skip
         return Avatar("tiny", model, model.neutral(), (part, edged))
 
     return build, calls
@@ -50,6 +51,7 @@ def test_an_avatar_is_built_once_then_loaded_the_same(store):
         np.testing.assert_array_equal(ours.weights.joints, theirs.weights.joints)
         np.testing.assert_array_equal(ours.weights.weights, theirs.weights.weights)
     assert loaded.parts[0].edge_m is None and loaded.parts[1].edge_m is not None
+    assert [part.casts_shadow for part in loaded.parts] == [False, True]
 
 
 def test_an_unreadable_file_is_built_again_and_replaced(store):

@@ -78,6 +78,47 @@ def test_lights_reach_the_shader_in_the_order_given():
             renderer.close()
 
 
+def test_only_parts_that_cast_shadows_are_drawn_into_the_shadow_map(monkeypatch):
+    """The nails lie on the fingertips, which cast their shadow: the shadow pass skips
+    them, and the colour pass still draws every part."""
+    from synthesis.render.backend import import_pyrender
+
+    inner_class = import_pyrender().renderer.Renderer
+    drawn = []
+    real = inner_class._bind_and_draw_primitive
+
+    def recording(self, primitive, pose, program, flags):
+        drawn.append((primitive, bool(flags & import_pyrender().RenderFlags.DEPTH_ONLY)))
+        return real(self, primitive, pose, program, flags)
+
+    monkeypatch.setattr(inner_class, "_bind_and_draw_primitive", recording)
+    avatar = hand_avatar("right")
+    assert [part.casts_shadow for part in avatar.parts] == [True, False]  # skin, nails
+    with Renderer(avatar, hand_close_up(), 64, 48) as renderer:
+        renderer.frame(letter_pose("B"))
+        skin, nails = renderer._primitives
+    assert [primitive for primitive, depth in drawn if depth] == [skin]
+    assert [primitive for primitive, depth in drawn if not depth] == [skin, nails]
+
+
+def test_a_scene_without_a_directional_light_is_lit_by_its_point_lights():
+    """The skin shader's light loops run to the scene's own counts (compile-time
+    constants): none of a kind, and another count than the portrait's, must work."""
+    from synthesis.render.scene import Light
+
+    camera = hand_close_up()
+    target = np.asarray(camera.target_m)
+    near = Light("near", "point", tuple(target + np.array([0.0, 0.0, 0.3])), 0.2)
+    more = Light("more", "point", tuple(target + np.array([0.3, 0.0, 0.3])), 0.2)
+    frames = {}
+    for name, lights in (("one", (near,)), ("two", (near, more))):
+        with Renderer(hand_avatar("right"), camera, 96, 72, lights=lights) as renderer:
+            frames[name] = renderer.frame(letter_pose("B")).astype(float)
+    hand = _foreground(frames["one"])
+    assert frames["one"][hand].mean() > 20  # lit, not black
+    assert frames["two"][hand].mean() > frames["one"][hand].mean() + 5  # the second adds
+
+
 def test_frames_after_the_first_equal_a_fresh_renderers():
     """Later frames rewrite the vertex buffers in place: each must equal the frame a new
     renderer draws from scratch for the same pose (shadows follow the moved bounds)."""

@@ -90,3 +90,17 @@ def test_matches_the_formula_vertex_by_vertex():
             b = matrix(bind_r[joint], bind.positions_m[0, joint])
             total += w * (g @ np.linalg.inv(b) @ np.append(vertices[k], 1.0))
         assert np.allclose(skinned[0, k], total[:3], atol=1e-12)
+
+
+def test_posing_selected_vertices_gives_those_of_the_whole_mesh():
+    from synthesis.avatar.hand_mesh import hand_avatar
+    from synthesis.fingerspelling.alphabet import letter_pose
+
+    avatar = hand_avatar("right")
+    pose = avatar.rig.pose(np.stack([letter_pose("A"), letter_pose("Y")]))
+    select = [np.arange(len(part.vertices_m)) % 7 == 0 for part in avatar.parts]
+    for (whole, whole_normals), (chosen, chosen_normals), mask in zip(
+        avatar.deform_pose(pose), avatar.deform_pose(pose, select), select, strict=True
+    ):
+        np.testing.assert_allclose(chosen, whole[:, mask], atol=1e-12)
+        np.testing.assert_allclose(chosen_normals, whole_normals[:, mask], atol=1e-12)

@@ -1,4 +1,4 @@
-"""Render a study's stimuli: every clip its trials show that is not rendered yet."""
+"""Render studies' stimuli: every clip their trials show that is not rendered yet."""
 
 import time
 from pathlib import Path
@@ -16,12 +16,12 @@ from studyplatform.tasks import SUBDIRECTORY
 
 class Command(BaseCommand):
     help = (
-        "Render the stimuli of a study (by slug): queue Celery jobs when a broker is "
-        "configured and wait for them, else render here, with --workers processes."
+        "Render the stimuli of one or more studies (by slug): queue Celery jobs when a "
+        "broker is configured and wait for them, else render here, with --workers processes."
     )
 
     def add_arguments(self, parser) -> None:
-        parser.add_argument("study", nargs="?", default="", help="the study's slug")
+        parser.add_argument("studies", nargs="*", metavar="study", help="the studies' slugs")
         parser.add_argument("--workers", type=int, default=1,
                             help="local rendering processes (when no broker is set)")  # fmt: skip
         parser.add_argument("--force", action="store_true", help="render every clip again")
@@ -41,43 +41,50 @@ class Command(BaseCommand):
         parser.add_argument("--timeout", type=float, default=3600.0,
                             help="seconds to wait for queued jobs (with a broker)")  # fmt: skip
 
-    def handle(self, *args, study: str, workers: int, force: bool, timeout: float, **options):
+    def handle(self, *args, studies: list[str], workers: int, force: bool, timeout: float,
+               **options):  # fmt: skip
         if options["from_manifest"] is not None:
             return self._render_manifest(options["from_manifest"])
-        if not study:
+        if not studies:
             raise CommandError("Name a study (its slug), or give --from-manifest.")
-        found = Study.objects.filter(slug=study).first()
-        if found is None:
-            raise CommandError(f"No study with the slug {study!r}.")
+        if options["manifest"] is not None and len(studies) > 1:
+            raise CommandError("--manifest writes one study's manifest: name one study.")
+        found = []
+        for slug in studies:
+            study = Study.objects.filter(slug=slug).first()
+            if study is None:
+                raise CommandError(f"No study with the slug {slug!r}.")
+            found.append(study)
         started = time.perf_counter()
         eager = settings.CELERY_TASK_ALWAYS_EAGER
-        if eager and workers > 1:
-            try:
-                result = self._render_with_pool(found, force, workers, options["rerender_open"])
-            except ClipError as error:
-                raise CommandError(str(error)) from None
-        else:
-            try:
-                result = do_generate_stimuli(
-                    found, force=force, rerender_open=options["rerender_open"]
-                )
-            except ClipError as error:
-                raise CommandError(str(error)) from None
-            if not eager:
-                self._wait(result.stimulus_ids, timeout)
-        stimuli = Stimulus.objects.filter(pk__in=result.stimulus_ids)
-        failed = stimuli.filter(status=Stimulus.Status.FAILED)
-        for stimulus in failed:
-            self.stderr.write(f"  failed: {stimulus} — {stimulus.error}")
-        self.stdout.write(
-            f"{found.slug}: {result.total} clips, {result.queued} rendered, {result.ready} "
-            f"already there, {failed.count()} failed ({time.perf_counter() - started:.1f} s)"
-        )
+        try:
+            if eager and workers > 1:
+                results = self._render_with_pool(found, force, workers, options["rerender_open"])
+            else:
+                results = [do_generate_stimuli(study, force=force,
+                                               rerender_open=options["rerender_open"])
+                           for study in found]  # fmt: skip
+                if not eager:
+                    self._wait([pk for result in results for pk in result.stimulus_ids], timeout)
+        except ClipError as error:
+            raise CommandError(str(error)) from None
+        seconds = time.perf_counter() - started
+        failures = 0
+        for study, result in zip(found, results, strict=True):
+            failed = Stimulus.objects.filter(pk__in=result.stimulus_ids,
+                                             status=Stimulus.Status.FAILED)  # fmt: skip
+            for stimulus in failed:
+                self.stderr.write(f"  failed: {stimulus} — {stimulus.error}")
+            failures += failed.count()
+            self.stdout.write(
+                f"{study.slug}: {result.total} clips, {result.queued} rendered, {result.ready} "
+                f"already there, {failed.count()} failed ({seconds:.1f} s)"
+            )
         if options["manifest"] is not None:
-            path = write_manifest(study_manifest(found), options["manifest"], found.slug)
+            path = write_manifest(study_manifest(found[0]), options["manifest"], found[0].slug)
             self.stdout.write(f"manifest written to {path}")
-        if failed.exists():
-            raise CommandError(f"{failed.count()} clip(s) failed; retry them from the admin.")
+        if failures:
+            raise CommandError(f"{failures} clip(s) failed; retry them from the admin.")
 
     def _render_manifest(self, path: Path) -> None:
         """Render every clip of the manifest at *path* that the media folder lacks."""
@@ -93,23 +100,30 @@ class Command(BaseCommand):
         done, rendered = generate(entries, directory, report)
         self.stdout.write(f"{path}: {len(done)} clips, {rendered} rendered, into {directory}")
 
-    def _render_with_pool(self, study: Study, force: bool, workers: int, rerender_open: bool):
-        """Record the clips without queueing, then render them in *workers* processes."""
+    def _render_with_pool(self, studies: list[Study], force: bool, workers: int,
+                          rerender_open: bool) -> list:  # fmt: skip
+        """Record the studies' clips without queueing, then render them in *workers*
+        processes, one pool for all, longest first: a long clip left for last would keep
+        one process busy while the others wait (so would a pool per study, each ending)."""
         from concurrent.futures import ProcessPoolExecutor
         from multiprocessing import get_context
 
-        result = do_generate_stimuli(study, force=force, enqueue=False, rerender_open=rerender_open)
-        rows = Stimulus.objects.filter(pk__in=result.stimulus_ids)
-        pending = list(rows.exclude(status=Stimulus.Status.READY).values_list("pk", flat=True))
         from studyplatform import render_pool
 
+        results = [do_generate_stimuli(study, force=force, enqueue=False,
+                                       rerender_open=rerender_open)
+                   for study in studies]  # fmt: skip
+        ids = [pk for result in results for pk in result.stimulus_ids]
+        pending = (Stimulus.objects.filter(pk__in=ids).exclude(status=Stimulus.Status.READY)
+                   .values_list("pk", "parameters"))  # fmt: skip
+        order = [pk for pk, _ in sorted(pending, key=lambda row: -_expected_cost(row[1]))]
         context = get_context("spawn")
         with ProcessPoolExecutor(
             workers, mp_context=context, initializer=render_pool.setup
         ) as pool:
-            for number, status in enumerate(pool.map(render_pool.render, pending), start=1):
-                self.stdout.write(f"  {number}/{len(pending)} {status}")
-        return result
+            for number, status in enumerate(pool.map(render_pool.render, order), start=1):
+                self.stdout.write(f"  {number}/{len(order)} {status}")
+        return results
 
     def _wait(self, ids, timeout: float) -> None:
         """Poll until no clip of *ids* is pending or rendering (or the timeout)."""
@@ -122,3 +136,12 @@ class Command(BaseCommand):
             self.stdout.write(f"  {len(ids) - left}/{len(ids)} done")
             time.sleep(2.0)
         raise CommandError(f"Gave up waiting after {timeout:.0f} s; the jobs keep running.")
+
+
+def _expected_cost(parameters: dict) -> float:
+    """Return a clip's rough rendering cost, for ordering only: its text's length, a
+    sentence's character weighing 0.4 of a fingerspelled letter (in the demo a letter
+    lasts about 35 frames, a sentence's character about 10, and an upper-body frame
+    takes 1.5 times a hand close-up's)."""
+    text = str(parameters.get("text", ""))
+    return len(text) * (0.4 if parameters.get("kind") == "sentence" else 1.0)

@@ -41,12 +41,12 @@ class Command(BaseCommand):
                 self.stdout.write(self.style.SUCCESS(f"Loaded demo study '{study.title}'."))
             if self._set_up(study):
                 ready.append(slug)
-        if render:
-            for slug in ready:
-                self.stdout.write(
-                    f"Rendering the stimuli of '{slug}' (cached after the first run)…"
-                )
-                call_command("generate_stimuli", slug, workers=workers, stdout=self.stdout)
+        if render and ready:
+            self.stdout.write(
+                f"Rendering the stimuli of {', '.join(repr(slug) for slug in ready)} "
+                "(cached after the first run)…"
+            )
+            call_command("generate_stimuli", *ready, workers=workers, stdout=self.stdout)
         password = (settings.VAR_DIR / "demo_admin_password").read_text().strip()
         self.stdout.write(
             "\n"

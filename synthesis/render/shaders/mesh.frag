@@ -27,10 +27,14 @@ struct Material {
     float roughness_factor;
 };
 
+// The scene's lights of each kind: the renderer's LIGHT_COUNT_* defines, constants so
+// that the loops over them unroll (on llvmpipe a loop bounded by a uniform count,
+// indexing the light uniforms, cost a sixth of the frame).
+const int N_DIRECTIONAL = min(LIGHT_COUNT_DIRECTIONAL, MAX_DIRECTIONAL_LIGHTS);
+const int N_POINT = min(LIGHT_COUNT_POINT, MAX_POINT_LIGHTS);
+
 uniform DirectionalLight directional_lights[MAX_DIRECTIONAL_LIGHTS];
-uniform int n_directional_lights;
 uniform PointLight point_lights[MAX_POINT_LIGHTS];
-uniform int n_point_lights;
 uniform Material material;
 uniform vec3 cam_pos;
 uniform vec3 ambient_light;
@@ -95,10 +99,7 @@ void main()
         n = -n;  // the inside of a fold seen through a gap: light it like the outside
     }
     vec3 color = ambient_light * albedo;
-    for (int i = 0; i < MAX_DIRECTIONAL_LIGHTS; i++) {
-        if (i >= n_directional_lights) {
-            break;
-        }
+    for (int i = 0; i < N_DIRECTIONAL; i++) {
         vec3 l = normalize(-directional_lights[i].direction);
         vec3 radiance = directional_lights[i].intensity * directional_lights[i].color;
         vec3 light = reflected(n, v, l, radiance, albedo);
@@ -109,10 +110,7 @@ void main()
 #endif
         color += light;
     }
-    for (int i = 0; i < MAX_POINT_LIGHTS; i++) {
-        if (i >= n_point_lights) {
-            break;
-        }
+    for (int i = 0; i < N_POINT; i++) {
         vec3 to_light = point_lights[i].position - world_position;
         float falloff = 1.0 / max(dot(to_light, to_light), 1e-4);
         vec3 radiance = point_lights[i].intensity * falloff * point_lights[i].color;
