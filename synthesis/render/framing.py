@@ -81,7 +81,8 @@ def _take(motion: np.ndarray | Pose, frames) -> np.ndarray | Pose:
 
 def hand_vertices(avatar: Avatar, motion: np.ndarray | Pose, batch: int = 64) -> np.ndarray:
     """Return the posed hands' vertices (n_frames, n, 3) m for DOF vectors or a Pose,
-    posing *batch* frames at a time (all at once is slower: the whole skin's arrays)."""
+    posing only the hands' vertices, *batch* frames at a time (all at once is slower:
+    every frame's arrays)."""
     masks = _owned(avatar, _is_hand)
     total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(np.atleast_2d(motion))
     return np.concatenate([_posed(avatar, _take(motion, slice(k, k + batch)), masks)
