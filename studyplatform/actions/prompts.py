@@ -4,6 +4,7 @@ from django.contrib.contenttypes.models import ContentType
 from django.core.exceptions import ValidationError
 from django.db import transaction
 
+from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, STUDY_PATHS, AslVideo, Study
 
 # The containers an ASL video may come in: uploads and webcam recordings alike.
@@ -37,6 +38,7 @@ def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, fiel
         )  # fmt: skip
         old = video.video.name if video.video else ""
         video.video.save(name, upload, save=True)
-        if old and old != video.video.name:
-            transaction.on_commit(lambda: video.video.storage.delete(old))
+        if old != video.video.name:
+            # A duplicated or imported study's video may be this same file.
+            delete_unused_files_on_commit(video.video.storage, [old])
     return video

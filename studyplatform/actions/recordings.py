@@ -12,6 +12,7 @@ from django.core.exceptions import ValidationError
 from django.core.files.base import ContentFile
 from django.db import transaction
 
+from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
 from studyplatform.models import Item, Recording, Study
 from studyplatform.models.recordings import MOTION_SUFFIXES, VIDEO_SUFFIXES
@@ -140,12 +141,7 @@ def _remove(recordings) -> None:
     recordings = list(recordings)
     files = {f.name for r in recordings for f in (r.upload, r.motion, r.sheet) if f}
     Recording.objects.filter(pk__in=[r.pk for r in recordings]).delete()
-    for field in ("upload", "motion", "sheet"):
-        still_used = Recording.objects.filter(**{f"{field}__in": files})
-        files -= set(still_used.values_list(field, flat=True))
-    storage = Recording._meta.get_field("upload").storage
-    for name in files:
-        transaction.on_commit(lambda name=name: storage.delete(name))
+    delete_unused_files_on_commit(Recording._meta.get_field("upload").storage, files)
 
 
 def do_relabel_stand_ins(study: Study) -> int:

@@ -3,6 +3,7 @@
 Writes live in :mod:`studyplatform.actions`; nothing here changes the database.
 """
 
+from studyplatform.lib.media import files_in_use
 from studyplatform.lib.participants import (
     TIME_LOW,
     PageRejected,
@@ -46,6 +47,7 @@ __all__ = [
     "describe_condition",
     "describe_parameters",
     "files_exist",
+    "files_in_use",
     "missing_answers",
     "needed_pairs",
     "page_count",

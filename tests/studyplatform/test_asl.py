@@ -52,6 +52,32 @@ def test_a_researcher_uploads_and_replaces_a_prompt_video(client, alice, fingers
     assert AslVideo.objects.count() == 2
 
 
+def test_replacing_a_video_deletes_the_old_file_unless_a_copy_still_uses_it(
+    alice, fingerspelling, media, django_capture_on_commit_callbacks
+):
+    """Regression (issue 19): after "Duplicate", replacing the copy's video deleted the
+    original study's file, which the copy had shared."""
+    from studyplatform.actions import do_attach_asl_video, do_duplicate_study
+
+    kind = ContentType.objects.get_for_model(fingerspelling).pk
+
+    def attach(study, name):
+        with django_capture_on_commit_callbacks(execute=True):
+            return do_attach_asl_video(study, kind, study.pk, "consent_text",
+                                       SimpleUploadedFile(name, WEBM, "video/webm"))  # fmt: skip
+
+    original = attach(fingerspelling, "consent.webm")
+    with django_capture_on_commit_callbacks(execute=True):
+        copy = do_duplicate_study(fingerspelling, owner=alice)
+    shared = AslVideo.objects.get(object_id=copy.pk, content_type_id=kind)
+    assert shared.video.name == original.video.name  # the copy points at the same file
+    replaced = attach(copy, "new.webm")
+    assert (media / original.video.name).exists()  # the original's video is intact
+    assert (media / replaced.video.name).exists()
+    again = attach(copy, "newer.webm")  # the copy's own file: nobody else uses it
+    assert not (media / replaced.video.name).exists() and (media / again.video.name).exists()
+
+
 def test_bad_uploads_are_refused(client, alice, bob, fingerspelling, spine, media):
     client.force_login(alice)
     not_video = _post(client, fingerspelling, fingerspelling, "consent_text", name="notes.txt")
