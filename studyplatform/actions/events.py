@@ -1,5 +1,6 @@
 """Log what participants did with the clips and pages: play, pause, seek, end, errors."""
 
+import math
 from collections.abc import Sequence
 
 from django.core.exceptions import ValidationError
@@ -11,6 +12,9 @@ from studyplatform.models import MediaEvent, Participant, Stimulus
 
 MAX_EVENTS_PER_BATCH = 500
 MAX_DETAIL_LENGTH = 500
+# The largest magnitudes taken: a clip's time (a day, in s) and the page's clock
+# (JavaScript's largest exact integer, in ms; it also fits the 64-bit column).
+NUMBER_LIMITS = {"media_time_s": 86_400.0, "client_time_ms": 2.0**53}
 
 
 class EventsRejected(ValidationError):
@@ -46,6 +50,8 @@ def _event(
         value = raw.get(name)
         if value is not None and (not isinstance(value, int | float) or isinstance(value, bool)):
             raise EventsRejected(f"Event {number}: {name} is not a number.")
+        if value is not None and not (math.isfinite(value) and abs(value) <= NUMBER_LIMITS[name]):
+            raise EventsRejected(f"Event {number}: {name} {value!r} is out of range.")
         numbers[name] = value
     detail = raw.get("detail") or {}
     if not isinstance(detail, dict) or len(str(detail)) > MAX_DETAIL_LENGTH:

@@ -209,7 +209,7 @@ def do_import_study(
             model, key = target_ref
             if model == "study":
                 target = study
-            elif model in targets:
+            elif isinstance(model, str) and model in targets:
                 target = _lookup(targets[model], key, model, f"{where}.target")
             else:
                 raise StudyImportError(f"{where}.target: unknown model {model!r}.")

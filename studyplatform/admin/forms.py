@@ -1,10 +1,9 @@
 """Validate admin forms beyond what each model checks on its own."""
 
-import json
-
 from django import forms
 from django.core.exceptions import ValidationError
 
+from studyplatform.lib import strict_json
 from studyplatform.models import Trial
 
 
@@ -60,14 +59,9 @@ class StudyImportForm(forms.Form):
         if upload.size > self.MAX_BYTES:
             raise ValidationError("The file is larger than 5 MB; a study definition is not.")
         try:
-            return json.loads(upload.read().decode("utf-8"))
-        except UnicodeDecodeError:
-            raise ValidationError("The file is not UTF-8 text.") from None
-        except json.JSONDecodeError as error:
-            raise ValidationError(
-                f"The file is not valid JSON: {error.msg} at line {error.lineno}, "
-                f"column {error.colno}."
-            ) from None
+            return strict_json.loads(upload.read())
+        except strict_json.JsonRejected as error:
+            raise ValidationError(f"The file is {error}.") from None
 
 
 class ResultsForm(forms.Form):

@@ -9,7 +9,7 @@ cached (``Cache-Control: no-store``, Django's never_cache): a lab's shared compu
 no copy of someone's answers, and a back button asks the server again.
 """
 
-import json
+import math
 from dataclasses import replace
 
 from django.core.exceptions import ValidationError
@@ -43,6 +43,7 @@ from studyplatform.lib import (
     completion_url,
     page_count,
     page_trial,
+    strict_json,
     time_left,
     unwatched_clips,
 )
@@ -163,16 +164,30 @@ def resume(request: HttpRequest, token: str) -> HttpResponse:
 
 def _parse_answer(question: Question, value: str, rt_ms: str | int | None) -> Answer:
     """Turn a posted value into an Answer for *question*; AnswerRejected if it is not one."""
-    try:
-        rt = None if rt_ms in (None, "") else max(0, min(int(float(rt_ms)), 86_400_000))
-    except (TypeError, ValueError):
-        rt = None
+    rt = _parse_rt_ms(rt_ms)
     value = "" if value is None else str(value)
     try:
         answer = question_type(question).parse(question, value)
     except ValueError:
         raise AnswerRejected(f"“{value[:40]}” is not an answer to “{question.key}”.") from None
     return replace(answer, rt_ms=rt)
+
+
+def _parse_rt_ms(rt_ms) -> int | None:
+    """Return a response time in ms (clamped to a day), None if none was sent, or raise
+    AnswerRejected for anything but a finite number."""
+    if rt_ms is None or rt_ms == "":
+        return None
+    try:
+        if isinstance(rt_ms, bool) or not isinstance(rt_ms, int | float | str):
+            raise ValueError
+        value = float(rt_ms)  # "1e999" is infinite; "٣" is no number here
+        if not math.isfinite(value) or (isinstance(rt_ms, str) and not rt_ms.isascii()):
+            raise ValueError
+    except ValueError:
+        raise AnswerRejected(f"The response time {str(rt_ms)[:20]!r} is not a number of "
+                             "milliseconds.") from None  # fmt: skip
+    return max(0, min(int(value), 86_400_000))
 
 
 def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str, str]:
@@ -271,9 +286,10 @@ def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpR
 
 
 def _json_body(request: HttpRequest):
+    """Return the request's JSON body, None if it is not strict JSON (strict_json)."""
     try:
-        return json.loads(request.body or b"null")
-    except (ValueError, UnicodeDecodeError):
+        return strict_json.loads(request.body or b"null")
+    except strict_json.JsonRejected:
         return None
 
 

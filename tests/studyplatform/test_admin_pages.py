@@ -127,6 +127,8 @@ def test_import_through_the_admin(alice_client, fingerspelling):
             "at line 1, column 2.",
         ),
         (b"\xff\xfe", "The file is not UTF-8 text."),
+        (b"[" * 100_000 + b"]" * 100_000, "The file is JSON nested deeper than 32 levels."),
+        (b'{"format": NaN}', "The file is JSON with NaN, which JSON does not allow."),
         (
             b'{"format": "signstudy.study", "version": 1, "study": {"slug": "x"}}',
             "Not imported: study: title: This field cannot be blank.",

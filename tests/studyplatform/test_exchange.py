@@ -169,3 +169,13 @@ def test_an_asl_video_pointing_out_of_its_folder_is_refused(fingerspelling, bob,
     with pytest.raises(StudyImportError, match=rf"asl_videos\[0\]\.{field}: .* is not an ASL"):
         do_import_study(data, owner=bob, slug="elsewhere")
     assert not Study.objects.filter(slug="elsewhere").exists()
+
+
+def test_an_asl_video_with_a_malformed_target_is_refused(fingerspelling, bob):
+    """Regression (issue 19): a list where the model's name belongs was a server error."""
+    data = export_study(fingerspelling)
+    data["asl_videos"] = [{"target": [["study"], None], "field_name": "consent_text",
+                           "transcript": "", "video": "asl/fine.mp4", "poster": ""}]  # fmt: skip
+    with pytest.raises(StudyImportError, match=r"asl_videos\[0\]\.target: unknown model"):
+        do_import_study(data, owner=bob, slug="elsewhere")
+    assert not Study.objects.filter(slug="elsewhere").exists()

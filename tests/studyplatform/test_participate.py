@@ -137,6 +137,56 @@ def test_a_tampered_answer_is_rejected_and_changes_nothing(
     assert not Response.objects.exists()
 
 
+@pytest.mark.parametrize(
+    ("body", "message"),
+    [
+        ('"rt_ms": 1e400', "not in the expected form"),  # infinite once parsed
+        ('"rt_ms": NaN', "not in the expected form"),
+        ('"rt_ms": "1e999"', "The response time '1e999' is not a number of milliseconds"),
+        ('"rt_ms": true', "The response time 'True' is not a number of milliseconds"),
+        ('"rt_ms": "\u0663"', "is not a number of milliseconds"),  # an Arabic-Indic 3
+        ('"value": "\\ud800"', "not in the expected form"),  # a lone surrogate
+        ('"extra": ' + "[" * 100_000 + "]" * 100_000, "not in the expected form"),
+        ('"extra": ' + "[" * 40 + "]" * 40, "not in the expected form"),
+    ],
+)
+def test_a_crafted_answer_gets_a_message_and_changes_nothing(client, fingerspelling, body,
+                                                            message):  # fmt: skip
+    """Regression (issue 19): each of these was a server error (500)."""
+    participant = _start(client, fingerspelling)
+    trial = participant.schedule[0]["trial"]
+    fields = {"page": 1, "trial": trial, "question": "age", "value": "3"}
+    raw = "{" + ", ".join([*(f"{json.dumps(k)}: {json.dumps(v)}" for k, v in fields.items()
+                             if f'"{k}"' not in body), body]) + "}"  # fmt: skip
+    rejected = client.post(reverse("participant_answer", args=[participant.token]), raw,
+                           content_type="application/json")  # fmt: skip
+    assert rejected.status_code == 400
+    assert message in rejected.json()["error"]
+    assert not Response.objects.exists()
+
+
+@pytest.mark.parametrize(
+    ("event", "message"),
+    [
+        ('{"kind": "page_shown", "page": 1, "client_time_ms": 1e20}', "out of range"),
+        (
+            '{"kind": "page_shown", "page": 1, "client_time_ms": 100000000000000000000}',
+            "out of range",
+        ),
+        ('{"kind": "play", "page": 1, "clip": 1, "media_time_s": -1e9}', "out of range"),
+        ('{"kind": "page_shown", "page": 1, "client_time_ms": Infinity}', "Events come as a list"),
+    ],
+)
+def test_a_crafted_event_gets_a_message_and_logs_nothing(client, fingerspelling, event,
+                                                         message):  # fmt: skip
+    """Regression (issue 19): non-finite and huge client times were server errors."""
+    participant = _start(client, fingerspelling)
+    url = reverse("participant_events", args=[participant.token])
+    refused = client.post(url, '{"events": [' + event + "]}", content_type="application/json")
+    assert refused.status_code == 400 and message in refused.json()["error"]
+    assert not MediaEvent.objects.exists()
+
+
 def test_a_tampered_choice_in_the_form_is_rejected(client, fingerspelling):
     participant = _start(client, fingerspelling)
     for number in (1, 2, 3):

@@ -1,11 +1,10 @@
 """Create a study from a definition file exported by SignStudy."""
 
-import json
-
 from django.contrib.auth import get_user_model
 from django.core.management.base import BaseCommand, CommandError
 
 from studyplatform.actions import StudyImportError, do_import_study
+from studyplatform.lib import strict_json
 
 
 class Command(BaseCommand):
@@ -21,15 +20,12 @@ class Command(BaseCommand):
         if user is None:
             raise CommandError(f"No user '{owner}'.")
         try:
-            with open(file, encoding="utf-8") as handle:
-                data = json.load(handle)
+            with open(file, "rb") as handle:
+                data = strict_json.loads(handle.read())
         except OSError as error:
             raise CommandError(f"Cannot read {file}: {error.strerror}.") from None
-        except json.JSONDecodeError as error:
-            raise CommandError(
-                f"{file} is not valid JSON: {error.msg} "
-                f"at line {error.lineno}, column {error.colno}."
-            ) from None
+        except strict_json.JsonRejected as error:
+            raise CommandError(f"{file} is {error}.") from None
         try:
             result = do_import_study(data, owner=user, slug=slug)
         except StudyImportError as error:
