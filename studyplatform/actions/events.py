@@ -50,7 +50,8 @@ def _event(
         value = raw.get(name)
         if value is not None and (not isinstance(value, int | float) or isinstance(value, bool)):
             raise EventsRejected(f"Event {number}: {name} is not a number.")
-        if value is not None and not (math.isfinite(value) and abs(value) <= NUMBER_LIMITS[name]):
+        # The limit first: math.isfinite() cannot take an integer beyond any float.
+        if value is not None and not (abs(value) <= NUMBER_LIMITS[name] and math.isfinite(value)):
             raise EventsRejected(f"Event {number}: {name} {value!r} is out of range.")
         numbers[name] = value
     detail = raw.get("detail") or {}

@@ -62,5 +62,9 @@ def loads(text: str | bytes) -> Any:
         ) from None
     except RecursionError:
         raise JsonRejected(f"JSON nested deeper than {MAX_DEPTH} levels") from None
+    except JsonRejected:
+        raise
+    except ValueError:  # an integer of more digits than Python converts
+        raise JsonRejected("JSON with a number too large to use") from None
     _check(value, 0)
     return value

@@ -184,7 +184,7 @@ def _parse_rt_ms(rt_ms) -> int | None:
         value = float(rt_ms)  # "1e999" is infinite; "٣" is no number here
         if not math.isfinite(value) or (isinstance(rt_ms, str) and not rt_ms.isascii()):
             raise ValueError
-    except ValueError:
+    except (ValueError, OverflowError):  # OverflowError: an integer beyond any float
         raise AnswerRejected(f"The response time {str(rt_ms)[:20]!r} is not a number of "
                              "milliseconds.") from None  # fmt: skip
     return max(0, min(int(value), 86_400_000))

@@ -144,6 +144,8 @@ def test_a_tampered_answer_is_rejected_and_changes_nothing(
         ('"rt_ms": NaN', "not in the expected form"),
         ('"rt_ms": "1e999"', "The response time '1e999' is not a number of milliseconds"),
         ('"rt_ms": true', "The response time 'True' is not a number of milliseconds"),
+        ('"rt_ms": 1' + "0" * 400, "is not a number of milliseconds"),  # beyond any float
+        ('"rt_ms": 1' + "0" * 5000, "not in the expected form"),  # beyond Python's digits
         ('"rt_ms": "\u0663"', "is not a number of milliseconds"),  # an Arabic-Indic 3
         ('"value": "\\ud800"', "not in the expected form"),  # a lone surrogate
         ('"extra": ' + "[" * 100_000 + "]" * 100_000, "not in the expected form"),
@@ -174,6 +176,7 @@ def test_a_crafted_answer_gets_a_message_and_changes_nothing(client, fingerspell
             "out of range",
         ),
         ('{"kind": "play", "page": 1, "clip": 1, "media_time_s": -1e9}', "out of range"),
+        ('{"kind": "page_shown", "page": 1, "client_time_ms": 1' + "0" * 400 + "}", "out of range"),
         ('{"kind": "page_shown", "page": 1, "client_time_ms": Infinity}', "Events come as a list"),
     ],
 )
