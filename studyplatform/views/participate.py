@@ -9,9 +9,6 @@ cached (``Cache-Control: no-store``, Django's never_cache): a lab's shared compu
 no copy of someone's answers, and a back button asks the server again.
 """
 
-import math
-from dataclasses import replace
-
 from django.core.exceptions import ValidationError
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect, render
@@ -20,7 +17,6 @@ from django.views.decorators.cache import never_cache
 from django.views.decorators.http import require_http_methods, require_POST
 
 from studyplatform.actions import (
-    Answer,
     AnswerRejected,
     EventsRejected,
     PageRejected,
@@ -43,13 +39,12 @@ from studyplatform.lib import (
     completion_url,
     page_count,
     page_trial,
-    strict_json,
     time_left,
     unwatched_clips,
 )
-from studyplatform.models import Participant, Question, Study, Trial
+from studyplatform.models import Participant, Study, Trial
 from studyplatform.pages import participant_page, study_asl
-from studyplatform.questions import question_type
+from studyplatform.views.posted import json_body, parse_answer
 
 SESSION_KEY = "signstudy_participants"
 NEW_PARTICIPANT_PARAM = "new"
@@ -162,34 +157,6 @@ def resume(request: HttpRequest, token: str) -> HttpResponse:
     return redirect(_page_url(participant, max(participant.position, 1)))
 
 
-def _parse_answer(question: Question, value: str, rt_ms: str | int | None) -> Answer:
-    """Turn a posted value into an Answer for *question*; AnswerRejected if it is not one."""
-    rt = _parse_rt_ms(rt_ms)
-    value = "" if value is None else str(value)
-    try:
-        answer = question_type(question).parse(question, value)
-    except ValueError:
-        raise AnswerRejected(f"“{value[:40]}” is not an answer to “{question.key}”.") from None
-    return replace(answer, rt_ms=rt)
-
-
-def _parse_rt_ms(rt_ms) -> int | None:
-    """Return a response time in ms (clamped to a day), None if none was sent, or raise
-    AnswerRejected for anything but a finite number."""
-    if rt_ms is None or rt_ms == "":
-        return None
-    try:
-        if isinstance(rt_ms, bool) or not isinstance(rt_ms, int | float | str):
-            raise ValueError
-        value = float(rt_ms)  # "1e999" is infinite; "٣" is no number here
-        if not math.isfinite(value) or (isinstance(rt_ms, str) and not rt_ms.isascii()):
-            raise ValueError
-    except (ValueError, OverflowError):  # OverflowError: an integer beyond any float
-        raise AnswerRejected(f"The response time {str(rt_ms)[:20]!r} is not a number of "
-                             "milliseconds.") from None  # fmt: skip
-    return max(0, min(int(value), 86_400_000))
-
-
 def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str, str]:
     """Save every answer the page's form holds; return the errors by question key."""
     errors = {}
@@ -198,7 +165,7 @@ def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str
         if not value:
             continue  # unanswered (a required question is caught on moving on)
         try:
-            answer = _parse_answer(question, value, post.get(f"rt-{question.key}"))
+            answer = parse_answer(question, value, post.get(f"rt-{question.key}"))
             do_save_response(participant, trial, question, answer)
         except AnswerRejected as error:
             errors[question.key] = error.messages[0]
@@ -285,19 +252,11 @@ def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpR
     return redirect(url)
 
 
-def _json_body(request: HttpRequest):
-    """Return the request's JSON body, None if it is not strict JSON (strict_json)."""
-    try:
-        return strict_json.loads(request.body or b"null")
-    except strict_json.JsonRejected:
-        return None
-
-
 @never_cache
 @require_POST
 def save_answer(request: HttpRequest, token: str) -> JsonResponse:
     """Save one answer now (JSON ``{page, trial, question, value, rt_ms}``)."""
-    participant, data = _participant(token), _json_body(request)
+    participant, data = _participant(token), json_body(request)
     if participant is None:
         return _invalid_link()
     if not isinstance(data, dict) or not isinstance(data.get("page"), int):
@@ -309,7 +268,7 @@ def save_answer(request: HttpRequest, token: str) -> JsonResponse:
         question = next((q for q in trial.questions.all() if q.key == data.get("question")), None)
         if question is None:
             raise AnswerRejected(f"“{data.get('question')}” is not asked on this page.")
-        answer = _parse_answer(question, data.get("value"), data.get("rt_ms"))
+        answer = parse_answer(question, data.get("value"), data.get("rt_ms"))
         saved = do_save_response(participant, trial, question, answer)
     except ValidationError as error:
         return JsonResponse({"error": error.messages[0]}, status=400)
@@ -355,7 +314,7 @@ def upload_signed_answer(
 @require_POST
 def log_events(request: HttpRequest, token: str) -> JsonResponse:
     """Log a batch of media and page events (JSON ``{"events": [...]}``)."""
-    participant, data = _participant(token), _json_body(request)
+    participant, data = _participant(token), json_body(request)
     if participant is None:
         return _invalid_link()
     events = data.get("events") if isinstance(data, dict) else None
