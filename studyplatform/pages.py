@@ -7,6 +7,8 @@ participants at once.
 
 from dataclasses import dataclass, field
 
+from django.urls import reverse
+
 from studyplatform.asl import asl_videos
 from studyplatform.lib.participants import page_count
 from studyplatform.lib.presentation import presented_conditions
@@ -134,7 +136,11 @@ def participant_page(participant: Participant, number: int, trial: Trial) -> Par
         )
         options = tuple(sorted(question.options.all(), key=lambda o: (o.position, o.value)))
         response = responses.get(question.pk)
-        video_url = response.video.url if response is not None and response.video else ""
+        video_url = (
+            reverse("participant_answer_video", args=[participant.token, response.pk])
+            if response is not None and response.video
+            else ""
+        )
         page_questions.append(PageQuestion(question, options, answer, video_url))
     asl: dict = {}
     if participant.language == Participant.Language.ASL_ENGLISH:

@@ -10,6 +10,8 @@ configuration at all:
   ``var/secret_key`` on first run and reused afterwards (never committed).
 - ``SIGNSTUDY_ALLOWED_HOSTS``: comma-separated host names (default: localhost names).
 - ``SIGNSTUDY_VAR_DIR``: where local state lives (database, media, static, key).
+- ``SIGNSTUDY_PRIVATE_MEDIA_ROOT``: where personal files live (default ``var/private``);
+  ``SIGNSTUDY_SENDFILE_HEADER`` hands checked downloads of them to the web server.
 - ``CELERY_BROKER_URL`` / ``REDIS_URL``: the Redis broker for rendering jobs; jobs run
   in-process (eagerly) when neither is set.
 """
@@ -154,11 +156,25 @@ STORAGES = {
         )
     },
 }
-for _directory in (STATIC_ROOT, MEDIA_ROOT):
+# Personal files (signed answers, signers' recordings, unfinished uploads) live outside
+# MEDIA_ROOT: no URL maps to them except the authenticated view (docs/deployment.md).
+SIGNSTUDY_PRIVATE_MEDIA_ROOT = Path(
+    os.environ.get("SIGNSTUDY_PRIVATE_MEDIA_ROOT", VAR_DIR / "private")
+)
+for _directory in (STATIC_ROOT, MEDIA_ROOT, SIGNSTUDY_PRIVATE_MEDIA_ROOT):
     _directory.mkdir(parents=True, exist_ok=True)
-# Serve media (stimulus clips, ASL prompts, signed answers) through Django; a large
-# deployment puts a web server or object store in front instead.
+# Serve public media (stimulus clips, ASL prompts) through Django; a large deployment
+# puts a web server or object store in front instead.
 SIGNSTUDY_SERVE_MEDIA = _env_flag("SIGNSTUDY_SERVE_MEDIA", default=True)
+# Let the web server send private files once Django has checked access: "X-Accel-Redirect"
+# (nginx, to the internal location SIGNSTUDY_SENDFILE_PREFIX) or "X-Sendfile" (Apache's
+# mod_xsendfile, with the file's absolute path); empty: Django sends them itself.
+SIGNSTUDY_SENDFILE_HEADER = os.environ.get("SIGNSTUDY_SENDFILE_HEADER", "")
+SIGNSTUDY_SENDFILE_PREFIX = os.environ.get("SIGNSTUDY_SENDFILE_PREFIX", "/protected/")
+# An upload nobody has added to for this long was abandoned: `clean_uploads` removes it.
+SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS = float(
+    os.environ.get("SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS", "24")
+)
 
 LOGIN_URL = "admin:login"
 
@@ -182,6 +198,14 @@ CELERY_TASK_EAGER_PROPAGATES = True
 CELERY_TASK_ACKS_LATE = True
 CELERY_TASK_REJECT_ON_WORKER_LOST = True
 CELERY_WORKER_PREFETCH_MULTIPLIER = 1
+# `celery -A studyplatform.celery beat` runs these; without beat, cron runs
+# `manage.py clean_uploads` instead (docs/deployment.md).
+CELERY_BEAT_SCHEDULE = {
+    "clean-abandoned-uploads": {
+        "task": "studyplatform.clean_abandoned_uploads",
+        "schedule": 3600.0,
+    },
+}
 
 LOGGING = {
     "version": 1,

@@ -1,4 +1,4 @@
-"""Celery jobs: render one stimulus clip.
+"""Celery jobs: render one stimulus clip, prepare a recording, clean abandoned uploads.
 
 A job is acknowledged only after it finished (``CELERY_TASK_ACKS_LATE``), and the clip
 file is moved into place whole; a worker killed mid-render leaves the stimulus
@@ -127,3 +127,11 @@ def _contact_sheet(hand, video: Path) -> bytes | None:
 def prepare_recording(recording_id: int) -> str:
     """Capture, fit and check one recording (Celery job)."""
     return prepare_now(recording_id)
+
+
+@shared_task(name="studyplatform.clean_abandoned_uploads")
+def clean_abandoned_uploads() -> int:
+    """Delete unfinished signed-answer uploads older than the configured age (beat job)."""
+    from studyplatform.actions.uploads import do_remove_abandoned_uploads
+
+    return len(do_remove_abandoned_uploads(settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS))

@@ -21,6 +21,12 @@ urlpatterns = [
     ),
     path("p/<str:token>/language/", views.set_language, name="participant_language"),
     path("p/<str:token>/done/", views.done, name="participant_done"),
+    path(
+        "p/<str:token>/answers/<int:response>/video/",
+        views.participant_answer_video,
+        name="participant_answer_video",
+    ),
+    path("private/<path:path>", views.private_media, name="private_media"),
     # Browsers ask for /favicon.ico on pages that name no icon (e.g. file downloads).
     path("favicon.ico", views.favicon),
 ]

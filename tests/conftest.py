@@ -56,6 +56,12 @@ def spine(bob):
 
 
 @pytest.fixture(autouse=True)
+def _private_media_root(settings, tmp_path_factory):
+    """Keep each test's personal files (signed answers, recordings) in a fresh directory."""
+    settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT = tmp_path_factory.mktemp("private")
+
+
+@pytest.fixture(autouse=True)
 def _plain_static_storage(settings):
     """Serve static files without the collected manifest, which tests do not build."""
     settings.STORAGES = {

@@ -236,13 +236,14 @@ def do_import_study(
             files = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
             for name, file_name in files.items():
                 _check_media_file(file_name, "recordings", "a recording's", f"{where}.{name}")
+            storage = Recording._meta.get_field("upload").storage  # private, not default
             missing = [name for name in ("upload", "motion")
-                       if not files[name] or not default_storage.exists(files[name])]  # fmt: skip
+                       if not files[name] or not storage.exists(files[name])]  # fmt: skip
             if missing:
                 warnings.append(f"{where}: {missing[0]} file {files[missing[0]]!r} of {item.key} "
                                 "is not in media; left out.")  # fmt: skip
                 continue
-            if files["sheet"] and not default_storage.exists(files["sheet"]):
+            if files["sheet"] and not storage.exists(files["sheet"]):
                 files["sheet"] = ""
             recording = Recording(item=item, status=Recording.Status.READY,
                                   progress_percent=100, **files, **values)  # fmt: skip

@@ -5,10 +5,16 @@ that does not start where the stored part ends is refused with the stored length
 the browser resumes from there after a dropped connection, and a repeated chunk is
 never appended twice; a chunk at byte 0 starts a new recording. The last chunk turns
 the part into the answer's video file.
+
+Unfinished parts and finished answers live in private storage
+(``SIGNSTUDY_PRIVATE_MEDIA_ROOT``, :mod:`studyplatform.storage`); no public URL
+reaches them. A part nobody has added to for ``SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS``
+was abandoned, and :func:`do_remove_abandoned_uploads` deletes it.
 """
 
 import os
 import secrets
+import time
 from pathlib import Path
 
 from django.conf import settings
@@ -39,7 +45,12 @@ class UploadOffsetMismatch(UploadRejected):
 def partial_path(participant: Participant, trial: Trial, question: Question) -> Path:
     """Return where the unfinished upload of this answer is kept."""
     name = f"{participant.pk}-{trial.pk}-{question.pk}.part"
-    return Path(settings.MEDIA_ROOT) / "answers" / "partial" / name
+    return partial_directory() / name
+
+
+def partial_directory() -> Path:
+    """Return the directory of unfinished uploads (private, never served)."""
+    return Path(settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT) / "answers" / "partial"
 
 
 def upload_offset(participant: Participant, trial: Trial, question: Question) -> int:
@@ -103,7 +114,8 @@ def do_append_signed_answer_chunk(
             participant=participant, trial=trial, question=question
         ).first() or Response(participant=participant, trial=trial, question=question)
         old = response.video.name if response.video else ""
-        name = f"{participant.pk}-{trial.key}-{question.key}-{secrets.token_hex(4)}{suffix}"
+        # 128 random bits: the name alone never lets anyone guess another answer's file.
+        name = f"{participant.pk}-{trial.key}-{question.key}-{secrets.token_hex(16)}{suffix}"
         with open(path, "rb") as part:
             response.video.save(name, File(part), save=False)
         if response.pk:
@@ -113,3 +125,24 @@ def do_append_signed_answer_chunk(
         if old:
             transaction.on_commit(lambda: response.video.storage.delete(old))
         return stored, response
+
+
+def do_remove_abandoned_uploads(max_age_hours: float, *, now: float | None = None) -> list[str]:
+    """Delete unfinished uploads not added to for *max_age_hours*; return their names.
+
+    A participant who comes back later starts that recording again (the page asks the
+    server where to resume, and an absent part resumes at byte 0).
+    """
+    if max_age_hours <= 0:
+        raise ValueError(f"The maximum age must be positive; {max_age_hours} hours is not.")
+    cutoff = (time.time() if now is None else now) - max_age_hours * 3600
+    removed = []
+    directory = partial_directory()
+    for path in sorted(directory.glob("*.part")) if directory.is_dir() else ():
+        try:
+            if path.stat().st_mtime < cutoff:
+                path.unlink()
+                removed.append(path.name)
+        except FileNotFoundError:  # finished or removed meanwhile
+            continue
+    return removed

@@ -3,6 +3,7 @@
 from django.db import models
 
 from studyplatform.models.studies import Item
+from studyplatform.storage import private_storage
 
 VIDEO_SUFFIXES = (".mp4", ".webm", ".mov")
 MOTION_SUFFIXES = (".pose", ".bvh")
@@ -25,17 +26,20 @@ class Recording(models.Model):
     item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="recordings")
     upload = models.FileField(
         upload_to="recordings/",
+        storage=private_storage,
         help_text="The file as uploaded: a video of the signer (MP4, WebM, MOV), a .pose "
         "file of landmarks, or a BVH motion.",
     )
     motion = models.FileField(
         upload_to="recordings/",
+        storage=private_storage,
         blank=True,
         help_text="What clips are made from: the uploaded .pose or BVH file, or for a video "
         "the hand landmarks captured from it (.pose).",
     )
     sheet = models.FileField(
         upload_to="recordings/",
+        storage=private_storage,
         blank=True,
         help_text="For a video: a contact sheet of video frames above the hand fitted to them.",
     )

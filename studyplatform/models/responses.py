@@ -5,6 +5,7 @@ from django.db import models
 from studyplatform.models.design import Question, Trial
 from studyplatform.models.participants import Participant
 from studyplatform.models.stimuli import Stimulus
+from studyplatform.storage import private_storage
 
 
 class Response(models.Model):
@@ -26,7 +27,12 @@ class Response(models.Model):
     )
     number = models.FloatField(null=True, blank=True)
     text = models.TextField(blank=True)
-    video = models.FileField(upload_to="answers/", blank=True, help_text="A signed answer.")
+    video = models.FileField(
+        upload_to="answers/",
+        storage=private_storage,
+        blank=True,
+        help_text="A signed answer (private: only the study's researchers can open it).",
+    )
     score = models.FloatField(
         null=True, blank=True, help_text="Intelligibility: word-level accuracy in [0, 1]."
     )

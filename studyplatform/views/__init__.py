@@ -1,7 +1,7 @@
 """Participant-facing and public views of the platform."""
 
 from studyplatform.views.home import favicon, home
-from studyplatform.views.media import media
+from studyplatform.views.media import media, participant_answer_video, private_media
 from studyplatform.views.participate import (
     done,
     log_events,
@@ -20,6 +20,8 @@ __all__ = [
     "log_events",
     "media",
     "page",
+    "participant_answer_video",
+    "private_media",
     "resume",
     "save_answer",
     "set_language",

@@ -1,10 +1,95 @@
-"""Serve rendered clips and uploaded videos when no web server does (the demo, tests)."""
+"""Serve media: public clips and prompts, and personal files only to those allowed.
+
+Stimulus clips are named by their content hash, so browsers may keep them for a year;
+ASL prompts can be replaced under the same name, so they are revalidated daily.
+Signed answers and signers' recordings are private (:mod:`studyplatform.storage`): the
+study's researchers may open them in the admin, and a participant may play back their
+own answer while taking part. Everyone else gets 404, as if the file did not exist.
+"""
+
+from pathlib import Path
 
 from django.conf import settings
-from django.http import HttpRequest, HttpResponse
-from django.views.static import serve
+from django.core.exceptions import SuspiciousFileOperation
+from django.http import Http404, HttpRequest, HttpResponse
+from django.utils._os import safe_join
+from django.views.decorators.http import require_safe
+
+from studyplatform.models import Recording, Response, Study
+from studyplatform.storage import PRIVATE_STORAGE
+from studyplatform.views.files import file_response
+
+PUBLIC_CACHE = {"stimuli": "public, max-age=31536000, immutable"}
+PUBLIC_CACHE_DEFAULT = "public, max-age=86400"
+PRIVATE_CACHE = "private, no-store"
 
 
+def _existing_file(root, name: str) -> Path:
+    try:
+        path = Path(safe_join(root, name))
+    except SuspiciousFileOperation:  # a path that leaves the root
+        raise Http404("No such file.") from None
+    if not path.is_file():
+        raise Http404("No such file.")
+    return path
+
+
+@require_safe
 def media(request: HttpRequest, path: str) -> HttpResponse:
-    """Send the file at *path* under MEDIA_ROOT, read at request time (it can change)."""
-    return serve(request, path, document_root=settings.MEDIA_ROOT)
+    """Send the public media file at *path* (read at request time: it can change)."""
+    found = _existing_file(settings.MEDIA_ROOT, path)
+    cache = PUBLIC_CACHE.get(path.split("/", 1)[0], PUBLIC_CACHE_DEFAULT)
+    return file_response(request, found, cache_control=cache)
+
+
+def _private_file(request: HttpRequest, name: str) -> HttpResponse:
+    path = _existing_file(PRIVATE_STORAGE.location, name)
+    header = settings.SIGNSTUDY_SENDFILE_HEADER
+    if not header:
+        return file_response(request, path, cache_control=PRIVATE_CACHE)
+    response = HttpResponse(content_type="")  # the web server sets type, length, ranges
+    if header.lower() == "x-accel-redirect":
+        response[header] = settings.SIGNSTUDY_SENDFILE_PREFIX.rstrip("/") + "/" + name
+    else:
+        response[header] = str(path)
+    response["Cache-Control"] = PRIVATE_CACHE
+    return response
+
+
+def _may_open(user, name: str) -> bool:
+    # A copied or imported study shares its recordings' files: any row the user may
+    # see that names the file is enough.
+    owner = {} if user.is_superuser else {"owner": user}
+    studies = Study.objects.filter(**owner)
+    if Response.objects.filter(video=name, participant__study__in=studies).exists():
+        return True
+    return any(
+        Recording.objects.filter(**{field: name, "item__study__in": studies}).exists()
+        for field in ("upload", "motion", "sheet")
+    )
+
+
+@require_safe
+def private_media(request: HttpRequest, path: str) -> HttpResponse:
+    """Send a personal file to a signed-in researcher of a study it belongs to."""
+    user = request.user
+    if not (user.is_authenticated and user.is_active and user.is_staff):
+        raise Http404("No such file.")
+    if not _may_open(user, path):
+        raise Http404("No such file.")
+    return _private_file(request, path)
+
+
+@require_safe
+def participant_answer_video(request: HttpRequest, token: str, response: int) -> HttpResponse:
+    """Send a participant's own signed answer back to them while they take part."""
+    found = (
+        Response.objects.filter(pk=response, participant__token=token)
+        .exclude(video="")
+        .filter(participant__finished_at__isnull=True)
+        .values_list("video", flat=True)
+        .first()
+    )
+    if found is None:
+        raise Http404("No such answer.")
+    return _private_file(request, found)

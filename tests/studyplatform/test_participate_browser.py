@@ -363,7 +363,15 @@ def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     # The page shows the saved answer after a reload, ready to be recorded again.
     page.reload()
     _wait_ready(page)
-    assert page.locator(".signed-preview").get_attribute("src").endswith(".webm")
+    # Played back through the participant's own private route, with byte ranges.
+    src = page.locator(".signed-preview").get_attribute("src")
+    assert src == f"/p/{participant.token}/answers/{response.pk}/video/"
+    fetched = page.evaluate(
+        "src => fetch(src, {headers: {Range: 'bytes=0-3'}})"
+        ".then(r => [r.status, r.headers.get('content-type')])",
+        src,
+    )
+    assert fetched == [206, "video/webm"]
     expect(page.get_by_role("button", name="Record again")).to_be_visible()
 
 

@@ -62,8 +62,9 @@ def _attach(item, upload, capture, **options) -> Recording:
 
 @pytest.fixture
 def media(settings, tmp_path):
+    """Return where recordings are kept: private storage, not the public media."""
     settings.MEDIA_ROOT = tmp_path / "media"
-    return settings.MEDIA_ROOT
+    return settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT
 
 
 def test_every_condition_retimes_the_words_recording(
