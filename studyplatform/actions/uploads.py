@@ -127,7 +127,7 @@ def do_append_signed_answer_chunk(
         return stored, response
 
 
-def do_remove_abandoned_uploads(max_age_hours: float, *, now: float | None = None) -> list[str]:
+def do_remove_abandoned_uploads(max_age_hours: float) -> list[str]:
     """Delete unfinished uploads not added to for *max_age_hours*; return their names.
 
     A participant who comes back later starts that recording again (the page asks the
@@ -135,7 +135,7 @@ def do_remove_abandoned_uploads(max_age_hours: float, *, now: float | None = Non
     """
     if max_age_hours <= 0:
         raise ValueError(f"The maximum age must be positive; {max_age_hours} hours is not.")
-    cutoff = (time.time() if now is None else now) - max_age_hours * 3600
+    cutoff = time.time() - max_age_hours * 3600
     removed = []
     directory = partial_directory()
     for path in sorted(directory.glob("*.part")) if directory.is_dir() else ():

@@ -11,11 +11,14 @@ from pathlib import Path
 
 from django.conf import settings
 from django.core.exceptions import SuspiciousFileOperation
+from django.db.models import Q
 from django.http import Http404, HttpRequest, HttpResponse
 from django.utils._os import safe_join
 from django.views.decorators.http import require_safe
 
-from studyplatform.models import Recording, Response, Study
+from studyplatform import exchange
+from studyplatform.admin.permissions import owned_studies
+from studyplatform.models import Recording, Response
 from studyplatform.storage import PRIVATE_STORAGE
 from studyplatform.views.files import file_response
 
@@ -56,17 +59,14 @@ def _private_file(request: HttpRequest, name: str) -> HttpResponse:
     return response
 
 
-def _may_open(user, name: str) -> bool:
-    # A copied or imported study shares its recordings' files: any row the user may
-    # see that names the file is enough.
-    owner = {} if user.is_superuser else {"owner": user}
-    studies = Study.objects.filter(**owner)
+def _may_open(request: HttpRequest, name: str) -> bool:
+    # A copied or imported study shares its recordings' files: any row of a study the
+    # user may see that names the file is enough.
+    studies = owned_studies(request)
     if Response.objects.filter(video=name, participant__study__in=studies).exists():
         return True
-    return any(
-        Recording.objects.filter(**{field: name, "item__study__in": studies}).exists()
-        for field in ("upload", "motion", "sheet")
-    )
+    names_it = Q.create([(field, name) for field in exchange.RECORDING_FILES], connector=Q.OR)
+    return Recording.objects.filter(names_it, item__study__in=studies).exists()
 
 
 @require_safe
@@ -75,7 +75,7 @@ def private_media(request: HttpRequest, path: str) -> HttpResponse:
     user = request.user
     if not (user.is_authenticated and user.is_active and user.is_staff):
         raise Http404("No such file.")
-    if not _may_open(user, path):
+    if not _may_open(request, path):
         raise Http404("No such file.")
     return _private_file(request, path)
 
@@ -84,9 +84,10 @@ def private_media(request: HttpRequest, path: str) -> HttpResponse:
 def participant_answer_video(request: HttpRequest, token: str, response: int) -> HttpResponse:
     """Send a participant's own signed answer back to them while they take part."""
     found = (
-        Response.objects.filter(pk=response, participant__token=token)
+        Response.objects.filter(
+            pk=response, participant__token=token, participant__finished_at__isnull=True
+        )
         .exclude(video="")
-        .filter(participant__finished_at__isnull=True)
         .values_list("video", flat=True)
         .first()
     )

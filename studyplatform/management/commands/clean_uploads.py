@@ -17,14 +17,12 @@ class Command(BaseCommand):
         parser.add_argument(
             "--older-than-hours",
             type=float,
-            default=None,
+            default=settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS,
             help="the age after which an untouched upload counts as abandoned",
         )
 
-    def handle(self, *args, older_than_hours=None, **options):
-        hours = settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS
-        if older_than_hours is not None:
-            hours = older_than_hours
+    def handle(self, *args, older_than_hours, **options):
+        hours = older_than_hours
         try:
             removed = do_remove_abandoned_uploads(hours)
         except ValueError as error:
