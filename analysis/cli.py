@@ -68,6 +68,51 @@ def _import_wide(args: argparse.Namespace) -> int:
     return 0
 
 
+def _sizes(text: str) -> list[int]:
+    """Parse N as "10:60:5" (start:stop:step, stop included) or "10,20,40"."""
+    try:
+        if ":" in text:
+            start, stop, step = (int(part) for part in text.split(":"))
+            if step <= 0:
+                raise ValueError
+            return list(range(start, stop + 1, step))
+        return [int(part) for part in text.split(",")]
+    except ValueError:
+        raise TidyFormatError(f"--n takes START:STOP:STEP or N1,N2,…, got {text!r}.") from None
+
+
+def _power(args: argparse.Namespace) -> int:
+    import json
+
+    from analysis.power import design_from_responses, power_curve, read_design
+    from analysis.power.plan import effects_for, write_power
+
+    frame = read_responses(args.csv)
+    kept, _ = apply_exclusions(frame, ExclusionRules(pilot=False))
+    design = (
+        read_design(args.design)
+        if args.design
+        else design_from_responses(kept, args.kind, args.question or "")
+    )
+    stated = json.loads(Path(args.effects).read_text()) if args.effects else None
+    effects = effects_for(kept, design, stated, source=Path(args.csv).name)
+    curve = power_curve(
+        design,
+        effects,
+        _sizes(args.n),
+        simulations=args.simulations,
+        alpha=args.alpha,
+        seed=args.seed,
+        correction=args.correction,
+        workers=args.workers,
+    )
+    print(curve.summary())
+    if args.out:
+        written = write_power(curve, args.out)
+        print(f"Wrote {', '.join(written)} to {args.out}.")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """Build the command-line parser."""
     main = argparse.ArgumentParser(prog="python -m analysis", description=__doc__)
@@ -93,6 +138,23 @@ def parser() -> argparse.ArgumentParser:
     report.add_argument("--no-figures", action="store_true")
     report.set_defaults(run=_report)
 
+    power = commands.add_parser(
+        "power", help="simulate the planned design's power over a range of N (SIMULATED)"
+    )
+    power.add_argument("csv", help="pilot responses in the tidy format (pilot rows are kept)")
+    power.add_argument("--design", help="design.json (default: the pilot participants' trials)")
+    power.add_argument("--kind", choices=("pairwise", "rating"), default="pairwise")
+    power.add_argument("--question", help="the rated question (with --kind rating)")
+    power.add_argument("--effects", help="stated effects JSON instead of the pilot's estimates")
+    power.add_argument("--n", default="10:60:5", help="participants: START:STOP:STEP or N1,N2")
+    power.add_argument("--simulations", type=int, default=200)
+    power.add_argument("--alpha", type=float, default=0.05)
+    power.add_argument("--seed", type=int, default=1)
+    power.add_argument("--correction", choices=tuple(CORRECTIONS), default="holm")
+    power.add_argument("--workers", type=int, default=None, help="processes (default: cores)")
+    power.add_argument("--out", help="folder for power.csv, power.json and power.png")
+    power.set_defaults(run=_power)
+
     wide = commands.add_parser("import-wide", help="turn a survey export into the tidy format")
     wide.add_argument("csv", help="wide CSV (one row per participant)")
     wide.add_argument("--mapping", required=True, help="JSON column mapping (docs/tidy-format.md)")
@@ -106,6 +168,6 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         return args.run(args)
-    except TidyFormatError as error:
+    except (TidyFormatError, ValueError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2

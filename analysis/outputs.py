@@ -30,6 +30,65 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
         found["rating_comparisons"] = pd.DataFrame(data["rating_comparisons"])
     if data["intelligibility"]:
         found["intelligibility"] = pd.DataFrame(data["intelligibility"])
+    found.update(mixed_tables(data.get("mixed_models")))
+    return found
+
+
+def _mixed_models(mixed: dict | None) -> list[dict]:
+    if not mixed:
+        return []
+    return ([mixed["pairwise"]] if mixed["pairwise"] else []) + mixed["ordinal"] + mixed["linear"]
+
+
+def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
+    """Return the mixed models' effects, random effects and contrasts as three tables."""
+    effects, random, contrasts = [], [], []
+    for model in _mixed_models(mixed):
+        key = {"model": model["model"], "question": model.get("question", "")}
+        rows = ([model["position"]] if model.get("position") else []) + model["effects"]
+        rows += model.get("thresholds", [])
+        for c in rows:
+            effects.append(
+                {
+                    **key,
+                    "effect": c["name"],
+                    "estimate": c["estimate"],
+                    "se": c["se"],
+                    "z": c["statistic"],
+                    "p": c["pvalue"],
+                    "ci_low": c["ci"][0],
+                    "ci_high": c["ci"][1],
+                }
+            )
+        for r in model["random"]:
+            random.append({**key, "component": r["name"], "sd": r["sd"], "levels": r["levels"]})
+        if model.get("residual_sd") is not None:
+            random.append(
+                {**key, "component": "residual", "sd": model["residual_sd"], "levels": None}
+            )
+        for c in model["contrasts"]:
+            contrasts.append(
+                {
+                    **key,
+                    "a": c["a"],
+                    "b": c["b"],
+                    "difference": c["estimate"],
+                    "se": c["se"],
+                    "z": c["statistic"],
+                    "p": c["pvalue"],
+                    "p_adjusted": c["pvalue_adjusted"],
+                    "ci_low": c["ci"][0],
+                    "ci_high": c["ci"][1],
+                }
+            )
+    found = {}
+    for name, rows in (
+        ("mixed_effects", effects),
+        ("mixed_random", random),
+        ("mixed_contrasts", contrasts),
+    ):
+        if rows:
+            found[name] = pd.DataFrame(rows)
     return found
 
 

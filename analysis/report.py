@@ -10,6 +10,8 @@ import pandas as pd
 
 from analysis.exclusions import ExclusionRules, apply_exclusions
 from analysis.intelligibility import score_intelligibility
+from analysis.mixed.results import MixedModels
+from analysis.mixed.section import fit_mixed_models
 from analysis.pairwise import analyze_pairwise
 from analysis.ratings import compare_ratings, summarize_ratings
 from analysis.results import (
@@ -35,6 +37,8 @@ class ReportOptions(Result):
     correction: str = "holm"
     comparative_points: int = 5
     fuzzy_scoring: bool = True
+    mixed_models: bool = True
+    mixed_ties: str = "exclude"
     exclusions: ExclusionRules = dataclasses.field(default_factory=ExclusionRules)
 
 
@@ -52,6 +56,7 @@ class Report(Result):
     intelligibility: tuple[IntelligibilityScore, ...]
     options: ReportOptions
     software: dict[str, str]
+    mixed: MixedModels | None = None
 
 
 def software_versions() -> dict[str, str]:
@@ -81,7 +86,7 @@ def build_report(
     if options.conditions:
         check_conditions(frame, options.conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
-    pairwise = ratings = comparisons = scores = None
+    pairwise = ratings = comparisons = scores = mixed = None
     if not kept.empty:
         pairwise = analyze_pairwise(
             kept,
@@ -93,6 +98,14 @@ def build_report(
         ratings = summarize_ratings(kept)
         comparisons = compare_ratings(kept, options.correction)
         scores = score_intelligibility(kept, options.fuzzy_scoring)
+        if options.mixed_models:
+            mixed = fit_mixed_models(
+                kept,
+                options.conditions,
+                ties=options.mixed_ties,
+                correction=options.correction,
+                comparative_points=options.comparative_points,
+            )
     return Report(
         source=source,
         studies=tuple(sorted(set(frame["study"]) - {""})),
@@ -104,6 +117,7 @@ def build_report(
         intelligibility=scores or (),
         options=options,
         software=software_versions(),
+        mixed=mixed,
     )
 
 
@@ -157,6 +171,7 @@ def results_json(report: Report) -> dict[str, Any]:
             for c in report.rating_comparisons
         ],
         "intelligibility": [s.to_dict() for s in report.intelligibility],
+        "mixed_models": None if report.mixed is None else mixed_json(report.mixed),
     }
     if pairwise is not None:
         anova = pairwise.rm_anova
@@ -223,6 +238,29 @@ def results_json(report: Report) -> dict[str, Any]:
             else {**pairwise.position_bias.to_dict(), "apa": pairwise.position_bias.apa()},
         }
     return plain(data)
+
+
+def _model_json(result) -> dict[str, Any]:
+    return {**result.to_dict(), "apa": result.apa(), "summary": result.summary()}
+
+
+def mixed_json(mixed: MixedModels) -> dict[str, Any]:
+    """Render the mixed models with each one's APA string and plain-text summary."""
+    pairwise = None
+    if mixed.pairwise is not None:
+        pairwise = _model_json(mixed.pairwise)
+        pairwise["contrasts"] = [{**c.to_dict(), "apa": c.apa()} for c in mixed.pairwise.contrasts]
+    ordinal = []
+    for model in mixed.ordinal:
+        entry = _model_json(model)
+        entry["proportional_odds"]["apa"] = model.proportional_odds.apa()
+        ordinal.append(entry)
+    return {
+        "pairwise": pairwise,
+        "ordinal": ordinal,
+        "linear": [_model_json(model) for model in mixed.linear],
+        "skipped": list(mixed.skipped),
+    }
 
 
 def condition_names(report: Report) -> Sequence[str]:

@@ -21,6 +21,7 @@ from studyplatform.actions import StudyImportError, do_duplicate_study, do_impor
 from studyplatform.actions.stimuli import do_generate_stimuli
 from studyplatform.admin.forms import StudyImportForm, TrialForm
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
+from studyplatform.admin.power import StudyPowerMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
@@ -87,8 +88,8 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyRecordingsMixin, StudyScopedMixin,
-                 admin.ModelAdmin):  # fmt: skip
+class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordingsMixin,
+                 StudyScopedMixin, admin.ModelAdmin):  # fmt: skip
     study_path = ""
     list_display = (
         "title",
@@ -239,8 +240,8 @@ class StudyAdmin(StudyResultsMixin, StudyAslMixin, StudyRecordingsMixin, StudySc
                 name="studyplatform_study_preview",
             ),
         ]
-        return (own + self.results_urls() + self.asl_urls() + self.recordings_urls()
-                + super().get_urls())  # fmt: skip
+        return (own + self.results_urls() + self.power_urls() + self.asl_urls()
+                + self.recordings_urls() + super().get_urls())  # fmt: skip
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
         study = self.get_object(request, object_id)

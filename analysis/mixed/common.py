@@ -1,0 +1,85 @@
+"""Turn a Laplace or statsmodels fit into coefficients, contrasts and the omnibus test."""
+
+from collections.abc import Sequence
+from itertools import combinations
+
+import numpy as np
+import pandas as pd
+from scipy import stats
+
+from analysis.mixed.results import Coefficient, Contrast
+from analysis.within import adjust
+
+Z95 = float(stats.norm.ppf(0.975))
+
+
+def coefficient(name: str, estimate: float, se: float) -> Coefficient:
+    """Return a Wald z test and 95 % CI of one estimate."""
+    statistic = estimate / se if se > 0 else np.nan
+    pvalue = 2 * stats.norm.sf(abs(statistic)) if np.isfinite(statistic) else np.nan
+    return Coefficient(
+        name=name,
+        estimate=float(estimate),
+        se=float(se),
+        statistic=float(statistic),
+        pvalue=float(pvalue),
+        ci=(float(estimate - Z95 * se), float(estimate + Z95 * se)),
+    )
+
+
+def condition_effects(
+    conditions: Sequence[str], estimates: np.ndarray, cov: np.ndarray
+) -> tuple[list[Coefficient], np.ndarray, np.ndarray]:
+    """Return the non-reference conditions' coefficients and the full effect vector/cov.
+
+    *estimates* and *cov* cover conditions[1:]; the reference's effect is 0 exactly.
+    """
+    coefficients = [
+        coefficient(condition, estimates[i], np.sqrt(cov[i, i]))
+        for i, condition in enumerate(conditions[1:])
+    ]
+    full = np.concatenate([[0.0], estimates])
+    full_cov = np.zeros((len(conditions), len(conditions)))
+    full_cov[1:, 1:] = cov
+    return coefficients, full, full_cov
+
+
+def contrasts(
+    conditions: Sequence[str], effects: np.ndarray, cov: np.ndarray, correction: str
+) -> tuple[Contrast, ...]:
+    """Return every pair's difference b − a (a before b in *conditions*), corrected."""
+    rows = []
+    for i, j in combinations(range(len(conditions)), 2):
+        estimate = effects[j] - effects[i]
+        variance = cov[i, i] + cov[j, j] - 2 * cov[i, j]
+        rows.append((conditions[j], conditions[i], coefficient("", estimate, np.sqrt(variance))))
+    adjusted = adjust([c.pvalue for _, _, c in rows], correction) if rows else []
+    return tuple(
+        Contrast(
+            a=a,
+            b=b,
+            estimate=c.estimate,
+            se=c.se,
+            statistic=c.statistic,
+            pvalue=c.pvalue,
+            pvalue_adjusted=float(p_adj),
+            ci=c.ci,
+        )
+        for (a, b, c), p_adj in zip(rows, adjusted, strict=True)
+    )
+
+
+def wald_test(estimates: np.ndarray, cov: np.ndarray) -> tuple[float, int, float]:
+    """Return the Wald χ² that all *estimates* are zero, its df and p."""
+    try:
+        statistic = float(estimates @ np.linalg.solve(cov, estimates))
+    except np.linalg.LinAlgError:
+        return np.nan, len(estimates), np.nan
+    return statistic, len(estimates), float(stats.chi2.sf(statistic, len(estimates)))
+
+
+def codes(values: pd.Series) -> tuple[np.ndarray, tuple[str, ...]]:
+    """Return integer codes and the sorted levels of a column."""
+    levels = tuple(sorted(set(values)))
+    lookup = {level: index for index, level in enumerate(levels)}
+    return values.map(lookup).to_numpy(dtype=int), levels
