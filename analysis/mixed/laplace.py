@@ -22,9 +22,9 @@ import dataclasses
 
 import numpy as np
 from scipy import linalg, optimize, sparse
-from scipy.sparse import linalg as sparse_linalg
 from statsmodels.tools.numdiff import approx_hess3
 
+from analysis.mixed.factor import DENSE_UP_TO, Factor
 from analysis.mixed.families import Bernoulli
 
 # Below this SD a component is taken to sit on its boundary of zero (lme4 reports 0 too).
@@ -32,28 +32,6 @@ BOUNDARY_SD = 1e-4
 # The search keeps SDs below this; on a logit scale larger ones mean certainty, and a
 # flat likelihood out there only sends the optimiser wandering.
 LARGEST_SD = 50.0
-# Above this many random-effect columns the q × q matrices are factored sparse (SuperLU
-# with a fill-reducing order): a dense Cholesky grows as q³ (q = 5,000: seconds a step).
-DENSE_UP_TO = 1500
-
-
-class _Factor:
-    """Solve with, and take the log-determinant of, a symmetric positive-definite matrix."""
-
-    def __init__(self, matrix):
-        if sparse.issparse(matrix):
-            self.lu = sparse_linalg.splu(
-                matrix.tocsc(),
-                permc_spec="MMD_AT_PLUS_A",
-                diag_pivot_thresh=0.0,
-                options={"SymmetricMode": True},
-            )
-            self.logdet = float(np.log(np.abs(self.lu.U.diagonal())).sum())
-            self.solve = self.lu.solve
-        else:
-            factor = linalg.cho_factor(matrix, lower=True, check_finite=False)
-            self.logdet = float(2 * np.log(np.diag(factor[0])).sum())
-            self.solve = lambda rhs: linalg.cho_solve(factor, rhs, check_finite=False)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -203,7 +181,7 @@ class _Laplace:
         value = derivs.loglik.sum() - 0.5 * v @ v
         for _ in range(100):
             gradient = scale * self.z_t_dot(derivs.gradient) - v
-            factor = _Factor(eye + self._weighted_cross(derivs.weight, scale))
+            factor = Factor(eye + self._weighted_cross(derivs.weight, scale))
             step = factor.solve(gradient)
             if np.max(np.abs(step), initial=0.0) < 1e-10:
                 break
@@ -215,7 +193,7 @@ class _Laplace:
                 step = step / 2
             v, derivs, value = v + step, trial_derivs, trial_value
         else:
-            factor = _Factor(eye + self._weighted_cross(derivs.weight, scale))
+            factor = Factor(eye + self._weighted_cross(derivs.weight, scale))
         return v, float(derivs.loglik.sum()), factor.logdet
 
     def loglik(self, beta: np.ndarray, extra: np.ndarray, sd: np.ndarray) -> float:
@@ -243,7 +221,7 @@ class _Laplace:
             gradient = np.concatenate([X.T @ g, scale * self.z_t_dot(g) - theta[p:]])
             hessian = self._joint_hessian(scale, derivs.weight)
             try:
-                step = _Factor(hessian).solve(gradient)
+                step = Factor(hessian).solve(gradient)
             except (linalg.LinAlgError, RuntimeError):
                 dense = hessian.toarray() if sparse.issparse(hessian) else hessian
                 step = linalg.lstsq(dense, gradient)[0]
@@ -274,7 +252,7 @@ class _Laplace:
         if np.all(np.isfinite(v)):
             self.v = v
         corner = self._eye() + self._weighted_cross(derivs.weight, scale)
-        logdet = _Factor(corner).logdet
+        logdet = Factor(corner).logdet
         return float(derivs.loglik.sum() - 0.5 * v @ v - 0.5 * logdet), beta
 
 
@@ -339,7 +317,7 @@ def fit_laplace(
         try:
             unit = np.zeros((hessian.shape[0], p))
             unit[np.arange(p), np.arange(p)] = 1.0
-            inverse = _Factor(hessian).solve(unit)[:p, :p]
+            inverse = Factor(hessian).solve(unit)[:p, :p]
         except (np.linalg.LinAlgError, RuntimeError):
             inverse = np.full((p, p), np.nan)
             converged, message = False, "singular Hessian: standard errors unavailable"
