@@ -16,7 +16,7 @@ from statsmodels.tools.sm_exceptions import ConvergenceWarning
 
 from analysis.mixed.common import condition_effects, contrasts, wald_test
 from analysis.mixed.laplace import BOUNDARY_SD
-from analysis.mixed.ordinal import rating_rows
+from analysis.mixed.ordinal import rated_conditions
 from analysis.mixed.results import LinearMixedResult, VarianceComponent
 from analysis.tidy import TidyFormatError
 
@@ -29,10 +29,7 @@ def linear_mixed(
     correction: str = "holm",
 ) -> LinearMixedResult:
     """Fit the linear mixed model to one question's ratings in *frame* by REML."""
-    data = rating_rows(frame, question)
-    order = list(conditions) if conditions else sorted(set(data["condition"]))
-    data = data[data["condition"].isin(order)]
-    order = [c for c in order if c in set(data["condition"])]
+    data, order = rated_conditions(frame, question, conditions)
     if len(order) < 2 or data["participant"].nunique() < 2:
         raise TidyFormatError(
             f"question {question!r}: a linear mixed model needs ratings of two or more "

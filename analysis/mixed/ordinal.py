@@ -40,6 +40,16 @@ def rating_rows(frame: pd.DataFrame, question: str) -> pd.DataFrame:
     )
 
 
+def rated_conditions(
+    frame: pd.DataFrame, question: str, conditions: Sequence[str] | None
+) -> tuple[pd.DataFrame, list[str]]:
+    """Return one question's rating rows of *conditions* and the conditions rated, in order."""
+    data = rating_rows(frame, question)
+    order = list(conditions) if conditions else sorted(set(data["condition"]))
+    data = data[data["condition"].isin(order)]
+    return data, [c for c in order if c in set(data["condition"])]
+
+
 def ordinal_problem(data: pd.DataFrame, conditions: Sequence[str]) -> MixedProblem:
     """Build the model from rows with participant, item, condition and rating."""
     scale = np.sort(data["rating"].unique())
@@ -95,10 +105,7 @@ def ordinal_mixed(
     correction: str = "holm",
 ) -> CumulativeLinkMixedResult:
     """Fit the cumulative-link mixed model to one question's ratings in *frame*."""
-    data = rating_rows(frame, question)
-    order = list(conditions) if conditions else sorted(set(data["condition"]))
-    data = data[data["condition"].isin(order)]
-    order = [c for c in order if c in set(data["condition"])]
+    data, order = rated_conditions(frame, question, conditions)
     if len(order) < 2 or data["rating"].nunique() < 2:
         raise TidyFormatError(
             f"question {question!r}: an ordinal model needs ratings of two or more "

@@ -43,7 +43,7 @@ def fit_mixed_models(
                     correction=correction,
                     comparative_points=comparative_points,
                 )
-            except (TidyFormatError, np.linalg.LinAlgError) as problem:
+            except (TidyFormatError, np.linalg.LinAlgError, ValueError) as problem:
                 skipped.append(f"pairwise: {problem}")
     ordinal, linear = [], []
     ratings = rows[rows["kind"].eq("rating") & rows["rating"].notna()]
@@ -59,7 +59,7 @@ def fit_mixed_models(
         try:
             ordinal.append(ordinal_mixed(frame, question, order, correction=correction))
             linear.append(linear_mixed(frame, question, order, correction=correction))
-        except (TidyFormatError, np.linalg.LinAlgError) as problem:
+        except (TidyFormatError, np.linalg.LinAlgError, ValueError) as problem:
             skipped.append(f"{question}: {problem}")
     return MixedModels(
         pairwise=pairwise, ordinal=tuple(ordinal), linear=tuple(linear), skipped=tuple(skipped)
