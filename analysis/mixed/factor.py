@@ -10,19 +10,47 @@ DENSE_UP_TO = 1500
 
 
 class Factor:
-    """Solve with, and take the log-determinant of, a symmetric positive-definite matrix."""
+    """Solve with, and take the log-determinant of, a symmetric positive-definite matrix.
 
-    def __init__(self, matrix):
+    *diagonal* (indices) names rows and columns whose block is diagonal, as the random
+    intercepts of one grouping factor give (each observation has one level). They are
+    eliminated first (a Schur complement), so a thousand participants' intercepts cost a
+    division instead of a share of a q³ Cholesky factorisation.
+    """
+
+    def __init__(self, matrix, diagonal: np.ndarray | None = None):
         if sparse.issparse(matrix):
-            self.lu = sparse_linalg.splu(
+            lu = sparse_linalg.splu(
                 matrix.tocsc(),
                 permc_spec="MMD_AT_PLUS_A",
                 diag_pivot_thresh=0.0,
                 options={"SymmetricMode": True},
             )
-            self.logdet = float(np.log(np.abs(self.lu.U.diagonal())).sum())
-            self.solve = self.lu.solve
-        else:
+            self.logdet = float(np.log(np.abs(lu.U.diagonal())).sum())
+            self.solve = lu.solve
+            return
+        if diagonal is None or len(diagonal) == 0:
             factor = linalg.cho_factor(matrix, lower=True, check_finite=False)
             self.logdet = float(2 * np.log(np.diag(factor[0])).sum())
             self.solve = lambda rhs: linalg.cho_solve(factor, rhs, check_finite=False)
+            return
+        size = matrix.shape[0]
+        others = np.setdiff1d(np.arange(size), diagonal)
+        pivots = matrix[diagonal, diagonal]
+        coupling = matrix[np.ix_(diagonal, others)]
+        schur = matrix[np.ix_(others, others)] - coupling.T @ (coupling / pivots[:, None])
+        factor = linalg.cho_factor(schur, lower=True, check_finite=False)
+        self.logdet = float(np.log(pivots).sum() + 2 * np.log(np.diag(factor[0])).sum())
+
+        def solve(rhs: np.ndarray) -> np.ndarray:
+            rhs = np.asarray(rhs, dtype=float)
+            head = rhs[diagonal] / (pivots if rhs.ndim == 1 else pivots[:, None])
+            rest = linalg.cho_solve(factor, rhs[others] - coupling.T @ head, check_finite=False)
+            result = np.empty_like(rhs)
+            result[others] = rest
+            result[diagonal] = head - (
+                coupling @ rest / (pivots if rhs.ndim == 1 else pivots[:, None])
+            )
+            return result
+
+        self.solve = solve

@@ -138,6 +138,12 @@ class _Laplace:
         )
         self.v = np.zeros(self.q)
         self.evaluations = 0
+        # The first component's block of ZᵀWZ is diagonal when it is one intercept per
+        # level (each observation in one level): Factor eliminates it first.
+        first = problem.components[0] if problem.components else None
+        self.diagonal = (
+            np.arange(first.width) if first is not None and first.values.shape[1] == 1 else None
+        )
 
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""
@@ -164,6 +170,9 @@ class _Laplace:
         cross = cross.reshape(self.q, self.q)
         return scale[:, None] * cross * scale[None, :]
 
+    def _joint_diagonal(self) -> np.ndarray | None:
+        return None if self.diagonal is None else self.p + self.diagonal
+
     def _eye(self):
         return sparse.eye_array(self.q, format="csc") if self.q > DENSE_UP_TO else np.eye(self.q)
 
@@ -181,7 +190,7 @@ class _Laplace:
         value = derivs.loglik.sum() - 0.5 * v @ v
         for _ in range(100):
             gradient = scale * self.z_t_dot(derivs.gradient) - v
-            factor = Factor(eye + self._weighted_cross(derivs.weight, scale))
+            factor = Factor(eye + self._weighted_cross(derivs.weight, scale), self.diagonal)
             step = factor.solve(gradient)
             if np.max(np.abs(step), initial=0.0) < 1e-10:
                 break
@@ -193,7 +202,7 @@ class _Laplace:
                 step = step / 2
             v, derivs, value = v + step, trial_derivs, trial_value
         else:
-            factor = Factor(eye + self._weighted_cross(derivs.weight, scale))
+            factor = Factor(eye + self._weighted_cross(derivs.weight, scale), self.diagonal)
         return v, float(derivs.loglik.sum()), factor.logdet
 
     def loglik(self, beta: np.ndarray, extra: np.ndarray, sd: np.ndarray) -> float:
@@ -221,7 +230,7 @@ class _Laplace:
             gradient = np.concatenate([X.T @ g, scale * self.z_t_dot(g) - theta[p:]])
             hessian = self._joint_hessian(scale, derivs.weight)
             try:
-                step = Factor(hessian).solve(gradient)
+                step = Factor(hessian, self._joint_diagonal()).solve(gradient)
             except (linalg.LinAlgError, RuntimeError):
                 dense = hessian.toarray() if sparse.issparse(hessian) else hessian
                 step = linalg.lstsq(dense, gradient)[0]
@@ -252,7 +261,7 @@ class _Laplace:
         if np.all(np.isfinite(v)):
             self.v = v
         corner = self._eye() + self._weighted_cross(derivs.weight, scale)
-        logdet = Factor(corner).logdet
+        logdet = Factor(corner, self.diagonal).logdet
         return float(derivs.loglik.sum() - 0.5 * v @ v - 0.5 * logdet), beta
 
 
@@ -317,7 +326,7 @@ def fit_laplace(
         try:
             unit = np.zeros((hessian.shape[0], p))
             unit[np.arange(p), np.arange(p)] = 1.0
-            inverse = Factor(hessian).solve(unit)[:p, :p]
+            inverse = Factor(hessian, state._joint_diagonal()).solve(unit)[:p, :p]
         except (np.linalg.LinAlgError, RuntimeError):
             inverse = np.full((p, p), np.nan)
             converged, message = False, "singular Hessian: standard errors unavailable"

@@ -134,13 +134,10 @@ def ordinal_mixed(
     check = proportional_odds_test(data, order)
     notes = [
         f"Effects are log odds ratios of rating higher than under {order[0]}.",
-        f"Proportional odds {'holds' if check.holds else 'is doubtful'} "
-        f"(LR χ²({check.df}) = {check.statistic:.2f}, p = {check.pvalue:.3f}); "
-        + (
-            "the effects are common to every threshold."
-            if check.holds
-            else "report the per-threshold proportions beside the model."
-        ),
+        "Proportional odds holds: the effects are common to every threshold."
+        if check.holds
+        else "Proportional odds is doubtful: report the per-threshold proportions beside "
+        "the model.",
     ]
     notes += [
         f"The {c.name} SD is estimated at zero (a boundary fit)."

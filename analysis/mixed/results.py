@@ -118,7 +118,7 @@ class _ModelResult(Result):
         for c in self._rows():
             lines.append(
                 f"{c.name:<28}{c.estimate:>10.3f}{c.se:>8.3f}{c.statistic:>8.2f}"
-                f"{format_p(c.pvalue).removeprefix('p '):>10}   "
+                f"{format_p(c.pvalue).removeprefix('p = ').removeprefix('p '):>10}   "
                 f"[{c.ci[0]:.3f}, {c.ci[1]:.3f}]"
             )
         lines += ["", f"{'random effect':<36}{'SD':>8}{'levels':>8}"]
