@@ -2,7 +2,7 @@
 
 - :func:`mixed_bradley_terry`: paired choices, logistic or Davidson ties;
 - :func:`ordinal_mixed`: Likert ratings, cumulative-link (proportional odds);
-- :func:`linear_mixed`: ratings as numbers (REML, statsmodels MixedLM);
+- :func:`linear_mixed`: ratings as numbers (REML, lme4::lmer's criterion);
 - :func:`fit_laplace`: the maximum-likelihood engine under the first two.
 """
 

@@ -35,7 +35,7 @@ def condition_effects(
     *estimates* and *cov* cover conditions[1:]; the reference's effect is 0 exactly.
     """
     coefficients = [
-        coefficient(condition, estimates[i], np.sqrt(cov[i, i]))
+        coefficient(condition, estimates[i], np.sqrt(cov[i, i]) if cov[i, i] >= 0 else np.nan)
         for i, condition in enumerate(conditions[1:])
     ]
     full = np.concatenate([[0.0], estimates])
@@ -52,7 +52,9 @@ def contrasts(
     for i, j in combinations(range(len(conditions)), 2):
         estimate = effects[j] - effects[i]
         variance = cov[i, i] + cov[j, j] - 2 * cov[i, j]
-        rows.append((conditions[j], conditions[i], coefficient("", estimate, np.sqrt(variance))))
+        # A covariance that is not positive definite (an unidentified fit) has no SE.
+        se = float(np.sqrt(variance)) if variance >= 0 else float("nan")
+        rows.append((conditions[j], conditions[i], coefficient("", estimate, se)))
     adjusted = adjust([c.pvalue for _, _, c in rows], correction) if rows else []
     return tuple(
         Contrast(

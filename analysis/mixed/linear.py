@@ -1,22 +1,19 @@
 """Linear mixed model of ratings as numbers, for researchers who report means.
 
 rating = μ + β[condition] + b_p + b_i + ε with crossed random intercepts for
-participants and items, fitted by REML with statsmodels' MixedLM (its variance
-components over one all-encompassing group give crossed effects), like
+participants and items, fitted by REML (analysis.mixed.reml) like
 ``lme4::lmer(rating ~ condition + (1 | participant) + (1 | item))``.
 """
 
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
-import statsmodels.formula.api as smf
-from statsmodels.tools.sm_exceptions import ConvergenceWarning
 
-from analysis.mixed.common import condition_effects, contrasts, wald_test
-from analysis.mixed.laplace import BOUNDARY_SD
+from analysis.mixed.common import codes, condition_effects, contrasts, wald_test
+from analysis.mixed.laplace import BOUNDARY_SD, Component, MixedProblem
 from analysis.mixed.ordinal import rated_conditions
+from analysis.mixed.reml import fit_reml
 from analysis.mixed.results import LinearMixedResult, VarianceComponent
 from analysis.tidy import TidyFormatError
 
@@ -35,56 +32,48 @@ def linear_mixed(
             f"question {question!r}: a linear mixed model needs ratings of two or more "
             "conditions by two or more participants."
         )
-    groups = {"participant": "0 + C(participant)"}
+    participant, participant_levels = codes(data["participant"])
+    components = [
+        Component.from_codes("participant", "participant", participant, participant_levels)
+    ]
     if data["item"].nunique() > 1:
-        groups["item"] = "0 + C(item)"
-    levels = "[" + ", ".join(repr(c) for c in order) + "]"
-    model = smf.mixedlm(
-        f"rating ~ C(condition, levels={levels})",
-        data.assign(everyone=1),
-        groups="everyone",
-        re_formula="0",
-        vc_formula=groups,
+        item, item_levels = codes(data["item"])
+        components.append(Component.from_codes("item", "item", item, item_levels))
+    dummies = [data["condition"].eq(c).to_numpy(float) for c in order[1:]]
+    problem = MixedProblem(
+        y=data["rating"].to_numpy(float),
+        X=np.column_stack([np.ones(len(data)), *dummies]),
+        fixed_names=("(Intercept)", *order[1:]),
+        components=tuple(components),
     )
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", ConvergenceWarning)
-        fit = model.fit(reml=True)
-    estimates = np.asarray(fit.fe_params)[1:]
-    cov = np.asarray(fit.cov_params())[1 : len(order), 1 : len(order)]
+    fit = fit_reml(problem)
+    width = len(order) - 1
+    estimates, cov = fit.params[1 : 1 + width], fit.cov[1 : 1 + width, 1 : 1 + width]
     effects, full, full_cov = condition_effects(order, estimates, cov)
     statistic, df, pvalue = wald_test(estimates, cov)
-    # MixedLM orders the variance components by name.
-    names = sorted(groups)
-    sds = dict(zip(names, np.sqrt(np.asarray(fit.vcomp)), strict=True))
     random = tuple(
         VarianceComponent(
-            name=name,
-            group=name,
-            sd=float(sds[name]),
-            variance=float(sds[name] ** 2),
-            levels=int(data[name].nunique()),
+            name=c.name, group=c.group, sd=float(sd), variance=float(sd**2), levels=len(c.levels)
         )
-        for name in groups
+        for c, sd in zip(components, fit.sd, strict=True)
     )
     notes = [
         f"Effects are differences of mean rating from {order[0]}; ratings are treated "
         "as interval numbers (see the ordinal model for the ordered-category analysis).",
-        "p-values are Wald z tests, as statsmodels reports them (no Satterthwaite df).",
+        "p-values are Wald z tests (no Satterthwaite or Kenward–Roger df).",
     ]
     notes += [
         f"The {c.name} SD is estimated at zero (a boundary fit)."
         for c in random
         if c.sd < BOUNDARY_SD
     ]
-    converged = bool(fit.converged) and not any(
-        issubclass(w.category, ConvergenceWarning) for w in caught
-    )
+    converged = fit.converged
     if not converged:
-        notes.append("statsmodels warned that the fit may not have converged.")
+        notes.append(f"The optimiser did not report convergence: {fit.message}")
     return LinearMixedResult(
         model="Linear mixed model",
-        estimator="REML (statsmodels MixedLM, as lme4::lmer)",
-        formula=f"{question} ~ condition + " + " + ".join(f"(1 | {name})" for name in groups),
+        estimator="REML, lme4::lmer's profiled criterion",
+        formula=f"{question} ~ condition + " + " + ".join(f"(1 | {c.name})" for c in components),
         conditions=tuple(order),
         reference=order[0],
         effects=tuple(effects),
@@ -93,14 +82,14 @@ def linear_mixed(
         statistic=statistic,
         df=df,
         pvalue=pvalue,
-        nobs=int(fit.nobs),
+        nobs=fit.nobs,
         participants=int(data["participant"].nunique()),
         items=int(data["item"].nunique()),
-        loglik=float(fit.llf),
-        aic=float(-2 * fit.llf + 2 * (len(order) + len(groups) + 1)),
+        loglik=fit.loglik,
+        aic=-2 * fit.loglik + 2 * (len(order) + len(components) + 1),
         converged=converged,
         correction=correction,
         notes=tuple(notes),
         question=question,
-        residual_sd=float(np.sqrt(fit.scale)),
+        residual_sd=float(fit.params[-1]),
     )
