@@ -16,6 +16,7 @@ from itertools import combinations
 from pathlib import Path
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
@@ -51,6 +52,10 @@ def designs() -> tuple[PlannedDesign, PlannedDesign]:
     )
 
 
+def one_blas_thread() -> None:
+    threadpool_limits(limits=1)
+
+
 def one_run(seed: int) -> dict[str, bool]:
     rng = np.random.default_rng(seed)
     pair_design, rating_design = designs()
@@ -74,7 +79,7 @@ def main() -> None:
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 200
     print(describe())
     started = time.perf_counter()
-    with ProcessPoolExecutor() as pool:
+    with ProcessPoolExecutor(initializer=one_blas_thread) as pool:
         results = list(pool.map(one_run, range(1000, 1000 + runs), chunksize=4))
     print(
         f"{runs} simulated studies in {time.perf_counter() - started:.0f} s "

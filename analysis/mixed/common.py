@@ -82,6 +82,5 @@ def wald_test(estimates: np.ndarray, cov: np.ndarray) -> tuple[float, int, float
 
 def codes(values: pd.Series) -> tuple[np.ndarray, tuple[str, ...]]:
     """Return integer codes and the sorted levels of a column."""
-    levels = tuple(sorted(set(values)))
-    lookup = {level: index for index, level in enumerate(levels)}
-    return values.map(lookup).to_numpy(dtype=int), levels
+    levels, inverse = np.unique(np.asarray(values), return_inverse=True)
+    return inverse.astype(np.int64), tuple(levels.tolist())

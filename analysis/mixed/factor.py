@@ -35,7 +35,9 @@ class Factor:
             self.solve = lambda rhs: linalg.cho_solve(factor, rhs, check_finite=False)
             return
         size = matrix.shape[0]
-        others = np.setdiff1d(np.arange(size), diagonal)
+        keep = np.ones(size, dtype=bool)
+        keep[diagonal] = False
+        others = np.flatnonzero(keep)
         pivots = matrix[diagonal, diagonal]
         coupling = matrix[np.ix_(diagonal, others)]
         schur = matrix[np.ix_(others, others)] - coupling.T @ (coupling / pivots[:, None])

@@ -10,6 +10,7 @@ classical test the report also runs (exact binomial per pair, or paired t).
 """
 
 import dataclasses
+import functools
 import os
 from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -66,6 +67,7 @@ def effects_from_pilot(mixed_result, source: str = "pilot") -> Effects:
     )
 
 
+@functools.lru_cache(maxsize=32)
 def _layout(design: PlannedDesign, participants: int) -> pd.DataFrame:
     """Return every planned trial of *participants* participants, one row each."""
     rows = []
@@ -95,16 +97,14 @@ def simulate(
         own = rng.normal(0, effects.sd_strengths, (participants, len(strength)))
         eta += effects.position + strength[a] - strength[b] + own[person, a] - own[person, b]
         first = Bernoulli().simulate(eta, np.zeros(0), rng)
-        return table.assign(
-            participant=[f"P{j}" for j in person], position=np.where(first == 1, 1, 2)
-        )
+        return table.assign(position=np.where(first == 1, 1, 2))
     eta += strength[a]
     ratings = CumulativeLogit(len(effects.thresholds) + 1).simulate(
         eta, np.asarray(effects.thresholds), rng
     )
     return pd.DataFrame(
         {
-            "participant": [f"P{j}" for j in person],
+            "participant": person,
             "item": table["item"],
             "condition": table["clip1"],
             "rating": 1 + ratings,
@@ -154,15 +154,14 @@ def _pvalues_classical(design, data) -> dict[str, float]:
     order = list(design.conditions)
     found = {}
     if design.kind == "pairwise":
-        chosen = np.where(data["position"] == 1, data["clip1"], data["clip2"])
+        clip1, clip2 = data["clip1"].to_numpy(), data["clip2"].to_numpy()
+        chosen = np.where(data["position"].to_numpy() == 1, clip1, clip2)
         for i, j in combinations(range(len(order)), 2):
             a, b = order[i], order[j]
-            pair = ((data["clip1"] == a) & (data["clip2"] == b)) | (
-                (data["clip1"] == b) & (data["clip2"] == a)
-            )
-            wins = int((chosen[pair.to_numpy()] == b).sum())
+            pair = ((clip1 == a) & (clip2 == b)) | ((clip1 == b) & (clip2 == a))
             n = int(pair.sum())
             if n:
+                wins = int((chosen[pair] == b).sum())
                 found[f"binomial: {b} vs {a}"] = stats.binomtest(wins, n).pvalue
         return found
     means = data.pivot_table(index="participant", columns="condition", values="rating")
@@ -213,6 +212,13 @@ def _adjusted(pvalues: dict[str, float], correction: str) -> dict[str, float]:
     return {**pvalues, **dict(zip(keys, map(float, adjusted), strict=True))}
 
 
+def _one_blas_thread() -> None:
+    """Keep a pool process to one BLAS thread: the processes already share the cores."""
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1)
+
+
 def power_curve(
     design: PlannedDesign,
     effects: Effects,
@@ -249,7 +255,7 @@ def power_curve(
             for i in range(0, simulations, chunk)
         ]
     if workers > 1:
-        with ProcessPoolExecutor(workers) as pool:
+        with ProcessPoolExecutor(workers, initializer=_one_blas_thread) as pool:
             batches = list(pool.map(_one_batch, jobs))
     else:
         batches = [_one_batch(job) for job in jobs]
