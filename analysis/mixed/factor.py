@@ -1,5 +1,7 @@
 """Factor the symmetric positive-definite matrices of a Laplace fit: solve and log det."""
 
+import dataclasses
+
 import numpy as np
 from scipy import linalg, sparse
 from scipy.sparse import linalg as sparse_linalg
@@ -7,6 +9,19 @@ from scipy.sparse import linalg as sparse_linalg
 # Above this many random-effect columns the q × q matrices are factored sparse (SuperLU
 # with a fill-reducing order): a dense Cholesky grows as q³ (q = 5,000: seconds a step).
 DENSE_UP_TO = 1500
+
+
+@dataclasses.dataclass(frozen=True)
+class Blocks:
+    """The symmetric matrix [[diag(pivots), coupling], [couplingᵀ, rest]], kept in blocks.
+
+    One grouping factor's intercepts give such a diagonal block; building the blocks
+    alone spares forming (and scaling) a dense q × q matrix at every Newton step.
+    """
+
+    pivots: np.ndarray
+    coupling: np.ndarray
+    rest: np.ndarray
 
 
 class Factor:
@@ -19,6 +34,9 @@ class Factor:
     """
 
     def __init__(self, matrix, diagonal: np.ndarray | None = None):
+        if isinstance(matrix, Blocks):
+            self._eliminate(matrix.pivots, matrix.coupling, matrix.rest)
+            return
         if sparse.issparse(matrix):
             lu = sparse_linalg.splu(
                 matrix.tocsc(),
@@ -34,25 +52,41 @@ class Factor:
             self.logdet = float(2 * np.log(np.diag(factor[0])).sum())
             self.solve = lambda rhs: linalg.cho_solve(factor, rhs, check_finite=False)
             return
-        size = matrix.shape[0]
-        keep = np.ones(size, dtype=bool)
+        keep = np.ones(matrix.shape[0], dtype=bool)
         keep[diagonal] = False
         others = np.flatnonzero(keep)
-        pivots = matrix[diagonal, diagonal]
-        coupling = matrix[np.ix_(diagonal, others)]
-        schur = matrix[np.ix_(others, others)] - coupling.T @ (coupling / pivots[:, None])
+        self._eliminate(
+            matrix[diagonal, diagonal],
+            matrix[np.ix_(diagonal, others)],
+            matrix[np.ix_(others, others)],
+        )
+        inner = self.solve
+        order = np.concatenate([diagonal, others])
+
+        def solve(rhs: np.ndarray) -> np.ndarray:
+            rhs = np.asarray(rhs, dtype=float)
+            result = np.empty_like(rhs)
+            result[order] = inner(rhs[order])
+            return result
+
+        self.solve = solve
+
+    def _eliminate(self, pivots: np.ndarray, coupling: np.ndarray, rest: np.ndarray) -> None:
+        """Factor [[diag(pivots), coupling], [couplingᵀ, rest]] by its Schur complement."""
+        k = len(pivots)
+        if rest.size == 0:
+            self.logdet = float(np.log(pivots).sum())
+            self.solve = lambda rhs: rhs / (pivots if np.ndim(rhs) == 1 else pivots[:, None])
+            return
+        schur = rest - coupling.T @ (coupling / pivots[:, None])
         factor = linalg.cho_factor(schur, lower=True, check_finite=False)
         self.logdet = float(np.log(pivots).sum() + 2 * np.log(np.diag(factor[0])).sum())
 
         def solve(rhs: np.ndarray) -> np.ndarray:
             rhs = np.asarray(rhs, dtype=float)
-            head = rhs[diagonal] / (pivots if rhs.ndim == 1 else pivots[:, None])
-            rest = linalg.cho_solve(factor, rhs[others] - coupling.T @ head, check_finite=False)
-            result = np.empty_like(rhs)
-            result[others] = rest
-            result[diagonal] = head - (
-                coupling @ rest / (pivots if rhs.ndim == 1 else pivots[:, None])
-            )
-            return result
+            divisor = pivots if rhs.ndim == 1 else pivots[:, None]
+            head = rhs[:k] / divisor
+            tail = linalg.cho_solve(factor, rhs[k:] - coupling.T @ head, check_finite=False)
+            return np.concatenate([head - coupling @ tail / divisor, tail])
 
         self.solve = solve

@@ -24,7 +24,7 @@ import numpy as np
 from scipy import linalg, optimize, sparse
 from statsmodels.tools.numdiff import approx_hess3
 
-from analysis.mixed.factor import DENSE_UP_TO, Factor
+from analysis.mixed.factor import DENSE_UP_TO, Blocks, Factor
 from analysis.mixed.families import Bernoulli
 
 # Newton stops when no step component exceeds this. The outer search differentiates
@@ -146,8 +146,16 @@ class _Laplace:
         # level (each observation in one level): Factor eliminates it first.
         first = problem.components[0] if problem.components else None
         self.diagonal = (
-            np.arange(first.width) if first is not None and first.values.shape[1] == 1 else None
+            np.arange(first.width)
+            if first is not None and first.values.shape[1] == 1 and self.q <= DENSE_UP_TO
+            else None
         )
+        if self.diagonal is not None:
+            k = first.width
+            self.rest_width = self.q - k
+            rest = self.cols[:, 1:] - k
+            self.coupling_index = (self.cols[:, :1] * self.rest_width + rest).ravel()
+            self.rest_pairs = (rest[:, :, None] * self.rest_width + rest[:, None, :]).ravel()
 
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""
@@ -174,8 +182,28 @@ class _Laplace:
         cross = cross.reshape(self.q, self.q)
         return scale[:, None] * cross * scale[None, :]
 
-    def _joint_diagonal(self) -> np.ndarray | None:
-        return None if self.diagonal is None else self.p + self.diagonal
+    def _blocks(self, weight: np.ndarray, scale: np.ndarray) -> Blocks:
+        """Return I + S Zᵀ W Z S in blocks (needs the diagonal first component)."""
+        k, r = len(self.diagonal), self.rest_width
+        first, rest = self.vals[:, 0], self.vals[:, 1:]
+        head, tail = scale[:k], scale[k:]
+        pivots = 1 + head**2 * np.bincount(self.cols[:, 0], weight * first**2, minlength=k)
+        coupling = np.bincount(
+            self.coupling_index, ((weight * first)[:, None] * rest).ravel(), minlength=k * r
+        ).reshape(k, r)
+        products = weight[:, None, None] * rest[:, :, None] * rest[:, None, :]
+        cross = np.bincount(self.rest_pairs, products.ravel(), minlength=r * r).reshape(r, r)
+        return Blocks(
+            pivots,
+            head[:, None] * coupling * tail[None, :],
+            np.eye(r) + tail[:, None] * cross * tail[None, :],
+        )
+
+    def _factor(self, weight: np.ndarray, scale: np.ndarray) -> Factor:
+        """Factor I + S Zᵀ W Z S."""
+        if self.diagonal is not None:
+            return Factor(self._blocks(weight, scale))
+        return Factor(self._eye() + self._weighted_cross(weight, scale))
 
     def _eye(self):
         return sparse.eye_array(self.q, format="csc") if self.q > DENSE_UP_TO else np.eye(self.q)
@@ -184,7 +212,6 @@ class _Laplace:
         """Return (v̂, Σℓ_i, log det H) at the conditional mode of v (Newton with halving)."""
         family, y = self.problem.family, self.y
         v = self.v.copy()
-        eye = self._eye()
 
         def objective(vector):
             eta = eta_fixed + self.z_dot(scale * vector)
@@ -194,7 +221,7 @@ class _Laplace:
         value = derivs.loglik.sum() - 0.5 * v @ v
         for _ in range(100):
             gradient = scale * self.z_t_dot(derivs.gradient) - v
-            factor = Factor(eye + self._weighted_cross(derivs.weight, scale), self.diagonal)
+            factor = self._factor(derivs.weight, scale)
             step = factor.solve(gradient)
             if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
                 break
@@ -206,7 +233,7 @@ class _Laplace:
                 step = step / 2
             v, derivs, value = v + step, trial_derivs, trial_value
         else:
-            factor = Factor(eye + self._weighted_cross(derivs.weight, scale), self.diagonal)
+            factor = self._factor(derivs.weight, scale)
         return v, float(derivs.loglik.sum()), factor.logdet
 
     def loglik(self, beta: np.ndarray, extra: np.ndarray, sd: np.ndarray) -> float:
@@ -232,12 +259,17 @@ class _Laplace:
         for _ in range(100):
             g = derivs.gradient
             gradient = np.concatenate([X.T @ g, scale * self.z_t_dot(g) - theta[p:]])
-            hessian = self._joint_hessian(scale, derivs.weight)
             try:
-                step = Factor(hessian, self._joint_diagonal()).solve(gradient)
+                solve = self._joint_solver(scale, derivs.weight)
+                step = solve(gradient)
             except (linalg.LinAlgError, RuntimeError):
+                hessian = self._joint_hessian(scale, derivs.weight)
                 dense = hessian.toarray() if sparse.issparse(hessian) else hessian
                 step = linalg.lstsq(dense, gradient)[0]
+
+                def solve(rhs, dense=dense):
+                    return linalg.lstsq(dense, rhs)[0]
+
             if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
                 break
             for _ in range(30):
@@ -246,7 +278,28 @@ class _Laplace:
                     break
                 step = step / 2
             theta, derivs, value = theta + step, trial_derivs, trial_value
-        return theta[:p], theta[p:], derivs, hessian
+        return theta[:p], theta[p:], derivs, solve
+
+    def _joint_solver(self, scale: np.ndarray, weight: np.ndarray):
+        """Return a solver of the joint Hessian over (β, v), in that order."""
+        if self.diagonal is None:
+            return Factor(self._joint_hessian(scale, weight)).solve
+        X, p, k = self.X, self.p, len(self.diagonal)
+        weighted = X * weight[:, None]
+        side = scale[:, None] * self.z_t_dot(weighted)
+        blocks = self._blocks(weight, scale)
+        # Order (v of the first component, β, the other v): the diagonal block first.
+        rest = np.block([[X.T @ weighted, side[k:].T], [side[k:], blocks.rest]])
+        factor = Factor(Blocks(blocks.pivots, np.hstack([side[:k], blocks.coupling]), rest))
+        order = np.concatenate([p + np.arange(k), np.arange(p), p + k + np.arange(self.q - k)])
+
+        def solve(rhs: np.ndarray) -> np.ndarray:
+            rhs = np.asarray(rhs, dtype=float)
+            result = np.empty_like(rhs)
+            result[order] = factor.solve(rhs[order])
+            return result
+
+        return solve
 
     def _joint_hessian(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
         X = self.X
@@ -264,8 +317,7 @@ class _Laplace:
         beta, v, derivs, _ = self.joint_mode(scale, extra, beta)
         if np.all(np.isfinite(v)):
             self.v = v
-        corner = self._eye() + self._weighted_cross(derivs.weight, scale)
-        logdet = Factor(corner, self.diagonal).logdet
+        logdet = self._factor(derivs.weight, scale).logdet
         return float(derivs.loglik.sum() - 0.5 * v @ v - 0.5 * logdet), beta
 
 
@@ -330,11 +382,11 @@ def fit_laplace(
 
     if stage == "fast":
         scale = sd[state.owner]
-        beta, _, _, hessian = state.joint_mode(scale, family.extra_natural(extra_free), beta)
+        beta, _, _, solve = state.joint_mode(scale, family.extra_natural(extra_free), beta)
         try:
-            unit = np.zeros((hessian.shape[0], p))
+            unit = np.zeros((p + state.q, p))
             unit[np.arange(p), np.arange(p)] = 1.0
-            inverse = Factor(hessian, state._joint_diagonal()).solve(unit)[:p, :p]
+            inverse = solve(unit)[:p, :p]
         except (np.linalg.LinAlgError, RuntimeError):
             inverse = np.full((p, p), np.nan)
             converged, message = False, "singular Hessian: standard errors unavailable"

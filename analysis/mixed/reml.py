@@ -18,7 +18,6 @@ import dataclasses
 import numpy as np
 from scipy import optimize
 
-from analysis.mixed.factor import Factor
 from analysis.mixed.laplace import LARGEST_SD, LaplaceFit, MixedProblem, _finish, _Laplace
 
 
@@ -38,7 +37,7 @@ def fit_reml(problem: MixedProblem) -> LaplaceFit:
 
     def solve(theta: np.ndarray):
         lam = np.asarray(theta, dtype=float)[state.owner]
-        factor = Factor(state._eye() + state._weighted_cross(ones, lam), state.diagonal)
+        factor = state._factor(ones, lam)
         lzx, lzy = lam[:, None] * zx, lam * zy
         a_zx, a_zy = factor.solve(lzx), factor.solve(lzy)
         reduced = xx - lzx.T @ a_zx
