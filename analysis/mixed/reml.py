@@ -18,7 +18,9 @@ import dataclasses
 import numpy as np
 from scipy import optimize
 
-from analysis.mixed.laplace import LARGEST_SD, LaplaceFit, MixedProblem, _finish, _Laplace
+from analysis.mixed.laplace import finish_fit
+from analysis.mixed.modes import ConditionalModes
+from analysis.mixed.problem import LARGEST_SD, LaplaceFit, MixedProblem
 
 
 def fit_reml(problem: MixedProblem) -> LaplaceFit:
@@ -27,7 +29,7 @@ def fit_reml(problem: MixedProblem) -> LaplaceFit:
     The result's ``sd`` holds the components' SDs σ_k; the residual SD is the last
     element of ``params`` ("residual SD"), without a standard error.
     """
-    state = _Laplace(problem)
+    state = ConditionalModes(problem)
     y, X = state.y, state.X
     n, p = X.shape
     ones = np.ones(n)
@@ -60,10 +62,10 @@ def fit_reml(problem: MixedProblem) -> LaplaceFit:
     theta = search.x
     _, reduced, beta, u, r2 = solve(theta)
     sigma2 = r2 / (n - p)
-    # _finish reports modes as sd × v; the effects are θ u = (θσ)(u/σ).
+    # finish_fit reports modes as sd × v; the effects are θ u = (θσ)(u/σ).
     state.v = u / np.sqrt(sigma2)
     cov = sigma2 * np.linalg.inv(reduced)
-    fit = _finish(
+    fit = finish_fit(
         problem,
         state,
         (*problem.fixed_names, "residual SD"),

@@ -1,0 +1,221 @@
+"""The random effects' conditional modes of a mixed model and what the fits need of them.
+
+Z is kept row-wise (each observation's few non-zero columns and values), so Zᵀ w and
+Zᵀ W Z are bincounts; with one intercept per level first, I + S Zᵀ W Z S is built and
+factored in blocks (analysis.mixed.factor).
+"""
+
+import numpy as np
+from scipy import linalg, sparse
+
+from analysis.mixed.factor import DENSE_UP_TO, Blocks, Factor
+from analysis.mixed.problem import NEWTON_STEP, MixedProblem
+
+
+class ConditionalModes:
+    """The approximate log-likelihood of one problem, with a warm start for v̂."""
+
+    def __init__(self, problem: MixedProblem):
+        self.problem = problem
+        self.y = np.asarray(problem.y, dtype=float)
+        self.X = np.asarray(problem.X, dtype=float)
+        self.n, self.p = self.X.shape
+        widths = [c.width for c in problem.components]
+        offsets = np.concatenate([[0], np.cumsum(widths)]).astype(np.int64)
+        # Each row of Z has few non-zeros: its columns (n_obs, m) and their values.
+        self.cols = np.column_stack(
+            [
+                offsets[k] + c.codes[:, None] * c.values.shape[1] + np.arange(c.values.shape[1])
+                for k, c in enumerate(problem.components)
+            ]
+            or [np.zeros((self.n, 0), dtype=np.int64)]
+        )
+        self.vals = np.column_stack(
+            [c.values for c in problem.components] or [np.zeros((self.n, 0))]
+        )
+        self.owner = np.repeat(np.arange(len(widths)), widths)
+        self.q = int(sum(widths))
+        self.pairs = (
+            (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
+            if self.q <= DENSE_UP_TO
+            else None
+        )
+        self.v = np.zeros(self.q)
+        self.evaluations = 0
+        # The first component's block of ZᵀWZ is diagonal when it is one intercept per
+        # level (each observation in one level): Factor eliminates it first.
+        first = problem.components[0] if problem.components else None
+        self.diagonal = (
+            np.arange(first.width)
+            if first is not None and first.values.shape[1] == 1 and self.q <= DENSE_UP_TO
+            else None
+        )
+        if self.diagonal is not None:
+            k = first.width
+            self.rest_width = self.q - k
+            rest = self.cols[:, 1:] - k
+            self.coupling_index = (self.cols[:, :1] * self.rest_width + rest).ravel()
+            self.rest_pairs = (rest[:, :, None] * self.rest_width + rest[:, None, :]).ravel()
+
+    def z_dot(self, vector: np.ndarray) -> np.ndarray:
+        """Return Z @ vector, shape (n_obs,)."""
+        return (self.vals * vector[self.cols]).sum(axis=1)
+
+    def z_t_dot(self, weights: np.ndarray) -> np.ndarray:
+        """Return Zᵀ @ weights for weights (n_obs,) or (n_obs, k)."""
+        if weights.ndim == 1:
+            return np.bincount(
+                self.cols.ravel(), (self.vals * weights[:, None]).ravel(), minlength=self.q
+            )
+        return np.column_stack([self.z_t_dot(weights[:, j]) for j in range(weights.shape[1])])
+
+    def _weighted_cross(self, weight: np.ndarray, scale: np.ndarray):
+        """Return S Zᵀ W Z S, shape (q, q): dense, or sparse above DENSE_UP_TO columns."""
+        products = weight[:, None, None] * self.vals[:, :, None] * self.vals[:, None, :]
+        if self.q > DENSE_UP_TO:
+            rows = np.repeat(self.cols, self.cols.shape[1], axis=1).ravel()
+            cols = np.tile(self.cols, (1, self.cols.shape[1])).ravel()
+            cross = sparse.csc_array((products.ravel(), (rows, cols)), shape=(self.q, self.q))
+            diagonal = sparse.diags_array(scale)
+            return diagonal @ cross @ diagonal
+        cross = np.bincount(self.pairs, products.ravel(), minlength=self.q * self.q)
+        cross = cross.reshape(self.q, self.q)
+        return scale[:, None] * cross * scale[None, :]
+
+    def _blocks(self, weight: np.ndarray, scale: np.ndarray) -> Blocks:
+        """Return I + S Zᵀ W Z S in blocks (needs the diagonal first component)."""
+        k, r = len(self.diagonal), self.rest_width
+        first, rest = self.vals[:, 0], self.vals[:, 1:]
+        head, tail = scale[:k], scale[k:]
+        pivots = 1 + head**2 * np.bincount(self.cols[:, 0], weight * first**2, minlength=k)
+        coupling = np.bincount(
+            self.coupling_index, ((weight * first)[:, None] * rest).ravel(), minlength=k * r
+        ).reshape(k, r)
+        products = weight[:, None, None] * rest[:, :, None] * rest[:, None, :]
+        cross = np.bincount(self.rest_pairs, products.ravel(), minlength=r * r).reshape(r, r)
+        return Blocks(
+            pivots,
+            head[:, None] * coupling * tail[None, :],
+            np.eye(r) + tail[:, None] * cross * tail[None, :],
+        )
+
+    def _factor(self, weight: np.ndarray, scale: np.ndarray) -> Factor:
+        """Factor I + S Zᵀ W Z S."""
+        if self.diagonal is not None:
+            return Factor(self._blocks(weight, scale))
+        return Factor(self._eye() + self._weighted_cross(weight, scale))
+
+    def _eye(self):
+        return sparse.eye_array(self.q, format="csc") if self.q > DENSE_UP_TO else np.eye(self.q)
+
+    def mode(self, eta_fixed: np.ndarray, scale: np.ndarray, extra: np.ndarray):
+        """Return (v̂, Σℓ_i, log det H) at the conditional mode of v (Newton with halving)."""
+        family, y = self.problem.family, self.y
+        v = self.v.copy()
+
+        def objective(vector):
+            eta = eta_fixed + self.z_dot(scale * vector)
+            return family.derivatives(eta, y, extra), eta
+
+        derivs, _ = objective(v)
+        value = derivs.loglik.sum() - 0.5 * v @ v
+        for _ in range(100):
+            gradient = scale * self.z_t_dot(derivs.gradient) - v
+            factor = self._factor(derivs.weight, scale)
+            step = factor.solve(gradient)
+            if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
+                break
+            for _ in range(30):
+                trial_derivs, _ = objective(v + step)
+                trial_value = trial_derivs.loglik.sum() - 0.5 * (v + step) @ (v + step)
+                if trial_value >= value - 1e-12 * abs(value):
+                    break
+                step = step / 2
+            v, derivs, value = v + step, trial_derivs, trial_value
+        else:
+            factor = self._factor(derivs.weight, scale)
+        return v, float(derivs.loglik.sum()), factor.logdet
+
+    def loglik(self, beta: np.ndarray, extra: np.ndarray, sd: np.ndarray) -> float:
+        """Return ℓ_L at β, the family's natural extra parameters and the SDs."""
+        self.evaluations += 1
+        scale = np.asarray(sd, dtype=float)[self.owner]
+        v, total, logdet = self.mode(self.X @ beta, scale, extra)
+        if np.all(np.isfinite(v)):
+            self.v = v
+        return total - 0.5 * v @ v - 0.5 * logdet
+
+    def joint_mode(self, scale: np.ndarray, extra: np.ndarray, beta: np.ndarray):
+        """Maximise Σℓ_i − ½vᵀv over β and v together (glmer's nAGQ = 0 step)."""
+        family, y, X, p = self.problem.family, self.y, self.X, self.p
+        theta = np.concatenate([beta, self.v])
+
+        def evaluate(vector):
+            eta = X @ vector[:p] + self.z_dot(scale * vector[p:])
+            derivs = family.derivatives(eta, y, extra)
+            return derivs, derivs.loglik.sum() - 0.5 * vector[p:] @ vector[p:]
+
+        derivs, value = evaluate(theta)
+        for _ in range(100):
+            g = derivs.gradient
+            gradient = np.concatenate([X.T @ g, scale * self.z_t_dot(g) - theta[p:]])
+            try:
+                solve = self._joint_solver(scale, derivs.weight)
+                step = solve(gradient)
+            except (linalg.LinAlgError, RuntimeError):
+                hessian = self._joint_hessian(scale, derivs.weight)
+                dense = hessian.toarray() if sparse.issparse(hessian) else hessian
+                step = linalg.lstsq(dense, gradient)[0]
+
+                def solve(rhs, dense=dense):
+                    return linalg.lstsq(dense, rhs)[0]
+
+            if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
+                break
+            for _ in range(30):
+                trial_derivs, trial_value = evaluate(theta + step)
+                if trial_value >= value - 1e-12 * abs(value):
+                    break
+                step = step / 2
+            theta, derivs, value = theta + step, trial_derivs, trial_value
+        return theta[:p], theta[p:], derivs, solve
+
+    def _joint_solver(self, scale: np.ndarray, weight: np.ndarray):
+        """Return a solver of the joint Hessian over (β, v), in that order."""
+        if self.diagonal is None:
+            return Factor(self._joint_hessian(scale, weight)).solve
+        X, p, k = self.X, self.p, len(self.diagonal)
+        weighted = X * weight[:, None]
+        side = scale[:, None] * self.z_t_dot(weighted)
+        blocks = self._blocks(weight, scale)
+        # Order (v of the first component, β, the other v): the diagonal block first.
+        rest = np.block([[X.T @ weighted, side[k:].T], [side[k:], blocks.rest]])
+        factor = Factor(Blocks(blocks.pivots, np.hstack([side[:k], blocks.coupling]), rest))
+        order = np.concatenate([p + np.arange(k), np.arange(p), p + k + np.arange(self.q - k)])
+
+        def solve(rhs: np.ndarray) -> np.ndarray:
+            rhs = np.asarray(rhs, dtype=float)
+            result = np.empty_like(rhs)
+            result[order] = factor.solve(rhs[order])
+            return result
+
+        return solve
+
+    def _joint_hessian(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
+        X = self.X
+        weighted = X * weight[:, None]
+        top = X.T @ weighted
+        side = scale[:, None] * self.z_t_dot(weighted)
+        corner = self._weighted_cross(weight, scale) + self._eye()
+        if sparse.issparse(corner):
+            return sparse.block_array([[top, side.T], [side, corner]], format="csc")
+        return np.block([[top, side.T], [side, corner]])
+
+    def profiled_loglik(self, scale: np.ndarray, extra: np.ndarray, beta: np.ndarray):
+        """Return ℓ_L at the joint mode of (β, v) for given SDs (per column) and extras."""
+        self.evaluations += 1
+        beta, v, derivs, _ = self.joint_mode(scale, extra, beta)
+        if np.all(np.isfinite(v)):
+            self.v = v
+        logdet = self._factor(derivs.weight, scale).logdet
+        return float(derivs.loglik.sum() - 0.5 * v @ v - 0.5 * logdet), beta
