@@ -7,7 +7,8 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.mixed.results import Coefficient, Contrast
+from analysis.mixed.problem import Component
+from analysis.mixed.results import Coefficient, Contrast, VarianceComponent
 from analysis.within import adjust
 
 Z95 = float(stats.norm.ppf(0.975))
@@ -84,3 +85,27 @@ def codes(values: pd.Series) -> tuple[np.ndarray, tuple[str, ...]]:
     """Return integer codes and the sorted levels of a column."""
     levels, inverse = np.unique(np.asarray(values), return_inverse=True)
     return inverse.astype(np.int64), tuple(levels.tolist())
+
+
+def intercepts(data: pd.DataFrame) -> list[Component]:
+    """Return random intercepts for participants, and for items when there are several."""
+    participant, participant_levels = codes(data["participant"])
+    components = [
+        Component.from_codes("participant", "participant", participant, participant_levels)
+    ]
+    item, item_levels = codes(data["item"])
+    if len(item_levels) > 1:
+        components.append(Component.from_codes("item", "item", item, item_levels))
+    return components
+
+
+def variance_components(
+    components: Sequence[Component], sds: np.ndarray
+) -> tuple[VarianceComponent, ...]:
+    """Return each component's fitted SD with its variance and number of levels."""
+    return tuple(
+        VarianceComponent(
+            name=c.name, group=c.group, sd=float(sd), variance=float(sd**2), levels=len(c.levels)
+        )
+        for c, sd in zip(components, sds, strict=True)
+    )

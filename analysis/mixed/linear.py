@@ -10,11 +10,17 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
-from analysis.mixed.common import codes, condition_effects, contrasts, wald_test
-from analysis.mixed.laplace import BOUNDARY_SD, Component, MixedProblem
+from analysis.mixed.common import (
+    condition_effects,
+    contrasts,
+    intercepts,
+    variance_components,
+    wald_test,
+)
+from analysis.mixed.laplace import BOUNDARY_SD, MixedProblem
 from analysis.mixed.ordinal import rated_conditions
 from analysis.mixed.reml import fit_reml
-from analysis.mixed.results import LinearMixedResult, VarianceComponent
+from analysis.mixed.results import LinearMixedResult
 from analysis.tidy import TidyFormatError
 
 
@@ -32,13 +38,7 @@ def linear_mixed(
             f"question {question!r}: a linear mixed model needs ratings of two or more "
             "conditions by two or more participants."
         )
-    participant, participant_levels = codes(data["participant"])
-    components = [
-        Component.from_codes("participant", "participant", participant, participant_levels)
-    ]
-    if data["item"].nunique() > 1:
-        item, item_levels = codes(data["item"])
-        components.append(Component.from_codes("item", "item", item, item_levels))
+    components = intercepts(data)
     dummies = [data["condition"].eq(c).to_numpy(float) for c in order[1:]]
     problem = MixedProblem(
         y=data["rating"].to_numpy(float),
@@ -51,12 +51,7 @@ def linear_mixed(
     estimates, cov = fit.params[1 : 1 + width], fit.cov[1 : 1 + width, 1 : 1 + width]
     effects, full, full_cov = condition_effects(order, estimates, cov)
     statistic, df, pvalue = wald_test(estimates, cov)
-    random = tuple(
-        VarianceComponent(
-            name=c.name, group=c.group, sd=float(sd), variance=float(sd**2), levels=len(c.levels)
-        )
-        for c, sd in zip(components, fit.sd, strict=True)
-    )
+    random = variance_components(components, fit.sd)
     notes = [
         f"Effects are differences of mean rating from {order[0]}; ratings are treated "
         "as interval numbers (see the ordinal model for the ordered-category analysis).",

@@ -15,13 +15,19 @@ import pandas as pd
 from scipy import stats
 from statsmodels.miscmodels.ordinal_model import OrderedModel
 
-from analysis.mixed.common import codes, coefficient, condition_effects, contrasts, wald_test
+from analysis.mixed.common import (
+    coefficient,
+    condition_effects,
+    contrasts,
+    intercepts,
+    variance_components,
+    wald_test,
+)
 from analysis.mixed.families import CumulativeLogit
-from analysis.mixed.laplace import BOUNDARY_SD, Component, MixedProblem, fit_laplace
+from analysis.mixed.laplace import BOUNDARY_SD, MixedProblem, fit_laplace
 from analysis.mixed.results import (
     CumulativeLinkMixedResult,
     ProportionalOddsTest,
-    VarianceComponent,
 )
 from analysis.tidy import TidyFormatError, analysed
 
@@ -55,13 +61,7 @@ def ordinal_problem(data: pd.DataFrame, conditions: Sequence[str]) -> MixedProbl
     scale = np.sort(data["rating"].unique())
     y = np.searchsorted(scale, data["rating"].to_numpy()).astype(float)
     dummies = np.column_stack([data["condition"].eq(c).to_numpy(float) for c in conditions[1:]])
-    participant, participant_levels = codes(data["participant"])
-    components = [
-        Component.from_codes("participant", "participant", participant, participant_levels)
-    ]
-    item, item_levels = codes(data["item"])
-    if len(item_levels) > 1:
-        components.append(Component.from_codes("item", "item", item, item_levels))
+    components = intercepts(data)
     return MixedProblem(
         y=y,
         X=dummies,
@@ -125,12 +125,7 @@ def ordinal_mixed(
         )
         for k in range(len(names))
     )
-    random = tuple(
-        VarianceComponent(
-            name=c.name, group=c.group, sd=float(sd), variance=float(sd**2), levels=len(c.levels)
-        )
-        for c, sd in zip(problem.components, fit.sd, strict=True)
-    )
+    random = variance_components(problem.components, fit.sd)
     check = proportional_odds_test(data, order)
     notes = [
         f"Effects are log odds ratios of rating higher than under {order[0]}.",

@@ -14,10 +14,18 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
-from analysis.mixed.common import codes, coefficient, condition_effects, contrasts, wald_test
+from analysis.mixed.common import (
+    codes,
+    coefficient,
+    condition_effects,
+    contrasts,
+    intercepts,
+    variance_components,
+    wald_test,
+)
 from analysis.mixed.families import FIRST, SECOND, TIE, Bernoulli, Davidson
 from analysis.mixed.laplace import BOUNDARY_SD, Component, MixedProblem, fit_laplace
-from analysis.mixed.results import MixedBradleyTerryResult, VarianceComponent
+from analysis.mixed.results import MixedBradleyTerryResult
 from analysis.pairwise import condition_order, judgements
 from analysis.tidy import TidyFormatError
 
@@ -69,12 +77,7 @@ def pairwise_problem(
     contrast[rows, second] -= 1.0
     X = np.column_stack([np.ones(len(data)), contrast[:, 1:]])
     participant, participant_levels = codes(data["participant"])
-    components = [
-        Component.from_codes("participant", "participant", participant, participant_levels)
-    ]
-    item, item_levels = codes(data["item"])
-    if len(item_levels) > 1:
-        components.append(Component.from_codes("item", "item", item, item_levels))
+    components = intercepts(data)
     if random_strengths:
         components.append(
             Component.from_codes(
@@ -130,12 +133,7 @@ def mixed_bradley_terry(
     effects, full, full_cov = condition_effects(order, estimates, cov)
     statistic, df, pvalue = wald_test(estimates, cov)
     position = coefficient(POSITION, fit.params[0], np.sqrt(fit.cov[0, 0]))
-    random = tuple(
-        VarianceComponent(
-            name=c.name, group=c.group, sd=float(sd), variance=float(sd**2), levels=len(c.levels)
-        )
-        for c, sd in zip(problem.components, fit.sd, strict=True)
-    )
+    random = variance_components(problem.components, fit.sd)
     notes = [
         f"Strengths are log-worths relative to {order[0]}; a positive position effect "
         "means clip 1 was chosen more often between equals.",
