@@ -14,6 +14,22 @@ from analysis.within import adjust
 Z95 = float(stats.norm.ppf(0.975))
 
 
+def standard_error(variance: float) -> float:
+    """Return √variance, or NaN where a covariance that is not positive definite gave < 0."""
+    return float(np.sqrt(variance)) if variance >= 0 else float("nan")
+
+
+def covariance_note(cov: np.ndarray) -> list[str]:
+    """Say so when a fit's covariance has no valid variances (an unidentified fit)."""
+    if np.all(np.diag(cov) > 0):
+        return []
+    return [
+        "Some standard errors are unavailable: the fit's covariance is not positive "
+        "definite (too few participants, or a variance at its boundary); treat its "
+        "tests as unreliable."
+    ]
+
+
 def coefficient(name: str, estimate: float, se: float) -> Coefficient:
     """Return a Wald z test and 95 % CI of one estimate."""
     statistic = estimate / se if se > 0 else np.nan
@@ -36,7 +52,7 @@ def condition_effects(
     *estimates* and *cov* cover conditions[1:]; the reference's effect is 0 exactly.
     """
     coefficients = [
-        coefficient(condition, estimates[i], np.sqrt(cov[i, i]) if cov[i, i] >= 0 else np.nan)
+        coefficient(condition, estimates[i], standard_error(cov[i, i]))
         for i, condition in enumerate(conditions[1:])
     ]
     full = np.concatenate([[0.0], estimates])
@@ -53,9 +69,9 @@ def contrasts(
     for i, j in combinations(range(len(conditions)), 2):
         estimate = effects[j] - effects[i]
         variance = cov[i, i] + cov[j, j] - 2 * cov[i, j]
-        # A covariance that is not positive definite (an unidentified fit) has no SE.
-        se = float(np.sqrt(variance)) if variance >= 0 else float("nan")
-        rows.append((conditions[j], conditions[i], coefficient("", estimate, se)))
+        rows.append(
+            (conditions[j], conditions[i], coefficient("", estimate, standard_error(variance)))
+        )
     adjusted = adjust([c.pvalue for _, _, c in rows], correction) if rows else []
     return tuple(
         Contrast(

@@ -19,7 +19,9 @@ from analysis.mixed.common import (
     coefficient,
     condition_effects,
     contrasts,
+    covariance_note,
     intercepts,
+    standard_error,
     variance_components,
     wald_test,
 )
@@ -121,7 +123,9 @@ def ordinal_mixed(
     scale = np.sort(data["rating"].unique())
     thresholds = tuple(
         coefficient(
-            f"{scale[k]:g}|{scale[k + 1]:g}", fit.params[p + k], np.sqrt(fit.cov[p + k, p + k])
+            f"{scale[k]:g}|{scale[k + 1]:g}",
+            fit.params[p + k],
+            standard_error(fit.cov[p + k, p + k]),
         )
         for k in range(len(names))
     )
@@ -139,6 +143,7 @@ def ordinal_mixed(
         for c in random
         if c.sd < BOUNDARY_SD
     ]
+    notes += covariance_note(fit.cov)
     if not fit.converged:
         notes.append(f"The optimiser did not report convergence: {fit.message}")
     formula = f"{question} ~ condition + (1 | participant)" + (

@@ -19,7 +19,9 @@ from analysis.mixed.common import (
     coefficient,
     condition_effects,
     contrasts,
+    covariance_note,
     intercepts,
+    standard_error,
     variance_components,
     wald_test,
 )
@@ -132,7 +134,7 @@ def mixed_bradley_terry(
     estimates, cov = fit.params[1:p], fit.cov[1:p, 1:p]
     effects, full, full_cov = condition_effects(order, estimates, cov)
     statistic, df, pvalue = wald_test(estimates, cov)
-    position = coefficient(POSITION, fit.params[0], np.sqrt(fit.cov[0, 0]))
+    position = coefficient(POSITION, fit.params[0], standard_error(fit.cov[0, 0]))
     random = variance_components(problem.components, fit.sd)
     notes = [
         f"Strengths are log-worths relative to {order[0]}; a positive position effect "
@@ -146,6 +148,7 @@ def mixed_bradley_terry(
     for component in random:
         if component.sd < BOUNDARY_SD:
             notes.append(f"The {component.name} SD is estimated at zero (a boundary fit).")
+    notes += covariance_note(fit.cov[:p, :p])
     if not fit.converged:
         notes.append(f"The optimiser did not report convergence: {fit.message}")
     n_params = len(fit.params) + len(fit.sd)
