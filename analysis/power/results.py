@@ -8,13 +8,18 @@ from analysis.results import Result
 
 @dataclasses.dataclass(frozen=True)
 class PowerPoint(Result):
-    """Share of simulated studies of ``participants`` participants in which ``test`` rejected."""
+    """Share of simulated studies of ``participants`` participants in which ``test`` rejected.
+
+    ``failures`` counts studies whose test could not be computed (a degenerate fit);
+    they count as not significant.
+    """
 
     participants: int
     test: str
     power: float
     mc_se: float
     simulations: int
+    failures: int = 0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -80,4 +85,10 @@ class PowerCurve(Result):
             self.table().to_string(index=False, float_format=lambda v: f"{v:.3f}"),
         ]
         lines += [self.apa(test) for test in self.tests]
+        failed = sum(p.failures for p in self.points)
+        if failed:
+            lines.append(
+                f"{failed} test results could not be computed (degenerate fits) and count "
+                "as not significant."
+            )
         return "\n".join(lines)

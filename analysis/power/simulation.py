@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.mixed.common import wald_test
+from analysis.mixed.common import coefficient, standard_error, wald_test
 from analysis.mixed.families import Bernoulli, CumulativeLogit
 from analysis.mixed.laplace import fit_laplace
 from analysis.mixed.ordinal import ordinal_problem
@@ -144,9 +144,9 @@ def _mixed_tests(order, fit, offset, width) -> dict[str, float]:
     full_cov = np.zeros((len(order), len(order)))
     full_cov[1:, 1:] = cov
     for i, j in combinations(range(len(order)), 2):
-        se = np.sqrt(full_cov[i, i] + full_cov[j, j] - 2 * full_cov[i, j])
-        z = (full[j] - full[i]) / se
-        found[f"mixed: {order[j]} vs {order[i]}"] = float(2 * stats.norm.sf(abs(z)))
+        se = standard_error(full_cov[i, i] + full_cov[j, j] - 2 * full_cov[i, j])
+        # A degenerate fit (no positive SE) gives p = NaN: counted as a failure, not a hit.
+        found[f"mixed: {order[j]} vs {order[i]}"] = coefficient("", full[j] - full[i], se).pvalue
     return found
 
 
@@ -259,21 +259,27 @@ def power_curve(
             batches = list(pool.map(_one_batch, jobs))
     else:
         batches = [_one_batch(job) for job in jobs]
-    rejections: dict[tuple[int, str], list[bool]] = {}
+    pvalues_by: dict[tuple[int, str], list[float]] = {}
     for batch in batches:
         for n, pvalues in batch:
             for test, pvalue in pvalues.items():
-                rejections.setdefault((n, test), []).append(bool(pvalue < alpha))
-    points = tuple(
-        PowerPoint(
-            participants=n,
-            test=test,
-            power=float(np.mean(hits)),
-            mc_se=float(np.sqrt(np.mean(hits) * (1 - np.mean(hits)) / len(hits))),
-            simulations=len(hits),
+                pvalues_by.setdefault((n, test), []).append(float(pvalue))
+    points = []
+    for (n, test), found in sorted(pvalues_by.items()):
+        found = np.asarray(found)
+        # A study whose test could not be computed counts as not significant.
+        hits = np.nan_to_num(found, nan=1.0) < alpha
+        points.append(
+            PowerPoint(
+                participants=n,
+                test=test,
+                power=float(hits.mean()),
+                mc_se=float(np.sqrt(hits.mean() * (1 - hits.mean()) / len(hits))),
+                simulations=len(hits),
+                failures=int(np.isnan(found).sum()),
+            )
         )
-        for (n, test), hits in sorted(rejections.items())
-    )
+    points = tuple(points)
     return PowerCurve(
         kind=design.kind,
         conditions=design.conditions,

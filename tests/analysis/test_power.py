@@ -167,3 +167,14 @@ def test_command_line_names_bad_input(tmp_path, capsys):
     (tmp_path / "e.json").write_text(json.dumps({"effects": {"a": 0}}))
     assert main(["power", str(tmp_path / "pilot.csv"), "--effects", str(tmp_path / "e.json")]) == 2
     assert "lack condition(s) b, c, d" in capsys.readouterr().err
+
+
+def test_a_degenerate_fit_counts_as_a_failure_not_a_hit():
+    """An SE of zero must not become z = ∞ and a rejection."""
+    from types import SimpleNamespace
+
+    from analysis.power.simulation import _mixed_tests
+
+    fit = SimpleNamespace(params=np.array([0.0, 0.5]), cov=np.zeros((2, 2)))
+    found = _mixed_tests(["a", "b", "c"], fit, 0, 2)
+    assert np.isnan(found["mixed: b vs a"]) and np.isnan(found["mixed: c vs b"])
