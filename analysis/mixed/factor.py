@@ -27,13 +27,13 @@ class Blocks:
 class Factor:
     """Solve with, and take the log-determinant of, a symmetric positive-definite matrix.
 
-    *diagonal* (indices) names rows and columns whose block is diagonal, as the random
-    intercepts of one grouping factor give (each observation has one level). They are
-    eliminated first (a Schur complement), so a thousand participants' intercepts cost a
-    division instead of a share of a q³ Cholesky factorisation.
+    *matrix* is dense (Cholesky), sparse (SuperLU) or :class:`Blocks`, whose diagonal
+    block (one grouping factor's intercepts) is eliminated first by its Schur
+    complement, so a thousand participants' intercepts cost a division instead of a
+    share of a q³ Cholesky factorisation.
     """
 
-    def __init__(self, matrix, diagonal: np.ndarray | None = None):
+    def __init__(self, matrix):
         if isinstance(matrix, Blocks):
             self._eliminate(matrix.pivots, matrix.coupling, matrix.rest)
             return
@@ -47,29 +47,9 @@ class Factor:
             self.logdet = float(np.log(np.abs(lu.U.diagonal())).sum())
             self.solve = lu.solve
             return
-        if diagonal is None or len(diagonal) == 0:
-            factor = linalg.cho_factor(matrix, lower=True, check_finite=False)
-            self.logdet = float(2 * np.log(np.diag(factor[0])).sum())
-            self.solve = lambda rhs: linalg.cho_solve(factor, rhs, check_finite=False)
-            return
-        keep = np.ones(matrix.shape[0], dtype=bool)
-        keep[diagonal] = False
-        others = np.flatnonzero(keep)
-        self._eliminate(
-            matrix[diagonal, diagonal],
-            matrix[np.ix_(diagonal, others)],
-            matrix[np.ix_(others, others)],
-        )
-        inner = self.solve
-        order = np.concatenate([diagonal, others])
-
-        def solve(rhs: np.ndarray) -> np.ndarray:
-            rhs = np.asarray(rhs, dtype=float)
-            result = np.empty_like(rhs)
-            result[order] = inner(rhs[order])
-            return result
-
-        self.solve = solve
+        factor = linalg.cho_factor(matrix, lower=True, check_finite=False)
+        self.logdet = float(2 * np.log(np.diag(factor[0])).sum())
+        self.solve = lambda rhs: linalg.cho_solve(factor, rhs, check_finite=False)
 
     def _eliminate(self, pivots: np.ndarray, coupling: np.ndarray, rest: np.ndarray) -> None:
         """Factor [[diag(pivots), coupling], [couplingᵀ, rest]] by its Schur complement."""

@@ -18,6 +18,8 @@ statsmodels has no maximum-likelihood fit of crossed random effects for binary o
 ordinal responses (its mixed GLMs are variational Bayes), hence this module.
 """
 
+import itertools
+
 import numpy as np
 from scipy import linalg, optimize
 from statsmodels.tools.numdiff import approx_hess3
@@ -90,7 +92,8 @@ def fit_laplace(
         fast_objective, start, method="L-BFGS-B", bounds=bounds, options={"ftol": 1e-7}
     )
     sd, extra_free = first.x[:k], first.x[k:]
-    fast_objective(first.x)
+    # Evaluating at the optimum leaves β and v there (the search's last call need not be).
+    fast_loglik = -fast_objective(first.x) / 2
     beta = memo["beta"]
     converged, message = bool(first.success), str(first.message)
 
@@ -112,7 +115,9 @@ def fit_laplace(
             params = np.concatenate([beta, family.extra_natural(extra_free)])
             cov = linalg.block_diag(inverse, np.full((n_extra, n_extra), np.nan))
             names = names + family.extra_names(state.y)
-        return finish_fit(problem, state, names, params, cov, sd, converged, "fast", message)
+        return finish_fit(
+            problem, state, names, params, cov, sd, converged, "fast", message, fast_loglik
+        )
 
     def full_objective(vector: np.ndarray) -> float:
         beta_, free, sd_ = vector[:p], vector[p : p + n_extra], vector[p + n_extra :]
@@ -144,25 +149,20 @@ def fit_laplace(
     except np.linalg.LinAlgError:
         cov = np.full((p + n_extra, p + n_extra), np.nan)
         converged, message = False, "singular Hessian: standard errors unavailable"
-    state.loglik(beta, extra, sd)
+    # Evaluating at the optimum leaves v̂ there (the Hessian's last call was elsewhere).
+    loglik = state.loglik(beta, extra, sd)
     names = problem.fixed_names + family.extra_names(state.y)
     params = np.concatenate([beta, extra])
-    return finish_fit(problem, state, names, params, cov, sd, converged, "laplace", message)
+    return finish_fit(problem, state, names, params, cov, sd, converged, "laplace", message, loglik)
 
 
-def finish_fit(problem, state, names, params, cov, sd, converged, stage, message) -> LaplaceFit:
-    scale = np.asarray(sd)[state.owner]
-    u = scale * state.v
-    modes, start = [], 0
-    for component in problem.components:
-        width = component.width
-        modes.append(u[start : start + width])
-        start += width
-    beta = params[: state.p]
-    extra = params[state.p :]
-    loglik = state.loglik(beta, extra, sd) if stage == "laplace" else np.nan
-    if stage == "fast":
-        loglik = state.profiled_loglik(scale, extra if len(extra) else np.zeros(0), beta)[0]
+def finish_fit(
+    problem, state, names, params, cov, sd, converged, stage, message, loglik
+) -> LaplaceFit:
+    """Collect a fit, with the random effects' modes (on η's scale) from ``state.v``."""
+    u = np.asarray(sd)[state.owner] * state.v
+    bounds = np.cumsum([0] + [c.width for c in problem.components])
+    modes = [u[start:end] for start, end in itertools.pairwise(bounds)]
     return LaplaceFit(
         names=tuple(names),
         params=np.asarray(params, dtype=float),

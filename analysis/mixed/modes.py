@@ -35,11 +35,6 @@ class ConditionalModes:
         )
         self.owner = np.repeat(np.arange(len(widths)), widths)
         self.q = int(sum(widths))
-        self.pairs = (
-            (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
-            if self.q <= DENSE_UP_TO
-            else None
-        )
         self.v = np.zeros(self.q)
         self.evaluations = 0
         # The first component's block of ZᵀWZ is diagonal when it is one intercept per
@@ -50,6 +45,11 @@ class ConditionalModes:
             if first is not None and first.values.shape[1] == 1 and self.q <= DENSE_UP_TO
             else None
         )
+        # Flat indices of each row's column pairs into a dense q × q: the unstructured
+        # path, and the fallback when a blocked factorisation fails.
+        self.pairs = None
+        if self.q <= DENSE_UP_TO:
+            self.pairs = (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
         if self.diagonal is not None:
             k = first.width
             self.rest_width = self.q - k
@@ -99,7 +99,7 @@ class ConditionalModes:
             np.eye(r) + tail[:, None] * cross * tail[None, :],
         )
 
-    def _factor(self, weight: np.ndarray, scale: np.ndarray) -> Factor:
+    def factor(self, weight: np.ndarray, scale: np.ndarray) -> Factor:
         """Factor I + S Zᵀ W Z S."""
         if self.diagonal is not None:
             return Factor(self._blocks(weight, scale))
@@ -111,29 +111,16 @@ class ConditionalModes:
     def mode(self, eta_fixed: np.ndarray, scale: np.ndarray, extra: np.ndarray):
         """Return (v̂, Σℓ_i, log det H) at the conditional mode of v (Newton with halving)."""
         family, y = self.problem.family, self.y
-        v = self.v.copy()
 
-        def objective(vector):
-            eta = eta_fixed + self.z_dot(scale * vector)
-            return family.derivatives(eta, y, extra), eta
+        def evaluate(vector):
+            derivs = family.derivatives(eta_fixed + self.z_dot(scale * vector), y, extra)
+            return derivs, derivs.loglik.sum() - 0.5 * vector @ vector
 
-        derivs, _ = objective(v)
-        value = derivs.loglik.sum() - 0.5 * v @ v
-        for _ in range(100):
-            gradient = scale * self.z_t_dot(derivs.gradient) - v
-            factor = self._factor(derivs.weight, scale)
-            step = factor.solve(gradient)
-            if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
-                break
-            for _ in range(30):
-                trial_derivs, _ = objective(v + step)
-                trial_value = trial_derivs.loglik.sum() - 0.5 * (v + step) @ (v + step)
-                if trial_value >= value - 1e-12 * abs(value):
-                    break
-                step = step / 2
-            v, derivs, value = v + step, trial_derivs, trial_value
-        else:
-            factor = self._factor(derivs.weight, scale)
+        def newton_step(vector, derivs):
+            factor = self.factor(derivs.weight, scale)
+            return factor.solve(scale * self.z_t_dot(derivs.gradient) - vector), factor
+
+        v, derivs, factor = _newton(evaluate, newton_step, self.v)
         return v, float(derivs.loglik.sum()), factor.logdet
 
     def loglik(self, beta: np.ndarray, extra: np.ndarray, sd: np.ndarray) -> float:
@@ -148,36 +135,27 @@ class ConditionalModes:
     def joint_mode(self, scale: np.ndarray, extra: np.ndarray, beta: np.ndarray):
         """Maximise Σℓ_i − ½vᵀv over β and v together (glmer's nAGQ = 0 step)."""
         family, y, X, p = self.problem.family, self.y, self.X, self.p
-        theta = np.concatenate([beta, self.v])
 
         def evaluate(vector):
             eta = X @ vector[:p] + self.z_dot(scale * vector[p:])
             derivs = family.derivatives(eta, y, extra)
             return derivs, derivs.loglik.sum() - 0.5 * vector[p:] @ vector[p:]
 
-        derivs, value = evaluate(theta)
-        for _ in range(100):
+        def newton_step(vector, derivs):
             g = derivs.gradient
-            gradient = np.concatenate([X.T @ g, scale * self.z_t_dot(g) - theta[p:]])
+            gradient = np.concatenate([X.T @ g, scale * self.z_t_dot(g) - vector[p:]])
             try:
                 solve = self._joint_solver(scale, derivs.weight)
-                step = solve(gradient)
             except (linalg.LinAlgError, RuntimeError):
                 hessian = self._joint_hessian(scale, derivs.weight)
                 dense = hessian.toarray() if sparse.issparse(hessian) else hessian
-                step = linalg.lstsq(dense, gradient)[0]
 
                 def solve(rhs, dense=dense):
                     return linalg.lstsq(dense, rhs)[0]
 
-            if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
-                break
-            for _ in range(30):
-                trial_derivs, trial_value = evaluate(theta + step)
-                if trial_value >= value - 1e-12 * abs(value):
-                    break
-                step = step / 2
-            theta, derivs, value = theta + step, trial_derivs, trial_value
+            return solve(gradient), solve
+
+        theta, derivs, solve = _newton(evaluate, newton_step, np.concatenate([beta, self.v]))
         return theta[:p], theta[p:], derivs, solve
 
     def _joint_solver(self, scale: np.ndarray, weight: np.ndarray):
@@ -217,5 +195,29 @@ class ConditionalModes:
         beta, v, derivs, _ = self.joint_mode(scale, extra, beta)
         if np.all(np.isfinite(v)):
             self.v = v
-        logdet = self._factor(derivs.weight, scale).logdet
+        logdet = self.factor(derivs.weight, scale).logdet
         return float(derivs.loglik.sum() - 0.5 * v @ v - 0.5 * logdet), beta
+
+
+def _newton(evaluate, newton_step, start: np.ndarray):
+    """Maximise a concave objective by Newton's method with step halving.
+
+    ``evaluate(x)`` returns (derivatives, value); ``newton_step(x, derivatives)`` returns
+    (step, what the step was solved with). Return x, its derivatives and the last solver,
+    which is the one at x (the loop stops on a step too small to take).
+    """
+    x = start.copy()
+    derivs, value = evaluate(x)
+    for _ in range(100):
+        step, solver = newton_step(x, derivs)
+        if np.max(np.abs(step), initial=0.0) < NEWTON_STEP:
+            break
+        for _ in range(30):
+            trial_derivs, trial_value = evaluate(x + step)
+            if trial_value >= value - 1e-12 * abs(value):
+                break
+            step = step / 2
+        x, derivs, value = x + step, trial_derivs, trial_value
+    else:
+        _, solver = newton_step(x, derivs)
+    return x, derivs, solver

@@ -114,25 +114,24 @@ def simulate(
 
 def _pvalues_mixed(design, effects, data) -> dict[str, float]:
     order = list(design.conditions)
+    extra = None
     if design.kind == "pairwise":
         problem = pairwise_problem(data, order, random_strengths=effects.sd_strengths > 0)
-        start = [effects.sd_participant, effects.sd_item] + (
-            [effects.sd_strengths] if effects.sd_strengths > 0 else []
-        )
-        offset = 1
     else:
         if data["rating"].nunique() < 2:
             return {}
         problem = ordinal_problem(data, order)
-        start = [effects.sd_participant, effects.sd_item]
-        offset = 0
-        if data["rating"].nunique() != len(effects.thresholds) + 1:
-            start = start[: len(problem.components)]
-            fit = fit_laplace(problem, stage="fast", sd_start=np.maximum(start, 0.1))
-            return _mixed_tests(order, fit, offset, len(problem.fixed_names) - offset)
-    start = np.maximum(np.asarray(start[: len(problem.components)]), 0.1)
-    extra = np.asarray(effects.thresholds) if design.kind == "rating" else None
+        # The true thresholds start the search only when every scale point was drawn.
+        if data["rating"].nunique() == len(effects.thresholds) + 1:
+            extra = np.asarray(effects.thresholds)
+    truth = {
+        "participant": effects.sd_participant,
+        "item": effects.sd_item,
+        "participant × condition strengths": effects.sd_strengths,
+    }
+    start = np.maximum([truth[c.name] for c in problem.components], 0.1)
     fit = fit_laplace(problem, stage="fast", sd_start=start, extra_start=extra)
+    offset = 1 if design.kind == "pairwise" else 0
     return _mixed_tests(order, fit, offset, len(problem.fixed_names) - offset)
 
 

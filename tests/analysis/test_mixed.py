@@ -190,7 +190,7 @@ def test_factor_solves_and_takes_the_log_determinant(dense):
     """The Schur-complement and sparse paths agree with numpy on an SPD matrix."""
     from scipy import sparse
 
-    from analysis.mixed.factor import Factor
+    from analysis.mixed.factor import Blocks, Factor
 
     rng = np.random.default_rng(5)
     k, r = 30, 6
@@ -203,7 +203,8 @@ def test_factor_solves_and_takes_the_log_determinant(dense):
     )
     rhs = rng.normal(size=(k + r, 3))
     expected_logdet = np.linalg.slogdet(matrix)[1]
-    factor = Factor(matrix, np.arange(k)) if dense else Factor(sparse.csc_array(matrix))
+    blocks = Blocks(np.diag(matrix)[:k], matrix[:k, k:], matrix[k:, k:])
+    factor = Factor(blocks) if dense else Factor(sparse.csc_array(matrix))
     assert factor.logdet == pytest.approx(expected_logdet)
     assert factor.solve(rhs) == pytest.approx(np.linalg.solve(matrix, rhs))
     assert factor.solve(rhs[:, 0]) == pytest.approx(np.linalg.solve(matrix, rhs[:, 0]))
