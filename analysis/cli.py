@@ -8,7 +8,7 @@ from pathlib import Path
 from analysis.exclusions import ExclusionRules, apply_exclusions
 from analysis.outputs import write_report
 from analysis.report import ReportOptions, build_report
-from analysis.tidy import TidyFormatError, read_responses
+from analysis.tidy import TidyFormatError, read_json_file, read_responses
 from analysis.within import CORRECTIONS
 
 
@@ -82,8 +82,6 @@ def _sizes(text: str) -> list[int]:
 
 
 def _power(args: argparse.Namespace) -> int:
-    import json
-
     from analysis.power import design_from_responses, power_curve, read_design
     from analysis.power.plan import effects_for, write_power
 
@@ -94,7 +92,7 @@ def _power(args: argparse.Namespace) -> int:
         if args.design
         else design_from_responses(kept, args.kind, args.question or "")
     )
-    stated = json.loads(Path(args.effects).read_text()) if args.effects else None
+    stated = read_json_file(args.effects) if args.effects else None
     effects = effects_for(kept, design, stated, source=Path(args.csv).name)
     curve = power_curve(
         design,

@@ -4,6 +4,7 @@ The format is documented in docs/tidy-format.md. Every problem is reported as on
 :class:`TidyFormatError` whose message names the file, row and column.
 """
 
+import json
 from collections.abc import Iterable
 from pathlib import Path
 from typing import IO
@@ -40,6 +41,18 @@ KNOWN_FLAGS = PARTICIPANT_FLAGS + ROW_FLAGS
 
 class TidyFormatError(ValueError):
     """A response table that does not follow the tidy format; the message says where."""
+
+
+def read_json_file(path: str | Path):
+    """Read a JSON settings file (mapping, design, effects); errors name the file."""
+    try:
+        return json.loads(Path(path).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise TidyFormatError(f"{path}: no such file.") from None
+    except json.JSONDecodeError as error:
+        raise TidyFormatError(
+            f"{path}: not valid JSON ({error.msg}, line {error.lineno})."
+        ) from None
 
 
 def _row_label(index: int) -> str:

@@ -6,13 +6,19 @@ trial, item, conditions shown, question, and how its answer labels translate.
 """
 
 import dataclasses
-import json
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
-from analysis.tidy import KINDS, NO_DIFFERENCE, REQUIRED_COLUMNS, TidyFormatError, check_responses
+from analysis.tidy import (
+    KINDS,
+    NO_DIFFERENCE,
+    REQUIRED_COLUMNS,
+    TidyFormatError,
+    check_responses,
+    read_json_file,
+)
 
 MAPPING_FORMAT = "signstudy.wide-mapping"
 
@@ -84,15 +90,7 @@ def parse_mapping(data: Any, source: str = "mapping") -> WideMapping:
 
 def read_mapping(path: str | Path) -> WideMapping:
     """Read a mapping file (JSON)."""
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise TidyFormatError(f"{path}: no such file.") from None
-    except json.JSONDecodeError as error:
-        raise TidyFormatError(
-            f"{path}: not valid JSON ({error.msg}, line {error.lineno})."
-        ) from None
-    return parse_mapping(data, str(path))
+    return parse_mapping(read_json_file(path), str(path))
 
 
 def _column_names(wide: pd.DataFrame) -> list[str]:

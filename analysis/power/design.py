@@ -10,14 +10,13 @@ The JSON layout (docs/tidy-format.md, "Power planning")::
 """
 
 import dataclasses
-import json
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
 from analysis.results import Result
-from analysis.tidy import TidyFormatError, analysed
+from analysis.tidy import TidyFormatError, analysed, read_json_file
 
 KINDS = ("pairwise", "rating")
 
@@ -79,13 +78,7 @@ def parse_design(data: Any, source: str = "design") -> PlannedDesign:
 
 def read_design(path: str | Path) -> PlannedDesign:
     """Read design.json (see the module docstring)."""
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise TidyFormatError(f"{path}: no such file.") from None
-    except json.JSONDecodeError as error:
-        raise TidyFormatError(f"{path}: not valid JSON ({error}).") from None
-    return parse_design(data, str(path))
+    return parse_design(read_json_file(path), str(path))
 
 
 def design_from_responses(

@@ -178,3 +178,10 @@ def test_a_degenerate_fit_counts_as_a_failure_not_a_hit():
     fit = SimpleNamespace(params=np.array([0.0, 0.5]), cov=np.zeros((2, 2)))
     found = _mixed_tests(["a", "b", "c"], fit, 0, 2)
     assert np.isnan(found["mixed: b vs a"]) and np.isnan(found["mixed: c vs b"])
+
+
+def test_malformed_effects_file_is_named(tmp_path, capsys):
+    pairwise_tidy().head(200).to_csv(tmp_path / "pilot.csv", index=False)
+    (tmp_path / "e.json").write_text("{not json")
+    assert main(["power", str(tmp_path / "pilot.csv"), "--effects", str(tmp_path / "e.json")]) == 2
+    assert "e.json: not valid JSON" in capsys.readouterr().err
