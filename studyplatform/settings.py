@@ -177,6 +177,7 @@ SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS = float(
 )
 
 LOGIN_URL = "admin:login"
+CSRF_FAILURE_VIEW = "studyplatform.views.errors.csrf_failure"
 
 SESSION_COOKIE_HTTPONLY = True
 CSRF_COOKIE_HTTPONLY = False

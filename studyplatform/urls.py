@@ -31,6 +31,11 @@ urlpatterns = [
     path("favicon.ico", views.favicon),
 ]
 
+handler400 = "studyplatform.views.errors.bad_request"
+handler403 = "studyplatform.views.errors.permission_denied"
+handler404 = "studyplatform.views.errors.page_not_found"
+handler500 = "studyplatform.views.errors.server_error"
+
 if settings.SIGNSTUDY_SERVE_MEDIA:
     urlpatterns += [
         re_path(rf"^{settings.MEDIA_URL.lstrip('/')}(?P<path>.*)$", views.media, name="media")

@@ -1,7 +1,9 @@
 """Fixtures shared by the whole suite: researchers, studies, the database in use."""
 
+import functools
 import os
 import re
+import subprocess
 
 import pytest
 from django.contrib.auth.models import Group
@@ -10,6 +12,17 @@ from django.db import connection
 from studyplatform.actions import do_import_study
 from studyplatform.demo import fingerspelling_timing_study, spine_study
 from studyplatform.signals import RESEARCHERS_GROUP
+
+
+@functools.cache
+def tiny_webm() -> bytes:
+    """Return a real one-second WebM (VP8) a browser could have recorded, made by ffmpeg."""
+    import imageio_ffmpeg
+
+    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-f", "lavfi",
+               "-i", "testsrc=size=160x120:rate=15", "-t", "1", "-c:v", "libvpx",
+               "-b:v", "200k", "-f", "webm", "pipe:1"]  # fmt: skip
+    return subprocess.run(command, capture_output=True, check=True).stdout
 
 
 @pytest.fixture(autouse=True, scope="session")

@@ -1,9 +1,11 @@
 """Log what participants did with the clips and pages: play, pause, seek, end, errors."""
 
 from collections.abc import Sequence
+from datetime import timedelta
 
 from django.core.exceptions import ValidationError
 from django.db import transaction
+from django.utils import timezone
 
 from studyplatform.lib.participants import PageRejected, page_trial
 from studyplatform.lib.presentation import presented_conditions
@@ -14,6 +16,9 @@ MAX_DETAIL_LENGTH = 500
 # The largest magnitudes taken: a clip's time (a day, in s) and the page's clock
 # (JavaScript's largest exact integer, in ms; it also fits the 64-bit column).
 NUMBER_LIMITS = {"media_time_s": 86_400.0, "client_time_ms": 2.0**53}
+# The last page's events reach the server just after its Next finished the study (the page
+# sends them as it unloads); later than this, a finished participant's events are refused.
+FINISHED_GRACE = timedelta(minutes=2)
 
 
 class EventsRejected(ValidationError):
@@ -44,6 +49,9 @@ def _event(
     clip = raw.get("clip")
     if clip not in (None, 1, 2):
         raise EventsRejected(f"Event {number} names clip {clip!r}; a page has clips 1 and 2.")
+    if not isinstance(raw.get("client_time_ms"), int | float):
+        # The browser's clock tells a resent event from a new one (see do_log_media_events).
+        raise EventsRejected(f"Event {number} has no client_time_ms.")
     numbers = {}
     for name in ("media_time_s", "client_time_ms"):
         value = raw.get(name)
@@ -83,8 +91,11 @@ def do_log_media_events(participant: Participant, events: Sequence[object]) -> i
     """Save a batch of events from the participant's browser; return how many were new.
 
     A batch sent again (its answer was lost on the way back) adds nothing: an event
-    equal in kind, page, clip and browser time to a logged one is skipped.
+    equal in kind, page, clip and browser time to a logged one is skipped. A finished
+    participant's events are taken for FINISHED_GRACE after finishing, then refused.
     """
+    if participant.is_finished and timezone.now() - participant.finished_at > FINISHED_GRACE:
+        raise EventsRejected("This study is finished; nothing about it can change now.")
     if not isinstance(events, list | tuple):
         raise EventsRejected("Events come as a list.")
     if len(events) > MAX_EVENTS_PER_BATCH:
@@ -95,7 +106,7 @@ def do_log_media_events(participant: Participant, events: Sequence[object]) -> i
         _event(participant, number, raw, trials, stimuli) for number, raw in enumerate(events, 1)
     ]
     with transaction.atomic():
-        times = [row.client_time_ms for row in rows if row.client_time_ms is not None]
+        times = [row.client_time_ms for row in rows]
         seen = set()
         if times:
             seen = set(
@@ -108,7 +119,7 @@ def do_log_media_events(participant: Participant, events: Sequence[object]) -> i
         new = []
         for row in rows:
             key = (row.kind, row.trial_id, row.clip_position, row.client_time_ms)
-            if row.client_time_ms is None or key not in seen:
+            if key not in seen:
                 seen.add(key)
                 new.append(row)
         MediaEvent.objects.bulk_create(new)

@@ -138,6 +138,8 @@ def _follow(participant: Participant, stored: Participant) -> None:
 
 def do_set_participant_language(participant: Participant, language: str) -> None:
     """Switch the participant between ASL + English and English only."""
+    if participant.is_finished:
+        raise ValidationError("This study is finished; nothing about it can change now.")
     if language not in Participant.Language.values:
         raise ValidationError(f"Unknown language “{language}”.")
     if language == Participant.Language.ENGLISH and not participant.study.allow_english_only:

@@ -22,12 +22,11 @@ from django.core.exceptions import ValidationError
 from django.core.files import File
 from django.db import transaction
 
+from studyplatform.actions.media import delete_unused_files_on_commit
+from studyplatform.lib.video_check import container_suffix, decodes_as_video
 from studyplatform.models import Participant, Question, Response, Trial
 
 MAX_SIGNED_ANSWER_BYTES = 200 * 1024 * 1024
-# The containers browsers record into: WebM (Matroska's EBML magic) and MP4 (Safari).
-EBML_MAGIC = b"\x1a\x45\xdf\xa3"
-MP4_BRAND_AT = slice(4, 8)
 
 
 class UploadRejected(ValidationError):
@@ -66,10 +65,6 @@ def _check_question(trial: Trial, question: Question) -> None:
         raise UploadRejected(f"“{question.key}” is not asked on this page.")
 
 
-def _looks_like_video(head: bytes) -> bool:
-    return head.startswith(EBML_MAGIC) or head[MP4_BRAND_AT] == b"ftyp"
-
-
 def do_append_signed_answer_chunk(
     participant: Participant,
     trial: Trial,
@@ -82,6 +77,8 @@ def do_append_signed_answer_chunk(
 
     Return the stored length and, after the final chunk, the saved Response.
     """
+    if participant.is_finished:
+        raise UploadRejected("This study is finished; answers can no longer change.")
     _check_question(trial, question)
     with transaction.atomic():
         # One writer per participant at a time: concurrent chunks cannot interleave.
@@ -102,14 +99,25 @@ def do_append_signed_answer_chunk(
             part.flush()
             os.fsync(part.fileno())
         stored += len(chunk)
-        if not final:
-            return stored, None
-        with open(path, "rb") as part:
-            head = part.read(12)
-        if not _looks_like_video(head):
-            path.unlink(missing_ok=True)
-            raise UploadRejected("The recording is not a WebM or MP4 video.")
-        suffix = ".webm" if head.startswith(EBML_MAGIC) else ".mp4"
+    if not final:
+        return stored, None
+    # Decoding takes a moment: outside the lock, so other participants' saves don't wait
+    # on SQLite's single writer. A final chunk sent again after a failure here finds the
+    # whole part stored (409 with its length) and sends an empty final chunk.
+    suffix = container_suffix(path)
+    if suffix is None or not decodes_as_video(path):
+        path.unlink(missing_ok=True)
+        raise UploadRejected("The recording is not a WebM or MP4 video.")
+    return stored, _save_recording(participant, trial, question, path, stored, suffix)
+
+
+def _save_recording(participant: Participant, trial: Trial, question: Question, path: Path,
+                    length: int, suffix: str) -> Response:  # fmt: skip
+    """Save the checked part at *path* as the answer's video (replacing an older one)."""
+    with transaction.atomic():
+        Participant.objects.select_for_update().get(pk=participant.pk)
+        if upload_offset(participant, trial, question) != length:  # restarted meanwhile
+            raise UploadOffsetMismatch(upload_offset(participant, trial, question))
         response = Response.objects.select_for_update().filter(
             participant=participant, trial=trial, question=question
         ).first() or Response(participant=participant, trial=trial, question=question)
@@ -122,9 +130,8 @@ def do_append_signed_answer_chunk(
             response.revision += 1
         response.save()
         path.unlink(missing_ok=True)
-        if old:
-            transaction.on_commit(lambda: response.video.storage.delete(old))
-        return stored, response
+        delete_unused_files_on_commit(response.video.storage, [old])
+    return response
 
 
 def do_remove_abandoned_uploads(max_age_hours: float) -> list[str]:

@@ -5,6 +5,7 @@ participant view, the save action, the page layout, the export and the templates
 the type instead of branching on the kind.
 """
 
+import re
 from dataclasses import dataclass
 
 from django.core.exceptions import ValidationError
@@ -26,6 +27,33 @@ class Answer:
 
 
 MAX_TEXT_LENGTH = 10_000
+# A personal answer (name, e-mail) is stored in PersonalAnswer.value, a 300-character
+# column that SQLite would not enforce.
+MAX_PERSONAL_LENGTH = 300
+
+_ASCII_INTEGER = re.compile(r"[+-]?[0-9]{1,12}")
+_ASCII_NUMBER = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]{1,3})?")
+
+
+def parse_integer(value: str) -> int:
+    """Return *value* as an integer written in ASCII digits; ValueError otherwise.
+
+    Python's ``int`` also reads other scripts' digits ("٣" is 3), underscores and
+    padding, none of which a page's control sends.
+    """
+    if not _ASCII_INTEGER.fullmatch(value):
+        raise ValueError(value)
+    return int(value)
+
+
+def parse_number(value: str) -> float:
+    """Return *value* as a finite decimal number written in ASCII; ValueError otherwise."""
+    if not _ASCII_NUMBER.fullmatch(value):
+        raise ValueError(value)
+    number = float(value)
+    if number != number or number in (float("inf"), float("-inf")):
+        raise ValueError(value)
+    return number
 
 
 def empty_values() -> dict:
@@ -53,6 +81,10 @@ class QuestionType:
     takes_signed_answer = False
     can_be_personal = False
     has_range = False
+
+    def max_length(self, question) -> int:
+        """Return the longest text answer *question* takes, in characters."""
+        return MAX_PERSONAL_LENGTH if question.is_personal else MAX_TEXT_LENGTH
 
     def parse(self, question, value: str) -> Answer:
         """Return the posted *value* as an Answer; raise ValueError if it is not one."""

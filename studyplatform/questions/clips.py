@@ -1,6 +1,12 @@
 """Questions about the clips on the page: which of two is better (pairwise forced choice)."""
 
-from studyplatform.questions.base import Answer, AnswerRejected, QuestionType, empty_values
+from studyplatform.questions.base import (
+    Answer,
+    AnswerRejected,
+    QuestionType,
+    empty_values,
+    parse_integer,
+)
 
 
 class PairwiseQuestion(QuestionType):
@@ -13,7 +19,7 @@ class PairwiseQuestion(QuestionType):
     allows_no_difference = True
 
     def parse(self, question, value: str) -> Answer:
-        return Answer(choice_position=int(value))
+        return Answer(choice_position=parse_integer(value))
 
     def response_values(self, question, answer, participant, trial) -> dict:
         from studyplatform.lib.presentation import presented_conditions

@@ -1,13 +1,11 @@
 """Questions answered in the participant's own words or numbers."""
 
-import math
-
 from studyplatform.questions.base import (
-    MAX_TEXT_LENGTH,
     Answer,
     AnswerRejected,
     QuestionType,
     empty_values,
+    parse_number,
 )
 
 
@@ -20,10 +18,7 @@ class NumberQuestion(QuestionType):
     has_range = True
 
     def parse(self, question, value: str) -> Answer:
-        number = float(value)
-        if not math.isfinite(number):
-            raise ValueError(value)
-        return Answer(number=number)
+        return Answer(number=parse_number(value.strip()))
 
     def response_values(self, question, answer, participant, trial) -> dict:
         number = answer.number
@@ -47,9 +42,9 @@ class TextQuestion(QuestionType):
     template = "studyplatform/questions/text.html"
 
     def response_values(self, question, answer, participant, trial) -> dict:
-        text = answer.text.strip()
-        if len(text) > MAX_TEXT_LENGTH:
-            raise AnswerRejected(f"The answer is longer than {MAX_TEXT_LENGTH} characters.")
+        text, limit = answer.text.strip(), self.max_length(question)
+        if len(text) > limit:
+            raise AnswerRejected(f"The answer is longer than {limit:,} characters.")
         if not text and question.required:
             raise AnswerRejected(f"“{question.key}” needs an answer.")
         return {**empty_values(), "text": text}

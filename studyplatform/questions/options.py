@@ -1,6 +1,12 @@
 """Questions answered with one of their answer options: scales and single choices."""
 
-from studyplatform.questions.base import Answer, AnswerRejected, QuestionType, empty_values
+from studyplatform.questions.base import (
+    Answer,
+    AnswerRejected,
+    QuestionType,
+    empty_values,
+    parse_integer,
+)
 
 
 class OptionsQuestion(QuestionType):
@@ -11,7 +17,7 @@ class OptionsQuestion(QuestionType):
     is_scale = True
 
     def parse(self, question, value: str) -> Answer:
-        return Answer(rating=int(value))
+        return Answer(rating=parse_integer(value))
 
     def response_values(self, question, answer, participant, trial) -> dict:
         allowed = {option.value for option in question.options.all()}

@@ -44,9 +44,10 @@ from studyplatform.lib import (
 )
 from studyplatform.models import Participant, Study, Trial
 from studyplatform.pages import participant_page, study_asl
-from studyplatform.views.posted import json_body, parse_answer
+from studyplatform.views.posted import BodyRejected, json_body, page_number, parse_answer
 
 SESSION_KEY = "signstudy_participants"
+UPLOAD_CONTENT_TYPES = ("application/octet-stream", "video/webm", "video/mp4")
 NEW_PARTICIPANT_PARAM = "new"
 
 
@@ -256,10 +257,14 @@ def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpR
 @require_POST
 def save_answer(request: HttpRequest, token: str) -> JsonResponse:
     """Save one answer now (JSON ``{page, trial, question, value, rt_ms}``)."""
-    participant, data = _participant(token), json_body(request)
+    participant = _participant(token)
     if participant is None:
         return _invalid_link()
-    if not isinstance(data, dict) or not isinstance(data.get("page"), int):
+    try:
+        data = json_body(request)
+    except BodyRejected as error:
+        return JsonResponse({"error": str(error)}, status=error.status)
+    if not isinstance(data, dict) or page_number(data.get("page")) is None:
         return JsonResponse({"error": "The answer is not in the expected form."}, status=400)
     try:
         trial = page_trial(participant, data["page"], for_answer=True)
@@ -295,6 +300,10 @@ def upload_signed_answer(
             raise UploadRejected(f"“{question}” is not asked on this page.")
         if request.method == "GET":
             return JsonResponse({"offset": upload_offset(participant, trial, found)})
+        if request.content_type not in UPLOAD_CONTENT_TYPES:
+            sent = request.content_type or "nothing"
+            message = f"A recording is sent as application/octet-stream, not “{sent}”."
+            return JsonResponse({"error": message}, status=415)
         try:
             offset = int(request.headers.get("X-Upload-Offset", ""))
         except ValueError:
@@ -314,9 +323,13 @@ def upload_signed_answer(
 @require_POST
 def log_events(request: HttpRequest, token: str) -> JsonResponse:
     """Log a batch of media and page events (JSON ``{"events": [...]}``)."""
-    participant, data = _participant(token), json_body(request)
+    participant = _participant(token)
     if participant is None:
         return _invalid_link()
+    try:
+        data = json_body(request)
+    except BodyRejected as error:
+        return JsonResponse({"error": str(error)}, status=error.status)
     events = data.get("events") if isinstance(data, dict) else None
     try:
         logged = do_log_media_events(participant, events)

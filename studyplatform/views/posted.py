@@ -1,6 +1,16 @@
-"""Read what a participant's page posts: JSON bodies, answers and response times."""
+"""Read what a participant's page posts: JSON bodies, answers and response times.
+
+This is the one gate between a participant's browser and the actions: every body is
+strict JSON (``lib.strict_json``) of the right content type, every answer is text or a
+finite number, and text loses the characters no answer needs before it is checked by its
+question type: C0 and C1 control characters other than tab and line breaks (NUL among
+them), and the bidirectional embedding, override and isolate controls, which would
+reorder what a researcher reads in an export. They are stripped, not refused: a pasted
+answer keeps its words.
+"""
 
 import math
+import re
 from dataclasses import replace
 
 from django.http import HttpRequest
@@ -10,19 +20,49 @@ from studyplatform.lib import strict_json
 from studyplatform.models import Question
 from studyplatform.questions import question_type
 
+_UNWANTED_CHARACTERS = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+
+
+class BodyRejected(ValueError):
+    """A request body that is not JSON of the expected kind; the message says why."""
+
+    def __init__(self, message: str, status: int = 400):
+        super().__init__(message)
+        self.status = status
+
 
 def json_body(request: HttpRequest):
-    """Return the request's JSON body, None if it is not strict JSON (strict_json)."""
+    """Return the request's JSON body; BodyRejected if it is not strict JSON sent as JSON."""
+    if request.content_type != "application/json":
+        raise BodyRejected(
+            f"The request must be sent as JSON (application/json), not "
+            f"“{request.content_type or 'nothing'}”.", status=415)  # fmt: skip
     try:
         return strict_json.loads(request.body or b"null")
-    except strict_json.JsonRejected:
-        return None
+    except strict_json.JsonRejected as error:
+        raise BodyRejected(f"The request is not in the expected form: {error}.") from None
 
 
-def parse_answer(question: Question, value: str, rt_ms: str | int | None) -> Answer:
+def page_number(value) -> int | None:
+    """Return *value* if it is a page number (an integer, not a boolean), else None."""
+    return value if isinstance(value, int) and not isinstance(value, bool) else None
+
+
+def clean_text(value: str) -> str:
+    """Return *value* without control and bidirectional-override characters."""
+    return _UNWANTED_CHARACTERS.sub("", value)
+
+
+def parse_answer(question: Question, value, rt_ms: str | int | None) -> Answer:
     """Turn a posted value into an Answer for *question*; AnswerRejected if it is not one."""
     rt = parse_rt_ms(rt_ms)
-    value = "" if value is None else str(value)
+    if value is None:
+        value = ""
+    elif isinstance(value, int | float) and not isinstance(value, bool):
+        value = str(value)
+    elif not isinstance(value, str):
+        raise AnswerRejected(f"The answer to “{question.key}” is not text or a number.")
+    value = clean_text(value)
     try:
         answer = question_type(question).parse(question, value)
     except ValueError:

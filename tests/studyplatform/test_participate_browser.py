@@ -20,16 +20,6 @@ SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
 pytestmark = pytest.mark.django_db(transaction=True)
 
 
-@pytest.fixture(scope="session")
-def one_clip(renderable, tmp_path_factory):
-    """Render one small real clip (the example word) once for the session."""
-    from stimuli.clips import ClipSpec, render
-
-    spec = ClipSpec("word", "DOOR", {"timing": "constant"}, seed=1, width=96, height=72,
-                    rate_hz=20.0)  # fmt: skip
-    return render(spec, tmp_path_factory.mktemp("clip"))
-
-
 def _with_clips(study, clip, media_root: Path) -> None:
     """Give every clip slot of *study* the rendered clip, as a ready stimulus."""
     folder = media_root / "stimuli"
@@ -43,12 +33,6 @@ def _with_clips(study, clip, media_root: Path) -> None:
             poster=f"stimuli/{clip.poster.name}", width=clip.width, height=clip.height,
             duration_ms=clip.duration_ms, frame_count=clip.frame_count,
         )  # fmt: skip
-
-
-@pytest.fixture
-def clips_dir(one_clip, settings, tmp_path):
-    settings.MEDIA_ROOT = tmp_path
-    return tmp_path
 
 
 def _current(page):

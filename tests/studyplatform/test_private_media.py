@@ -11,11 +11,11 @@ from django.utils import timezone
 
 from studyplatform.actions.uploads import do_remove_abandoned_uploads, partial_directory
 from studyplatform.models import Response
-from tests.studyplatform.test_participate import WEBM, _chunk, at_comments  # noqa: F401
+from tests.studyplatform.test_participate import WEBM, _chunk
 
 
 @pytest.fixture
-def signed(client, at_comments):  # noqa: F811
+def signed(client, at_comments):
     """A spine participant's saved signed answer (the study is bob's)."""
     participant, number = at_comments
     assert _chunk(client, participant, number, WEBM, 0, final=True).json()["saved"]
@@ -68,7 +68,7 @@ def _page_of(response) -> int:
     return keys.index(response.trial.key) + 1
 
 
-def test_an_unfinished_upload_is_private_and_cleaned_when_abandoned(client, at_comments, bob):  # noqa: F811
+def test_an_unfinished_upload_is_private_and_cleaned_when_abandoned(client, at_comments, bob):
     participant, number = at_comments
     _chunk(client, participant, number, WEBM[:100], 0)
     (part,) = partial_directory().glob("*.part")

@@ -85,18 +85,36 @@
       client_time_ms: lastTime, detail: detail || {}});
     store();
   }
-  let flushing = null;
+  /* A batch the server fails on (5xx) is retried with backoff; after two failures it is
+   * halved, and a single event that still fails goes to the back of the queue, so one
+   * event the server cannot take never holds back those behind it, and a server that is
+   * down loses nothing. A 4xx batch will never be taken (e.g. from an old page). */
+  const BATCH_EVENTS = 200;
+  let batchSize = BATCH_EVENTS, failures = 0, rounds = 0, flushing = null;
   function flush(keepalive) {
     if (flushing) { return flushing; }
     if (!queue.length) { return Promise.resolve(true); }
-    const batch = queue.slice(0, 200);
+    const batch = queue.slice(0, batchSize);
     flushing = post(form.dataset.eventsUrl, {events: batch}, keepalive).then(function (response) {
-      // 4xx: a batch the server will never take (e.g. from an old page); drop it.
       if (response.ok || (response.status >= 400 && response.status < 500)) {
         queue = queue.slice(batch.length);
         store();
+        batchSize = BATCH_EVENTS;
+        failures = rounds = 0;
         return true;
       }
+      rounds++;
+      if (++failures >= 2) {
+        failures = 0;
+        if (batch.length > 1) {
+          batchSize = Math.ceil(batch.length / 2);
+        } else {
+          queue.push(queue.shift());
+          store();
+          batchSize = BATCH_EVENTS;
+        }
+      }
+      setTimeout(flush, backoff(rounds));
       return false;
     }).catch(function () { return false; }).finally(function () { flushing = null; });
     return flushing;
@@ -115,31 +133,42 @@
     element.textContent = message || "";
     element.hidden = !message;
   }
+  /* A lost connection is retried until it is back; a server error (5xx) a few times, then
+   * the answer waits for the page's Next, which sends every answer again. */
+  const SERVER_ERROR_ATTEMPTS = 5;
+  const unsaved = new Set();
   async function send(question) {
     if (inflight.has(question)) { return; }
     inflight.add(question);
-    for (let attempt = 0; pending.has(question); attempt++) {
+    for (let attempt = 0, serverErrors = 0; pending.has(question); attempt++) {
       const payload = pending.get(question);
       setStatus("Saving…");
-      let retry = false;
+      let retry = "";
       try {
         const response = await post(form.dataset.answerUrl, payload);
         if (response.ok) {
           showQuestionError(question, "");
+          unsaved.delete(question);
         } else if (response.status < 500) {
           const data = await response.json().catch(function () { return {}; });
           showQuestionError(question, data.error || "This answer could not be saved.");
-        } else { retry = true; }
-      } catch (e) { retry = true; }
+          unsaved.add(question);
+        } else if (++serverErrors >= SERVER_ERROR_ATTEMPTS) {
+          showQuestionError(question, "The server could not save this answer now; it is sent again when you go on.");
+          unsaved.add(question);
+        } else { retry = "server error"; }
+      } catch (e) { retry = "no connection"; }
       if (retry) {
-        setStatus("Not saved yet (no connection). Trying again…");
+        setStatus("Not saved yet (" + retry + "). Trying again…");
         await sleep(backoff(attempt));
       } else if (pending.get(question) === payload) {
         pending.delete(question);
       }
     }
     inflight.delete(question);
-    if (!pending.size && !inflight.size) { setStatus("Answer saved."); }
+    if (!pending.size && !inflight.size) {
+      setStatus(unsaved.size ? "Some answers are not saved yet." : "Answer saved.");
+    }
   }
   function answered(input) {
     const match = /^q-(.+)$/.exec(input.name || "");
@@ -166,7 +195,7 @@
     await flush();
     const data = new FormData(form);
     data.set("nav", nav);
-    for (let attempt = 0; ; attempt++) {
+    for (let attempt = 0, serverErrors = 0; ; attempt++) {
       try {
         const response = await fetch(form.action || location.href, {
           method: "POST", body: data, credentials: "same-origin",
@@ -184,8 +213,13 @@
           (first ? first.closest("fieldset").querySelector("input, textarea") : pageError).focus?.();
           break;
         }
+        if (++serverErrors >= SERVER_ERROR_ATTEMPTS) {
+          pageError.textContent = "The server could not save this page just now. Your answers are kept; please press the button again in a moment.";
+          pageError.hidden = false;
+          break;
+        }
       } catch (e) { /* no connection: retry below */ }
-      setStatus("No connection. Trying again…");
+      setStatus("Not saved yet. Trying again…");
       await sleep(backoff(attempt));
     }
     moving = false;

@@ -1,0 +1,32 @@
+"""Fixtures of the participant tests: a participant at a signed answer, a rendered clip."""
+
+import pytest
+
+from tests.studyplatform.test_participate import _start
+
+
+@pytest.fixture
+def at_comments(client, spine, settings, tmp_path):
+    """A spine participant who reached every page; the number of the signed-answer page."""
+    settings.MEDIA_ROOT = tmp_path
+    participant = _start(client, spine)
+    participant.reached = len(participant.schedule)
+    participant.save()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "comments")
+    return participant, number
+
+
+@pytest.fixture(scope="session")
+def one_clip(renderable, tmp_path_factory):
+    """Render one small real clip (the example word) once for the session."""
+    from stimuli.clips import ClipSpec, render
+
+    spec = ClipSpec("word", "DOOR", {"timing": "constant"}, seed=1, width=96, height=72,
+                    rate_hz=20.0)  # fmt: skip
+    return render(spec, tmp_path_factory.mktemp("clip"))
+
+
+@pytest.fixture
+def clips_dir(one_clip, settings, tmp_path):
+    settings.MEDIA_ROOT = tmp_path
+    return tmp_path

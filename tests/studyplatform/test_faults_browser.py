@@ -1,0 +1,77 @@
+"""The participant page's script under server faults, in real headless Chromium (issue 19).
+
+Playwright's routing stands in for a server that fails (500) on some requests: a save is
+retried with backoff and then left to the page's Next instead of forever, and an event
+batch the server keeps failing on does not hold back the events behind it.
+"""
+
+import time
+
+import pytest
+
+from studyplatform.models import MediaEvent, Participant, PersonalAnswer
+from tests.studyplatform.test_participate_browser import _next, _wait_ready, _with_clips
+
+pytestmark = pytest.mark.django_db(transaction=True)
+
+POISON = '"kind":"page_shown","page":2,'
+
+
+def _until(page, condition, timeout_s: float = 30.0) -> None:
+    """Wait for *condition*, letting Playwright run the route handlers meanwhile."""
+    deadline = time.monotonic() + timeout_s
+    while not condition():
+        assert time.monotonic() < deadline, "timed out"
+        page.wait_for_timeout(200)
+
+
+def _fail(status: int, when=lambda body: True):
+    def handle(route):
+        if when(route.request.post_data or ""):
+            route.fulfill(status=status, content_type="application/json",
+                          body='{"error": "simulated server fault"}')  # fmt: skip
+        else:
+            route.continue_()
+
+    return handle
+
+
+def test_the_page_survives_server_errors(page, live_server, fingerspelling, clips_dir, one_clip):
+    _with_clips(fingerspelling, one_clip, clips_dir)
+    page.allowed_errors = [r"status of 500", r"HTTP 500"]
+    # The second page's page_shown event fails on every try; the first page's answers too.
+    page.route("**/events/", _fail(500, when=lambda body: POISON in body))
+    page.route("**/answer/", _fail(500))
+    page.goto(f"{live_server.url}/s/{fingerspelling.slug}/")
+    page.get_by_role("button", name="Continue (I agree to take part)").click()
+    _wait_ready(page)
+    participant = Participant.objects.get()
+    page.locator('input[name="q-name"]').fill("Ann")
+    page.locator('input[name="q-name"]').dispatch_event("change")
+    page.get_by_text("Not saved yet (server error)").wait_for()
+    # Five server errors (0.5 + 1 + 2 + 4 s of backoff), then the answer waits for Next.
+    page.get_by_text("it is sent again when you go on").wait_for(timeout=20_000)
+    assert page.locator("#save-status").text_content() == "Some answers are not saved yet."
+    assert not PersonalAnswer.objects.exists()
+
+    page.unroute("**/answer/")
+    for question, value in (("age", "3"), ("asl-fluency", "1")):
+        page.locator(f'input[name="q-{question}"][value="{value}"]').check()
+    _next(page, 1)  # the form carries every answer, the failed one too
+    assert PersonalAnswer.objects.get(participant=participant).value == "Ann"
+    _wait_ready(page)
+
+    # Playing a clip logs events behind the failing page_shown; they arrive all the same.
+    # (The page stays put: a page's unload sends its events with keepalive, which
+    # Playwright's routing does not see.)
+    second = participant.schedule[1]["trial"]
+    page.locator(".play-button").first.click()
+    plays = MediaEvent.objects.filter(participant=participant, kind="play", trial__key=second)
+    _until(page, plays.exists)
+    shown = MediaEvent.objects.filter(participant=participant, kind="page_shown",
+                                      trial__key=second)  # fmt: skip
+    assert not shown.exists()
+    page.unroute("**/events/")  # the server recovers: the held-back event arrives, once
+    _until(page, shown.exists)
+    page.wait_for_timeout(2000)
+    assert shown.count() == 1 and plays.count() == 1
