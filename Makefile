@@ -1,6 +1,6 @@
 # SignStudy: two commands on a fresh machine.
 #   make demo   install everything, load the demo studies, render their clips, serve on
-#               127.0.0.1:8000
+#               127.0.0.1:8000 with gunicorn (deploy/gunicorn.conf.py) and WhiteNoise
 #   make test   install everything, lint, run the tests (SQLite, then PostgreSQL if it answers)
 
 PY := .venv/bin/python
@@ -19,7 +19,7 @@ demo: install
 	$(PY) manage.py migrate --noinput
 	$(PY) manage.py collectstatic --noinput -v0
 	$(PY) manage.py seed_demo --render --workers 2 --url http://$(HOST):$(PORT)/
-	$(PY) manage.py runserver --noreload $(HOST):$(PORT)
+	$(PY) -m gunicorn -c deploy/gunicorn.conf.py --bind $(HOST):$(PORT) studyplatform.wsgi
 
 # Re-pin the whole dependency tree after changing pyproject.toml.
 lock: install

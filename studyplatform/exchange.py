@@ -37,6 +37,7 @@ STUDY_FIELDS = (
     "require_full_view",
     "randomize_positions",
     "rotate_conditions",
+    "personal_data_retention_days",
 )
 CONDITION_FIELDS = ("key", "label", "description", "is_simulated", "parameters", "position")
 ITEM_FIELDS = ("key", "kind", "text", "target_text", "is_practice", "parameters", "position")

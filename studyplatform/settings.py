@@ -12,15 +12,21 @@ configuration at all:
 - ``SIGNSTUDY_VAR_DIR``: where local state lives (database, media, static, key).
 - ``SIGNSTUDY_PRIVATE_MEDIA_ROOT``: where personal files live (default ``var/private``);
   ``SIGNSTUDY_SENDFILE_HEADER`` hands checked downloads of them to the web server.
+- ``SIGNSTUDY_HTTPS``: ``1`` behind a TLS proxy: secure cookies, HTTPS redirect, HSTS
+  (``SIGNSTUDY_HSTS_SECONDS``, default one year).
+- ``SIGNSTUDY_LOGIN_FAILURE_LIMIT`` / ``SIGNSTUDY_LOGIN_COOLOFF_MINUTES``: failed admin
+  sign-ins (per user name and address) before that sign-in is locked, and for how long.
 - ``CELERY_BROKER_URL`` / ``REDIS_URL``: the Redis broker for rendering jobs; jobs run
   in-process (eagerly) when neither is set.
 """
 
 import os
 import secrets
+from datetime import timedelta
 from pathlib import Path
 
 import dj_database_url
+from csp.constants import NONCE, NONE, SELF, UNSAFE_INLINE
 
 BASE_DIR = Path(__file__).resolve().parent.parent
 VAR_DIR = Path(os.environ.get("SIGNSTUDY_VAR_DIR", BASE_DIR / "var"))
@@ -73,6 +79,8 @@ INSTALLED_APPS = [
     "django.contrib.messages",
     "whitenoise.runserver_nostatic",
     "django.contrib.staticfiles",
+    "axes",
+    "csp",
     "studyplatform",
 ]
 
@@ -85,6 +93,15 @@ MIDDLEWARE = [
     "django.contrib.auth.middleware.AuthenticationMiddleware",
     "django.contrib.messages.middleware.MessageMiddleware",
     "django.middleware.clickjacking.XFrameOptionsMiddleware",
+    "csp.middleware.CSPMiddleware",
+    # Last, as django-axes asks: it turns a locked-out sign-in into its 429 answer.
+    "axes.middleware.AxesMiddleware",
+]
+
+AUTHENTICATION_BACKENDS = [
+    # First: refuses a locked-out user name and address before the password is checked.
+    "axes.backends.AxesStandaloneBackend",
+    "django.contrib.auth.backends.ModelBackend",
 ]
 
 ROOT_URLCONF = "studyplatform.urls"
@@ -187,6 +204,42 @@ if _env_flag("SIGNSTUDY_HTTPS"):
     SESSION_COOKIE_SECURE = True
     CSRF_COOKIE_SECURE = True
     SECURE_PROXY_SSL_HEADER = ("HTTP_X_FORWARDED_PROTO", "https")
+    SECURE_SSL_REDIRECT = True
+    SECURE_HSTS_SECONDS = int(os.environ.get("SIGNSTUDY_HSTS_SECONDS", str(365 * 24 * 3600)))
+    SECURE_HSTS_INCLUDE_SUBDOMAINS = _env_flag("SIGNSTUDY_HSTS_INCLUDE_SUBDOMAINS")
+    SECURE_HSTS_PRELOAD = _env_flag("SIGNSTUDY_HSTS_PRELOAD")
+    # Django's check warns about these two only when HSTS covers subdomains and preloads;
+    # whether to do that is the site's decision (docs/deployment.md).
+    if not (SECURE_HSTS_INCLUDE_SUBDOMAINS and SECURE_HSTS_PRELOAD):
+        SILENCED_SYSTEM_CHECKS = ["security.W005", "security.W021"]
+
+# Content-Security-Policy (django-csp): scripts only from this site or with the response's
+# nonce (the admin pages' two small inline scripts); recorded answers play from blob: URLs,
+# figures are data: PNGs. Inline styles stay allowed (style attributes size the clips).
+CONTENT_SECURITY_POLICY = {
+    "DIRECTIVES": {
+        "default-src": [SELF],
+        "script-src": [SELF, NONCE],
+        "style-src": [SELF, UNSAFE_INLINE],
+        "img-src": [SELF, "data:", "blob:"],
+        "media-src": [SELF, "blob:"],
+        "connect-src": [SELF],
+        "object-src": [NONE],
+        "base-uri": [SELF],
+        "form-action": [SELF],
+        "frame-ancestors": [NONE],
+    }
+}
+
+# django-axes: the 11th failed sign-in of a user name from one address within the
+# cool-off is refused (429) without checking the password, until the cool-off ends.
+AXES_FAILURE_LIMIT = int(os.environ.get("SIGNSTUDY_LOGIN_FAILURE_LIMIT", "10"))
+AXES_COOLOFF_TIME = timedelta(
+    minutes=float(os.environ.get("SIGNSTUDY_LOGIN_COOLOFF_MINUTES", "15"))
+)
+AXES_LOCKOUT_PARAMETERS = [["username", "ip_address"]]
+AXES_RESET_ON_SUCCESS = True
+AXES_VERBOSE = False  # its banner on every start; lockouts are logged all the same
 
 _BROKER_URL = os.environ.get("CELERY_BROKER_URL") or os.environ.get("REDIS_URL") or ""
 # Without a broker (the demo's default) jobs run in the calling process; the in-memory
@@ -206,6 +259,7 @@ CELERY_BEAT_SCHEDULE = {
         "task": "studyplatform.clean_abandoned_uploads",
         "schedule": 3600.0,
     },
+    "apply-retention": {"task": "studyplatform.apply_retention", "schedule": 24 * 3600.0},
 }
 
 LOGGING = {

@@ -22,6 +22,7 @@ RESEARCHER_PERMISSIONS: dict[str, tuple[str, ...]] = {
     "personalanswer": ("view",),
     "response": ("view",),
     "mediaevent": ("view",),
+    "withdrawal": ("view",),
 }
 
 

@@ -135,3 +135,12 @@ def clean_abandoned_uploads() -> int:
     from studyplatform.actions.uploads import do_remove_abandoned_uploads
 
     return len(do_remove_abandoned_uploads(settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS))
+
+
+@shared_task(name="studyplatform.apply_retention")
+def apply_retention() -> int:
+    """Delete personal data whose study's retention period has passed (beat job)."""
+    from studyplatform.actions import do_apply_retention
+
+    result = do_apply_retention()
+    return result.personal_answers + result.videos + result.recruitment_ids

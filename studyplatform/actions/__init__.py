@@ -12,6 +12,11 @@ from studyplatform.actions.participants import (
     do_go_back_participant,
     do_set_participant_language,
 )
+from studyplatform.actions.privacy import (
+    RetentionResult,
+    do_apply_retention,
+    do_withdraw_participant,
+)
 from studyplatform.actions.prompts import do_attach_asl_video
 from studyplatform.actions.recordings import (
     RecordingRejected,
@@ -55,11 +60,13 @@ __all__ = [
     "PageRejected",
     "RecordingRejected",
     "RerenderRefused",
+    "RetentionResult",
     "StudyImportError",
     "UploadOffsetMismatch",
     "UploadRejected",
     "do_advance_participant",
     "do_append_signed_answer_chunk",
+    "do_apply_retention",
     "do_attach_asl_video",
     "do_attach_recording",
     "do_delete_recordings",
@@ -79,4 +86,5 @@ __all__ = [
     "do_save_response",
     "do_set_participant_language",
     "do_start_rendering",
+    "do_withdraw_participant",
 ]

@@ -3,9 +3,12 @@
 from django.contrib import admin
 from django.http import HttpRequest
 
+from studyplatform.actions import do_withdraw_participant
 from studyplatform.admin.design import OwnStudyFilter
 from studyplatform.admin.permissions import StudyScopedMixin
-from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Response
+from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Response, Withdrawal
+
+WITHDRAWN_IN_ADMIN = "deleted in the admin (withdrawal)"
 
 
 class ReadOnlyMixin:
@@ -56,6 +59,32 @@ class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
         "finished_at",
     )
     inlines = (ResponseInline,)
+
+    # Deleting a participant is a withdrawal: their signed-answer videos go too, and the
+    # Withdrawals list records it (Django's own delete would leave the files behind).
+    def delete_model(self, request: HttpRequest, obj: Participant) -> None:
+        do_withdraw_participant(obj, by=request.user, reason=WITHDRAWN_IN_ADMIN)
+
+    def get_deleted_objects(self, objs, request: HttpRequest):
+        # A withdrawal takes the participant's answers and events with it by design: the
+        # researcher needs no delete permission on those (they have none, to edit data).
+        deleted, counts, _, protected = super().get_deleted_objects(objs, request)
+        return deleted, counts, set(), protected
+
+    def delete_queryset(self, request: HttpRequest, queryset) -> None:
+        for participant in queryset:
+            do_withdraw_participant(participant, by=request.user, reason=WITHDRAWN_IN_ADMIN)
+
+
+@admin.register(Withdrawal)
+class WithdrawalAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
+    list_display = ("participant_number", "study", "withdrawn_at", "withdrawn_by", "responses",
+                    "events", "personal_answers", "files")  # fmt: skip
+    list_filter = (("study", OwnStudyFilter),)
+    readonly_fields = (*list_display, "reason")
+
+    def has_delete_permission(self, request: HttpRequest, obj=None) -> bool:
+        return False  # the audit trail stays
 
 
 @admin.register(PersonalAnswer)

@@ -124,6 +124,7 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
             {"fields": ("description", "consent_text", "consent_mode", "thank_you_text")},
         ),
         ("Completion", {"fields": ("completion_code", "redirect_url")}),
+        ("Privacy", {"fields": ("personal_data_retention_days",)}),
         (
             "Rules",
             {

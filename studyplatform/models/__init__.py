@@ -13,6 +13,7 @@ from studyplatform.models.responses import MediaEvent, Response
 from studyplatform.models.scope import STUDY_PATHS
 from studyplatform.models.stimuli import Stimulus
 from studyplatform.models.studies import Condition, Item, Study
+from studyplatform.models.withdrawals import Withdrawal
 
 __all__ = [
     "PARTICIPANT_FACING_FIELDS",
@@ -31,6 +32,7 @@ __all__ = [
     "Stimulus",
     "Study",
     "Trial",
+    "Withdrawal",
     "new_participant_token",
     "new_randomization_seed",
     "trial_question_kinds",

@@ -90,6 +90,17 @@ class Study(models.Model):
     time_limit_minutes = models.PositiveIntegerField(
         null=True, blank=True, validators=[MinValueValidator(1)], help_text="Empty: no limit."
     )
+    personal_data_retention_days = models.PositiveIntegerField(
+        "keep personal data for (days)",
+        null=True,
+        blank=True,
+        validators=[MinValueValidator(1)],
+        help_text=(
+            "Days after a participant finishes (or last took part) until their personal "
+            "data is deleted: answers marked personal (name, e-mail), signed-answer videos "
+            "and recruitment ids. Their other answers stay, anonymous. Empty: keep."
+        ),
+    )
     target_n = models.PositiveIntegerField(
         "target N", null=True, blank=True, help_text="Number of participants wanted."
     )
