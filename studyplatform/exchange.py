@@ -88,13 +88,10 @@ def _asl_target(video) -> list[str | int | None]:
     return [model, target.key]
 
 
-def export_study(study: Study) -> dict[str, Any]:
-    """Return the complete definition of *study* as JSON-compatible data."""
-    questions = list(study.questions.prefetch_related("options"))
-    trials = study.trials.select_related("block", "item", "condition_a", "condition_b")
-    trials = trials.prefetch_related("questions")
-    question_order = {q.key: index for index, q in enumerate(questions)}
-
+def study_asl_videos(study: Study, questions=None) -> list:
+    """Return the ASL videos of *study* and of its blocks, trials, questions and options."""
+    if questions is None:
+        questions = list(study.questions.prefetch_related("options"))
     asl_videos = list(study.asl_videos.all())
     for related in (study.blocks.all(), study.trials.all(), questions):
         for obj in related:
@@ -102,6 +99,17 @@ def export_study(study: Study) -> dict[str, Any]:
     for question in questions:
         for option in question.options.all():
             asl_videos.extend(option.asl_videos.all())
+    return asl_videos
+
+
+def export_study(study: Study) -> dict[str, Any]:
+    """Return the complete definition of *study* as JSON-compatible data."""
+    questions = list(study.questions.prefetch_related("options"))
+    trials = study.trials.select_related("block", "item", "condition_a", "condition_b")
+    trials = trials.prefetch_related("questions")
+    question_order = {q.key: index for index, q in enumerate(questions)}
+
+    asl_videos = study_asl_videos(study, questions)
 
     items = list(study.items.all())
     recordings = [(item, current_recording(item)) for item in items]

@@ -269,5 +269,9 @@ LOGGING = {
     "root": {"handlers": ["console"], "level": os.environ.get("SIGNSTUDY_LOG_LEVEL", "INFO")},
     # Jobs run in the calling process report themselves (generate_stimuli prints each
     # clip); Celery's per-task lines would repeat that. A real worker logs them.
-    "loggers": {"celery.app.trace": {"level": "WARNING" if CELERY_TASK_ALWAYS_EAGER else "INFO"}},
+    "loggers": {
+        "celery.app.trace": {"level": "WARNING" if CELERY_TASK_ALWAYS_EAGER else "INFO"},
+        # Every sign-in would be an INFO line; lockouts are warnings.
+        "axes": {"level": "WARNING"},
+    },
 }

@@ -1,15 +1,17 @@
 """Create studies from definitions: import, duplicate."""
 
+import hashlib
 from dataclasses import dataclass
 from pathlib import PurePosixPath
 from typing import Any
 
 from django.core.exceptions import ValidationError
-from django.core.files.storage import default_storage
+from django.core.files.base import ContentFile
 from django.db import models, transaction
 
 from studyplatform import exchange
 from studyplatform.actions.recordings import do_relabel_stand_ins
+from studyplatform.lib.bundle import definition_files, owned_files, storage_of
 from studyplatform.models import (
     AnswerOption,
     AslVideo,
@@ -74,14 +76,15 @@ def _lookup(table: dict[str, Any], key: Any, kind: str, where: str) -> Any:
 
 
 def _create_keyed(
-    data: dict[str, Any], name: str, model: type[models.Model], fields: tuple[str, ...], study
-) -> dict[str, Any]:
-    """Create the study's *name* rows of *model*; return them by key."""
+    data: dict[str, Any], name: str, model: type[models.Model], fields: tuple[str, ...], study,
+    save,
+) -> dict[str, Any]:  # fmt: skip
+    """Create the study's *name* rows of *model* with *save*; return them by key."""
     created = {}
     for index, row in enumerate(_rows(data, name)):
         where = f"{name}[{index}]"
         obj = model(study=study, **_pick(row, fields, where))
-        _save(obj, where)
+        save(obj, where)
         created[obj.key] = obj
     return created
 
@@ -96,6 +99,34 @@ def free_slug(base: str) -> str:
     return candidate
 
 
+# Rows saved per transaction while importing: SQLite has one writer, and a participant's
+# save waits for the import's transaction to end (a 12,000-condition import in one
+# transaction held it for 4.4 s).
+BATCH_ROWS = 200
+
+
+class _Batches:
+    """Save rows in short transactions of at most *size* rows each."""
+
+    def __init__(self, size: int = BATCH_ROWS):
+        self.size, self.count, self._block = size, 0, None
+
+    def save(self, obj: models.Model, where: str, exclude: list[str] | None = None) -> None:
+        if self._block is None:
+            self._block = transaction.atomic()
+            self._block.__enter__()
+        _save(obj, where, exclude)
+        self.count += 1
+        if self.count % self.size == 0:
+            self.close()
+
+    def close(self, *exc_info) -> None:
+        """Commit the open transaction, or roll it back when given an exception's info."""
+        block, self._block = self._block, None
+        if block is not None:
+            block.__exit__(*(exc_info or (None, None, None)))
+
+
 def do_import_study(
     data: Any,
     *,
@@ -103,14 +134,22 @@ def do_import_study(
     slug: str | None = None,
     title: str | None = None,
     status: str | None = None,
+    files: dict[str, bytes] | None = None,
+    allowed_files: set[str] = frozenset(),
 ) -> ImportResult:
     """Create a study owned by *owner* from an exported definition, all or nothing.
 
     *slug*, *title* and *status* override the definition's. Without *slug*, the
     definition's slug is used, or a free variant of it when a study already has it.
-    ASL videos and recordings whose files are not in this installation's media are left
-    out, with a warning each; the motion-capture stand-ins are then labelled by the
-    recordings that came (:func:`do_relabel_stand_ins`).
+    A media file the definition names must come in *files* (a bundle's, by media name;
+    stored under a name made from its content) or be one *owner*'s studies already use
+    (or one of *allowed_files*); a file of someone else's is refused. Files in neither
+    place are left out, with a warning each; the motion-capture stand-ins are then
+    labelled by the recordings that came (:func:`do_relabel_stand_ins`).
+
+    Rows are written in short transactions (BATCH_ROWS), so participants' saves never
+    wait long; the study stays a draft until the import is complete, and an import that
+    fails removes what it had written.
     """
     if not isinstance(data, dict):
         raise StudyImportError("A study definition must be a JSON object.")
@@ -124,132 +163,191 @@ def do_import_study(
             f"Unsupported study definition version {data.get('version')!r} "
             f"(this installation reads version {exchange.VERSION})."
         )
-    warnings: list[str] = []
+    values = _pick(data.get("study"), exchange.STUDY_FIELDS, "study")
+    if slug:
+        values["slug"] = slug
+    elif "slug" in values and isinstance(values["slug"], str):
+        values["slug"] = free_slug(values["slug"])
+    if title:
+        values["title"] = title
+    final_status = status or values.get("status") or Study.Status.DRAFT
+    values["status"] = Study.Status.DRAFT
+    study = Study(owner=owner, **values)
     with transaction.atomic():
-        values = _pick(data.get("study"), exchange.STUDY_FIELDS, "study")
-        if slug:
-            values["slug"] = slug
-        elif "slug" in values and isinstance(values["slug"], str):
-            values["slug"] = free_slug(values["slug"])
-        if title:
-            values["title"] = title
-        if status:
-            values["status"] = status
-        study = Study(owner=owner, **values)
         _save(study, "study")
-
-        conditions = _create_keyed(data, "conditions", Condition, exchange.CONDITION_FIELDS, study)
-        items = _create_keyed(data, "items", Item, exchange.ITEM_FIELDS, study)
-
-        questions: dict[str, Question] = {}
-        options: dict[str, AnswerOption] = {}
-        for index, row in enumerate(_rows(data, "questions")):
-            where = f"questions[{index}]"
-            values = _pick(row, (*exchange.QUESTION_FIELDS, "options"), where)
-            option_rows = values.pop("options", [])
-            question = Question(study=study, **values)
-            _save(question, where)
-            questions[question.key] = question
-            if not isinstance(option_rows, list):
-                raise StudyImportError(f"{where}.options: expected a list.")
-            for option_index, option_row in enumerate(option_rows):
-                option_where = f"{where}.options[{option_index}]"
-                option = AnswerOption(
-                    question=question, **_pick(option_row, exchange.OPTION_FIELDS, option_where)
-                )
-                _save(option, option_where)
-                options[f"{question.key}:{option.value}"] = option
-
-        blocks = _create_keyed(data, "blocks", Block, exchange.BLOCK_FIELDS, study)
-
-        trials: dict[str, Trial] = {}
-        tables = {
-            "block": blocks,
-            "item": items,
-            "condition_a": conditions,
-            "condition_b": conditions,
-        }
-        for index, row in enumerate(_rows(data, "trials")):
-            where = f"trials[{index}]"
-            values = _pick(
-                row, (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"), where
-            )
-            question_keys = values.pop("questions", [])
-            for ref in exchange.TRIAL_REFERENCES:
-                kind = "condition" if ref.startswith("condition") else ref
-                values[ref] = _lookup(tables[ref], values.get(ref), kind, f"{where}.{ref}")
-            if values["block"] is None:
-                raise StudyImportError(f"{where}.block: every trial belongs to a block.")
-            trial = Trial(study=study, **values)
-            _save(trial, where)
-            if not isinstance(question_keys, list):
-                raise StudyImportError(f"{where}.questions: expected a list of question keys.")
-            asked = [
-                _lookup(questions, key, "question", f"{where}.questions") for key in question_keys
-            ]
-            try:
-                trial.check_questions(asked)
-            except ValidationError as error:
-                raise StudyImportError(f"{where}.questions: {' '.join(error.messages)}") from None
-            trial.questions.set(asked)
-            trials[trial.key] = trial
-
-        targets = {
-            "block": blocks,
-            "trial": trials,
-            "question": questions,
-            "answeroption": options,
-        }
-        for index, row in enumerate(_rows(data, "asl_videos")):
-            where = f"asl_videos[{index}]"
-            values = _pick(row, (*exchange.ASL_VIDEO_FIELDS, "target", "video", "poster"), where)
-            target_ref = values.pop("target", None)
-            if not (isinstance(target_ref, list) and len(target_ref) == 2):
-                raise StudyImportError(f"{where}.target: expected [model, key].")
-            model, key = target_ref
-            if model == "study":
-                target = study
-            elif isinstance(model, str) and model in targets:
-                target = _lookup(targets[model], key, model, f"{where}.target")
-            else:
-                raise StudyImportError(f"{where}.target: unknown model {model!r}.")
-            video_name = values.pop("video", "")
-            _check_media_file(video_name, "asl", "an ASL video's", f"{where}.video")
-            _check_media_file(values.get("poster"), "asl", "an ASL video's", f"{where}.poster")
-            if not video_name or not default_storage.exists(video_name):
-                warnings.append(f"{where}: video file {video_name!r} is not in media; left out.")
-                continue
-            video = AslVideo(target=target, video=video_name, **values)
-            poster_name = values.get("poster") or ""
-            if poster_name and not default_storage.exists(poster_name):
-                video.poster = ""
-                warnings.append(f"{where}: poster {poster_name!r} is not in media; left out.")
-            _save(video, where)
-        for index, row in enumerate(_rows(data, "recordings")):
-            where = f"recordings[{index}]"
-            values = _pick(row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
-                           where)  # fmt: skip
-            item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
-            if item is None or item.kind != Item.Kind.WORD:
-                raise StudyImportError(f"{where}.item: recordings belong to words; "
-                                       f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
-            files = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
-            for name, file_name in files.items():
-                _check_media_file(file_name, "recordings", "a recording's", f"{where}.{name}")
-            storage = Recording._meta.get_field("upload").storage  # private, not default
-            missing = [name for name in ("upload", "motion")
-                       if not files[name] or not storage.exists(files[name])]  # fmt: skip
-            if missing:
-                warnings.append(f"{where}: {missing[0]} file {files[missing[0]]!r} of {item.key} "
-                                "is not in media; left out.")  # fmt: skip
-                continue
-            if files["sheet"] and not storage.exists(files["sheet"]):
-                files["sheet"] = ""
-            recording = Recording(item=item, status=Recording.Status.READY,
-                                  progress_percent=100, **files, **values)  # fmt: skip
-            _save(recording, where)
-        do_relabel_stand_ins(study)
+    study.status = final_status
+    files_named = definition_files(data) - set(files or {})
+    media = _Media(owner, files or {}, allowed_files, files_named)
+    batches = _Batches()
+    try:
+        warnings = _import_rows(data, study, batches, media)
+        batches.close()
+        with transaction.atomic():
+            _save(study, "study")  # its status, checked like the rest
+            do_relabel_stand_ins(study)
+    except BaseException as error:
+        batches.close(type(error), error, error.__traceback__)
+        _discard(study, media.stored)
+        raise
     return ImportResult(study=study, warnings=tuple(warnings))
+
+
+class _Media:
+    """Resolve the media names of a definition being imported (see do_import_study)."""
+
+    def __init__(self, owner, files: dict[str, bytes], allowed: set[str], named: set[str]):
+        self.owner, self.files, self.allowed, self.stored = owner, files, set(allowed), []
+        # Only asked about when the definition names files it does not bring.
+        self._owned = None if named - self.allowed else set()
+
+    def resolve(self, name: Any, folder: str, whose: str, where: str) -> str | None:
+        """Return the name to store for *name* ("" for none, None if it is not here)."""
+        _check_media_file(name, folder, whose, where)
+        if not name:
+            return ""
+        storage = storage_of(folder)
+        if name in self.files:
+            content = self.files[name]
+            digest = hashlib.sha256(content).hexdigest()[:32]
+            stored = f"{folder}/{digest}{PurePosixPath(name).suffix.lower()[:10]}"
+            if not storage.exists(stored):
+                stored = storage.save(stored, ContentFile(content))
+                self.stored.append((storage, stored))
+            return stored
+        if not storage.exists(name):
+            return None
+        if name not in self.allowed and not self.owner.is_superuser:
+            if self._owned is None:
+                self._owned = owned_files(self.owner)
+            if name not in self._owned:
+                raise StudyImportError(
+                    f"{where}: {name!r} is a file of another researcher's study. Import a "
+                    "bundle that brings its files (Export with media) instead."
+                )
+        return name
+
+
+def _discard(study: Study, stored: list) -> None:
+    """Remove a failed import's rows and the files it had stored."""
+    from studyplatform.actions.media import delete_unused_files_on_commit
+
+    with transaction.atomic():
+        for video in exchange.study_asl_videos(study):
+            video.delete()
+        Study.objects.filter(pk=study.pk).delete()
+        for storage, name in stored:
+            delete_unused_files_on_commit(storage, [name])
+
+
+def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> list[str]:
+    """Create every row of the definition *data* for *study*; return the warnings."""
+    warnings: list[str] = []
+    save = batches.save
+    conditions = _create_keyed(data, "conditions", Condition, exchange.CONDITION_FIELDS, study,
+                               save)  # fmt: skip
+    items = _create_keyed(data, "items", Item, exchange.ITEM_FIELDS, study, save)
+
+    questions: dict[str, Question] = {}
+    options: dict[str, AnswerOption] = {}
+    for index, row in enumerate(_rows(data, "questions")):
+        where = f"questions[{index}]"
+        values = _pick(row, (*exchange.QUESTION_FIELDS, "options"), where)
+        option_rows = values.pop("options", [])
+        question = Question(study=study, **values)
+        save(question, where)
+        questions[question.key] = question
+        if not isinstance(option_rows, list):
+            raise StudyImportError(f"{where}.options: expected a list.")
+        for option_index, option_row in enumerate(option_rows):
+            option_where = f"{where}.options[{option_index}]"
+            option = AnswerOption(
+                question=question, **_pick(option_row, exchange.OPTION_FIELDS, option_where)
+            )
+            save(option, option_where)
+            options[f"{question.key}:{option.value}"] = option
+
+    blocks = _create_keyed(data, "blocks", Block, exchange.BLOCK_FIELDS, study, save)
+
+    trials: dict[str, Trial] = {}
+    tables = {
+        "block": blocks,
+        "item": items,
+        "condition_a": conditions,
+        "condition_b": conditions,
+    }
+    for index, row in enumerate(_rows(data, "trials")):
+        where = f"trials[{index}]"
+        values = _pick(
+            row, (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"), where
+        )
+        question_keys = values.pop("questions", [])
+        for ref in exchange.TRIAL_REFERENCES:
+            kind = "condition" if ref.startswith("condition") else ref
+            values[ref] = _lookup(tables[ref], values.get(ref), kind, f"{where}.{ref}")
+        if values["block"] is None:
+            raise StudyImportError(f"{where}.block: every trial belongs to a block.")
+        trial = Trial(study=study, **values)
+        save(trial, where)
+        if not isinstance(question_keys, list):
+            raise StudyImportError(f"{where}.questions: expected a list of question keys.")
+        asked = [_lookup(questions, key, "question", f"{where}.questions") for key in question_keys]
+        try:
+            trial.check_questions(asked)
+        except ValidationError as error:
+            raise StudyImportError(f"{where}.questions: {' '.join(error.messages)}") from None
+        trial.questions.set(asked)
+        trials[trial.key] = trial
+
+    targets = {
+        "block": blocks,
+        "trial": trials,
+        "question": questions,
+        "answeroption": options,
+    }
+    for index, row in enumerate(_rows(data, "asl_videos")):
+        where = f"asl_videos[{index}]"
+        values = _pick(row, (*exchange.ASL_VIDEO_FIELDS, "target", "video", "poster"), where)
+        target_ref = values.pop("target", None)
+        if not (isinstance(target_ref, list) and len(target_ref) == 2):
+            raise StudyImportError(f"{where}.target: expected [model, key].")
+        model, key = target_ref
+        if model == "study":
+            target = study
+        elif isinstance(model, str) and model in targets:
+            target = _lookup(targets[model], key, model, f"{where}.target")
+        else:
+            raise StudyImportError(f"{where}.target: unknown model {model!r}.")
+        video_name = values.pop("video", "")
+        video = media.resolve(video_name, "asl", "an ASL video's", f"{where}.video")
+        poster = media.resolve(values.pop("poster", ""), "asl", "an ASL video's",
+                               f"{where}.poster")  # fmt: skip
+        if not video:
+            warnings.append(f"{where}: video file {video_name!r} is not in media; left out.")
+            continue
+        if poster is None:
+            warnings.append(f"{where}: poster {row.get('poster')!r} is not in media; left out.")
+        save(AslVideo(target=target, video=video, poster=poster or "", **values), where)
+    for index, row in enumerate(_rows(data, "recordings")):
+        where = f"recordings[{index}]"
+        values = _pick(row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
+                       where)  # fmt: skip
+        item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
+        if item is None or item.kind != Item.Kind.WORD:
+            raise StudyImportError(f"{where}.item: recordings belong to words; "
+                                   f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
+        named = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
+        found = {name: media.resolve(file_name, "recordings", "a recording's", f"{where}.{name}")
+                 for name, file_name in named.items()}  # fmt: skip
+        missing = [name for name in ("upload", "motion") if not found[name]]
+        if missing:
+            warnings.append(f"{where}: {missing[0]} file {named[missing[0]]!r} of {item.key} "
+                            "is not in media; left out.")  # fmt: skip
+            continue
+        found["sheet"] = found["sheet"] or ""
+        recording = Recording(item=item, status=Recording.Status.READY,
+                              progress_percent=100, **found, **values)  # fmt: skip
+        save(recording, where)
+    return warnings
 
 
 def _check_media_file(name: Any, folder: str, whose: str, where: str) -> None:
@@ -264,9 +362,12 @@ def _check_media_file(name: Any, folder: str, whose: str, where: str) -> None:
 
 def do_duplicate_study(study: Study, *, owner) -> Study:
     """Copy *study*'s definition into a new draft study owned by *owner*."""
+    definition = exchange.export_study(study)
     result = do_import_study(
-        exchange.export_study(study),
+        definition,
         owner=owner,
+        # The copy shares the original's files (deletion counts references).
+        allowed_files=definition_files(definition),
         slug=free_slug(f"{study.slug}-copy"),
         title=f"{study.title} (copy)"[:200],
         status=Study.Status.DRAFT,

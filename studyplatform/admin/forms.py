@@ -4,6 +4,7 @@ from django import forms
 from django.core.exceptions import ValidationError
 
 from studyplatform.lib import strict_json
+from studyplatform.lib.bundle import BundleRejected, read_bundle
 from studyplatform.models import Trial
 
 
@@ -46,8 +47,11 @@ class StudyImportForm(forms.Form):
     """Upload a study definition exported from this or another installation."""
 
     MAX_BYTES = 5 * 1024 * 1024
+    MAX_BUNDLE_BYTES = 1024 * 1024 * 1024
 
-    definition = forms.FileField(help_text="A .json file from “Export as JSON”.")
+    definition = forms.FileField(
+        help_text="A .json file from “Export as JSON”, or a .zip from “Export with media”."
+    )
     slug = forms.SlugField(
         required=False,
         max_length=80,
@@ -55,11 +59,21 @@ class StudyImportForm(forms.Form):
     )
 
     def clean_definition(self):
+        """Return (definition, files by media name) from the JSON or zip upload."""
         upload = self.cleaned_data["definition"]
+        head = upload.read(4)
+        upload.seek(0)
+        if head == b"PK\x03\x04":
+            if upload.size > self.MAX_BUNDLE_BYTES:
+                raise ValidationError("The bundle is larger than 1 GB.")
+            try:
+                return read_bundle(upload.read())
+            except BundleRejected as error:
+                raise ValidationError(f"The file is {error}.") from None
         if upload.size > self.MAX_BYTES:
             raise ValidationError("The file is larger than 5 MB; a study definition is not.")
         try:
-            return strict_json.loads(upload.read())
+            return strict_json.loads(upload.read()), {}
         except strict_json.JsonRejected as error:
             raise ValidationError(f"The file is {error}.") from None
 

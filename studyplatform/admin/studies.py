@@ -1,7 +1,7 @@
 """The researcher's main page: a study with its conditions, items, questions, blocks and trials."""
 
 import io
-import json
+import tempfile
 import zipfile
 
 from django.contrib import admin, messages
@@ -25,6 +25,7 @@ from studyplatform.admin.power import StudyPowerMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
+from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.stimuli import stimuli_progress, study_manifest
 from studyplatform.lib.techniques import describe_condition
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
@@ -84,7 +85,7 @@ def _definition_filename(study: Study) -> str:
 
 
 def _definition_json(study: Study) -> str:
-    return json.dumps(exchange.export_study(study), indent=2, ensure_ascii=False) + "\n"
+    return definition_json(exchange.export_study(study))
 
 
 @admin.register(Study)
@@ -251,8 +252,15 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
         return study
 
     def export_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
-        """Download the study's definition as JSON."""
+        """Download the study's definition as JSON, or with ?media=1 as a bundle (zip)."""
         study = self._get_visible_study(request, object_id)
+        if request.GET.get("media") == "1":
+            with tempfile.SpooledTemporaryFile(max_size=50 * 1024 * 1024) as buffer:
+                write_bundle(exchange.export_study(study), buffer)
+                buffer.seek(0)
+                response = HttpResponse(buffer.read(), content_type="application/zip")
+            response["Content-Disposition"] = f'attachment; filename="{study.slug}.study.zip"'
+            return response
         response = HttpResponse(_definition_json(study), content_type="application/json")
         response["Content-Disposition"] = f'attachment; filename="{_definition_filename(study)}"'
         return response
@@ -279,11 +287,13 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
             raise Http404("You cannot add studies.")
         form = StudyImportForm(request.POST or None, request.FILES or None)
         if request.method == "POST" and form.is_valid():
+            definition, files = form.cleaned_data["definition"]
             try:
                 result = do_import_study(
-                    form.cleaned_data["definition"],
+                    definition,
                     owner=request.user,
                     slug=form.cleaned_data["slug"] or None,
+                    files=files,
                 )
             except StudyImportError as error:
                 form.add_error("definition", f"Not imported: {error}")

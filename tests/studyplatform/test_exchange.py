@@ -1,14 +1,20 @@
 """Test study definitions: export → import round trips, and bad files that change nothing."""
 
 import copy
+import io
 import json
+from collections import Counter
 
 import pytest
 from django.core.files.base import ContentFile
 from django.core.files.storage import default_storage
+from django.core.files.uploadedfile import SimpleUploadedFile
+from django.core.management import call_command
+from django.urls import reverse
 
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
 from studyplatform.exchange import export_study
+from studyplatform.lib.bundle import read_bundle, write_bundle
 from studyplatform.models import AslVideo, Participant, Question, Study, Trial
 
 pytestmark = pytest.mark.django_db
@@ -49,18 +55,42 @@ def test_export_keeps_every_part_of_the_demo(fingerspelling):
     assert [o["label"] for o in age["options"]][-1] == "66+"
 
 
-def test_asl_videos_travel_with_the_definition(fingerspelling, bob, settings, tmp_path):
+def test_asl_videos_travel_with_the_definition(fingerspelling, alice, settings, tmp_path):
     settings.MEDIA_ROOT = tmp_path
     question = fingerspelling.questions.get(key="most-natural")
     name = default_storage.save("asl/most-natural.mp4", ContentFile(b"fake mp4 bytes"))
     AslVideo.objects.create(target=question, field_name="text", video=name)
     AslVideo.objects.create(target=fingerspelling, field_name="consent_text", video=name)
     exported = export_study(fingerspelling)
-    imported = do_import_study(exported, owner=bob).study
+    imported = do_import_study(exported, owner=alice).study  # her own files: shared
     assert imported.asl_videos.get().field_name == "consent_text"
     copied = imported.questions.get(key="most-natural").asl_videos.get()
     assert copied.video.name == name
     assert _without_slug(export_study(imported)) == _without_slug(exported)
+
+
+def test_an_import_may_not_name_another_researchers_file(fingerspelling, bob, settings,
+                                                          tmp_path):  # fmt: skip
+    """Issue 19: an import could name any media file, which replacing it then deleted."""
+    settings.MEDIA_ROOT = tmp_path
+    name = default_storage.save("asl/consent.mp4", ContentFile(b"alice's consent video"))
+    AslVideo.objects.create(target=fingerspelling, field_name="consent_text", video=name)
+    exported = export_study(fingerspelling)
+    studies = Study.objects.count()
+    with pytest.raises(StudyImportError, match="is a file of another researcher's study"):
+        do_import_study(exported, owner=bob)
+    assert Study.objects.count() == studies  # nothing of the failed import is left
+    assert AslVideo.objects.count() == 1
+    # The bundle brings a copy of the file, stored under a name made from its content.
+    buffer = io.BytesIO()
+    write_bundle(exported, buffer)
+    definition, files = read_bundle(buffer.getvalue())
+    assert files == {name: b"alice's consent video"}
+    imported = do_import_study(definition, owner=bob, files=files).study
+    video = imported.asl_videos.get()
+    assert video.video.name != name and video.video.read() == b"alice's consent video"
+    again = do_import_study(definition, owner=bob, files=files).study  # same content, one file
+    assert again.asl_videos.get().video.name == video.video.name
 
 
 def test_missing_asl_video_file_is_left_out_with_a_warning(fingerspelling, bob, settings, tmp_path):
@@ -179,3 +209,62 @@ def test_an_asl_video_with_a_malformed_target_is_refused(fingerspelling, bob):
     with pytest.raises(StudyImportError, match=r"asl_videos\[0\]\.target: unknown model"):
         do_import_study(data, owner=bob, slug="elsewhere")
     assert not Study.objects.filter(slug="elsewhere").exists()
+
+
+def test_a_bundle_travels_by_the_admin_and_the_shell(
+    client, fingerspelling, alice, bob, settings, tmp_path
+):
+    settings.MEDIA_ROOT = tmp_path
+    name = default_storage.save("asl/consent.mp4", ContentFile(b"signed consent"))
+    AslVideo.objects.create(target=fingerspelling, field_name="consent_text", video=name)
+    client.force_login(alice)
+    url = reverse("admin:studyplatform_study_export", args=[fingerspelling.pk])
+    bundle = client.get(url, {"media": "1"})
+    assert bundle["Content-Type"] == "application/zip"
+    client.force_login(bob)
+    upload = SimpleUploadedFile("fs.study.zip", bundle.content, "application/zip")
+    imported = client.post(reverse("admin:studyplatform_study_import"), {"definition": upload})
+    assert imported.status_code == 302
+    study = Study.objects.filter(owner=bob).get()
+    assert study.asl_videos.get().video.read() == b"signed consent"
+    path = tmp_path / "bundle.zip"
+    call_command("export_study", fingerspelling.slug, "--out", str(path), "--with-media")
+    call_command("import_study", str(path), "--owner", "bob", "--slug", "from-the-shell")
+    assert Study.objects.get(slug="from-the-shell").asl_videos.get().video.read() == (
+        b"signed consent"
+    )
+    broken = SimpleUploadedFile("x.zip", b"PK\x03\x04broken")
+    plain = client.post(reverse("admin:studyplatform_study_import"), {"definition": broken})
+    assert "not a zip file" in plain.text
+
+
+@pytest.mark.django_db(transaction=True)
+def test_an_import_commits_in_short_transactions(fingerspelling, bob):
+    """Issue 19: an import held SQLite's write lock for its whole run (participants waited)."""
+    from django.db import transaction
+    from django.db.models.signals import post_save
+
+    from studyplatform.actions.studies import BATCH_ROWS
+    from studyplatform.models import Condition
+
+    data = export_study(fingerspelling)
+    template = data["conditions"][0]
+    data["conditions"] += [{**template, "key": f"extra-{n}", "label": f"Extra {n}"}
+                           for n in range(450)]  # fmt: skip
+    commits: list[int] = []
+    saves_before_commit: list[int] = []
+    waiting = []
+
+    def saved(sender, **kwargs):
+        saves_before_commit.append(len(commits))
+        if not waiting:  # one callback per transaction: it runs when that one commits
+            waiting.append(1)
+            transaction.on_commit(lambda: (commits.append(1), waiting.clear()))
+
+    post_save.connect(saved, sender=Condition)
+    try:
+        do_import_study(data, owner=bob)
+    finally:
+        post_save.disconnect(saved, sender=Condition)
+    per_transaction = Counter(saves_before_commit).values()
+    assert len(per_transaction) >= 3 and max(per_transaction) <= BATCH_ROWS

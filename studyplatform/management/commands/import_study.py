@@ -5,10 +5,12 @@ from django.core.management.base import BaseCommand, CommandError
 
 from studyplatform.actions import StudyImportError, do_import_study
 from studyplatform.lib import strict_json
+from studyplatform.lib.bundle import BundleRejected, read_bundle
 
 
 class Command(BaseCommand):
-    help = "Import a study definition (JSON) as a new study owned by --owner."
+    help = ("Import a study definition (JSON, or a .zip bundle with its media) as a new study "
+            "owned by --owner.")  # fmt: skip
 
     def add_arguments(self, parser) -> None:
         parser.add_argument("file")
@@ -19,15 +21,20 @@ class Command(BaseCommand):
         user = get_user_model().objects.filter(username=owner).first()
         if user is None:
             raise CommandError(f"No user '{owner}'.")
+        files = {}
         try:
             with open(file, "rb") as handle:
-                data = strict_json.loads(handle.read())
+                content = handle.read()
+            if content.startswith(b"PK\x03\x04"):
+                data, files = read_bundle(content)
+            else:
+                data = strict_json.loads(content)
         except OSError as error:
             raise CommandError(f"Cannot read {file}: {error.strerror}.") from None
-        except strict_json.JsonRejected as error:
+        except (strict_json.JsonRejected, BundleRejected) as error:
             raise CommandError(f"{file} is {error}.") from None
         try:
-            result = do_import_study(data, owner=user, slug=slug)
+            result = do_import_study(data, owner=user, slug=slug, files=files)
         except StudyImportError as error:
             raise CommandError(f"{file}: {error}") from None
         for warning in result.warnings:
