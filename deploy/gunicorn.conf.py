@@ -20,6 +20,9 @@ keepalive = 5
 max_requests = 5000
 max_requests_jitter = 500
 accesslog = os.environ.get("SIGNSTUDY_ACCESS_LOG") or None
+# With the server's own time per request (ms), to tell queueing in front of it from work.
+access_log_format = '%(h)s %(t)s "%(r)s" %(s)s %(b)s %(M)sms'
+
 errorlog = "-"
 loglevel = os.environ.get("SIGNSTUDY_LOG_LEVEL", "info").lower()
 # Behind a proxy on this machine (nginx, Caddy): trust its X-Forwarded-* headers.

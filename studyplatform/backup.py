@@ -8,7 +8,6 @@ alike) and the files of the public media root (``media/``) and the private one
 and checks every count and checksum against the manifest; any difference is an error.
 """
 
-import hashlib
 import io
 import json
 import shutil
@@ -22,6 +21,8 @@ from django.conf import settings
 from django.core.management import call_command
 from django.db import transaction
 from django.utils import timezone
+
+from stimuli.clips import file_sha256
 
 FORMAT = "signstudy.backup"
 VERSION = 1
@@ -46,14 +47,6 @@ class BackupSummary:
 def _roots() -> dict[str, Path]:
     return {"media": Path(settings.MEDIA_ROOT),
             "private": Path(settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT)}  # fmt: skip
-
-
-def _sha256(path: Path) -> str:
-    digest = hashlib.sha256()
-    with open(path, "rb") as handle:
-        for block in iter(lambda: handle.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
 
 
 def _counts() -> dict[str, int]:
@@ -83,12 +76,12 @@ def make_backup(out: Path) -> BackupSummary:
             for prefix, root in _roots().items():
                 for path in sorted(p for p in root.rglob("*") if p.is_file()):
                     name = f"{prefix}/{path.relative_to(root).as_posix()}"
-                    files[name] = _sha256(path)
+                    files[name] = file_sha256(path)
                     size += path.stat().st_size
                     archive.add(path, name)
             manifest = {"format": FORMAT, "version": VERSION,
                         "created_at": timezone.now().isoformat(), "counts": counts,
-                        "files": files, "data_sha256": _sha256(data)}  # fmt: skip
+                        "files": files, "data_sha256": file_sha256(data)}  # fmt: skip
             encoded = json.dumps(manifest, indent=1, sort_keys=True).encode()
             info = tarfile.TarInfo("manifest.json")
             info.size = len(encoded)
@@ -133,7 +126,7 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
                                   "delete what it holds first.")  # fmt: skip
             archive.extract("data.json", scratch, filter="data")
             data = Path(scratch) / "data.json"
-            if _sha256(data) != manifest["data_sha256"]:
+            if file_sha256(data) != manifest["data_sha256"]:
                 raise BackupError("data.json does not match its checksum: the archive is damaged.")
             staged = _stage_files(archive, manifest["files"], stages)
             with transaction.atomic():
@@ -171,7 +164,7 @@ def _stage_files(archive: tarfile.TarFile, files: dict[str, str], stages: dict[s
         except (KeyError, tarfile.FilterError) as error:
             raise BackupError(f"{name} cannot be restored ({error}).") from None
         path = stages[prefix] / name
-        if _sha256(path) != digest:
+        if file_sha256(path) != digest:
             raise BackupError(f"{name} does not match its checksum: the archive is damaged.")
         staged[name] = path
     return staged

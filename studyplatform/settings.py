@@ -262,11 +262,12 @@ CELERY_BEAT_SCHEDULE = {
     "apply-retention": {"task": "studyplatform.apply_retention", "schedule": 24 * 3600.0},
 }
 
+LOG_LEVEL = os.environ.get("SIGNSTUDY_LOG_LEVEL", "INFO").upper()
 LOGGING = {
     "version": 1,
     "disable_existing_loggers": False,
     "handlers": {"console": {"class": "logging.StreamHandler"}},
-    "root": {"handlers": ["console"], "level": os.environ.get("SIGNSTUDY_LOG_LEVEL", "INFO")},
+    "root": {"handlers": ["console"], "level": LOG_LEVEL},
     # Jobs run in the calling process report themselves (generate_stimuli prints each
     # clip); Celery's per-task lines would repeat that. A real worker logs them.
     "loggers": {

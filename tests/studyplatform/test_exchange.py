@@ -168,6 +168,12 @@ BAD_DEFINITIONS = [
         r"questions\[0\].options\[6\]",
     ),
     (lambda d: d.update(items="GUITAR"), "items: expected a list"),
+    (  # issue 19: was a server error
+        lambda d: d["questions"].append(
+            {"key": "years", "kind": "number", "text": "Years?", "min_value": "x"}
+        ),
+        r"questions\[11\]: min_value: “x” value must be a float",
+    ),
 ]
 
 
