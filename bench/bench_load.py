@@ -7,14 +7,16 @@ middle of the run (and restarted), or PostgreSQL restarted, still 0 lost and 0 d
 Each participant is a thread speaking HTTP to the server as the page's script does
 (bench/participant_http.py: each answer saved at once and sent twice, as a retry of a lost
 reply would, then Next; lost connections retried with backoff, server errors five times).
-Between pages it spends --think-s seconds on average (uniform over half to one and a half
-times that; seed 000's participants spent about 20 s a page); --think-s 0 is a stress
-test. Afterwards every participant's stored answers are compared with what they sent:
-lost (sent, not stored), duplicated or wrong (a revision above 1 or another value).
+Participants start at random within --arrival-s seconds (a recruitment service fills a
+study over minutes; --arrival-s 0 starts all at once); between pages each spends --think-s
+seconds on average (uniform over half to one and a half times that; seed 000's
+participants spent about 20 s a page); --think-s 0 is a stress test. Afterwards every
+participant's stored answers are compared with what they sent: lost (sent, not stored),
+duplicated or wrong (a revision above 1 or another value).
 Prints figures; asserts nothing.
 
     .venv/bin/python bench/bench_load.py [--participants 200] [--pages 10] [--think-s 15]
-        [--fault none|app-kill|pg-restart] [--workers 3] [--threads 8]
+        [--arrival-s 60] [--fault none|app-kill|pg-restart] [--workers 3] [--threads 8]
 """
 
 import argparse
@@ -53,9 +55,9 @@ def _prepare(env: dict[str, str]) -> None:
                        check=True, stdout=subprocess.DEVNULL)  # fmt: skip
 
 
-def _participant(url: str, number: int, pages: int, think_s: float):
+def _participant(url: str, number: int, pages: int, think_s: float, arrival_s: float):
     participant = HttpParticipant(url, patience_s=120, seed=number)
-    time.sleep(think_s * participant.random.random())  # arrivals spread over one page's time
+    time.sleep(arrival_s * participant.random.random())
     try:
         participant.enroll(SLUG)
         for page in range(1, pages + 1):
@@ -126,6 +128,8 @@ def main() -> None:
     parser.add_argument("--participants", type=int, default=200)
     parser.add_argument("--pages", type=int, default=10)
     parser.add_argument("--think-s", type=float, default=15.0, help="mean seconds per page")
+    parser.add_argument("--arrival-s", type=float, default=60.0,
+                        help="participants start at random within this many seconds")  # fmt: skip
     parser.add_argument("--fault", choices=("none", "app-kill", "pg-restart"), default="none")
     parser.add_argument("--workers", type=int, default=3)
     parser.add_argument("--threads", type=int, default=8)
@@ -146,7 +150,7 @@ def main() -> None:
         server = AppServer(env, workers=args.workers, threads=args.threads)
         server.start()
         log: list[str] = []
-        expected_s = args.think_s * (args.pages + 1) or 20.0
+        expected_s = args.arrival_s + args.think_s * args.pages or 20.0
         if args.fault != "none":
             threading.Thread(target=_fault, args=(args.fault, server, 0.4 * expected_s, log),
                              daemon=True).start()  # fmt: skip
@@ -154,7 +158,8 @@ def main() -> None:
         try:
             with ThreadPoolExecutor(args.participants) as pool:
                 results = list(pool.map(
-                    lambda n: _participant(server.url, n, args.pages, args.think_s),
+                    lambda n: _participant(server.url, n, args.pages, args.think_s,
+                                           args.arrival_s),
                     range(args.participants)))  # fmt: skip
         finally:
             server.stop()
@@ -165,8 +170,9 @@ def main() -> None:
     requests = sum(len(v) for v in timings.values())
     failed = [error for _, error in results if error]
     print(f"PostgreSQL through gunicorn ({args.workers} workers × {args.threads} threads): "
-          f"{args.participants} participants × {args.pages} pages, think time {args.think_s:g} "
-          f"s, fault {args.fault}; {requests} requests in {wall:.1f} s "
+          f"{args.participants} participants arriving within {args.arrival_s:g} s × {args.pages} "
+          f"pages, think time {args.think_s:g} s, fault {args.fault}; {requests} requests in "
+          f"{wall:.1f} s "
           f"({requests / wall:.0f}/s), {sum(a.retries for a, _ in results)} retries")  # fmt: skip
     for line in log:
         print(f"  {line}")

@@ -133,7 +133,9 @@ def page(browser):
     A test that provokes errors on purpose (a lost connection) lists patterns of the
     ones it expects in ``page.allowed_errors``.
     """
-    context = browser.new_context(viewport={"width": 1280, "height": 900})
+    # Playwright's string predicates (wait_for_function) are evaluated with eval, which the
+    # site's Content-Security-Policy forbids; test_security's browser test runs with it.
+    context = browser.new_context(viewport={"width": 1280, "height": 900}, bypass_csp=True)
     page = context.new_page()
     page.allowed_errors = []
     errors = []

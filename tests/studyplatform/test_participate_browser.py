@@ -205,6 +205,7 @@ def test_spine_study_by_keyboard_on_a_phone(browser, live_server, spine, clips_d
     _with_clips(spine, one_clip, clips_dir)
     played = 0
     context = browser.new_context(viewport={"width": 390, "height": 844}, is_mobile=True,
+                                  bypass_csp=True,
                                   has_touch=True)  # fmt: skip
     page = context.new_page()
     errors = []
