@@ -127,8 +127,11 @@ def browser():
 
 
 @pytest.fixture
-def page(browser):
+def page(browser, _django_db_helper):
     """A fresh browser page; fails the test on any console error or page crash.
+
+    It depends on pytest-django's database fixture so that it closes first: a page left
+    open keeps sending events, which raced the database's flush after the test.
 
     A test that provokes errors on purpose (a lost connection) lists patterns of the
     ones it expects in ``page.allowed_errors``.

@@ -15,7 +15,7 @@ pytestmark = pytest.mark.django_db(transaction=True)
 
 
 @pytest.fixture
-def strict_page(browser):
+def strict_page(browser, _django_db_helper):
     """A browser page that enforces the site's policy and collects its violations."""
     context = browser.new_context(viewport={"width": 1280, "height": 900})
     page = context.new_page()
