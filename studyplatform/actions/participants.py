@@ -80,15 +80,17 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
         if reason:
             raise PageRejected(reason)
         if trial is not None:
+            # Watching comes first: until the clips have ended, the questions are disabled,
+            # so "answer every question" would name the wrong reason.
+            watch = locked.study.require_full_view and trial.condition_a_id and trial.item_id
+            if watch and unwatched_clips(locked, trial):
+                raise PageRejected("Please watch each clip to its end before going on.")
             missing = missing_answers(locked, trial)
             if missing:
                 raise PageRejected(
                     "Please answer every question on this page first.",
                     params={"questions": [q.key for q in missing]},
                 )
-            watch = locked.study.require_full_view and trial.condition_a_id and trial.item_id
-            if watch and unwatched_clips(locked, trial):
-                raise PageRejected("Please watch each clip to its end before going on.")
         now = timezone.now()
         locked.position = page + 1
         locked.reached = max(locked.reached, locked.position)

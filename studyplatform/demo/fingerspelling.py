@@ -93,14 +93,14 @@ def fingerspelling_timing_study() -> dict[str, Any]:
             {
                 "key": "name",
                 "kind": "short_text",
-                "text": "Your name (optional)",
+                "text": "Your name",
                 "required": False,
                 "is_personal": True,
             },
             {
                 "key": "email",
                 "kind": "short_text",
-                "text": "Your e-mail address (optional)",
+                "text": "Your e-mail address",
                 "required": False,
                 "is_personal": True,
             },

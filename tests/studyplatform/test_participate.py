@@ -102,6 +102,13 @@ def test_a_repeated_next_changes_nothing(client, fingerspelling):
     assert list(Response.objects.values_list("pk", "revision")) == before
 
 
+def test_optional_is_said_once(client, fingerspelling):
+    """Issue 20: "Your name (optional) (optional)"."""
+    participant = _start(client, fingerspelling)
+    shown = client.get(reverse("participant_page", args=[participant.token, 1]))
+    assert shown.text.count("(optional)") == 2  # the name and the e-mail address
+
+
 def test_answers_save_at_once_and_idempotently(client, fingerspelling):
     participant = _start(client, fingerspelling)
     page = {"page": 1, "trial": participant.schedule[0]["trial"]}
@@ -463,8 +470,11 @@ def test_next_waits_for_every_clip_watched_to_the_end(client, fingerspelling):
     participant.reached = participant.position = number
     participant.save()
     url = reverse("participant_page", args=[participant.token, number])
-    refused = client.post(url, {"nav": "next", "q-most-natural": "1"})
-    assert refused.status_code == 400 and "watch each clip to its end" in refused.text
+    # Issue 20: with nothing answered (the questions wait for the clips), the reason given
+    # was "Please answer every question".
+    for form in ({"nav": "next"}, {"nav": "next", "q-most-natural": "1"}):
+        refused = client.post(url, form)
+        assert refused.status_code == 400 and "watch each clip to its end" in refused.text
     events = [{"kind": "ended", "page": number, "clip": clip, "client_time_ms": 5000 + clip}
               for clip in (1, 2)]  # fmt: skip
     client.post(reverse("participant_events", args=[participant.token]),

@@ -332,6 +332,9 @@ def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "comments")
     page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
     _wait_ready(page)
+    # Issue 20: .button's display overrode [hidden], showing both before any recording.
+    expect(page.get_by_role("button", name="Stop recording")).to_be_hidden()
+    expect(page.get_by_role("button", name="Send this recording")).to_be_hidden()
     page.get_by_role("button", name="Record a signed answer").click()
     page.get_by_text("Recording…").wait_for()
     page.wait_for_timeout(1500)
