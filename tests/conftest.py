@@ -4,6 +4,7 @@ import functools
 import os
 import re
 import subprocess
+import time
 
 import pytest
 from django.contrib.auth.models import Group
@@ -126,6 +127,17 @@ def browser():
         chromium.close()
 
 
+def close_context(context) -> None:
+    """Close a browser context and let the requests its pages sent on closing finish.
+
+    Closing hides a participant page, which sends its last events with keepalive; the
+    live server must finish that request before pytest-django flushes the database, or
+    PostgreSQL's TRUNCATE and the insert deadlock.
+    """
+    context.close()
+    time.sleep(1.0)
+
+
 @pytest.fixture
 def page(browser, _django_db_helper):
     """A fresh browser page; fails the test on any console error or page crash.
@@ -160,7 +172,7 @@ def page(browser, _django_db_helper):
         ),
     )
     yield page
-    context.close()
+    close_context(context)
     errors = [e for e in errors if not any(re.search(p, e) for p in page.allowed_errors)]
     assert errors == [], f"browser console errors: {errors}"
 

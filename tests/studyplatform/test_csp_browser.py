@@ -9,6 +9,7 @@ import pytest
 from django.urls import reverse
 
 from studyplatform.models import Participant, Response
+from tests.conftest import close_context
 from tests.studyplatform.test_participate_browser import _with_clips
 
 pytestmark = pytest.mark.django_db(transaction=True)
@@ -24,7 +25,7 @@ def strict_page(browser, _django_db_helper):
             and page.violations.append(msg.text))  # fmt: skip
     page.on("pageerror", lambda error: page.violations.append(str(error)))
     yield page
-    context.close()
+    close_context(context)
 
 
 def test_participant_and_admin_pages_run_under_the_policy(

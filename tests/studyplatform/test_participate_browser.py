@@ -14,6 +14,7 @@ from playwright.sync_api import expect
 
 from studyplatform.lib.stimuli import clip_spec, needed_pairs
 from studyplatform.models import MediaEvent, Participant, Response, Stimulus, Trial
+from tests.conftest import close_context
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
 
@@ -259,7 +260,7 @@ def test_spine_study_by_keyboard_on_a_phone(browser, live_server, spine, clips_d
     assert page.locator("#completion-code").text_content() == "SPINE-DEMO"
     SCREENSHOTS.mkdir(exist_ok=True)
     page.screenshot(path=SCREENSHOTS / "participant-phone-done.png", full_page=True)
-    context.close()
+    close_context(context)
     assert errors == []
     assert _stored(participant) == clicked
 
