@@ -10,6 +10,7 @@ from django.core.files.base import ContentFile
 from django.db import models, transaction
 
 from studyplatform import exchange
+from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.recordings import do_relabel_stand_ins
 from studyplatform.lib.bundle import definition_files, owned_files, storage_of
 from studyplatform.models import (
@@ -176,8 +177,7 @@ def do_import_study(
     with transaction.atomic():
         _save(study, "study")
     study.status = final_status
-    files_named = definition_files(data) - set(files or {})
-    media = _Media(owner, files or {}, allowed_files, files_named)
+    media = _Media(owner, files or {}, allowed_files)
     batches = _Batches()
     try:
         warnings = _import_rows(data, study, batches, media)
@@ -195,10 +195,9 @@ def do_import_study(
 class _Media:
     """Resolve the media names of a definition being imported (see do_import_study)."""
 
-    def __init__(self, owner, files: dict[str, bytes], allowed: set[str], named: set[str]):
+    def __init__(self, owner, files: dict[str, bytes], allowed: set[str]):
         self.owner, self.files, self.allowed, self.stored = owner, files, set(allowed), []
-        # Only asked about when the definition names files it does not bring.
-        self._owned = None if named - self.allowed else set()
+        self._owned: set[str] | None = None  # the owner's files, read when first needed
 
     def resolve(self, name: Any, folder: str, whose: str, where: str) -> str | None:
         """Return the name to store for *name* ("" for none, None if it is not here)."""
@@ -229,8 +228,6 @@ class _Media:
 
 def _discard(study: Study, stored: list) -> None:
     """Remove a failed import's rows and the files it had stored."""
-    from studyplatform.actions.media import delete_unused_files_on_commit
-
     with transaction.atomic():
         for video in exchange.study_asl_videos(study):
             video.delete()

@@ -116,8 +116,9 @@ def _save_recording(participant: Participant, trial: Trial, question: Question, 
     """Save the checked part at *path* as the answer's video (replacing an older one)."""
     with transaction.atomic():
         Participant.objects.select_for_update().get(pk=participant.pk)
-        if upload_offset(participant, trial, question) != length:  # restarted meanwhile
-            raise UploadOffsetMismatch(upload_offset(participant, trial, question))
+        stored = upload_offset(participant, trial, question)
+        if stored != length:  # a new recording started meanwhile
+            raise UploadOffsetMismatch(stored)
         response = Response.objects.select_for_update().filter(
             participant=participant, trial=trial, question=question
         ).first() or Response(participant=participant, trial=trial, question=question)

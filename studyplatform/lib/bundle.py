@@ -47,12 +47,15 @@ def definition_files(definition: dict[str, Any]) -> set[str]:
 
 def owned_files(owner) -> set[str]:
     """Return the media names the studies of *owner* refer to (theirs to reuse)."""
-    from studyplatform.exchange import export_study
+    from studyplatform.exchange import RECORDING_FILES, study_asl_videos
 
     names: set[str] = set()
     for study in Study.objects.filter(owner=owner):
-        names |= definition_files(export_study(study))
-    return names
+        for video in study_asl_videos(study):
+            names.update((video.video.name, video.poster.name))
+    for row in Recording.objects.filter(item__study__owner=owner).values_list(*RECORDING_FILES):
+        names.update(row)
+    return {name for name in names if name}
 
 
 def write_bundle(definition: dict[str, Any], out) -> None:

@@ -5,6 +5,7 @@ participant view, the save action, the page layout, the export and the templates
 the type instead of branching on the kind.
 """
 
+import math
 import re
 from dataclasses import dataclass
 
@@ -51,7 +52,7 @@ def parse_number(value: str) -> float:
     if not _ASCII_NUMBER.fullmatch(value):
         raise ValueError(value)
     number = float(value)
-    if number != number or number in (float("inf"), float("-inf")):
+    if not math.isfinite(number):  # "1e999" is written well but is no finite number
         raise ValueError(value)
     return number
 
