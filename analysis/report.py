@@ -23,7 +23,12 @@ from analysis.results import (
     Result,
     plain,
 )
-from analysis.tidy import check_conditions
+from analysis.tidy import (
+    check_conditions,
+    label_simulated,
+    simulated_conditions,
+    with_simulated_labels,
+)
 
 SOFTWARE = ("numpy", "scipy", "pandas", "statsmodels", "matplotlib")
 
@@ -76,14 +81,23 @@ def _design(frame: pd.DataFrame) -> dict[str, Any]:
         "conditions": conditions,
         "items": sorted(set(frame["item"]) - {""}),
         "questions": sorted(set(frame.loc[frame["kind"] == "rating", "question"]) - {""}),
+        "simulated_conditions": simulated_conditions(frame),
     }
 
 
 def build_report(
     frame: pd.DataFrame, options: ReportOptions = ReportOptions(), source: str = "responses"
 ) -> Report:
-    """Apply the exclusions, then run the pairwise, rating and intelligibility analyses."""
+    """Apply the exclusions, then run the pairwise, rating and intelligibility analyses.
+
+    Simulated conditions are named ``"<key> (simulated)"`` throughout (the table from
+    :func:`~analysis.tidy.check_responses` names them so); *options* may list their keys.
+    """
+    frame = label_simulated(frame)
     if options.conditions:
+        options = dataclasses.replace(
+            options, conditions=with_simulated_labels(options.conditions, frame)
+        )
         check_conditions(frame, options.conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
     pairwise = ratings = comparisons = scores = mixed = None

@@ -30,7 +30,10 @@ REQUIRED_COLUMNS = (
 )
 # Optional columns with a meaning of their own; any other column is a participant
 # attribute (a demographic answer) and must be constant within a participant.
-OPTIONAL_COLUMNS = ("target",)
+OPTIONAL_COLUMNS = ("target", "condition_simulated")
+# How a simulated condition is named in every result: a reader must never take a
+# simulated stand-in (e.g. for motion capture) for the real thing.
+SIMULATED_SUFFIX = " (simulated)"
 KINDS = ("pairwise", "comparative", "rating", "text")
 NO_DIFFERENCE = "none"
 # Flags that exclude a participant, and flags that take a row out of the analyses.
@@ -87,7 +90,9 @@ def check_responses(frame: pd.DataFrame, source: str = "responses") -> pd.DataFr
         raise TidyFormatError(f"{source}: no response rows.")
     frame = frame.copy()
     for column in frame.columns:
-        frame[column] = frame[column].fillna("").astype(str).str.strip()
+        # A numeric column (a frame built in memory) becomes text like one read from CSV.
+        values = frame[column].astype(object)
+        frame[column] = values.where(values.notna(), "").astype(str).str.strip()
     frame["rating"] = _numeric(frame, "rating", source)
     frame["rt_ms"] = _numeric(frame, "rt_ms", source)
 
@@ -106,7 +111,41 @@ def check_responses(frame: pd.DataFrame, source: str = "responses") -> pd.DataFr
     _check_flags(frame, source)
     _check_pairwise(frame, source)
     _check_ratings(frame, source)
+    return label_simulated(frame)
+
+
+def simulated_conditions(frame: pd.DataFrame) -> list[str]:
+    """Return the conditions the ``condition_simulated`` column names, sorted."""
+    if "condition_simulated" not in frame.columns:
+        return []
+    return sorted({c for cell in frame["condition_simulated"] for c in split_flags(cell)})
+
+
+def label_simulated(frame: pd.DataFrame) -> pd.DataFrame:
+    """Return *frame* with each simulated condition renamed ``"<key> (simulated)"``.
+
+    The rename covers both clip columns and pairwise choices, so every table, figure
+    and report made from the frame names the condition simulated.
+    """
+    simulated = [c for c in simulated_conditions(frame) if not c.endswith(SIMULATED_SUFFIX)]
+    if not simulated:
+        return frame
+    rename = {key: key + SIMULATED_SUFFIX for key in simulated}
+    frame = frame.copy()
+    for column in ("condition_a", "condition_b", "chosen"):
+        frame[column] = frame[column].replace(rename)
+    frame["condition_simulated"] = frame["condition_simulated"].map(
+        lambda cell: ";".join(rename.get(c, c) for c in split_flags(cell))
+    )
     return frame
+
+
+def with_simulated_labels(conditions: Iterable[str], frame: pd.DataFrame) -> tuple[str, ...]:
+    """Return *conditions* (keys) named as the frame names them, simulated ones labelled."""
+    labelled = set(simulated_conditions(frame))
+    return tuple(
+        c + SIMULATED_SUFFIX if c + SIMULATED_SUFFIX in labelled else c for c in conditions
+    )
 
 
 def _check_flags(frame: pd.DataFrame, source: str) -> None:

@@ -38,6 +38,8 @@ STUDY_FIELDS = (
     "randomize_positions",
     "rotate_conditions",
     "personal_data_retention_days",
+    "allow_identical_clips",
+    "design",
 )
 CONDITION_FIELDS = ("key", "label", "description", "is_simulated", "parameters", "position")
 ITEM_FIELDS = ("key", "kind", "text", "target_text", "is_practice", "parameters", "position")

@@ -2,7 +2,9 @@
 
 One row per participant × trial × question (docs/tidy-format.md). Demographic answers
 (choice, number and short-text questions, on whatever page they are asked) become
-participant columns; identifying answers (name, e-mail) are never exported.
+participant columns; identifying answers (name, e-mail) are never exported. The
+``condition_simulated`` column names the row's conditions that are simulated stand-ins,
+so an analysis of the CSV alone labels them too.
 """
 
 import csv
@@ -71,12 +73,13 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     clash = set(attribute_columns) & {*REQUIRED_COLUMNS, "target"}
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
-    columns = [*REQUIRED_COLUMNS, "target", *attribute_columns]
+    columns = [*REQUIRED_COLUMNS, "target", "condition_simulated", *attribute_columns]
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
 
     conditions = {condition.key: condition for condition in study.conditions.all()}
+    simulated = {key for key, condition in conditions.items() if condition.is_simulated}
 
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
@@ -108,6 +111,9 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                 "target": trial.item.scoring_target
                 if question.type.is_scored and trial.item
                 else "",
+                "condition_simulated": ";".join(
+                    key for key in dict.fromkeys((clip1, clip2)) if key in simulated
+                ),
             }
             answers = attributes.get(participant.pk, {})
             for key, column in attribute_pairs:

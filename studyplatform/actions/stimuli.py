@@ -13,7 +13,8 @@ from django.db import transaction
 from django.utils import timezone
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
-from studyplatform.lib.stimuli import clip_spec, files_exist, needed_pairs
+from studyplatform.background import dispatch_renders
+from studyplatform.lib.stimuli import clip_spec, describe_identical, files_exist, needed_pairs
 from studyplatform.models import Stimulus, Study
 
 
@@ -31,6 +32,10 @@ class RerenderRefused(ClipError):
     """Generation would silently change clips that participants of an open study have seen."""
 
 
+class IdenticalClips(ClipError):
+    """Two conditions of an item would render the same clip, and nobody confirmed it."""
+
+
 def _refuse_changes_in_the_field(study: Study, changed: list[tuple[Stimulus, ClipSpec]]) -> None:
     engines = sorted({stimulus.engine_version for stimulus, _ in changed})
     current = changed[0][1].engine
@@ -45,18 +50,26 @@ def _refuse_changes_in_the_field(study: Study, changed: list[tuple[Stimulus, Cli
 
 
 def do_generate_stimuli(
-    study: Study, force: bool = False, enqueue: bool = True, rerender_open: bool = False
+    study: Study,
+    force: bool = False,
+    enqueue: bool = True,
+    rerender_open: bool = False,
+    allow_identical: bool = False,
+    background: bool = False,
 ) -> GenerationResult:
     """Record the study's clips and queue the ones not rendered yet (all with *force*).
 
-    *enqueue* False only records them, for a caller that renders them itself. On an open
+    Two conditions that render an item identically raise :class:`IdenticalClips` unless
+    *allow_identical*: a comparison of identical clips is almost always a forgotten
+    setting. *enqueue* False only records them, for a caller that renders them itself;
+    *background* renders them in a background process where there is no broker
+    (:func:`studyplatform.background.dispatch_renders`). On an open
     or closed study that participants have taken, clips already rendered whose
     specification changed (new parameters, another engine) are re-rendered only with
     *rerender_open*; otherwise :class:`RerenderRefused` names them and nothing changes.
     """
-    from studyplatform.tasks import render_stimulus
-
     queued, ready, ids, changed = [], 0, [], []
+    by_hash: dict[tuple[int, str], list] = {}
     # Clips are in the field once participants of an open (or closed) study have seen them.
     in_field = (
         study.status in (Study.Status.OPEN, Study.Status.CLOSED)
@@ -70,6 +83,7 @@ def do_generate_stimuli(
             except ClipError as error:
                 raise ClipError(f"{condition.key} × {item.key}: {error}") from None
             content_hash = spec.content_hash()
+            by_hash.setdefault((item.pk, content_hash), [item]).append(condition)
             stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
             rendered = stimulus is not None and stimulus.status == Stimulus.Status.READY
             if rendered and stimulus.content_hash != content_hash:
@@ -91,22 +105,23 @@ def do_generate_stimuli(
                 stimulus.save()
                 queued.append(stimulus.pk)
             ids.append(stimulus.pk)
+        identical = [(same[0], same[1:]) for same in by_hash.values() if len(same) > 2]
+        if identical and not allow_identical:
+            raise IdenticalClips(describe_identical(identical))
         if changed and refuse_changes:
             _refuse_changes_in_the_field(study, changed)
-        for pk in queued if enqueue else ():
-            transaction.on_commit(lambda pk=pk: render_stimulus.delay(pk))
+        if enqueue and queued:
+            transaction.on_commit(lambda: dispatch_renders(queued, background=background))
     return GenerationResult(len(ids), len(queued), ready, tuple(ids))
 
 
-def do_retry_stimuli(stimuli) -> int:
+def do_retry_stimuli(stimuli, background: bool = False) -> int:
     """Queue failed (or stuck) clips again; return how many."""
-    from studyplatform.tasks import render_stimulus
-
     with transaction.atomic():
         pks = [s.pk for s in stimuli if s.status != Stimulus.Status.READY]
         Stimulus.objects.filter(pk__in=pks).update(status=Stimulus.Status.PENDING, error="")
-        for pk in pks:
-            transaction.on_commit(lambda pk=pk: render_stimulus.delay(pk))
+        if pks:
+            transaction.on_commit(lambda: dispatch_renders(pks, background=background))
     return len(pks)
 
 

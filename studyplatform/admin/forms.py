@@ -5,7 +5,31 @@ from django.core.exceptions import ValidationError
 
 from studyplatform.lib import strict_json
 from studyplatform.lib.bundle import BundleRejected, read_bundle
-from studyplatform.models import Trial
+from studyplatform.models import Study, Trial
+
+
+class StudyForm(forms.ModelForm):
+    """Edit a study; refuse to let participants in while conditions show identical clips."""
+
+    class Meta:
+        model = Study
+        fields = ("status", "allow_identical_clips")  # the admin adds its fieldsets
+
+    def clean(self):
+        cleaned = super().clean()
+        study = self.instance
+        opening = cleaned.get("status") in (Study.Status.PILOT, Study.Status.OPEN)
+        was_closed = study.pk is None or study.status in (Study.Status.DRAFT, Study.Status.CLOSED)
+        if study.pk and opening and was_closed and not cleaned.get("allow_identical_clips"):
+            from studyplatform.lib.stimuli import describe_identical, identical_clips
+
+            identical = identical_clips(study)
+            if identical:
+                self.add_error(
+                    "status",
+                    f"{describe_identical(identical)} (tick “identical clips intended” below).",
+                )
+        return cleaned
 
 
 class TrialForm(forms.ModelForm):

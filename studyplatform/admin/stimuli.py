@@ -24,12 +24,21 @@ class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
     list_filter = (("condition__study", OwnStudyFilter), "status", "condition__is_simulated")
     search_fields = ("item__key", "condition__key", "content_hash")
     list_select_related = ("item", "condition")
-    readonly_fields = ("player", "created_at")
+    # A clip's record is its provenance: what rendered it, from what, with which result.
+    # Nobody edits it; generation writes it and "Retry" re-renders it.
+    fields = readonly_fields = (
+        "player", "condition", "item", "status", "error", "content_hash", "parameters",
+        "engine_version", "duration_ms", "frame_count", "width", "height", "size_bytes",
+        "sha256", "video", "poster", "created_at", "rendered_at",
+    )  # fmt: skip
     actions = ("retry_stimuli",)
+
+    def has_add_permission(self, request) -> bool:
+        return False
 
     @admin.action(description="Retry the selected clips (those not rendered)")
     def retry_stimuli(self, request, queryset) -> None:
-        count = do_retry_stimuli(queryset)
+        count = do_retry_stimuli(queryset, background=True)
         self.message_user(request, f"{count} clip(s) queued again.")
 
     @admin.display(description="clip")

@@ -14,19 +14,18 @@ from django.template.response import TemplateResponse
 from django.urls import path, reverse
 from django.utils.html import format_html
 
-from stimuli.clips import ClipError
-from stimuli.manifest import manifest_dict
 from studyplatform import exchange
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
-from studyplatform.actions.stimuli import do_generate_stimuli
-from studyplatform.admin.forms import StudyImportForm, TrialForm
+from studyplatform.admin.builder import StudyDesignMixin
+from studyplatform.admin.forms import StudyForm, StudyImportForm, TrialForm
+from studyplatform.admin.generate import StudyGenerateMixin
 from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
 from studyplatform.admin.power import StudyPowerMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.lib.bundle import definition_json, write_bundle
-from studyplatform.lib.stimuli import stimuli_progress, study_manifest
+from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.lib.techniques import describe_condition
 from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
@@ -89,9 +88,11 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordingsMixin,
-                 StudyScopedMixin, admin.ModelAdmin):  # fmt: skip
+class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyResultsMixin, StudyPowerMixin,
+                 StudyAslMixin, StudyRecordingsMixin, StudyScopedMixin,
+                 admin.ModelAdmin):  # fmt: skip
     study_path = ""
+    form = StudyForm
     list_display = (
         "title",
         "slug",
@@ -140,6 +141,7 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
                     "require_full_view",
                     "randomize_positions",
                     "rotate_conditions",
+                    "allow_identical_clips",
                 )
             },
         ),
@@ -196,6 +198,15 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
             url,
         )
 
+    def change_view(self, request: HttpRequest, object_id: str, form_url="", extra_context=None):
+        """Show the study; warn first when two conditions would render identical clips."""
+        study = self.get_object(request, object_id) if request.method == "GET" else None
+        if study is not None and not study.allow_identical_clips:
+            identical = identical_clips(study)
+            if identical:
+                messages.warning(request, describe_identical(identical))
+        return super().change_view(request, object_id, form_url, extra_context)
+
     def get_changeform_initial_data(self, request: HttpRequest):
         return {**super().get_changeform_initial_data(request), "owner": request.user.pk}
 
@@ -222,28 +233,14 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
                 name="studyplatform_study_export",
             ),
             path(
-                "<path:object_id>/stimuli/",
-                self.admin_site.admin_view(self.stimuli_view),
-                name="studyplatform_study_stimuli",
-            ),
-            path(
-                "<path:object_id>/stimuli/progress.json",
-                self.admin_site.admin_view(self.stimuli_progress_view),
-                name="studyplatform_study_stimuli_progress",
-            ),
-            path(
-                "<path:object_id>/stimuli/manifest.json",
-                self.admin_site.admin_view(self.stimuli_manifest_view),
-                name="studyplatform_study_stimuli_manifest",
-            ),
-            path(
                 "<path:object_id>/preview/",
                 self.admin_site.admin_view(self.preview_view),
                 name="studyplatform_study_preview",
             ),
         ]
-        return (own + self.results_urls() + self.power_urls() + self.asl_urls()
-                + self.recordings_urls() + super().get_urls())  # fmt: skip
+        return (own + self.generate_urls() + self.design_urls() + self.results_urls()
+                + self.power_urls() + self.asl_urls() + self.recordings_urls()
+                + super().get_urls())  # fmt: skip
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
         study = self.get_object(request, object_id)
@@ -303,48 +300,6 @@ class StudyAdmin(StudyResultsMixin, StudyPowerMixin, StudyAslMixin, StudyRecordi
                     messages.warning(request, warning)
                 return redirect(reverse("admin:studyplatform_study_change", args=[result.study.pk]))
         return self._page(request, "import.html", "Import a study definition", form=form)
-
-    def stimuli_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
-        """Show the study's clips being rendered: a live progress bar and the failures."""
-        study = self._get_visible_study(request, object_id)
-        return self._page(request, "stimuli.html", f"Stimuli of “{study.title}”", study=study,
-                          progress=stimuli_progress(study))  # fmt: skip
-
-    def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
-        """Return the rendering progress as JSON, for the progress bar to poll."""
-        return JsonResponse(stimuli_progress(self._get_visible_study(request, object_id)))
-
-    def stimuli_manifest_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
-        """Download the study's stimulus manifest (every clip's spec, facts and checksum)."""
-        study = self._get_visible_study(request, object_id)
-        response = JsonResponse(manifest_dict(study_manifest(study), study.slug),
-                                json_dumps_params={"indent": 1, "ensure_ascii": False})  # fmt: skip
-        response["Content-Disposition"] = f'attachment; filename="{study.slug}-stimuli.json"'
-        return response
-
-    @admin.action(description="Generate stimuli (render missing clips)")
-    def generate_stimuli(self, request: HttpRequest, queryset):
-        studies = list(queryset)
-        for study in studies:
-            if not self.has_change_permission(request, study):
-                messages.error(request, f"You cannot change “{study.title}”.")
-                continue
-            try:
-                result = do_generate_stimuli(study)
-            except ClipError as error:
-                messages.error(request, f"“{study.title}”: {error}")
-                continue
-            messages.success(
-                request,
-                format_html(
-                    "“{}”: {} clips, {} queued, {} already rendered. <a href='{}'>Progress</a>",
-                    study.title, result.total, result.queued, result.ready,
-                    reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
-                ),
-            )  # fmt: skip
-        if len(studies) == 1:
-            return redirect(reverse("admin:studyplatform_study_stimuli", args=[studies[0].pk]))
-        return None
 
     @admin.action(description="Duplicate the selected studies (as drafts)")
     def duplicate_studies(self, request: HttpRequest, queryset) -> None:

@@ -3,7 +3,7 @@
 import zlib
 from pathlib import Path
 
-from stimuli.clips import ClipSpec, RenderedClip
+from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
 from studyplatform.lib.recordings import with_item_recording
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
@@ -92,3 +92,37 @@ def study_manifest(study: Study) -> list[Entry]:
         label = f"{stimulus.condition.key} × {stimulus.item.key}"
         entries.append(Entry(label, ClipSpec.from_dict(stimulus.parameters), clip))
     return entries
+
+
+def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
+    """Return each item whose clips are identical in two or more conditions, with those.
+
+    Two conditions render the same pixels when their clip specifications hash alike
+    (e.g. two conditions whose settings differ only in a name). A specification that
+    cannot be made is left to generation, which names its error.
+    """
+    by_item: dict[int, tuple[Item, dict[str, list[Condition]]]] = {}
+    for condition, item in needed_pairs(study):
+        try:
+            content_hash = clip_spec(condition, item).content_hash()
+        except ClipError:
+            continue
+        hashes = by_item.setdefault(item.pk, (item, {}))[1]
+        hashes.setdefault(content_hash, []).append(condition)
+    return [
+        (item, same)
+        for item, hashes in by_item.values()
+        for same in hashes.values()
+        if len(same) > 1
+    ]
+
+
+def describe_identical(pairs: list[tuple[Item, list[Condition]]]) -> str:
+    """Return one sentence naming the items whose conditions render identical clips."""
+    parts = [f"{item.key} ({', '.join(c.key for c in same)})" for item, same in pairs[:5]]
+    more = f" and {len(pairs) - 5} more" if len(pairs) > 5 else ""
+    return (
+        f"Conditions render identical clips for {'; '.join(parts)}{more}: their settings "
+        "change nothing the clip shows. Give each condition the technique settings it "
+        "compares (open the condition), or confirm that identical clips are intended."
+    )

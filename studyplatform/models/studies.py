@@ -125,6 +125,21 @@ class Study(models.Model):
         default=True,
         help_text="Swap Clip 1 and Clip 2 at random per participant (seeded, reproducible).",
     )
+    allow_identical_clips = models.BooleanField(
+        "identical clips intended",
+        default=False,
+        help_text=(
+            "Conditions may render the same clip for an item (say, a control identical by "
+            "design). Off: generating stimuli and opening the study are refused while two "
+            "conditions of an item would show identical clips."
+        ),
+    )
+    design = models.JSONField(
+        default=dict,
+        blank=True,
+        editable=False,
+        help_text="What the design builder last built: its choices and the blocks it made.",
+    )
     created_at = models.DateTimeField(auto_now_add=True)
     updated_at = models.DateTimeField(auto_now=True)
 

@@ -31,6 +31,10 @@ class Command(BaseCommand):
             "(another engine or new parameters); refused without it",
         )  # fmt: skip
         parser.add_argument(
+            "--allow-identical", action="store_true",
+            help="render even where two conditions of an item would give identical clips",
+        )  # fmt: skip
+        parser.add_argument(
             "--manifest", type=Path, metavar="PATH",
             help="write the study's stimulus manifest (JSON) here afterwards",
         )  # fmt: skip
@@ -59,10 +63,13 @@ class Command(BaseCommand):
         eager = settings.CELERY_TASK_ALWAYS_EAGER
         try:
             if eager and workers > 1:
-                results = self._render_with_pool(found, force, workers, options["rerender_open"])
+                results = self._render_with_pool(
+                    found, force, workers, options["rerender_open"], options["allow_identical"]
+                )
             else:
                 results = [do_generate_stimuli(study, force=force,
-                                               rerender_open=options["rerender_open"])
+                                               rerender_open=options["rerender_open"],
+                                               allow_identical=options["allow_identical"])
                            for study in found]  # fmt: skip
                 if not eager:
                     self._wait([pk for result in results for pk in result.stimulus_ids], timeout)
@@ -101,28 +108,21 @@ class Command(BaseCommand):
         self.stdout.write(f"{path}: {len(done)} clips, {rendered} rendered, into {directory}")
 
     def _render_with_pool(self, studies: list[Study], force: bool, workers: int,
-                          rerender_open: bool) -> list:  # fmt: skip
+                          rerender_open: bool, allow_identical: bool) -> list:  # fmt: skip
         """Record the studies' clips without queueing, then render them in *workers*
-        processes, one pool for all, longest first: a long clip left for last would keep
-        one process busy while the others wait (so would a pool per study, each ending)."""
-        from concurrent.futures import ProcessPoolExecutor
-        from multiprocessing import get_context
-
-        from studyplatform import render_pool
+        processes, one pool for all (a pool per study would leave processes idle as each
+        study ends)."""
+        from studyplatform.render_pool import render_many
 
         results = [do_generate_stimuli(study, force=force, enqueue=False,
-                                       rerender_open=rerender_open)
+                                       rerender_open=rerender_open,
+                                       allow_identical=allow_identical)
                    for study in studies]  # fmt: skip
-        ids = [pk for result in results for pk in result.stimulus_ids]
-        pending = (Stimulus.objects.filter(pk__in=ids).exclude(status=Stimulus.Status.READY)
-                   .values_list("pk", "parameters"))  # fmt: skip
-        order = [pk for pk, _ in sorted(pending, key=lambda row: -_expected_cost(row[1]))]
-        context = get_context("spawn")
-        with ProcessPoolExecutor(
-            workers, mp_context=context, initializer=render_pool.setup
-        ) as pool:
-            for number, status in enumerate(pool.map(render_pool.render, order), start=1):
-                self.stdout.write(f"  {number}/{len(order)} {status}")
+
+        def report(number: int, total: int, status: str) -> None:
+            self.stdout.write(f"  {number}/{total} {status}")
+
+        render_many([pk for result in results for pk in result.stimulus_ids], workers, report)
         return results
 
     def _wait(self, ids, timeout: float) -> None:
@@ -136,12 +136,3 @@ class Command(BaseCommand):
             self.stdout.write(f"  {len(ids) - left}/{len(ids)} done")
             time.sleep(2.0)
         raise CommandError(f"Gave up waiting after {timeout:.0f} s; the jobs keep running.")
-
-
-def _expected_cost(parameters: dict) -> float:
-    """Return a clip's rough rendering cost, for ordering only: its text's length, a
-    sentence's character weighing 0.4 of a fingerspelled letter (in the demo a letter
-    lasts about 35 frames, a sentence's character about 10, and an upper-body frame
-    takes 1.5 times a hand close-up's)."""
-    text = str(parameters.get("text", ""))
-    return len(text) * (0.4 if parameters.get("kind") == "sentence" else 1.0)

@@ -1,0 +1,158 @@
+"""The design builder: pick conditions × items and a design; the trials are made for you."""
+
+from django import forms
+from django.contrib import messages
+from django.http import HttpRequest, HttpResponse
+from django.shortcuts import redirect
+from django.urls import path, reverse
+
+from stimuli.plan import Design, DesignError, DesignSpec
+from studyplatform.actions.design import DesignRejected, do_build_design
+from studyplatform.lib.design import ANSWER_S, INFO_PAGE_S, summarize_design
+from studyplatform.models import Question, Study
+
+BUILDER_QUESTION_KINDS = (
+    Question.Kind.PAIRWISE,
+    Question.Kind.COMPARATIVE,
+    Question.Kind.LIKERT,
+    Question.Kind.INTELLIGIBILITY,
+)
+
+
+class DesignForm(forms.Form):
+    """Choose the design, its conditions and items, practice, questions and checks."""
+
+    design = forms.ChoiceField(
+        choices=[(d.value, d.label) for d in Design], widget=forms.RadioSelect,
+        initial=Design.BALANCED_PAIRS.value,
+    )  # fmt: skip
+    conditions = forms.ModelMultipleChoiceField(
+        queryset=None, widget=forms.CheckboxSelectMultiple,
+        help_text="The conditions compared (add them on the study page first).",
+    )  # fmt: skip
+    items = forms.ModelMultipleChoiceField(
+        queryset=None, widget=forms.CheckboxSelectMultiple,
+        help_text="The items shown in every condition.",
+    )  # fmt: skip
+    practice_items = forms.ModelMultipleChoiceField(
+        queryset=None, required=False, widget=forms.CheckboxSelectMultiple,
+        help_text="One practice page each, before the trials; practice answers are not analysed.",
+    )  # fmt: skip
+    questions = forms.ModelMultipleChoiceField(
+        queryset=None, required=False, widget=forms.CheckboxSelectMultiple,
+        help_text=(
+            "What each page asks, all of one kind: pairwise or comparative for pairs, "
+            "Likert or intelligibility for single clips. None chosen: a standard question "
+            "is created (“Which clip looks more natural?”, or a 5-point naturalness rating)."
+        ),
+    )  # fmt: skip
+    attention_checks = forms.IntegerField(
+        min_value=0, max_value=20, initial=1,
+        help_text=(
+            "Pages with a known answer, flagged in the data: two identical clips on pair "
+            "designs (answer: no difference), an instructed answer on rating designs."
+        ),
+    )  # fmt: skip
+    randomize_order = forms.BooleanField(
+        required=False, initial=True, label="Shuffle the trial pages per participant (seeded)"
+    )
+
+    def __init__(self, study: Study, *args, **kwargs) -> None:
+        stored = study.design or {}
+        initial = kwargs.setdefault("initial", {})
+        conditions = study.conditions.order_by("position", "pk")
+        items = study.items.order_by("position", "pk")
+        initial.setdefault("conditions", list(conditions.filter(
+            key__in=stored["conditions"]) if stored else conditions))  # fmt: skip
+        main = items.filter(key__in=stored["items"]) if stored else items.filter(is_practice=False)
+        initial.setdefault("items", list(main))
+        practice = (items.filter(key__in=stored.get("practice_items", ())) if stored
+                    else items.filter(is_practice=True))  # fmt: skip
+        initial.setdefault("practice_items", list(practice))
+        if stored:
+            initial.setdefault("design", stored["design"])
+            initial.setdefault("attention_checks", stored.get("attention_checks", 0))
+            initial.setdefault("randomize_order", stored.get("randomize_order", True))
+            initial.setdefault("questions", list(study.questions.filter(
+                key__in=stored.get("questions", ()))))  # fmt: skip
+        super().__init__(*args, **kwargs)
+        self.study = study
+        self.fields["conditions"].queryset = conditions
+        self.fields["items"].queryset = items
+        self.fields["practice_items"].queryset = items
+        self.fields["questions"].queryset = study.questions.filter(
+            kind__in=BUILDER_QUESTION_KINDS
+        ).order_by("position", "pk")
+        self.fields["items"].label_from_instance = _item_label
+        self.fields["practice_items"].label_from_instance = _item_label
+
+    def clean(self):
+        cleaned = super().clean()
+        if self.errors:
+            return cleaned
+        practice = {i.key for i in cleaned["practice_items"]}
+        both = sorted(practice & {i.key for i in cleaned["items"]})
+        if both:
+            self.add_error("practice_items", f"Also a trial item: {', '.join(both)}.")
+            return cleaned
+        try:
+            cleaned["spec"] = DesignSpec(
+                design=cleaned["design"],
+                conditions=tuple(c.key for c in cleaned["conditions"]),
+                items=tuple(i.key for i in cleaned["items"]),
+                practice_items=tuple(i.key for i in cleaned["practice_items"]),
+                attention_checks=cleaned["attention_checks"],
+                seed=(self.study.design or {}).get("seed", self.study.pk or 0),
+            )
+        except DesignError as error:
+            raise forms.ValidationError(str(error)) from None
+        return cleaned
+
+
+def _item_label(item) -> str:
+    return item.key if item.text == item.key else f"{item.key}: {item.text}"
+
+
+class StudyDesignMixin:
+    """Add the design builder page to the study admin."""
+
+    def design_urls(self):
+        return [
+            path(
+                "<path:object_id>/design/",
+                self.admin_site.admin_view(self.design_view),
+                name="studyplatform_study_design",
+            )
+        ]
+
+    def design_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """Show the design's summary and the builder; build the pages on POST."""
+        study = self._get_visible_study(request, object_id)
+        can_build = self.has_change_permission(request, study) and study.status == "draft"
+        form = DesignForm(study, request.POST if request.method == "POST" else None)
+        if request.method == "POST" and can_build and form.is_valid():
+            questions = list(form.cleaned_data["questions"])
+            try:
+                built = do_build_design(study, form.cleaned_data["spec"], questions,
+                                        form.cleaned_data["randomize_order"])  # fmt: skip
+            except DesignRejected as error:
+                form.add_error(None, error.message)
+            else:
+                created = built.question_created
+                if created is not None:
+                    messages.info(
+                        request,
+                        f"Created the question “{created.text}” ({created.key}); "
+                        "edit its wording on its page.",
+                    )
+                messages.success(
+                    request,
+                    f"Built {built.pages} pages ({built.practice_pages} practice, "
+                    f"{built.attention_checks} attention checks).",
+                )
+                return redirect(reverse("admin:studyplatform_study_design", args=[study.pk]))
+        summary = summarize_design(study)
+        return self._page(
+            request, "design.html", f"Design of “{study.title}”", study=study, form=form,
+            summary=summary, can_build=can_build, answer_s=ANSWER_S, info_page_s=INFO_PAGE_S,
+        )  # fmt: skip

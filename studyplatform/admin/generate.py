@@ -1,0 +1,114 @@
+"""Generate a study's stimuli from the admin and follow their rendering."""
+
+from django.contrib import admin, messages
+from django.http import HttpRequest, HttpResponse, JsonResponse
+from django.shortcuts import redirect
+from django.urls import path, reverse
+from django.utils.html import format_html
+
+from stimuli.clips import ClipError
+from stimuli.manifest import manifest_dict
+from studyplatform.actions.stimuli import IdenticalClips, do_generate_stimuli
+from studyplatform.lib.stimuli import (
+    identical_clips,
+    needed_pairs,
+    stimuli_progress,
+    study_manifest,
+)
+from studyplatform.models import Study
+
+
+class StudyGenerateMixin:
+    """Add the generate, progress and manifest pages and the list's generate action."""
+
+    def generate_urls(self):
+        view = self.admin_site.admin_view
+        return [
+            path("<path:object_id>/stimuli/generate/", view(self.generate_view),
+                 name="studyplatform_study_generate"),
+            path("<path:object_id>/stimuli/", view(self.stimuli_view),
+                 name="studyplatform_study_stimuli"),
+            path("<path:object_id>/stimuli/progress.json", view(self.stimuli_progress_view),
+                 name="studyplatform_study_stimuli_progress"),
+            path("<path:object_id>/stimuli/manifest.json", view(self.stimuli_manifest_view),
+                 name="studyplatform_study_stimuli_manifest"),
+        ]  # fmt: skip
+
+    def _generate(self, request: HttpRequest, study: Study, allow_identical: bool):
+        """Generate *study*'s clips in the background; return the result or the refusal."""
+        try:
+            return do_generate_stimuli(
+                study, background=True,
+                allow_identical=allow_identical or study.allow_identical_clips,
+            ), None  # fmt: skip
+        except IdenticalClips as refusal:
+            return None, refusal
+        except ClipError as error:
+            messages.error(request, f"“{study.title}”: {error}")
+            return None, None
+
+    def generate_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """Ask to generate the study's clips (naming identical ones); start it on POST."""
+        study = self._get_visible_study(request, object_id)
+        allowed = self.has_change_permission(request, study)
+        identical = identical_clips(study)
+        if request.method == "POST" and allowed:
+            confirmed = request.POST.get("allow_identical") == "1"
+            result, refusal = self._generate(request, study, confirmed)
+            if result is not None:
+                messages.success(request, f"{result.total} clips: {result.queued} being "
+                                 f"rendered, {result.ready} already rendered.")  # fmt: skip
+                return redirect(reverse("admin:studyplatform_study_stimuli", args=[study.pk]))
+            if refusal is None:
+                return redirect(reverse("admin:studyplatform_study_generate", args=[study.pk]))
+        title = f"Generate the stimuli of “{study.title}”"
+        return self._page(request, "generate.html", title, study=study, allowed=allowed,
+                          identical=identical, clips=len(needed_pairs(study)),
+                          progress=stimuli_progress(study))  # fmt: skip
+
+    def stimuli_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """Show the study's clips being rendered: a live progress bar and the failures."""
+        study = self._get_visible_study(request, object_id)
+        return self._page(request, "stimuli.html", f"Stimuli of “{study.title}”", study=study,
+                          progress=stimuli_progress(study))  # fmt: skip
+
+    def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
+        """Return the rendering progress as JSON, for the progress bar to poll."""
+        return JsonResponse(stimuli_progress(self._get_visible_study(request, object_id)))
+
+    def stimuli_manifest_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
+        """Download the study's stimulus manifest (every clip's spec, facts and checksum)."""
+        study = self._get_visible_study(request, object_id)
+        response = JsonResponse(manifest_dict(study_manifest(study), study.slug),
+                                json_dumps_params={"indent": 1, "ensure_ascii": False})  # fmt: skip
+        response["Content-Disposition"] = f'attachment; filename="{study.slug}-stimuli.json"'
+        return response
+
+    @admin.action(description="Generate stimuli (render missing clips)")
+    def generate_stimuli(self, request: HttpRequest, queryset):
+        """Start generating the selected studies' clips; one study opens its progress page."""
+        studies, started = list(queryset), []
+        for study in studies:
+            if not self.has_change_permission(request, study):
+                messages.error(request, f"You cannot change “{study.title}”.")
+                continue
+            result, refusal = self._generate(request, study, allow_identical=False)
+            if refusal is not None:
+                messages.error(request, format_html(
+                    "“{}”: {} <a href='{}'>Review and confirm</a>.", study.title, str(refusal),
+                    reverse("admin:studyplatform_study_generate", args=[study.pk])))  # fmt: skip
+            if result is None:
+                continue
+            started.append(study)
+            messages.success(
+                request,
+                format_html(
+                    "“{}”: {} clips, {} being rendered, {} already rendered. "
+                    "<a href='{}'>Progress</a>",
+                    study.title, result.total, result.queued, result.ready,
+                    reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
+                ),
+            )  # fmt: skip
+        if len(studies) == 1 and started:
+            return redirect(reverse("admin:studyplatform_study_stimuli", args=[started[0].pk]))
+        return None

@@ -1,0 +1,59 @@
+"""Test that the demo's simulated motion-capture condition is labelled in every download."""
+
+import io
+import zipfile
+
+import pandas as pd
+import pytest
+from django.urls import reverse
+from django.utils import timezone
+
+from analysis import read_responses
+from studyplatform.actions import Answer, do_enroll_participant, do_save_response
+from studyplatform.export import tidy_csv
+
+pytestmark = pytest.mark.django_db
+LABEL = "mocap (simulated)"
+
+
+@pytest.fixture
+def answered(fingerspelling):
+    """Four participants who answered every comparison of the fingerspelling demo."""
+    assert fingerspelling.conditions.get(key="mocap").is_simulated
+    for number in range(4):
+        participant = do_enroll_participant(fingerspelling)
+        for index, trial in enumerate(fingerspelling.trials.filter(key__startswith="cmp-")):
+            answer = Answer(choice_position=1 + (index + number) % 2, rt_ms=900)
+            do_save_response(participant, trial, trial.questions.get(), answer)
+        participant.finished_at = timezone.now()
+        participant.save()
+    return fingerspelling
+
+
+def test_the_csv_names_the_simulated_condition_on_each_row_that_shows_it(answered):
+    frame = pd.read_csv(io.StringIO(tidy_csv(answered)), dtype=str, keep_default_na=False)
+    shows = frame["condition_a"].eq("mocap") | frame["condition_b"].eq("mocap")
+    assert shows.any()
+    assert (frame.loc[shows, "condition_simulated"] == "mocap").all()
+    assert (frame.loc[~shows, "condition_simulated"] == "").all()
+    assert LABEL in set(read_responses(io.StringIO(tidy_csv(answered)))["condition_a"])
+
+
+def test_the_results_page_and_every_report_file_say_simulated(answered, client, alice):
+    client.force_login(alice)
+    page = client.get(reverse("admin:studyplatform_study_results", args=[answered.pk])).text
+    assert 'id="simulated-note"' in page and page.count("mocap") == page.count(LABEL)
+    for name in ("results_report", "results_everything"):
+        download = client.get(reverse(f"admin:studyplatform_study_{name}", args=[answered.pk]))
+        archive = zipfile.ZipFile(io.BytesIO(download.content))
+        checked = []
+        for member in archive.namelist():
+            if member.startswith("report/") and member.endswith((".json", ".html", ".csv",
+                                                                 ".tex", ".md")):  # fmt: skip
+                text = archive.read(member).decode()
+                if "mocap" in text:
+                    checked.append(member)
+                    assert text.count("mocap") == text.count(LABEL), member
+        assert {"report/report.html", "report/pairs.tex", "report/conditions.csv"} <= set(checked)
+        if name == "results_everything":
+            assert "condition_simulated" in archive.read("responses.csv").decode()
