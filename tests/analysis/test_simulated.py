@@ -6,7 +6,7 @@ import matplotlib
 import pandas as pd
 import pytest
 
-from analysis import ReportOptions, build_report, check_responses, write_report
+from analysis import ReportOptions, build_report, check_responses
 from analysis.figures import condition_rates_figure, pairwise_matrix_figure, ratings_figure
 from tests.analysis.published import COLUMNS, table_5_2_rows
 from tests.analysis.test_cli import run
@@ -46,7 +46,7 @@ def test_a_condition_order_may_name_the_simulated_condition_by_its_key():
     options = ReportOptions(conditions=(KEY, "Variable", "Constant", "Normalized"),
                             mixed_models=False)  # fmt: skip
     report = build_report(table, options)
-    assert [c.condition for c in report.pairwise.conditions][0] == LABEL
+    assert next(c.condition for c in report.pairwise.conditions) == LABEL
     assert report.design["simulated_conditions"] == [LABEL]
 
 

@@ -63,7 +63,8 @@ def test_building_a_pair_design_creates_blocks_trials_and_a_standard_question(fr
     assert check.condition_a == check.condition_b and check.expected_answer == "none"
     assert all(list(t.questions.all()) == [question] for t in Trial.objects.filter(kind="pairwise"))
     fresh.refresh_from_db()
-    assert fresh.design["design"] == "balanced_pairs" and fresh.design["questions"] == [question.key]
+    assert fresh.design["design"] == "balanced_pairs"
+    assert fresh.design["questions"] == [question.key]
     assert len(build_schedule(fresh, seed=1)) == 7  # practice, 4 + 1 trials, closing
 
 
@@ -187,7 +188,8 @@ def test_the_builder_page_is_read_only_once_the_study_is_open(fresh, client, ali
 
 def test_another_researchers_builder_is_not_there(fresh, client, bob):
     client.force_login(bob)
-    assert client.get(reverse("admin:studyplatform_study_design", args=[fresh.pk])).status_code == 404
+    url = reverse("admin:studyplatform_study_design", args=[fresh.pk])
+    assert client.get(url).status_code == 404
 
 
 @pytest.fixture
