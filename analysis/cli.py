@@ -35,6 +35,8 @@ def _report(args: argparse.Namespace) -> int:
             failed_attention=not args.keep_failed_attention,
             incomplete=not args.keep_incomplete,
             keep_only=_keep_only(args.only),
+            answered_before_end=args.exclude_early_answers,
+            min_median_page_s=args.min_median_page_s,
         ),
     )
     report = build_report(frame, options, source=Path(args.csv).name)
@@ -132,6 +134,17 @@ def parser() -> argparse.ArgumentParser:
         default=[],
         metavar="COLUMN=V1,V2",
         help="keep only participants whose COLUMN is one of the values (repeatable)",
+    )
+    report.add_argument(
+        "--exclude-early-answers",
+        action="store_true",
+        help="exclude participants who answered a page before its clips had ended",
+    )
+    report.add_argument(
+        "--min-median-page-s",
+        type=float,
+        metavar="S",
+        help="exclude participants whose median time on a page is under S seconds",
     )
     report.add_argument("--no-figures", action="store_true")
     report.set_defaults(run=_report)

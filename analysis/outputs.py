@@ -31,6 +31,11 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
     if data["intelligibility"]:
         found["intelligibility"] = pd.DataFrame(data["intelligibility"])
     found.update(mixed_tables(data.get("mixed_models")))
+    excluded = data["exclusions"].get("excluded_participants") or {}
+    if excluded:
+        found["excluded"] = pd.DataFrame(
+            [{"participant": who, "reasons": "; ".join(why)} for who, why in excluded.items()]
+        )
     return found
 
 

@@ -294,3 +294,5 @@ class ExclusionReport(Result):
     participants_included: int
     excluded_by_reason: dict[str, int]
     rules: dict[str, Any]
+    # Participant id → the reasons they were excluded for.
+    excluded_participants: dict[str, list[str]] = dataclasses.field(default_factory=dict)

@@ -30,7 +30,23 @@ REQUIRED_COLUMNS = (
 )
 # Optional columns with a meaning of their own; any other column is a participant
 # attribute (a demographic answer) and must be constant within a participant.
-OPTIONAL_COLUMNS = ("target", "condition_simulated")
+# How each page was taken (SignStudy's export; docs/tidy-format.md "Quality columns").
+QUALITY_COLUMNS = (
+    "page_order",
+    "shown_at",
+    "answered_at",
+    "time_on_page_ms",
+    "clip1_plays",
+    "clip2_plays",
+    "clip1_ended",
+    "clip2_ended",
+    "replays",
+    "playback_errors",
+    "answered_before_end",
+    "viewport",
+    "device",
+)
+OPTIONAL_COLUMNS = ("target", "condition_simulated", *QUALITY_COLUMNS)
 # How a simulated condition is named in every result: a reader must never take a
 # simulated stand-in (e.g. for motion capture) for the real thing.
 SIMULATED_SUFFIX = " (simulated)"

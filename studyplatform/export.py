@@ -4,7 +4,9 @@ One row per participant × trial × question (docs/tidy-format.md). Demographic 
 (choice, number and short-text questions, on whatever page they are asked) become
 participant columns; identifying answers (name, e-mail) are never exported. The
 ``condition_simulated`` column names the row's conditions that are simulated stand-ins,
-so an analysis of the CSV alone labels them too.
+so an analysis of the CSV alone labels them too. The quality columns
+(:mod:`studyplatform.lib.quality`) say how each page was taken: its order, times, plays
+and ends of each clip, errors, viewport and device.
 """
 
 import csv
@@ -15,6 +17,7 @@ from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
 from studyplatform.lib.presentation import presented_conditions
+from studyplatform.lib.quality import QUALITY_COLUMNS, quality_cells, study_quality
 from studyplatform.models import Block, Participant, Question, Response, Study, Trial
 from studyplatform.questions import QUESTION_TYPES
 
@@ -73,13 +76,15 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     clash = set(attribute_columns) & {*REQUIRED_COLUMNS, "target"}
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
-    columns = [*REQUIRED_COLUMNS, "target", "condition_simulated", *attribute_columns]
+    columns = [*REQUIRED_COLUMNS, "target", "condition_simulated", *QUALITY_COLUMNS,
+               *attribute_columns]  # fmt: skip
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
 
     conditions = {condition.key: condition for condition in study.conditions.all()}
     simulated = {key for key, condition in conditions.items() if condition.is_simulated}
+    quality = study_quality(study)
 
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
@@ -115,6 +120,9 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                     key for key in dict.fromkeys((clip1, clip2)) if key in simulated
                 ),
             }
+            row.update(quality_cells(participant, trial,
+                                     quality.get(participant.pk, {}).get(trial.pk),
+                                     response.rt_ms, response.updated_at))  # fmt: skip
             answers = attributes.get(participant.pk, {})
             for key, column in attribute_pairs:
                 row[column] = answers.get(key, "")

@@ -113,6 +113,18 @@ class ResultsForm(forms.Form):
     exclude_incomplete = forms.BooleanField(
         required=False, initial=True, label="Exclude incomplete sessions"
     )
+    exclude_early_answers = forms.BooleanField(
+        required=False,
+        initial=False,
+        label="Exclude participants who answered before the clips ended",
+    )
+    min_median_page_s = forms.FloatField(
+        required=False,
+        min_value=0,
+        label="Exclude participants whose median time on a page is under (s)",
+        help_text="Empty: no limit.",
+        widget=forms.NumberInput(attrs={"step": "0.5", "style": "width: 5em"}),
+    )
     ties = forms.ChoiceField(
         choices=[("exclude", "excluded from tests"), ("split", "split across the pair")],
         initial="exclude",
@@ -171,5 +183,7 @@ class ResultsForm(forms.Form):
                 failed_attention=bool(values["exclude_failed_attention"]),
                 incomplete=bool(values["exclude_incomplete"]),
                 keep_only=keep_only,
+                answered_before_end=bool(values["exclude_early_answers"]),
+                min_median_page_s=values["min_median_page_s"],
             ),
         )

@@ -45,3 +45,45 @@ def test_demographic_filter(table):
 def test_filter_on_a_missing_column_is_named(table):
     with pytest.raises(TidyFormatError, match="Cannot filter on 'hearing'"):
         apply_exclusions(table, ExclusionRules(keep_only={"hearing": ["deaf"]}))
+
+
+def test_participants_are_listed_by_id_with_every_reason(table):
+    _kept, report = apply_exclusions(table)
+    assert report.excluded_participants == {
+        "P01": ["pilot"], "P02": ["attention_failed"], "P03": ["incomplete"]}  # fmt: skip
+
+
+def _behaviour(frame):
+    """P04 answered one page before its clips ended; P05's pages took 0.8 s each."""
+    frame = frame.copy()
+    frame["answered_before_end"] = "0"
+    frame["time_on_page_ms"] = "6000"
+    first_p04 = frame.index[frame["participant"] == "P04"][0]
+    frame.loc[first_p04, "answered_before_end"] = "1"
+    frame.loc[frame["participant"] == "P05", "time_on_page_ms"] = "800"
+    return check_responses(frame)
+
+
+def test_the_speeder_rule_excludes_who_answered_before_the_clips_ended():
+    table = _behaviour(table_3_rows())
+    rules = ExclusionRules(answered_before_end=True)
+    kept, report = apply_exclusions(table, rules)
+    assert "P04" not in set(kept["participant"]) and report.participants_included == 21
+    assert report.excluded_participants == {"P04": ["answered before the clips ended"]}
+    assert apply_exclusions(table)[1].participants_included == 22  # off by default
+
+
+def test_the_median_page_time_rule_takes_one_time_per_page():
+    table = _behaviour(table_3_rows())
+    _kept, report = apply_exclusions(table, ExclusionRules(min_median_page_s=2))
+    assert report.excluded_participants == {"P05": ["median time on a page under 2 s"]}
+    _kept, report = apply_exclusions(table, ExclusionRules(min_median_page_s=0.5))
+    assert report.excluded_participants == {}
+
+
+def test_a_behaviour_rule_without_its_column_names_the_column():
+    table = check_responses(table_3_rows())
+    with pytest.raises(TidyFormatError, match="needs the column 'answered_before_end'"):
+        apply_exclusions(table, ExclusionRules(answered_before_end=True))
+    with pytest.raises(TidyFormatError, match="needs the column 'time_on_page_ms'"):
+        apply_exclusions(table, ExclusionRules(min_median_page_s=1))

@@ -185,7 +185,9 @@ def test_fingerspelling_study_from_link_to_completion_code(
     table = results.analysed[results.analysed["kind"] == "pairwise"]
     for row in table.itertuples():
         trial = Trial.objects.get(study=fingerspelling, key=row.trial)
-        shown = [c.key for c in presented_conditions(participant, trial)]
+        # The analysis names the simulated motion-capture stand-in "mocap (simulated)".
+        shown = [c.key + (" (simulated)" if c.is_simulated else "")
+                 for c in presented_conditions(participant, trial)]  # fmt: skip
         assert [row.condition_a, row.condition_b] == shown
         assert row.chosen == shown[clicked[(row.trial, "most-natural")] - 1]
     SCREENSHOTS.mkdir(exist_ok=True)

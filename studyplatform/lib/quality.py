@@ -1,0 +1,146 @@
+"""Derive per-trial quality data from what participants' browsers logged (media events).
+
+For each participant × trial: where the page came in their schedule, when it was first
+shown, how long it was on screen, how often each clip was played and whether it played
+to its end, playback errors, the viewport; and whether the answer came before the
+page's clips had ended (the speeder rule). All times are the browser's clock, so
+durations never mix the participant's clock with the server's.
+"""
+
+import re
+from collections import defaultdict
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+
+from analysis.tidy import QUALITY_COLUMNS
+from studyplatform.models import MediaEvent, Participant, Study
+
+_PHONE = re.compile(r"Mobi|iPhone|Android.+Mobile", re.IGNORECASE)
+_TABLET = re.compile(r"iPad|Tablet|Android", re.IGNORECASE)
+
+
+def device_of(user_agent: str) -> str:
+    """Return "phone", "tablet" or "desktop" from a browser's user agent ("" if unknown)."""
+    if not user_agent:
+        return ""
+    if _PHONE.search(user_agent):
+        return "phone"
+    if _TABLET.search(user_agent):
+        return "tablet"
+    return "desktop"
+
+
+@dataclass
+class TrialQuality:
+    """What one participant's browser logged on one trial's page."""
+
+    first_shown_ms: float | None = None
+    on_page_ms: float = 0.0
+    plays: dict[int, int] = field(default_factory=lambda: {1: 0, 2: 0})
+    first_ended_ms: dict[int, float] = field(default_factory=dict)
+    errors: int = 0
+    viewport: str = ""
+
+
+def _iso(client_ms: float | None) -> str:
+    if client_ms is None:
+        return ""
+    return datetime.fromtimestamp(client_ms / 1000, tz=UTC).isoformat(timespec="milliseconds")
+
+
+def participant_quality(events) -> dict[int, TrialQuality]:
+    """Return each trial's quality of one participant from their events (any order).
+
+    A visit to a page lasts from its ``page_shown`` to the next page's ``page_shown``,
+    the page being hidden, or the visit's last event; a page's time sums its visits.
+    """
+    by_trial: dict[int, TrialQuality] = defaultdict(TrialQuality)
+    visit: tuple[int, float] | None = None
+    last_ms: float | None = None
+
+    def close(until_ms: float | None) -> None:
+        if visit is not None and until_ms is not None:
+            by_trial[visit[0]].on_page_ms += max(0.0, until_ms - visit[1])
+
+    for event in sorted(events, key=lambda e: (e.client_time_ms or 0, e.pk or 0)):
+        at = event.client_time_ms
+        if event.kind in (MediaEvent.Kind.PAGE_SHOWN, MediaEvent.Kind.PAGE_HIDDEN):
+            close(at)
+            visit = None
+        if event.trial_id is None or at is None:
+            continue
+        quality = by_trial[event.trial_id]
+        if event.kind == MediaEvent.Kind.PAGE_SHOWN:
+            visit = (event.trial_id, at)
+            if quality.first_shown_ms is None:
+                quality.first_shown_ms = at
+                size = event.detail or {}
+                if "width" in size and "height" in size:
+                    quality.viewport = f"{size['width']}x{size['height']}"
+        elif event.kind == MediaEvent.Kind.PLAY and event.clip_position in (1, 2):
+            quality.plays[event.clip_position] += 1
+        elif event.kind == MediaEvent.Kind.ENDED and event.clip_position in (1, 2):
+            quality.first_ended_ms.setdefault(event.clip_position, at)
+        elif event.kind == MediaEvent.Kind.ERROR:
+            quality.errors += 1
+        last_ms = at
+    close(last_ms)
+    return dict(by_trial)
+
+
+def study_quality(study: Study) -> dict[int, dict[int, TrialQuality]]:
+    """Return participant id → trial id → quality, for every participant of *study*."""
+    events: dict[int, list] = defaultdict(list)
+    rows = MediaEvent.objects.filter(participant__study=study).only(
+        "pk", "participant_id", "trial_id", "kind", "clip_position", "client_time_ms", "detail"
+    )
+    for event in rows.iterator(chunk_size=2000):
+        events[event.participant_id].append(event)
+    return {participant: participant_quality(found) for participant, found in events.items()}
+
+
+def quality_cells(
+    participant: Participant,
+    trial,
+    quality: TrialQuality | None,
+    rt_ms: int | None,
+    answered_at: datetime | None,
+) -> dict[str, str]:
+    """Return the quality columns of one answer (empty cells where nothing was logged).
+
+    The answer's time on the browser's clock is the page's first showing plus the
+    answer's response time, so a revised answer given on a later visit counts from
+    the first.
+    """
+    order = next(
+        (
+            str(n)
+            for n, e in enumerate(participant.schedule or [], 1)
+            if e.get("trial") == trial.key
+        ),
+        "",
+    )
+    cells = dict.fromkeys(QUALITY_COLUMNS, "")
+    cells.update(
+        page_order=order,
+        answered_at="" if answered_at is None else answered_at.isoformat(timespec="seconds"),
+        device=device_of(participant.user_agent),
+    )
+    if quality is None:
+        return cells
+    clips = (1, 2) if trial.condition_b_id else (1,) if trial.condition_a_id else ()
+    cells.update(
+        shown_at=_iso(quality.first_shown_ms),
+        time_on_page_ms=str(round(quality.on_page_ms)),
+        playback_errors=str(quality.errors),
+        viewport=quality.viewport,
+        replays=str(sum(max(0, quality.plays[c] - 1) for c in clips)),
+    )
+    for clip in clips:
+        cells[f"clip{clip}_plays"] = str(quality.plays[clip])
+        cells[f"clip{clip}_ended"] = "1" if clip in quality.first_ended_ms else "0"
+    if clips and rt_ms is not None and quality.first_shown_ms is not None:
+        answered_ms = quality.first_shown_ms + rt_ms
+        early = any(quality.first_ended_ms.get(c, float("inf")) > answered_ms for c in clips)
+        cells["answered_before_end"] = "1" if early else "0"
+    return cells
