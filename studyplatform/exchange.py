@@ -39,6 +39,7 @@ STUDY_FIELDS = (
     "rotate_conditions",
     "personal_data_retention_days",
     "allow_identical_clips",
+    "unique_completion_codes",
     "design",
 )
 CONDITION_FIELDS = ("key", "label", "description", "is_simulated", "parameters", "position")

@@ -139,6 +139,8 @@ def _flags(participant: Participant, trial: Trial, failed_attention: bool) -> li
         flags.append("incomplete")
     if failed_attention:
         flags.append("attention_failed")
+    if participant.review == Participant.Review.REJECTED:
+        flags.append("excluded")
     if trial.block.kind == Block.Kind.PRACTICE:
         flags.append("practice")
     if trial.is_attention_check:

@@ -28,6 +28,7 @@ from studyplatform.actions.recordings import (
     do_report_capture_progress,
 )
 from studyplatform.actions.responses import do_save_response
+from studyplatform.actions.reviews import do_review_participants
 from studyplatform.actions.stimuli import (
     GenerationResult,
     RerenderRefused,
@@ -48,6 +49,7 @@ from studyplatform.actions.uploads import (
     UploadRejected,
     do_append_signed_answer_chunk,
 )
+from studyplatform.actions.versions import do_create_study_version
 from studyplatform.lib.participants import PageRejected
 from studyplatform.questions import Answer, AnswerRejected
 
@@ -69,6 +71,7 @@ __all__ = [
     "do_apply_retention",
     "do_attach_asl_video",
     "do_attach_recording",
+    "do_create_study_version",
     "do_delete_recordings",
     "do_duplicate_study",
     "do_enroll_participant",
@@ -83,6 +86,7 @@ __all__ = [
     "do_relabel_stand_ins",
     "do_report_capture_progress",
     "do_retry_stimuli",
+    "do_review_participants",
     "do_save_response",
     "do_set_participant_language",
     "do_start_rendering",

@@ -1,5 +1,6 @@
 """Enroll participants in a study and move them through its pages."""
 
+import secrets
 from collections.abc import Mapping
 
 from django.core.exceptions import ValidationError
@@ -97,7 +98,10 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
         locked.last_seen_at = now
         if locked.position > page_count(locked):
             locked.finished_at = now
+            locked.completion_code = _completion_code(locked.study)
         locked.save(update_fields=list(MOVE_FIELDS))
+        if locked.finished_at == now and not locked.is_pilot:
+            _close_at_target(locked.study)
     _follow(participant, locked)
     return locked.position
 
@@ -120,7 +124,35 @@ def do_go_back_participant(participant: Participant, page: int) -> int:
 
 
 # The fields a move may change.
-MOVE_FIELDS = ("position", "reached", "last_seen_at", "finished_at")
+MOVE_FIELDS = ("position", "reached", "last_seen_at", "finished_at", "completion_code")
+
+# Unambiguous characters for participant codes (no 0/O, 1/I/L): read off a screen, typed.
+CODE_ALPHABET = "23456789ABCDEFGHJKMNPQRSTUVWXYZ"
+
+
+def _completion_code(study: Study) -> str:
+    """Return the code a finishing participant is shown: the study's, or their own."""
+    if not study.unique_completion_codes:
+        return study.completion_code
+    own = "".join(secrets.choice(CODE_ALPHABET) for _ in range(8))
+    return f"{study.completion_code}-{own}" if study.completion_code else own
+
+
+def _close_at_target(study: Study) -> None:
+    """Close an open study once its target number of participants have finished.
+
+    Pilot and rejected participants do not count. Participants already taking part may
+    finish: a closed study refuses only new ones.
+    """
+    if study.target_n is None or study.status != Study.Status.OPEN:
+        return
+    finished = Participant.objects.filter(
+        study=study, is_pilot=False, finished_at__isnull=False
+    ).exclude(review=Participant.Review.REJECTED)
+    if finished.count() >= study.target_n:
+        Study.objects.filter(pk=study.pk, status=Study.Status.OPEN).update(
+            status=Study.Status.CLOSED
+        )
 
 
 def _locked(participant: Participant) -> Participant:

@@ -8,6 +8,7 @@ from django.urls import path, reverse
 
 from stimuli.plan import Design, DesignError, DesignSpec
 from studyplatform.actions.design import DesignRejected, do_build_design
+from studyplatform.actions.versions import do_create_study_version
 from studyplatform.lib.design import ANSWER_S, INFO_PAGE_S, summarize_design
 from studyplatform.models import Question, Study
 
@@ -122,8 +123,26 @@ class StudyDesignMixin:
                 "<path:object_id>/design/",
                 self.admin_site.admin_view(self.design_view),
                 name="studyplatform_study_design",
-            )
+            ),
+            path(
+                "<path:object_id>/new-version/",
+                self.admin_site.admin_view(self.new_version_view),
+                name="studyplatform_study_new_version",
+            ),
         ]
+
+    def new_version_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """Make a draft copy of the study as its next version (POST), and open it."""
+        study = self._get_visible_study(request, object_id)
+        if request.method != "POST" or not self.has_add_permission(request):
+            return redirect(reverse("admin:studyplatform_study_change", args=[study.pk]))
+        copy = do_create_study_version(study, owner=request.user)
+        messages.success(
+            request,
+            f"Made “{copy.title}”, a draft: change its design, generate, pilot and open it. "
+            f"“{study.title}” and its participants stay as they were.",
+        )
+        return redirect(reverse("admin:studyplatform_study_change", args=[copy.pk]))
 
     def design_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
         """Show the design's summary and the builder; build the pages on POST."""

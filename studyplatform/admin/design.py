@@ -4,7 +4,7 @@ from django.contrib import admin
 from django.http import HttpRequest
 
 from studyplatform.admin.forms import TrialForm
-from studyplatform.admin.permissions import StudyScopedMixin
+from studyplatform.admin.permissions import DesignLockMixin, StudyScopedMixin
 from studyplatform.admin.prompts import AslVideoInline
 from studyplatform.models import AnswerOption, Block, Question, Trial
 
@@ -18,15 +18,19 @@ class OwnStudyFilter(admin.RelatedFieldListFilter):
         return [(study.pk, str(study)) for study in owned_studies(request)]
 
 
-class AnswerOptionInline(admin.TabularInline):
+class AnswerOptionInline(DesignLockMixin, admin.TabularInline):
     model = AnswerOption
+
+    def _study_of(self, obj):
+        return obj.study  # the inline's parent: the question
+
     extra = 0
     fields = ("position", "value", "label")
     show_change_link = True
 
 
 @admin.register(Question)
-class QuestionAdmin(StudyScopedMixin, admin.ModelAdmin):
+class QuestionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
     list_display = ("key", "kind", "text", "study", "required")
     list_filter = (("study", OwnStudyFilter), "kind", "required")
     search_fields = ("key", "text")
@@ -48,7 +52,7 @@ class QuestionAdmin(StudyScopedMixin, admin.ModelAdmin):
 
 
 @admin.register(AnswerOption)
-class AnswerOptionAdmin(StudyScopedMixin, admin.ModelAdmin):
+class AnswerOptionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
     """Reached from a question's options, to attach an ASL video to one scale point."""
 
     study_path = "question__study"
@@ -61,7 +65,7 @@ class AnswerOptionAdmin(StudyScopedMixin, admin.ModelAdmin):
 
 
 @admin.register(Block)
-class BlockAdmin(StudyScopedMixin, admin.ModelAdmin):
+class BlockAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
     list_display = ("__str__", "kind", "study", "position", "randomize_order")
     list_filter = (("study", OwnStudyFilter), "kind")
     search_fields = ("key", "title")
@@ -69,7 +73,7 @@ class BlockAdmin(StudyScopedMixin, admin.ModelAdmin):
 
 
 @admin.register(Trial)
-class TrialAdmin(StudyScopedMixin, admin.ModelAdmin):
+class TrialAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
     form = TrialForm
     list_display = (
         "key",

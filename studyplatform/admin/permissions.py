@@ -116,3 +116,28 @@ class StudyInline(StudyScopedMixin, admin.TabularInline):
 
     def has_add_permission(self, request: HttpRequest, obj: Study | None = None) -> bool:
         return super().has_add_permission(request, obj) and self._owns(request, obj)
+
+
+class DesignLockMixin:
+    """Show a study's design read-only once the study is open or closed.
+
+    For an admin of a design object (condition, item, question, option, block, trial)
+    or an inline of one; an inline's permission checks receive its parent object.
+    """
+
+    def _design_locked(self, obj: Model | None) -> bool:
+        study = self._study_of(obj) if obj is not None else None
+        return study is not None and study.design_locked
+
+    def has_add_permission(self, request: HttpRequest, obj: Model | None = None) -> bool:
+        if self._design_locked(obj):
+            return False
+        if isinstance(self, admin.options.InlineModelAdmin):
+            return super().has_add_permission(request, obj)
+        return super().has_add_permission(request)
+
+    def has_change_permission(self, request: HttpRequest, obj: Model | None = None) -> bool:
+        return super().has_change_permission(request, obj) and not self._design_locked(obj)
+
+    def has_delete_permission(self, request: HttpRequest, obj: Model | None = None) -> bool:
+        return super().has_delete_permission(request, obj) and not self._design_locked(obj)

@@ -19,11 +19,12 @@ from studyplatform.actions import StudyImportError, do_duplicate_study, do_impor
 from studyplatform.admin.builder import StudyDesignMixin
 from studyplatform.admin.forms import StudyForm, StudyImportForm, TrialForm
 from studyplatform.admin.generate import StudyGenerateMixin
-from studyplatform.admin.permissions import StudyInline, StudyScopedMixin
+from studyplatform.admin.permissions import DesignLockMixin, StudyInline, StudyScopedMixin
 from studyplatform.admin.power import StudyPowerMixin
 from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
+from studyplatform.admin.roster import StudyRosterMixin
 from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.lib.techniques import describe_condition
@@ -31,7 +32,7 @@ from studyplatform.models import Block, Condition, Item, Question, Study, Trial
 from studyplatform.preview import build_preview
 
 
-class ConditionInline(StudyInline):
+class ConditionInline(DesignLockMixin, StudyInline):
     model = Condition
     fields = ("position", "key", "label", "is_simulated", "description", "parameters", "compares")
     readonly_fields = ("compares",)
@@ -47,22 +48,22 @@ class ConditionInline(StudyInline):
         return describe_condition(obj)
 
 
-class ItemInline(StudyInline):
+class ItemInline(DesignLockMixin, StudyInline):
     model = Item
     fields = ("position", "key", "kind", "text", "target_text", "is_practice")
 
 
-class QuestionInline(StudyInline):
+class QuestionInline(DesignLockMixin, StudyInline):
     model = Question
     fields = ("position", "key", "kind", "text", "required", "allow_no_difference")
 
 
-class BlockInline(StudyInline):
+class BlockInline(DesignLockMixin, StudyInline):
     model = Block
     fields = ("position", "key", "kind", "title", "randomize_order")
 
 
-class TrialInline(StudyInline):
+class TrialInline(DesignLockMixin, StudyInline):
     model = Trial
     form = TrialForm
     fields = (
@@ -88,8 +89,8 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyResultsMixin, StudyPowerMixin,
-                 StudyAslMixin, StudyRecordingsMixin, StudyScopedMixin,
+class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyResultsMixin,
+                 StudyPowerMixin, StudyAslMixin, StudyRecordingsMixin, StudyScopedMixin,
                  admin.ModelAdmin):  # fmt: skip
     study_path = ""
     form = StudyForm
@@ -119,13 +120,13 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyResultsMixin, StudyP
     )
     actions = ("generate_stimuli", "duplicate_studies", "export_studies")
     fieldsets = (
-        (None, {"fields": ("title", "slug", "status", "owner", "participant_link")}),
+        (None, {"fields": ("title", "slug", "status", "owner", "participant_link", "version_of")}),
         ("Language", {"fields": ("asl_first", "allow_english_only")}),
         (
             "What participants read",
             {"fields": ("description", "consent_text", "consent_mode", "thank_you_text")},
         ),
-        ("Completion", {"fields": ("completion_code", "redirect_url")}),
+        ("Completion", {"fields": ("completion_code", "unique_completion_codes", "redirect_url")}),
         ("Privacy", {"fields": ("personal_data_retention_days",)}),
         (
             "Rules",
@@ -182,7 +183,18 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyResultsMixin, StudyP
 
     def get_readonly_fields(self, request: HttpRequest, obj: Study | None = None):
         own = () if request.user.is_superuser else ("owner",)
-        return (*own, "participant_link")
+        # Which clips a participant sees follows from these; a locked design keeps them.
+        locked = ("rotate_conditions", "randomize_positions") if obj and obj.design_locked else ()
+        return (*own, *locked, "participant_link", "version_of")
+
+    @admin.display(description="version")
+    def version_of(self, study: Study) -> str:
+        """Say which version this is and what it was made from."""
+        if study.previous_version is None:
+            return str(study.version)
+        url = reverse("admin:studyplatform_study_change", args=[study.previous_version.pk])
+        return format_html('{} (made from <a href="{}">{}</a>)', study.version, url,
+                           study.previous_version.title)  # fmt: skip
 
     @admin.display(description="participant link")
     def participant_link(self, study: Study) -> str:
@@ -238,7 +250,8 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyResultsMixin, StudyP
                 name="studyplatform_study_preview",
             ),
         ]
-        return (own + self.generate_urls() + self.design_urls() + self.results_urls()
+        return (own + self.generate_urls() + self.design_urls() + self.roster_urls()
+                + self.results_urls()
                 + self.power_urls() + self.asl_urls() + self.recordings_urls()
                 + super().get_urls())  # fmt: skip
 

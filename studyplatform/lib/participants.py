@@ -143,11 +143,12 @@ def unwatched_clips(participant: Participant, trial: Trial) -> list[int]:
 def completion_url(participant: Participant) -> str:
     """Return the study's redirect URL with the participant's recruitment parameters in it.
 
-    ``{PROLIFIC_PID}`` becomes the URL-quoted value the participant arrived with; names
-    the participant did not bring become empty.
+    ``{PROLIFIC_PID}`` becomes the URL-quoted value the participant arrived with, and
+    ``{CODE}`` their completion code; names the participant did not bring become empty.
     """
     template = participant.study.redirect_url
-    params = participant.recruitment_params or {}
+    code = participant.completion_code or participant.study.completion_code
+    params = {**(participant.recruitment_params or {}), "CODE": code}
     return re.sub(
         r"\{([A-Za-z0-9_]+)\}", lambda m: quote(str(params.get(m.group(1), "")), safe=""), template
     )

@@ -12,7 +12,7 @@ from django.contrib.contenttypes.fields import GenericRelation
 from django.core.exceptions import ValidationError
 from django.db import models
 
-from studyplatform.models.studies import Condition, Item, Study
+from studyplatform.models.studies import Condition, Item, Study, check_unlocked
 
 
 class Question(models.Model):
@@ -80,6 +80,7 @@ class Question(models.Model):
 
     def clean(self) -> None:
         """Reject settings that do not apply to this kind of question."""
+        check_unlocked(self.study if self.study_id else None)
         if self.kind not in self.Kind.values:
             return  # the field's own choices check names it
         errors = self.type.check(self)
@@ -114,6 +115,9 @@ class AnswerOption(models.Model):
     def __str__(self) -> str:
         return f"{self.value}: {self.label}" if self.label else str(self.value)
 
+    def clean(self) -> None:
+        check_unlocked(self.question.study if self.question_id else None)
+
 
 class Block(models.Model):
     """A section of the study, shown in order between consent and thank-you."""
@@ -145,6 +149,9 @@ class Block(models.Model):
 
     def __str__(self) -> str:
         return self.title or self.key
+
+    def clean(self) -> None:
+        check_unlocked(self.study if self.study_id else None)
 
 
 def trial_question_kinds() -> dict[str, frozenset[str]]:
@@ -226,6 +233,7 @@ class Trial(models.Model):
 
     def clean(self) -> None:
         """Check that the trial's clips suit its kind and belong to its study."""
+        check_unlocked(self.study if self.study_id else None)
         errors: dict[str, str] = {}
         if self.block_id and self.study_id and self.block.study_id != self.study_id:
             errors["block"] = "The block belongs to another study."

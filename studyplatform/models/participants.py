@@ -53,6 +53,22 @@ class Participant(models.Model):
     reached = models.PositiveIntegerField(
         default=0, help_text="Furthest page the participant reached (they may go back)."
     )
+
+    class Review(models.TextChoices):
+        PENDING = "pending", "Not reviewed"
+        APPROVED = "approved", "Approved"
+        REJECTED = "rejected", "Rejected (excluded from analysis)"
+
+    review = models.CharField(
+        max_length=10,
+        choices=Review.choices,
+        default=Review.PENDING,
+        db_index=True,
+        help_text="The researcher's decision; rejected participants are flagged 'excluded'.",
+    )
+    completion_code = models.CharField(
+        max_length=80, blank=True, help_text="The code this participant was shown at the end."
+    )
     user_agent = models.CharField(max_length=400, blank=True)
     started_at = models.DateTimeField(auto_now_add=True)
     consented_at = models.DateTimeField(null=True, blank=True)

@@ -65,12 +65,22 @@ class Study(models.Model):
         blank=True,
         help_text="Code shown at the end, e.g. for a recruitment service.",
     )
+    unique_completion_codes = models.BooleanField(
+        default=False,
+        help_text=(
+            "Give each participant a code of their own (the code above, if any, then a "
+            "dash and 8 random characters), so a recruitment service's submissions can be "
+            "matched to participants one by one."
+        ),
+    )
     redirect_url = models.URLField(
         blank=True,
         max_length=500,
         help_text=(
-            "Where to send participants at the end. Recruitment parameters kept from the "
-            "link can be inserted, e.g. https://example.org/done?pid={PROLIFIC_PID}."
+            "Where to send participants at the end (automatically, after a few seconds). "
+            "Recruitment parameters kept from the link and the completion code can be "
+            "inserted, e.g. https://app.prolific.com/submissions/complete?cc={CODE}&pid="
+            "{PROLIFIC_PID}."
         ),
     )
     allowed_devices = models.CharField(max_length=10, choices=Devices.choices, default=Devices.ANY)
@@ -134,6 +144,18 @@ class Study(models.Model):
             "conditions of an item would show identical clips."
         ),
     )
+    version = models.PositiveSmallIntegerField(
+        default=1, editable=False, help_text="1 for a new study; a new version counts on."
+    )
+    previous_version = models.ForeignKey(
+        "self",
+        on_delete=models.SET_NULL,
+        null=True,
+        blank=True,
+        editable=False,
+        related_name="next_versions",
+        help_text="The study this version was made from; its participants stay with it.",
+    )
     design = models.JSONField(
         default=dict,
         blank=True,
@@ -153,9 +175,29 @@ class Study(models.Model):
         return self.title
 
     @property
+    def design_locked(self) -> bool:
+        """Return whether the design can no longer change: the study is open or closed.
+
+        Participants' answers refer to its conditions, items, questions and pages; a
+        change would alter what past answers mean, so it goes into a new version.
+        """
+        return self.status in {self.Status.OPEN, self.Status.CLOSED}
+
+    @property
     def is_accepting_participants(self) -> bool:
         """Return whether the participant link works (pilot or open)."""
         return self.status in {self.Status.PILOT, self.Status.OPEN}
+
+
+def check_unlocked(study: Study | None) -> None:
+    """Raise ValidationError if *study*'s design is locked (see Study.design_locked)."""
+    from django.core.exceptions import ValidationError
+
+    if study is not None and study.design_locked:
+        raise ValidationError(
+            f"“{study.title}” is {study.get_status_display().lower()}: its design is locked. "
+            "Make a new version of the study to change it."
+        )
 
 
 class Condition(models.Model):
@@ -196,6 +238,7 @@ class Condition(models.Model):
     def clean(self) -> None:
         from studyplatform.lib.techniques import check_condition
 
+        check_unlocked(self.study if self.study_id else None)
         check_condition(self)
 
 
@@ -240,6 +283,7 @@ class Item(models.Model):
     def clean(self) -> None:
         from studyplatform.lib.techniques import check_item
 
+        check_unlocked(self.study if self.study_id else None)
         check_item(self)
 
     @property

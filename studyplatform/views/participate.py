@@ -352,6 +352,9 @@ def set_language(request: HttpRequest, token: str) -> HttpResponse:
     return redirect(_page_url(participant, max(participant.position, 1)))
 
 
+REDIRECT_AFTER_S = 8
+
+
 @never_cache
 def done(request: HttpRequest, token: str) -> HttpResponse:
     """Thank the participant: the completion code, or the way back to the recruiter."""
@@ -375,5 +378,7 @@ def done(request: HttpRequest, token: str) -> HttpResponse:
             "study": study,
             "asl": study_asl(study, participant.language),
             "redirect": completion_url(participant) if study.redirect_url else "",
+            # Long enough to read (or copy) the code, short enough not to be left waiting.
+            "redirect_after_s": REDIRECT_AFTER_S,
         },
     )
