@@ -176,12 +176,13 @@ def do_import_study(
     study = Study(owner=owner, **values)
     with transaction.atomic():
         _save(study, "study")
-    study.status = final_status
     media = _Media(owner, files or {}, allowed_files)
     batches = _Batches()
     try:
+        # A draft while its rows arrive: an open study's design is locked.
         warnings = _import_rows(data, study, batches, media)
         batches.close()
+        study.status = final_status
         with transaction.atomic():
             _save(study, "study")  # its status, checked like the rest
             do_relabel_stand_ins(study)
