@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 from django.urls import reverse
 
-from studyplatform.asl import asl_videos
+from studyplatform.asl import asl_videos, with_templates
 from studyplatform.lib.participants import page_count
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.models import (
@@ -60,6 +60,11 @@ class ParticipantPage:
     clips: tuple[PageClip, ...] = ()
     questions: tuple[PageQuestion, ...] = ()
     asl: dict = field(default_factory=dict)
+
+    @property
+    def has_signed_text(self) -> bool:
+        """Return whether some text on the page has an ASL version (the buttons aside)."""
+        return any(key[0] != "ui" for key in self.asl)
 
     @property
     def percent(self) -> int:
@@ -146,7 +151,7 @@ def participant_page(participant: Participant, number: int, trial: Trial) -> Par
     if participant.language == Participant.Language.ASL_ENGLISH:
         objects = [trial, trial.block, *questions]
         objects += [option for q in page_questions for option in q.options]
-        asl = asl_videos(objects)
+        asl = with_templates(asl_videos(objects), participant.study, objects, ui=True)
     return ParticipantPage(
         number=number,
         total=page_count(participant),
@@ -163,4 +168,4 @@ def study_asl(study: Study, language: str) -> dict:
     """Return the study's own ASL videos (welcome, consent, thank-you) for *language*."""
     if language != Participant.Language.ASL_ENGLISH:
         return {}
-    return asl_videos([study])
+    return with_templates(asl_videos([study]), study, [study])

@@ -17,6 +17,7 @@ RESEARCHER_PERMISSIONS: dict[str, tuple[str, ...]] = {
     "trial": ("add", "change", "delete", "view"),
     "stimulus": ("add", "change", "delete", "view"),
     "aslvideo": ("add", "change", "delete", "view"),
+    "signedtemplate": ("add", "change", "delete", "view"),
     "recording": ("add", "delete", "view"),
     "participant": ("delete", "view"),
     "personalanswer": ("view",),

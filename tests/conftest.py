@@ -192,3 +192,10 @@ def renderable():
             pytest.fail(message)
         pytest.skip(message)
     return pyrender
+
+
+def as_draft(*studies) -> None:
+    """Set studies back to draft: the demo studies are open, and an open design is locked."""
+    for study in studies:
+        study.status = "draft"
+        study.save(update_fields=["status"])

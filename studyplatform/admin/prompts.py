@@ -1,16 +1,17 @@
 """Attach ASL videos to participant-facing text from the admin."""
 
 from django import forms
-from django.contrib import messages
+from django.contrib import admin, messages
 from django.contrib.contenttypes.admin import GenericTabularInline
 from django.core.exceptions import PermissionDenied, ValidationError
+from django.db.models import Count
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path
 
 from studyplatform.actions.prompts import do_attach_asl_video
 from studyplatform.asl import study_prompts
-from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo
+from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo, SignedTemplate
 
 
 class AslVideoInline(GenericTabularInline):
@@ -80,3 +81,37 @@ class StudyAslMixin:
 
 def _missing_file():
     raise ValidationError("Choose a video file or record one.")
+
+
+@admin.register(SignedTemplate)
+class SignedTemplateAdmin(admin.ModelAdmin):
+    """A researcher's reusable signed texts; each sees and attaches only their own."""
+
+    list_display = ("name", "kind", "study_count", "created_at")
+    list_filter = ("kind",)
+    fields = ("name", "kind", "video", "poster", "transcript")
+
+    def get_queryset(self, request: HttpRequest):
+        queryset = super().get_queryset(request).annotate(_studies=Count("studies"))
+        return queryset if request.user.is_superuser else queryset.filter(owner=request.user)
+
+    @admin.display(description="studies", ordering="_studies")
+    def study_count(self, template: SignedTemplate) -> int:
+        return template._studies
+
+    def save_model(self, request: HttpRequest, obj: SignedTemplate, form, change: bool) -> None:
+        if not change:
+            obj.owner = request.user
+        super().save_model(request, obj, form, change)
+
+    def _own(self, request: HttpRequest, obj) -> bool:
+        return obj is None or request.user.is_superuser or obj.owner_id == request.user.pk
+
+    def has_view_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_view_permission(request, obj) and self._own(request, obj)
+
+    def has_change_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_change_permission(request, obj) and self._own(request, obj)
+
+    def has_delete_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_delete_permission(request, obj) and self._own(request, obj)

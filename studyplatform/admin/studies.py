@@ -28,7 +28,7 @@ from studyplatform.admin.roster import StudyRosterMixin
 from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.lib.techniques import describe_condition
-from studyplatform.models import Block, Condition, Item, Question, Study, Trial
+from studyplatform.models import Block, Condition, Item, Question, SignedTemplate, Study, Trial
 from studyplatform.preview import build_preview
 
 
@@ -108,6 +108,7 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
     search_fields = ("title", "slug", "description")
     prepopulated_fields = {"slug": ("title",)}
     date_hierarchy = "created_at"
+    filter_horizontal = ("signed_templates",)
     # A redirect URL typed without a scheme means https (Django 6's default already).
     formfield_overrides = {models.URLField: {"assume_scheme": "https"}}
     inlines = (
@@ -121,7 +122,7 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
     actions = ("generate_stimuli", "duplicate_studies", "export_studies")
     fieldsets = (
         (None, {"fields": ("title", "slug", "status", "owner", "participant_link", "version_of")}),
-        ("Language", {"fields": ("asl_first", "allow_english_only")}),
+        ("Language", {"fields": ("asl_first", "allow_english_only", "signed_templates")}),
         (
             "What participants read",
             {"fields": ("description", "consent_text", "consent_mode", "thank_you_text")},
@@ -218,6 +219,11 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
             if identical:
                 messages.warning(request, describe_identical(identical))
         return super().change_view(request, object_id, form_url, extra_context)
+
+    def formfield_for_manytomany(self, db_field, request: HttpRequest, **kwargs):
+        if db_field.name == "signed_templates" and not request.user.is_superuser:
+            kwargs["queryset"] = SignedTemplate.objects.filter(owner=request.user)
+        return super().formfield_for_manytomany(db_field, request, **kwargs)
 
     def get_changeform_initial_data(self, request: HttpRequest):
         return {**super().get_changeform_initial_data(request), "owner": request.user.pk}

@@ -7,7 +7,7 @@ from studyplatform.models.participants import (
     new_participant_token,
     new_randomization_seed,
 )
-from studyplatform.models.prompts import PARTICIPANT_FACING_FIELDS, AslVideo
+from studyplatform.models.prompts import PARTICIPANT_FACING_FIELDS, AslVideo, SignedTemplate
 from studyplatform.models.recordings import Recording
 from studyplatform.models.responses import MediaEvent, Response
 from studyplatform.models.scope import STUDY_PATHS
@@ -29,6 +29,7 @@ __all__ = [
     "Question",
     "Recording",
     "Response",
+    "SignedTemplate",
     "Stimulus",
     "Study",
     "Trial",

@@ -1,15 +1,17 @@
 """Attach ASL videos to participant-facing text (spec 06 "ASL-first")."""
 
+from django.conf import settings
 from django.contrib.contenttypes.fields import GenericForeignKey
 from django.contrib.contenttypes.models import ContentType
 from django.db import models
 
 # The participant-facing text fields of each model, by model name: every one of them
-# can carry an ASL video, and the admin lists those that lack one.
+# can carry an ASL video, shown before the text, and the admin lists those that lack
+# one. Titles are headings, not prompts: the signed intro or instructions carry them.
 PARTICIPANT_FACING_FIELDS: dict[str, tuple[str, ...]] = {
     "study": ("description", "consent_text", "thank_you_text"),
-    "block": ("title", "intro_text"),
-    "trial": ("title", "text"),
+    "block": ("intro_text",),
+    "trial": ("text",),
     "question": ("text", "help_text", "no_difference_label"),
     "answeroption": ("label",),
 }
@@ -43,3 +45,38 @@ class AslVideo(models.Model):
 
     def __str__(self) -> str:
         return f"ASL for {self.content_type.model} #{self.object_id} {self.field_name}"
+
+
+class SignedTemplate(models.Model):
+    """A signed text a researcher records once and attaches to many studies.
+
+    Consent, instructions and thank-you templates sign those texts wherever a study has
+    no video of its own for them; the button templates sign what Next, Previous, Play
+    and Replay do, next to the buttons.
+    """
+
+    class Kind(models.TextChoices):
+        CONSENT = "consent", "Consent"
+        INSTRUCTIONS = "instructions", "Instructions"
+        THANK_YOU = "thank_you", "Thank you"
+        NEXT = "next", "“Next” button"
+        PREVIOUS = "previous", "“Previous” button"
+        PLAY = "play", "“Play” / “Replay” buttons"
+
+    owner = models.ForeignKey(
+        settings.AUTH_USER_MODEL, on_delete=models.CASCADE, related_name="signed_templates"
+    )
+    kind = models.CharField(max_length=20, choices=Kind.choices)
+    name = models.CharField(max_length=100, help_text="How you find it, e.g. 'Consent (lab)'.")
+    video = models.FileField(upload_to="asl/")
+    poster = models.FileField(upload_to="asl/", blank=True)
+    transcript = models.TextField(
+        blank=True, help_text="What the video signs, in English (shown as its caption)."
+    )
+    created_at = models.DateTimeField(auto_now_add=True)
+
+    class Meta:
+        ordering = ["kind", "name", "pk"]
+
+    def __str__(self) -> str:
+        return f"{self.name} ({self.get_kind_display()})"

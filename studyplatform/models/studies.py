@@ -165,6 +165,15 @@ class Study(models.Model):
     created_at = models.DateTimeField(auto_now_add=True)
     updated_at = models.DateTimeField(auto_now=True)
 
+    signed_templates = models.ManyToManyField(
+        "studyplatform.SignedTemplate",
+        blank=True,
+        related_name="studies",
+        help_text=(
+            "Signed texts you recorded once (consent, instructions, thank-you, what the "
+            "buttons do): they sign those texts where this study has no video of its own."
+        ),
+    )
     asl_videos = GenericRelation("studyplatform.AslVideo")
 
     class Meta:

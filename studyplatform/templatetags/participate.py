@@ -13,6 +13,12 @@ def asl_video(videos: dict, obj, field_name: str):
     return videos.get((obj._meta.model_name, obj.pk, field_name))
 
 
+@register.simple_tag
+def ui_video(videos: dict, kind: str):
+    """Return the signed template of a button (``{% ui_video asl "next" as v %}``), or None."""
+    return (videos or {}).get(("ui", 0, kind))
+
+
 @register.filter
 def get_item(mapping: dict, key: str):
     """Return ``mapping[key]`` or "" (for per-question error messages)."""

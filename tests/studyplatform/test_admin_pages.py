@@ -9,6 +9,7 @@ from django.urls import reverse
 from studyplatform.actions import Answer, do_enroll_participant, do_save_response
 from studyplatform.exchange import export_study
 from studyplatform.models import Study
+from tests.conftest import as_draft
 
 pytestmark = pytest.mark.django_db
 
@@ -169,6 +170,7 @@ def test_export_of_several_studies_is_a_zip(admin_client, fingerspelling, spine)
 
 
 def test_trial_form_rejects_questions_of_the_wrong_kind(alice_client, fingerspelling):
+    as_draft(fingerspelling)
     trial = fingerspelling.trials.get(key="cmp-01")
     age = fingerspelling.questions.get(key="age")
     page = alice_client.post(

@@ -7,6 +7,7 @@ from django.urls import reverse
 
 from studyplatform.actions import Answer, do_enroll_participant, do_save_response
 from studyplatform.models import Study
+from tests.conftest import as_draft
 
 pytestmark = pytest.mark.django_db
 
@@ -102,6 +103,7 @@ def test_collected_data_of_anothers_study_is_hidden(bob_client, answered):
 
 
 def test_form_choices_offer_only_own_objects(bob_client, fingerspelling, spine):
+    as_draft(spine)
     page = bob_client.get(reverse("admin:studyplatform_trial_add"))
     assert page.status_code == 200
     assert ">GUITAR</option>" not in page.text  # alice's item

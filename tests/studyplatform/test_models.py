@@ -5,8 +5,16 @@ from django.core.exceptions import ValidationError
 from django.db import IntegrityError, transaction
 
 from studyplatform.models import Question, Trial
+from tests.conftest import as_draft
 
 pytestmark = pytest.mark.django_db
+
+
+@pytest.fixture(autouse=True)
+def _editable_demos(request):
+    """These tests validate design objects of the demo studies, which only a draft allows."""
+    as_draft(*(request.getfixturevalue(n) for n in ("fingerspelling", "spine")
+               if n in request.fixturenames))  # fmt: skip
 
 
 def test_comparison_needs_two_clips(fingerspelling):

@@ -10,6 +10,7 @@ from studyplatform.actions import Answer, AnswerRejected, do_enroll_participant,
 from studyplatform.export import tidy_csv
 from studyplatform.models import AnswerOption, Block, Question, Trial, trial_question_kinds
 from studyplatform.questions import QUESTION_TYPES, question_type
+from tests.conftest import as_draft
 
 pytestmark = pytest.mark.django_db
 
@@ -54,6 +55,7 @@ def test_a_type_refuses_a_post_that_is_not_an_answer(kind, value):
 
 
 def test_settings_that_do_not_apply_to_the_kind_are_named(fingerspelling):
+    as_draft(fingerspelling)
     question = Question(study=fingerspelling, key="q", kind="likert", text="?",
                         allow_no_difference=True, is_personal=True)  # fmt: skip
     with pytest.raises(Exception) as raised:

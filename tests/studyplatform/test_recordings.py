@@ -31,6 +31,7 @@ from synthesis.fingerspelling.spelling import spell
 from synthesis.rigs.hand import HandModel
 from synthesis.skeleton.bvh import format_bvh
 from synthesis.timing import simulate_recording
+from tests.conftest import as_draft
 
 pytestmark = pytest.mark.django_db
 SMALL = {"width": 64, "height": 48, "rate_hz": 20.0}
@@ -159,6 +160,7 @@ def test_only_words_take_recordings(spine, media):
 
 
 def test_a_condition_on_each_words_recording_names_a_word_without_one(fingerspelling, media):
+    as_draft(fingerspelling)
     condition = Condition(study=fingerspelling, key="captured", label="Captured",
                           parameters={"source": "recording", "timing": "mocap"})  # fmt: skip
     condition.full_clean()  # valid: each word's own recording is found when rendering

@@ -10,6 +10,7 @@ from studyplatform.exchange import export_study
 from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Item
 from synthesis.techniques import MOTION, REGISTRY, Parameter, Technique
+from tests.conftest import as_draft
 
 pytestmark = pytest.mark.django_db
 
@@ -61,6 +62,7 @@ def test_the_condition_page_offers_each_technique_parameter(alice_client, finger
 
 
 def test_the_generated_form_stores_what_differs_from_the_defaults(alice_client, fingerspelling):
+    as_draft(fingerspelling)
     condition = fingerspelling.conditions.get(key="constant")
     form = alice_client.get(_change_url(condition)).context["adminform"].form
     data = _post_data(form, technique_hold_ms="200", technique_timing="constant")
@@ -73,6 +75,7 @@ def test_the_generated_form_stores_what_differs_from_the_defaults(alice_client, 
 
 
 def test_the_form_refuses_a_bad_value_and_an_unknown_key(alice_client, fingerspelling):
+    as_draft(fingerspelling)
     condition = fingerspelling.conditions.get(key="constant")
     before = dict(condition.parameters)
     form = alice_client.get(_change_url(condition)).context["adminform"].form
@@ -112,6 +115,7 @@ def test_the_study_page_says_what_each_condition_compares(alice_client, fingersp
 
 
 def test_the_inline_json_field_is_checked_on_save(alice_client, fingerspelling):
+    as_draft(fingerspelling)
     condition = fingerspelling.conditions.get(key="variable")
     condition.parameters = {"timing": "variable", "spine": False}
     with pytest.raises(ValidationError, match=r"'spine' .* does not apply to a fingerspelled word"):
@@ -140,7 +144,7 @@ def test_import_refuses_bad_parameters_naming_them(alice, spine, where, change, 
 
 def test_the_demo_definitions_pass_the_contract(alice):
     for build in DEMO_STUDIES:
-        study = do_import_study(build(), owner=alice).study
+        study = do_import_study(build(), owner=alice, status="draft").study
         for condition in study.conditions.all():
             condition.full_clean()
 
@@ -181,6 +185,7 @@ def test_the_migration_keeps_the_meaning_of_old_word_conditions(fingerspelling):
 
 
 def test_the_admin_check_names_a_wrong_type_and_an_unknown_item_kind(fingerspelling):
+    as_draft(fingerspelling)
     condition = fingerspelling.conditions.get(key="constant")
     condition.parameters = {"timing": "constant", "hold_ms": "long"}
     with pytest.raises(ValidationError, match="hold_ms must be a number, not 'long'"):
