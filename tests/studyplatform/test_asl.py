@@ -6,7 +6,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 from django.urls import reverse
 
 from studyplatform.asl import study_prompts
-from studyplatform.models import AslVideo, Question
+from studyplatform.models import AslVideo, Question, SignedTemplate
 
 pytestmark = pytest.mark.django_db
 WEBM = b"\x1a\x45\xdf\xa3" + b"\0" * 200
@@ -114,3 +114,42 @@ def test_participants_see_the_video_first_on_an_asl_first_study(client, bob, spi
     participant.save()
     page = client.get(reverse("participant_page", args=[participant.token, number]))
     assert "ASL: Rate the clarity" not in page.text
+
+
+def test_coverage_counts_only_texts_participants_meet(spine):
+    unused = Question.objects.create(study=spine, key="unused", kind="likert", text="Never asked")
+    texts = {p.text for p in study_prompts(spine)}
+    assert "Never asked" not in texts and "Rate the clarity of the sentence." in texts
+    preferred = Question.objects.get(study=spine, key="preferred")
+    assert not preferred.allow_no_difference
+    assert not any(p.obj == preferred and p.field_name == "no_difference_label"
+                   for p in study_prompts(spine))  # fmt: skip
+    assert unused.pk
+
+
+def test_a_signed_template_signs_consent_in_every_study_it_is_attached_to(
+    client, bob, spine, media
+):
+    template = SignedTemplate.objects.create(
+        owner=bob, kind=SignedTemplate.Kind.CONSENT, name="Lab consent",
+        video=SimpleUploadedFile("consent.webm", WEBM, "video/webm"),
+    )  # fmt: skip
+    spine.signed_templates.add(template)
+    consent = next(p for p in study_prompts(spine) if p.field_name == "consent_text")
+    assert consent.video == template and consent.from_template
+    client.force_login(bob)
+    page = client.get(reverse("admin:studyplatform_study_asl", args=[spine.pk])).text
+    assert "template “Lab consent”" in page
+    welcome = client.get(reverse("study_welcome", args=[spine.slug])).text
+    assert welcome.index(template.video.url) < welcome.index("This study shows a short signed")
+
+
+def test_researchers_see_only_their_own_templates(client, alice, bob, media):
+    video = SimpleUploadedFile("n.webm", WEBM, "video/webm")
+    SignedTemplate.objects.create(owner=bob, kind="next", name="Bob's next", video=video)
+    client.force_login(alice)
+    page = client.get(reverse("admin:studyplatform_signedtemplate_changelist")).text
+    assert "Bob&#x27;s next" not in page and "Bob's next" not in page
+    client.force_login(bob)
+    assert "Bob&#x27;s next" in client.get(
+        reverse("admin:studyplatform_signedtemplate_changelist")).text  # fmt: skip
