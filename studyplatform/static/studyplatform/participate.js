@@ -351,26 +351,62 @@
     const clip = Number(figure.dataset.clip);
     const label = figure.querySelector("figcaption").textContent;
     let plays = 0;
-    if (replayLimit !== null) { video.controls = false; }
+    /* Own controls instead of the browser's bar: one tab stop per clip. The button
+     * plays, pauses and replays (Space or Enter); arrow keys move a second back or on,
+     * Home goes to the start; the state is announced. A thin bar shows the position
+     * and takes a click. Seeking is off when plays are limited. */
+    video.controls = false;
+    video.tabIndex = -1;
     const button = document.createElement("button");
     button.type = "button";
     button.className = "button play-button";
+    button.setAttribute("aria-describedby", "clip-keys-hint");
     const count = document.createElement("span");
     count.className = "play-count";
     count.setAttribute("aria-live", "polite");
-    controls.append(button, count);
+    const bar = document.createElement("div");
+    bar.className = "clip-progress";
+    bar.setAttribute("aria-hidden", "true");
+    const fill = document.createElement("div");
+    fill.className = "clip-progress-fill";
+    bar.append(fill);
+    controls.append(bar, button, count);
+    let announced = "";
+    function seconds(t) { return (Math.round(t * 10) / 10).toFixed(1); }
     function refresh() {
       const left = replayLimit === null ? null : replayLimit - plays;
       if (!video.paused && !video.ended) { button.textContent = "Pause " + label; }
       else if (plays && left !== null && left <= 0) { button.textContent = "No plays left"; }
       else { button.textContent = (plays ? "Replay " : "Play ") + label; }
       button.disabled = video.paused && left !== null && left <= 0;
-      count.textContent = left === null ? "" : left + " of " + replayLimit + " plays left";
+      let state = video.ended ? label + " ended" : !video.paused ? label + " playing"
+        : plays || video.currentTime > 0 ? label + " paused at " + seconds(video.currentTime) + " of " + seconds(video.duration || 0) + " s" : "";
+      if (left !== null) { state += (state ? ". " : "") + left + " of " + replayLimit + " plays left"; }
+      if (state !== announced) { count.textContent = announced = state; }
     }
-    button.addEventListener("click", function () {
+    function toggle() {
       if (!video.paused && !video.ended) { video.pause(); return; }
       if (video.ended || video.currentTime === 0 || replayLimit !== null) { video.currentTime = 0; }
       video.play().catch(function (error) { log("error", clip, video.currentTime, {message: String(error)}); });
+    }
+    function seek(to) {
+      if (replayLimit !== null || !isFinite(video.duration)) { return; }
+      video.currentTime = Math.max(0, Math.min(video.duration, to));
+      refresh();
+    }
+    button.addEventListener("click", toggle);
+    video.addEventListener("click", function () { if (!button.disabled) { toggle(); } });
+    button.addEventListener("keydown", function (event) {
+      const moves = {ArrowLeft: -1, ArrowRight: 1};
+      if (event.key in moves) { event.preventDefault(); seek(video.currentTime + moves[event.key]); }
+      else if (event.key === "Home") { event.preventDefault(); video.pause(); seek(0); }
+    });
+    bar.addEventListener("click", function (event) {
+      const box = bar.getBoundingClientRect();
+      seek((event.clientX - box.left) / box.width * video.duration);
+    });
+    video.addEventListener("timeupdate", function () {
+      fill.style.width = video.duration ? (100 * video.currentTime / video.duration) + "%" : "0";
     });
     video.addEventListener("play", function () {
       if (video.currentTime < 0.05) {
