@@ -40,7 +40,9 @@ def build_preview(study: Study) -> list[PreviewPage]:
         .prefetch_related("questions__options")
         .order_by("block__position", "block__pk", "position", "pk")
     )
-    pages = [PreviewPage(number=1, kind="consent", title="Consent", text=study.consent_text)]
+    # Consent and thank-you are unnumbered, as participants see them: "Page n of N"
+    # counts the pages between.
+    pages = [PreviewPage(number=0, kind="consent", title="Consent", text=study.consent_text)]
     for trial in trials:
         clips = []
         if trial.condition_a is not None and trial.item is not None:
@@ -54,7 +56,7 @@ def build_preview(study: Study) -> list[PreviewPage]:
                     clips.append(Clip(label=label, condition=condition, stimulus=stimulus))
         pages.append(
             PreviewPage(
-                number=len(pages) + 1,
+                number=len(pages),
                 kind=trial.kind,
                 title=trial.title or trial.block.title or trial.key,
                 text=trial.text,
@@ -65,8 +67,6 @@ def build_preview(study: Study) -> list[PreviewPage]:
             )
         )
     pages.append(
-        PreviewPage(
-            number=len(pages) + 1, kind="thanks", title="Thank you", text=study.thank_you_text
-        )
+        PreviewPage(number=0, kind="thanks", title="Thank you", text=study.thank_you_text)
     )
     return pages

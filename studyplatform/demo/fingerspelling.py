@@ -99,7 +99,7 @@ def fingerspelling_timing_study() -> dict[str, Any]:
             },
             {
                 "key": "email",
-                "kind": "short_text",
+                "kind": "email",
                 "text": "Your e-mail address",
                 "required": False,
                 "is_personal": True,

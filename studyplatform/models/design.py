@@ -27,6 +27,7 @@ class Question(models.Model):
         CHOICE = "choice", "Single choice (demographic)"
         NUMBER = "number", "Number (demographic)"
         SHORT_TEXT = "short_text", "Short text (demographic)"
+        EMAIL = "email", "E-mail address (demographic, usually personal)"
 
     study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="questions")
     key = models.SlugField(

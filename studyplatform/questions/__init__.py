@@ -8,6 +8,7 @@ migration, and list the class in :data:`QUESTION_TYPES`.
 from studyplatform.questions.base import MAX_TEXT_LENGTH, Answer, AnswerRejected, QuestionType
 from studyplatform.questions.clips import PairwiseQuestion
 from studyplatform.questions.free import (
+    EmailQuestion,
     IntelligibilityQuestion,
     NumberQuestion,
     OpenQuestion,
@@ -26,6 +27,7 @@ QUESTION_TYPES: dict[str, QuestionType] = {
         ChoiceQuestion,
         NumberQuestion,
         ShortTextQuestion,
+        EmailQuestion,
     )
 }
 

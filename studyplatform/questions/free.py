@@ -59,6 +59,27 @@ class ShortTextQuestion(TextQuestion):
     can_be_personal = True
 
 
+class EmailQuestion(ShortTextQuestion):
+    """An e-mail address (checked like Django's EmailValidator); usually personal."""
+
+    kind = "email"
+    template = "studyplatform/questions/email.html"
+
+    def response_values(self, question, answer, participant, trial) -> dict:
+        from django.core.exceptions import ValidationError
+        from django.core.validators import validate_email
+
+        values = super().response_values(question, answer, participant, trial)
+        if values["text"]:
+            try:
+                validate_email(values["text"])
+            except ValidationError:
+                raise AnswerRejected(
+                    f"“{values['text'][:60]}” is not an e-mail address (like name@example.org)."
+                ) from None
+        return values
+
+
 class OpenQuestion(TextQuestion):
     """An open question, answered in writing or signed on camera."""
 

@@ -91,7 +91,8 @@ def test_preview_shows_every_page_in_order(alice_client, fingerspelling):
     # consent + demographics + instructions + practice + 48 comparisons + attention
     # check + closing + thank-you
     assert page.text.count('class="preview-page"') == 55
-    assert "Page 55 of 55" in page.text
+    # Numbered as participants see them: consent and thank-you are not counted.
+    assert "Page 53 of 53" in page.text and "Page 54" not in page.text
     assert "Which animation is the most similar to actual fingerspelling" in page.text
     assert "Clip not rendered yet" in page.text
     assert "simulated" in page.text

@@ -31,7 +31,7 @@ def test_trial_kinds_ask_the_question_kinds_their_types_name():
     assert kinds["info"] == frozenset()
     assert kinds["pairwise"] == {"pairwise"}
     assert kinds["rating"] == {"likert"}
-    assert kinds["demographic"] == {"choice", "number", "short_text"}
+    assert kinds["demographic"] == {"choice", "number", "short_text", "email"}
 
 
 @pytest.mark.parametrize(
@@ -108,3 +108,18 @@ def test_a_formula_answer_is_exported_as_text_and_read_back_unchanged(spine):
                                     "'+1 (555) 0100", "-2"])  # fmt: skip
     table = read_responses(io.StringIO(exported))
     assert sorted(table.loc[table["text"].ne(""), "text"]) == sorted(answers)
+
+
+def test_an_email_question_takes_only_an_email_address(fingerspelling):
+    from studyplatform.actions import Answer, AnswerRejected, do_enroll_participant
+    from studyplatform.actions import do_save_response as save
+    from studyplatform.models import PersonalAnswer
+
+    participant = do_enroll_participant(fingerspelling)
+    trial = fingerspelling.trials.get(key="demographics")
+    email = trial.questions.get(key="email")
+    assert email.kind == "email" and email.is_personal
+    with pytest.raises(AnswerRejected, match="“not-an-email” is not an e-mail address"):
+        save(participant, trial, email, Answer(text="not-an-email"))
+    save(participant, trial, email, Answer(text="me@example.org"))
+    assert PersonalAnswer.objects.get(participant=participant).value == "me@example.org"
