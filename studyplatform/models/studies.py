@@ -199,10 +199,15 @@ class Study(models.Model):
 
 
 def check_unlocked(study: Study | None) -> None:
-    """Raise ValidationError if *study*'s design is locked (see Study.design_locked)."""
+    """Raise ValidationError if *study*'s design is locked (see Study.design_locked).
+
+    The stored status counts: a form that opens a study checks its other rows against
+    the draft they still belong to.
+    """
     from django.core.exceptions import ValidationError
 
-    if study is not None and study.design_locked:
+    locked = [Study.Status.OPEN, Study.Status.CLOSED]
+    if study is not None and Study.objects.filter(pk=study.pk, status__in=locked).exists():
         raise ValidationError(
             f"“{study.title}” is {study.get_status_display().lower()}: its design is locked. "
             "Make a new version of the study to change it."

