@@ -13,6 +13,7 @@ from studyplatform.actions import do_attach_asl_video, do_enroll_participant
 from studyplatform.models import Question, SignedTemplate
 from tests.conftest import tiny_webm
 from tests.studyplatform.test_participate_browser import (
+    SCREENSHOTS,
     _serious_violations,
     _wait_ready,
     _with_clips,
@@ -79,6 +80,8 @@ def test_an_asl_first_page_signs_first_and_hides_only_signed_english(
     clarity = page.locator('fieldset[data-question="clarity"]')
     assert clarity.locator("label.choice figure.asl-prompt video").count() == 5
     assert page.locator(".asl-buttons").count() == 1  # the Next button's template
+    SCREENSHOTS.mkdir(exist_ok=True)
+    page.screenshot(path=SCREENSHOTS / "participant-asl-first.png", full_page=True)
     toggle = page.locator("#english-toggle")
     toggle.click()
     assert toggle.get_attribute("aria-pressed") == "true"
@@ -87,6 +90,8 @@ def test_an_asl_first_page_signs_first_and_hides_only_signed_english(
     grammar = page.locator('fieldset[data-question="grammaticality"] legend')
     assert grammar.is_visible() and "grammatical" in grammar.text_content().lower()
     assert _serious_violations(page) == []
+    SCREENSHOTS.mkdir(exist_ok=True)
+    page.screenshot(path=SCREENSHOTS / "participant-asl-first-english-hidden.png", full_page=True)
     # Hiding is remembered on the next page, and offered only where something is signed.
     pretest = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "pretest")
     page.goto(f"{live_server.url}/p/{participant.token}/{pretest}/")
