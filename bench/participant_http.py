@@ -128,7 +128,7 @@ class HttpParticipant:
 
 
 def _answers(page: str, rng: random.Random) -> list[tuple[str, str]]:
-    """Return an answer for each question on the page's HTML (radio, number or text)."""
+    """Return an answer for each question on the page's HTML (radio, number, e-mail, text)."""
     options: dict[str, list[str]] = {}
     answers: dict[str, str] = {}
     for tag, attributes in re.findall(r"<(input|textarea)\b([^>]*)>", page):
@@ -141,6 +141,8 @@ def _answers(page: str, rng: random.Random) -> list[tuple[str, str]]:
             options.setdefault(name[2:], []).append(attrs.get("value", ""))
         elif kind == "number":
             answers[name[2:]] = "30"
+        elif kind == "email":
+            answers[name[2:]] = f"participant{rng.randrange(1000)}@example.org"
         else:
             answers[name[2:]] = f"open answer {rng.randrange(1000)}"
     answers.update({name: rng.choice(values) for name, values in options.items()})

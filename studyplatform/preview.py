@@ -66,7 +66,5 @@ def build_preview(study: Study) -> list[PreviewPage]:
                 questions=tuple(sorted(trial.questions.all(), key=lambda q: (q.position, q.pk))),
             )
         )
-    pages.append(
-        PreviewPage(number=0, kind="thanks", title="Thank you", text=study.thank_you_text)
-    )
+    pages.append(PreviewPage(number=0, kind="thanks", title="Thank you", text=study.thank_you_text))
     return pages

@@ -7,7 +7,7 @@ import zipfile
 from django.contrib import admin, messages
 from django.db import models
 from django.db.models import Count
-from django.forms import Textarea
+from django.forms import Textarea, TextInput
 from django.http import Http404, HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.template.response import TemplateResponse
@@ -25,23 +25,28 @@ from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.admin.roster import StudyRosterMixin
+from studyplatform.asl import study_prompts
 from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.lib.techniques import describe_condition
 from studyplatform.models import Block, Condition, Item, Question, SignedTemplate, Study, Trial
 from studyplatform.preview import build_preview
 
+# Compact cells keep the study page within the window; each object's page has the room.
+COMPACT_TEXT = {
+    models.TextField: {"widget": Textarea(attrs={"rows": 2, "cols": 20})},
+    models.CharField: {"widget": TextInput(attrs={"size": 14})},
+    models.SlugField: {"widget": TextInput(attrs={"size": 14})},
+}
+
 
 class ConditionInline(DesignLockMixin, StudyInline):
+    formfield_overrides = COMPACT_TEXT
     model = Condition
-    fields = ("position", "key", "label", "is_simulated", "description", "parameters", "compares")
+    # The techniques are set field by field on each condition's page (its change link).
+    fields = ("position", "key", "label", "is_simulated", "compares")
     readonly_fields = ("compares",)
-    verbose_name_plural = "conditions (open one to edit its techniques field by field)"
-    # Compact cells: a condition's page has the room for long descriptions and settings.
-    formfield_overrides = {
-        models.TextField: {"widget": Textarea(attrs={"rows": 2, "cols": 24})},
-        models.JSONField: {"widget": Textarea(attrs={"rows": 2, "cols": 24})},
-    }
+    verbose_name_plural = "conditions (open one to set its techniques field by field)"
 
     @admin.display(description="What it compares")
     def compares(self, obj: Condition) -> str:
@@ -50,31 +55,34 @@ class ConditionInline(DesignLockMixin, StudyInline):
 
 class ItemInline(DesignLockMixin, StudyInline):
     model = Item
+    formfield_overrides = COMPACT_TEXT
     fields = ("position", "key", "kind", "text", "target_text", "is_practice")
 
 
 class QuestionInline(DesignLockMixin, StudyInline):
     model = Question
+    formfield_overrides = COMPACT_TEXT
     fields = ("position", "key", "kind", "text", "required", "allow_no_difference")
 
 
 class BlockInline(DesignLockMixin, StudyInline):
+    formfield_overrides = COMPACT_TEXT
     model = Block
     fields = ("position", "key", "kind", "title", "randomize_order")
 
 
 class TrialInline(DesignLockMixin, StudyInline):
+    formfield_overrides = COMPACT_TEXT
     model = Trial
+    verbose_name_plural = "trials (pages; the design builder makes them, edit one here)"
     form = TrialForm
     fields = (
         "block",
-        "position",
         "key",
         "kind",
         "item",
         "condition_a",
         "condition_b",
-        "questions",
         "is_attention_check",
     )
     classes = ("collapse",)
@@ -212,12 +220,21 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
         )
 
     def change_view(self, request: HttpRequest, object_id: str, form_url="", extra_context=None):
-        """Show the study; warn first when two conditions would render identical clips."""
+        """Show the study; warn first of identical clips and of ASL first with nothing signed."""
         study = self.get_object(request, object_id) if request.method == "GET" else None
         if study is not None and not study.allow_identical_clips:
             identical = identical_clips(study)
             if identical:
                 messages.warning(request, describe_identical(identical))
+        if study is not None and study.asl_first:
+            prompts = study_prompts(study)
+            if prompts and not any(p.video for p in prompts):
+                messages.warning(
+                    request,
+                    f"ASL first is on, but none of the {len(prompts)} texts participants "
+                    "read has an ASL video: they see English only. Add videos on the ASL "
+                    "videos page, or attach signed templates under Language.",
+                )
         return super().change_view(request, object_id, form_url, extra_context)
 
     def formfield_for_manytomany(self, db_field, request: HttpRequest, **kwargs):

@@ -132,3 +132,28 @@ def test_a_word_is_recorded_with_the_camera_and_a_file_uploaded(
     expect(page.get_by_text("Recording of HEAVEN saved")).to_be_visible()
     expect(page.locator("#recordings-summary")).to_contain_text("1 of 9")
     page.screenshot(path=SCREENSHOTS / "admin-recordings.png")
+
+
+@pytest.mark.parametrize("status", ["draft", "open"])
+def test_the_study_page_fits_a_1400_px_window(browser, live_server, researcher, status):
+    """Issue 20 measured 2,357 px: the inlines' JSON and text cells were too wide."""
+    from studyplatform.models import Study
+    from tests.conftest import close_context
+
+    study = Study.objects.get(slug="fingerspelling-timing")
+    Study.objects.filter(pk=study.pk).update(status=status)
+    context = browser.new_context(viewport={"width": 1400, "height": 900}, bypass_csp=True)
+    try:
+        page = context.new_page()
+        page.goto(
+            f"{live_server.url}/admin/login/?next=/admin/studyplatform/study/{study.pk}/change/"
+        )
+        page.get_by_label("Username").fill("alice")
+        page.get_by_label("Password").fill("pw-alice")
+        page.get_by_role("button", name="Log in").click()
+        page.locator("#study_form").wait_for()
+        page.locator(".inline-group .collapse-toggle, details summary").all()
+        width = page.evaluate("document.documentElement.scrollWidth")
+        assert width <= 1400, width
+    finally:
+        close_context(context)
