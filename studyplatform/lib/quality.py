@@ -7,6 +7,7 @@ page's clips had ended (the speeder rule). All times are the browser's clock, so
 durations never mix the participant's clock with the server's.
 """
 
+import json
 import re
 from collections import defaultdict
 from dataclasses import dataclass, field
@@ -144,3 +145,52 @@ def quality_cells(
         early = any(quality.first_ended_ms.get(c, float("inf")) > answered_ms for c in clips)
         cells["answered_before_end"] = "1" if early else "0"
     return cells
+
+
+EVENT_COLUMNS = ("participant", "trial", "clip", "kind", "media_time_s", "client_time_ms",
+                 "received_at", "detail")  # fmt: skip
+PARTICIPANT_COLUMNS = ("participant", "is_pilot", "review", "language", "seed", "enrollment",
+                       "started_at", "consented_at", "finished_at", "device", "user_agent",
+                       "completion_code", "schedule")  # fmt: skip
+
+
+def media_event_rows(study: Study):
+    """Yield every media event of *study*'s participants as a row of EVENT_COLUMNS."""
+    events = MediaEvent.objects.filter(participant__study=study).select_related("trial")
+    events = events.order_by("participant_id", "client_time_ms", "pk")
+    for event in events.iterator(chunk_size=2000):
+        yield {
+            "participant": str(event.participant_id),
+            "trial": event.trial.key if event.trial else "",
+            "clip": "" if event.clip_position is None else str(event.clip_position),
+            "kind": event.kind,
+            "media_time_s": "" if event.media_time_s is None else f"{event.media_time_s:g}",
+            "client_time_ms": "" if event.client_time_ms is None else str(event.client_time_ms),
+            "received_at": event.created_at.isoformat(timespec="milliseconds"),
+            "detail": json.dumps(event.detail, ensure_ascii=False) if event.detail else "",
+        }
+
+
+def participant_rows(study: Study):
+    """Yield each participant of *study* with their seed and schedule (PARTICIPANT_COLUMNS).
+
+    The schedule is the exact sequence of pages (trial, sides swapped, rotated
+    conditions) the seed and enrollment number drew; personal data is not included.
+    """
+    participants = study.participants.order_by("started_at", "pk")
+    for enrollment, participant in enumerate(participants):
+        times = {name: getattr(participant, name) for name in
+                 ("started_at", "consented_at", "finished_at")}  # fmt: skip
+        yield {
+            "participant": str(participant.pk),
+            "is_pilot": str(int(participant.is_pilot)),
+            "review": participant.review,
+            "language": participant.language,
+            "seed": str(participant.seed),
+            "enrollment": str(enrollment),
+            **{k: "" if v is None else v.isoformat(timespec="seconds") for k, v in times.items()},
+            "device": device_of(participant.user_agent),
+            "user_agent": participant.user_agent,
+            "completion_code": participant.completion_code,
+            "schedule": json.dumps(participant.schedule, ensure_ascii=False),
+        }

@@ -186,3 +186,34 @@ def test_another_researchers_results_are_hidden(client, alice, spine, url_name):
     client.force_login(alice)
     response = client.get(reverse(url_name, args=[spine.pk]))
     assert response.status_code == 404
+
+
+def test_everything_holds_media_events_seeds_and_schedules(bob_client, spine):
+    import csv as csv_module
+
+    from studyplatform.actions import do_log_media_events
+
+    taken = take_spine_study(spine, participants=2)
+    number = 1
+    trial = spine.trials.get(key=taken[0].schedule[number - 1]["trial"])
+    taken[0].reached = len(taken[0].schedule)
+    taken[0].save()
+    do_log_media_events(taken[0], [
+        {"kind": "page_shown", "page": number, "client_time_ms": 1_000, "detail": {"width": 800}},
+        {"kind": "play", "page": number, "clip": None, "client_time_ms": 1_500},
+    ])  # fmt: skip
+    everything = bob_client.get(
+        reverse("admin:studyplatform_study_results_everything", args=[spine.pk])
+    )
+    archive = zipfile.ZipFile(io.BytesIO(everything.content))
+    events = list(csv_module.DictReader(io.StringIO(archive.read("media_events.csv").decode())))
+    who = str(taken[0].pk)
+    assert [(e["participant"], e["trial"], e["kind"]) for e in events] == [
+        (who, trial.key, "page_shown"), (who, trial.key, "play")]  # fmt: skip
+    assert json.loads(events[0]["detail"]) == {"width": 800}
+    rows = list(csv_module.DictReader(io.StringIO(archive.read("participants.csv").decode())))
+    by_id = {row["participant"]: row for row in rows}
+    for participant in taken:
+        row = by_id[str(participant.pk)]
+        assert int(row["seed"]) == participant.seed
+        assert json.loads(row["schedule"]) == participant.schedule
