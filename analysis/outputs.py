@@ -31,6 +31,8 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
     if data["intelligibility"]:
         found["intelligibility"] = pd.DataFrame(data["intelligibility"])
     found.update(mixed_tables(data.get("mixed_models")))
+    if data.get("quality"):
+        found["quality"] = pd.DataFrame(data["quality"])
     excluded = data["exclusions"].get("excluded_participants") or {}
     if excluded:
         found["excluded"] = pd.DataFrame(

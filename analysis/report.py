@@ -13,6 +13,7 @@ from analysis.intelligibility import score_intelligibility
 from analysis.mixed.results import MixedModels
 from analysis.mixed.section import fit_mixed_models
 from analysis.pairwise import analyze_pairwise
+from analysis.quality import ParticipantQuality, summarize_quality
 from analysis.ratings import compare_ratings, summarize_ratings
 from analysis.results import (
     ExclusionReport,
@@ -62,6 +63,8 @@ class Report(Result):
     options: ReportOptions
     software: dict[str, str]
     mixed: MixedModels | None = None
+    # How each participant took the pages (all participants, before exclusions).
+    quality: tuple[ParticipantQuality, ...] = ()
 
 
 def software_versions() -> dict[str, str]:
@@ -132,6 +135,7 @@ def build_report(
         options=options,
         software=software_versions(),
         mixed=mixed,
+        quality=summarize_quality(frame),
     )
 
 
@@ -186,6 +190,7 @@ def results_json(report: Report) -> dict[str, Any]:
         ],
         "intelligibility": [s.to_dict() for s in report.intelligibility],
         "mixed_models": None if report.mixed is None else mixed_json(report.mixed),
+        "quality": [q.to_dict() for q in report.quality],
     }
     if pairwise is not None:
         anova = pairwise.rm_anova

@@ -38,6 +38,7 @@ class Answered:
     sent: dict = field(default_factory=dict)
     timings: dict = field(default_factory=lambda: {"page": [], "save": [], "next": []})
     retries: int = 0
+    requests: int = 0  # attempts sent, retries included
 
 
 class HttpParticipant:
@@ -62,6 +63,7 @@ class HttpParticipant:
         deadline = time.monotonic() + self.patience_s
         server_errors = 0
         for attempt in range(10_000):
+            self.answered.requests += 1
             sent = {"X-CSRFToken": self._csrf(), "Referer": self.base + "/", **(headers or {})}
             request = urllib.request.Request(self.base + path, data=data, headers=sent)
             started = time.perf_counter()

@@ -70,8 +70,15 @@ def test_a_server_killed_in_mid_save_loses_and_duplicates_nothing(server, finger
         worker = threading.Thread(
             target=lambda n=number, d=done: (participant.take_page(n), d.set())
         )
+        sent = participant.answered.requests
         worker.start()
-        time.sleep(0.01 * number)  # somewhere in the page's saves or its Next
+        # Kill in the middle of the page: after its first request (the page) and as the
+        # next ones go out; waiting on progress, not on a clock, whatever the load.
+        deadline = time.monotonic() + 10
+        while participant.answered.requests < sent + 1 + number % 3 and not done.is_set():
+            if time.monotonic() > deadline:
+                break
+            time.sleep(0.001)
         if not done.is_set():
             server.kill()
             kills += 1

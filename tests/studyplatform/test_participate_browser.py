@@ -278,11 +278,16 @@ def _serious_violations(page) -> list[str]:
     ]
 
 
+@pytest.mark.parametrize("layout", [{"width": 1280, "height": 800}, {"width": 390, "height": 844}],
+                         ids=["desktop", "phone"])  # fmt: skip
 def test_every_page_type_passes_an_accessibility_scan(
-    page, live_server, fingerspelling, spine, clips_dir, one_clip
+    page, live_server, fingerspelling, spine, clips_dir, one_clip, layout
 ):
-    """axe-core (4.12) finds no serious or critical violation on any participant page."""
+    """axe-core (4.12) finds no serious or critical violation on any participant page,
+    on a desktop and on a phone (where two clips sit side by side, sticky)."""
     from studyplatform.actions import do_enroll_participant
+
+    page.set_viewport_size(layout)
 
     # On purpose: the refused Next (400) and the invalid link (404).
     page.allowed_errors = [r"(400|404).*/p/"]

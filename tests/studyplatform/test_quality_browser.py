@@ -110,3 +110,12 @@ def test_play_counts_and_ends_match_the_browser_and_the_speeder_is_excluded(
     kept, report = apply_exclusions(table, ExclusionRules(answered_before_end=True))
     assert set(kept["participant"]) == {str(watcher.pk)}
     assert report.excluded_participants == {str(speeder.pk): [ANSWERED_EARLY]}
+    # The report summarizes the same per participant (the results page shows it).
+    from analysis import ReportOptions
+    from studyplatform.results import analyse_study
+
+    quality = {q.participant: q for q in analyse_study(two_pages, ReportOptions()).report.quality}
+    assert quality[str(watcher.pk)].clips_ended_share == 1.0
+    assert quality[str(watcher.pk)].replays == 1 and quality[str(watcher.pk)].device == "desktop"
+    assert quality[str(speeder.pk)].clips_ended_share == 0.0
+    assert quality[str(speeder.pk)].answered_before_end == 2
