@@ -77,6 +77,9 @@ def main(participants: int) -> None:
 
     owner = get_user_model().objects.create_user("bench")
     study = do_import_study(fingerspelling_timing_study(), owner=owner, status="draft").study
+    # The builder makes the comparisons and practice the demo definition spells out.
+    study.trials.filter(block__key__in=["comparisons", "practice"]).delete()
+    study.blocks.filter(key__in=["comparisons", "practice"]).delete()
     conditions = tuple(study.conditions.values_list("key", flat=True))
     questions = list(study.questions.filter(key="most-natural"))
     example = study.items.get(is_practice=True).key  # the demo's practice word
