@@ -13,11 +13,16 @@ from stimuli.design import (
     shuffled,
 )
 from stimuli.manifest import Entry, generate, read_manifest, write_manifest
+from stimuli.plan import Design, DesignError, DesignSpec, PlannedPage, plan_pages, summarize_pages
 
 __all__ = [
     "ClipError",
     "ClipSpec",
+    "Design",
+    "DesignError",
+    "DesignSpec",
     "Entry",
+    "PlannedPage",
     "RenderedClip",
     "all_ordered_pairs",
     "attention_checks",
@@ -25,9 +30,11 @@ __all__ = [
     "engine_digest",
     "generate",
     "latin_square",
+    "plan_pages",
     "read_manifest",
     "render",
     "rotate_for_participant",
     "shuffled",
+    "summarize_pages",
     "write_manifest",
 ]

@@ -3,6 +3,7 @@
 Writes live in :mod:`studyplatform.actions`; nothing here changes the database.
 """
 
+from studyplatform.lib.design import DesignSummary, summarize_design
 from studyplatform.lib.media import files_in_use
 from studyplatform.lib.participants import (
     TIME_LOW,
@@ -17,9 +18,12 @@ from studyplatform.lib.participants import (
     unwatched_clips,
 )
 from studyplatform.lib.presentation import presented_conditions, schedule_entry
+from studyplatform.lib.quality import device_of, quality_cells, study_quality
 from studyplatform.lib.stimuli import (
     clip_spec,
+    describe_identical,
     files_exist,
+    identical_clips,
     needed_pairs,
     stimuli_progress,
     study_manifest,
@@ -35,6 +39,7 @@ from studyplatform.lib.techniques import (
 
 __all__ = [
     "TIME_LOW",
+    "DesignSummary",
     "PageRejected",
     "check_condition",
     "check_item",
@@ -45,17 +50,23 @@ __all__ = [
     "completion_url",
     "condition_item_kinds",
     "describe_condition",
+    "describe_identical",
     "describe_parameters",
+    "device_of",
     "files_exist",
     "files_in_use",
+    "identical_clips",
     "missing_answers",
     "needed_pairs",
     "page_count",
     "page_trial",
     "presented_conditions",
+    "quality_cells",
     "schedule_entry",
     "stimuli_progress",
     "study_manifest",
+    "study_quality",
+    "summarize_design",
     "time_left",
     "unwatched_clips",
 ]
