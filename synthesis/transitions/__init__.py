@@ -1,0 +1,37 @@
+"""Inter-sign transitions (seed 001; spec 04): descriptors, curve fitting into a gap, joins.
+
+The numeric core of the data-driven transitions: the DCT-II descriptor of the frames
+around a gap (:mod:`~synthesis.transitions.descriptor`), skewing a stored transition
+curve into the gap (:mod:`~synthesis.transitions.skew`, Hermite and B-spline), and
+the join-tangent adjustment (:mod:`~synthesis.transitions.joins`). Curves are angles in
+radians over frames; the seed's tables are in degrees, converted at the edges.
+"""
+
+from synthesis.transitions.descriptor import (
+    DESCRIPTOR_COEFFICIENTS,
+    DESCRIPTOR_FRAMES,
+    dct_ii,
+    gap_descriptor,
+)
+from synthesis.transitions.joins import join_tangent, window_tangent
+from synthesis.transitions.skew import (
+    basis_peaks,
+    scale_values,
+    skew_bspline,
+    skew_tangents,
+    skew_values,
+)
+
+__all__ = [
+    "DESCRIPTOR_COEFFICIENTS",
+    "DESCRIPTOR_FRAMES",
+    "basis_peaks",
+    "dct_ii",
+    "gap_descriptor",
+    "join_tangent",
+    "scale_values",
+    "skew_bspline",
+    "skew_tangents",
+    "skew_values",
+    "window_tangent",
+]
