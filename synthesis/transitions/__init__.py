@@ -4,7 +4,9 @@ The numeric core of the data-driven transitions: the DCT-II descriptor of the fr
 around a gap (:mod:`~synthesis.transitions.descriptor`), skewing a stored transition
 curve into the gap (:mod:`~synthesis.transitions.skew`, Hermite and B-spline), and
 the join-tangent adjustment (:mod:`~synthesis.transitions.joins`). Curves are angles in
-radians over frames; the seed's tables are in degrees, converted at the edges.
+radians over frames; the seed's tables are in degrees, converted at the edges. A
+sentence recording's segmentation into signs and transitions is read by
+:mod:`~synthesis.transitions.segments`.
 """
 
 from synthesis.transitions.descriptor import (
@@ -14,6 +16,13 @@ from synthesis.transitions.descriptor import (
     gap_descriptor,
 )
 from synthesis.transitions.joins import join_tangent, window_tangent
+from synthesis.transitions.segments import (
+    Segment,
+    Segmentation,
+    SegmentationError,
+    check_segmentation,
+    parse_segmentation,
+)
 from synthesis.transitions.skew import (
     basis_peaks,
     scale_values,
@@ -25,10 +34,15 @@ from synthesis.transitions.skew import (
 __all__ = [
     "DESCRIPTOR_COEFFICIENTS",
     "DESCRIPTOR_FRAMES",
+    "Segment",
+    "Segmentation",
+    "SegmentationError",
     "basis_peaks",
+    "check_segmentation",
     "dct_ii",
     "gap_descriptor",
     "join_tangent",
+    "parse_segmentation",
     "scale_values",
     "skew_bspline",
     "skew_tangents",
