@@ -9,6 +9,12 @@ sentence recording's segmentation into signs and transitions is read by
 :mod:`~synthesis.transitions.segments`.
 """
 
+from synthesis.transitions.baselines import (
+    hermite_points,
+    linear_transition,
+    rmse_deg,
+    simple_hermite_transition,
+)
 from synthesis.transitions.descriptor import (
     DESCRIPTOR_COEFFICIENTS,
     DESCRIPTOR_FRAMES,
@@ -41,9 +47,13 @@ __all__ = [
     "check_segmentation",
     "dct_ii",
     "gap_descriptor",
+    "hermite_points",
     "join_tangent",
+    "linear_transition",
     "parse_segmentation",
+    "rmse_deg",
     "scale_values",
+    "simple_hermite_transition",
     "skew_bspline",
     "skew_tangents",
     "skew_values",

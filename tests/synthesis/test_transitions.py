@@ -9,8 +9,12 @@ from synthesis.transitions import (
     basis_peaks,
     dct_ii,
     gap_descriptor,
+    hermite_points,
     join_tangent,
+    linear_transition,
+    rmse_deg,
     scale_values,
+    simple_hermite_transition,
     skew_bspline,
     skew_tangents,
     skew_values,
@@ -109,3 +113,28 @@ def test_the_window_tangent_averages_the_last_slopes():
     assert window_tangent(values, 2) == pytest.approx((0.3 + 0.4) / 2)
     with pytest.raises(ValueError, match="needs 5 values"):
         window_tangent(values[:3], 4)
+
+
+def test_hermite_basis_meets_its_points_and_tangents():
+    """Seed 001 Eq. 5.2 at s = 0 and 1, and its derivative there."""
+    p0, p1, t0, t1 = [0.0, 1.0], [4.0, 3.0], [1.0, 2.0], [2.0, -1.0]
+    ends = hermite_points(p0, p1, t0, t1, np.array([0.0, 1.0]))
+    np.testing.assert_allclose(ends, [p0, p1])
+    h = 1e-6
+    start = (hermite_points(p0, p1, t0, t1, np.array([h])) - ends[:1]) / h
+    np.testing.assert_allclose(start[0], t0, atol=1e-4)
+
+
+def test_the_baselines_join_the_signs():
+    line = linear_transition(0.0, 1.0, 9)
+    np.testing.assert_allclose(line, np.arange(1, 10) / 10)
+    # Simple Hermite: its first and last steps follow the signs' slopes.
+    curve = simple_hermite_transition(0.0, 0.05, 1.0, -0.02, 40)
+    assert curve.shape == (40,)
+    assert curve[0] - 0.0 == pytest.approx(0.05, abs=0.01)
+    assert 1.0 - curve[-1] == pytest.approx(-0.02, abs=0.01)
+    # With the slope of the straight line it is that line.
+    slope = 1.0 / 41
+    np.testing.assert_allclose(simple_hermite_transition(0.0, slope, 1.0, slope, 40),
+                               linear_transition(0.0, 1.0, 40), atol=1e-3)  # fmt: skip
+    assert rmse_deg(np.radians([1.0, 2.0]), np.radians([1.0, 4.0])) == pytest.approx(np.sqrt(2))
