@@ -6,7 +6,8 @@ curve into the gap (:mod:`~synthesis.transitions.skew`, Hermite and B-spline), a
 the join-tangent adjustment (:mod:`~synthesis.transitions.joins`). Curves are angles in
 radians over frames; the seed's tables are in degrees, converted at the edges. A
 sentence recording's segmentation into signs and transitions is read by
-:mod:`~synthesis.transitions.segments`.
+:mod:`~synthesis.transitions.segments`; seed 004's concatenation with blending is in
+:mod:`~synthesis.transitions.blending`.
 """
 
 from synthesis.transitions.baselines import (
@@ -15,6 +16,7 @@ from synthesis.transitions.baselines import (
     rmse_deg,
     simple_hermite_transition,
 )
+from synthesis.transitions.blending import blend_offsets, blend_signs, velocity_jumps
 from synthesis.transitions.descriptor import (
     DESCRIPTOR_COEFFICIENTS,
     DESCRIPTOR_FRAMES,
@@ -44,6 +46,8 @@ __all__ = [
     "Segmentation",
     "SegmentationError",
     "basis_peaks",
+    "blend_offsets",
+    "blend_signs",
     "check_segmentation",
     "dct_ii",
     "gap_descriptor",
@@ -57,5 +61,6 @@ __all__ = [
     "skew_bspline",
     "skew_tangents",
     "skew_values",
+    "velocity_jumps",
     "window_tangent",
 ]
