@@ -17,7 +17,7 @@ from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
 from studyplatform.lib.presentation import presented_conditions
-from studyplatform.lib.quality import QUALITY_COLUMNS, quality_cells, study_quality
+from studyplatform.lib.quality import QUALITY_COLUMNS, page_orders, quality_cells, study_quality
 from studyplatform.models import Block, Participant, Question, Response, Study, Trial
 from studyplatform.questions import QUESTION_TYPES
 
@@ -85,6 +85,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     conditions = {condition.key: condition for condition in study.conditions.all()}
     simulated = {key for key, condition in conditions.items() if condition.is_simulated}
     quality = study_quality(study)
+    orders: dict[int, dict[str, str]] = {}  # each participant's schedule, read once
 
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
@@ -120,9 +121,12 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                     key for key in dict.fromkeys((clip1, clip2)) if key in simulated
                 ),
             }
+            if participant.pk not in orders:
+                orders[participant.pk] = page_orders(participant)
             row.update(quality_cells(participant, trial,
                                      quality.get(participant.pk, {}).get(trial.pk),
-                                     response.rt_ms, response.updated_at))  # fmt: skip
+                                     response.rt_ms, response.updated_at,
+                                     orders[participant.pk]))  # fmt: skip
             answers = attributes.get(participant.pk, {})
             for key, column in attribute_pairs:
                 row[column] = answers.get(key, "")
@@ -165,6 +169,22 @@ def spreadsheet_safe(cell: str) -> str:
     if cell.startswith("'") or (cell.startswith(FORMULA_STARTS) and not _NUMBER.fullmatch(cell)):
         return "'" + cell
     return cell
+
+
+def tidy_table(study: Study):
+    """Return *study*'s responses as the checked tidy table, or None without responses.
+
+    Raises :class:`analysis.TidyFormatError` naming a problem in the data.
+    """
+    import pandas as pd
+
+    from analysis import check_responses
+
+    columns, rows = tidy_rows(study)
+    frame = pd.DataFrame(list(rows), columns=columns, dtype=str)
+    if frame.empty:
+        return None
+    return check_responses(frame, source=f"{study.slug} responses")
 
 
 def tidy_csv(study: Study) -> str:

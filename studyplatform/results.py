@@ -16,12 +16,11 @@ from analysis import (
     ReportOptions,
     apply_exclusions,
     build_report,
-    check_responses,
     write_report,
 )
 from analysis.figures import condition_rates_figure, pairwise_matrix_figure, ratings_figure
 from studyplatform.exchange import export_study
-from studyplatform.export import spreadsheet_safe, tidy_csv, tidy_rows
+from studyplatform.export import spreadsheet_safe, tidy_csv, tidy_table
 from studyplatform.lib.quality import (
     EVENT_COLUMNS,
     PARTICIPANT_COLUMNS,
@@ -41,11 +40,9 @@ class StudyResults:
 
 def analyse_study(study: Study, options: ReportOptions) -> StudyResults:
     """Export *study*'s responses and run the report; report is None without responses."""
-    columns, rows = tidy_rows(study)
-    frame = pd.DataFrame(list(rows), columns=columns, dtype=str)
-    if frame.empty:
+    table = tidy_table(study)
+    if table is None:
         return StudyResults(report=None, analysed=None)
-    table = check_responses(frame, source=f"{study.slug} responses")
     report = build_report(table, options, source=f"{study.slug} (SignStudy export)")
     analysed, _ = apply_exclusions(table, options.exclusions)
     return StudyResults(report=report, analysed=analysed)

@@ -69,11 +69,7 @@ def _trial_kind(design: Design, questions: Sequence[Question]) -> str:
 
 def _standard_question(study: Study, design: Design, allow_no_difference: bool) -> Question:
     template = PAIR_QUESTION if design.compares_pairs else RATING_QUESTION
-    key, number = template["key"], 1
-    taken = set(study.questions.values_list("key", flat=True))
-    while key in taken:
-        number += 1
-        key = f"{template['key']}-{number}"
+    key = _free_key(template["key"], set(study.questions.values_list("key", flat=True)))
     position = max(study.questions.values_list("position", flat=True), default=0) + 1
     question = Question.objects.create(
         study=study, key=key, kind=template["kind"], text=template["text"], position=position,

@@ -14,7 +14,13 @@ from django.utils import timezone
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from studyplatform.background import dispatch_renders
-from studyplatform.lib.stimuli import clip_spec, describe_identical, files_exist, needed_pairs
+from studyplatform.lib.stimuli import (
+    clip_spec,
+    describe_identical,
+    files_exist,
+    group_identical,
+    needed_pairs,
+)
 from studyplatform.models import Stimulus, Study
 
 
@@ -69,7 +75,7 @@ def do_generate_stimuli(
     *rerender_open*; otherwise :class:`RerenderRefused` names them and nothing changes.
     """
     queued, ready, ids, changed = [], 0, [], []
-    by_hash: dict[tuple[int, str], list] = {}
+    hashed = []
     # Clips are in the field once participants of an open (or closed) study have seen them.
     in_field = (
         study.status in (Study.Status.OPEN, Study.Status.CLOSED)
@@ -83,7 +89,7 @@ def do_generate_stimuli(
             except ClipError as error:
                 raise ClipError(f"{condition.key} × {item.key}: {error}") from None
             content_hash = spec.content_hash()
-            by_hash.setdefault((item.pk, content_hash), [item]).append(condition)
+            hashed.append((condition, item, content_hash))
             stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
             rendered = stimulus is not None and stimulus.status == Stimulus.Status.READY
             if rendered and stimulus.content_hash != content_hash:
@@ -105,7 +111,7 @@ def do_generate_stimuli(
                 stimulus.save()
                 queued.append(stimulus.pk)
             ids.append(stimulus.pk)
-        identical = [(same[0], same[1:]) for same in by_hash.values() if len(same) > 2]
+        identical = group_identical(hashed)
         if identical and not allow_identical:
             raise IdenticalClips(describe_identical(identical))
         if changed and refuse_changes:

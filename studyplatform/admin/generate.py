@@ -51,7 +51,6 @@ class StudyGenerateMixin:
         """Ask to generate the study's clips (naming identical ones); start it on POST."""
         study = self._get_visible_study(request, object_id)
         allowed = self.has_change_permission(request, study)
-        identical = identical_clips(study)
         if request.method == "POST" and allowed:
             confirmed = request.POST.get("allow_identical") == "1"
             result, refusal = self._generate(request, study, confirmed)
@@ -63,7 +62,7 @@ class StudyGenerateMixin:
                 return redirect(reverse("admin:studyplatform_study_generate", args=[study.pk]))
         title = f"Generate the stimuli of “{study.title}”"
         return self._page(request, "generate.html", title, study=study, allowed=allowed,
-                          identical=identical, clips=len(needed_pairs(study)),
+                          identical=identical_clips(study), clips=len(needed_pairs(study)),
                           progress=stimuli_progress(study))  # fmt: skip
 
     def stimuli_view(self, request: HttpRequest, object_id: str) -> HttpResponse:

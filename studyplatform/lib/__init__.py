@@ -18,7 +18,7 @@ from studyplatform.lib.participants import (
     unwatched_clips,
 )
 from studyplatform.lib.presentation import presented_conditions, schedule_entry
-from studyplatform.lib.quality import device_of, quality_cells, study_quality
+from studyplatform.lib.quality import device_of, page_orders, quality_cells, study_quality
 from studyplatform.lib.stimuli import (
     clip_spec,
     describe_identical,
@@ -59,6 +59,7 @@ __all__ = [
     "missing_answers",
     "needed_pairs",
     "page_count",
+    "page_orders",
     "page_trial",
     "presented_conditions",
     "quality_cells",

@@ -100,30 +100,28 @@ def study_quality(study: Study) -> dict[int, dict[int, TrialQuality]]:
     return {participant: participant_quality(found) for participant, found in events.items()}
 
 
+def page_orders(participant: Participant) -> dict[str, str]:
+    """Return trial key → its page number in the participant's schedule (from 1)."""
+    return {entry.get("trial"): str(n) for n, entry in enumerate(participant.schedule or [], 1)}
+
+
 def quality_cells(
     participant: Participant,
     trial,
     quality: TrialQuality | None,
     rt_ms: int | None,
     answered_at: datetime | None,
+    orders: dict[str, str],
 ) -> dict[str, str]:
     """Return the quality columns of one answer (empty cells where nothing was logged).
 
-    The answer's time on the browser's clock is the page's first showing plus the
-    answer's response time, so a revised answer given on a later visit counts from
-    the first.
+    *orders* is the participant's :func:`page_orders`. The answer's time on the
+    browser's clock is the page's first showing plus the answer's response time, so a
+    revised answer given on a later visit counts from the first.
     """
-    order = next(
-        (
-            str(n)
-            for n, e in enumerate(participant.schedule or [], 1)
-            if e.get("trial") == trial.key
-        ),
-        "",
-    )
     cells = dict.fromkeys(QUALITY_COLUMNS, "")
     cells.update(
-        page_order=order,
+        page_order=orders.get(trial.key, ""),
         answered_at="" if answered_at is None else answered_at.isoformat(timespec="seconds"),
         device=device_of(participant.user_agent),
     )

@@ -3,10 +3,8 @@
 from dataclasses import dataclass
 from datetime import timedelta
 
-import pandas as pd
-
-from analysis import ExclusionRules, TidyFormatError, apply_exclusions, check_responses
-from studyplatform.export import tidy_rows
+from analysis import ExclusionRules, TidyFormatError, apply_exclusions
+from studyplatform.export import tidy_table
 from studyplatform.lib.quality import device_of
 from studyplatform.models import Participant, Study
 
@@ -26,12 +24,11 @@ class RosterRow:
 
 def exclusion_reasons(study: Study, rules: ExclusionRules) -> tuple[dict[str, list[str]], str]:
     """Return participant id → the reasons *rules* exclude them for, and any data problem."""
-    columns, rows = tidy_rows(study)
-    frame = pd.DataFrame(list(rows), columns=columns, dtype=str)
-    if frame.empty:
-        return {}, ""
     try:
-        _, report = apply_exclusions(check_responses(frame, f"{study.slug} responses"), rules)
+        table = tidy_table(study)
+        if table is None:
+            return {}, ""
+        _, report = apply_exclusions(table, rules)
     except TidyFormatError as problem:
         return {}, str(problem)
     return report.excluded_participants, ""

@@ -94,19 +94,14 @@ def study_manifest(study: Study) -> list[Entry]:
     return entries
 
 
-def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
-    """Return each item whose clips are identical in two or more conditions, with those.
+def group_identical(clips) -> list[tuple[Item, list[Condition]]]:
+    """Return each item shown identically in two or more conditions, with those.
 
-    Two conditions render the same pixels when their clip specifications hash alike
-    (e.g. two conditions whose settings differ only in a name). A specification that
-    cannot be made is left to generation, which names its error.
+    *clips*: (condition, item, content hash) triples; conditions whose specification of
+    an item hashes alike render the same pixels.
     """
     by_item: dict[int, tuple[Item, dict[str, list[Condition]]]] = {}
-    for condition, item in needed_pairs(study):
-        try:
-            content_hash = clip_spec(condition, item).content_hash()
-        except ClipError:
-            continue
+    for condition, item, content_hash in clips:
         hashes = by_item.setdefault(item.pk, (item, {}))[1]
         hashes.setdefault(content_hash, []).append(condition)
     return [
@@ -115,6 +110,22 @@ def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
         for same in hashes.values()
         if len(same) > 1
     ]
+
+
+def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
+    """Return each item whose clips are identical in two or more conditions, with those.
+
+    Two conditions render the same pixels when their clip specifications hash alike
+    (e.g. two conditions whose settings differ only in a name). A specification that
+    cannot be made is left to generation, which names its error.
+    """
+    clips = []
+    for condition, item in needed_pairs(study):
+        try:
+            clips.append((condition, item, clip_spec(condition, item).content_hash()))
+        except ClipError:
+            continue
+    return group_identical(clips)
 
 
 def describe_identical(pairs: list[tuple[Item, list[Condition]]]) -> str:

@@ -2,7 +2,7 @@
 
 import pytest
 
-from studyplatform.lib.quality import device_of, participant_quality, quality_cells
+from studyplatform.lib.quality import device_of, page_orders, participant_quality, quality_cells
 from studyplatform.models import MediaEvent, Participant, Trial
 
 
@@ -46,12 +46,15 @@ def test_cells_of_an_answer_given_before_the_second_clip_ended(fingerspelling):
         event(4, "play", 3_100, trial=trial.pk, clip=2),
         event(5, "ended", 5_000, trial=trial.pk, clip=2),
     ])[trial.pk]  # fmt: skip
-    early = quality_cells(participant, trial, quality, rt_ms=3_500, answered_at=None)
+    orders = page_orders(participant)
+    early = quality_cells(participant, trial, quality, rt_ms=3_500, answered_at=None,
+                          orders=orders)  # fmt: skip
     assert early["answered_before_end"] == "1" and early["page_order"] == "2"
     assert (early["clip1_plays"], early["clip2_ended"], early["replays"]) == ("1", "1", "0")
     assert early["device"] == "phone" and early["viewport"] == "800x600"
-    assert quality_cells(participant, trial, quality, 4_500, None)["answered_before_end"] == "0"
-    nothing = quality_cells(participant, trial, None, 4_500, None)
+    assert quality_cells(participant, trial, quality, 4_500, None, orders)[
+        "answered_before_end"] == "0"  # fmt: skip
+    nothing = quality_cells(participant, trial, None, 4_500, None, orders)
     assert nothing["clip1_plays"] == "" and nothing["page_order"] == "2"
 
 
