@@ -151,6 +151,28 @@ class Rig:
         """Return DOF vectors (n_frames, n_dofs) sampled at *rate_hz* as a BVH-ready Motion."""
         return Motion(self.skeleton, self.channel_values(dofs_rad), 1.0 / rate_hz)
 
+    def dofs_from_motion(self, motion: Motion) -> np.ndarray:
+        """Return the DOF vectors (n_frames, n_dofs) of a motion of this rig's skeleton.
+
+        The inverse of :meth:`as_motion`: each joint's rotation relative to its rest is
+        read back as ZXY angles, and each DOF takes its joint's angle about its axis.
+        Raise ValueError when *motion* is of another skeleton.
+        """
+        # End sites carry no channels and BVH names them after their parent.
+        mine = [joint.name for joint in self.skeleton.joints if joint.channels]
+        theirs = [joint.name for joint in motion.skeleton.joints if joint.channels]
+        if mine != theirs:
+            raise ValueError(
+                f"The motion is not of the {self.kind} skeleton (its joints are "
+                f"{', '.join(theirs[:4])}…; expected {', '.join(mine[:4])}…)."
+            )
+        matrix, rest_q = self._angle_map
+        rest = Rotation.from_quat(np.broadcast_to(rest_q, (motion.n_frames, *rest_q.shape))
+                                  .reshape(-1, 4))  # fmt: skip
+        local = Rotation.from_quat(motion.local_quaternions().reshape(-1, 4))
+        angles = euler_angles(rest.inv() * local, "ZXY").reshape(motion.n_frames, -1)
+        return angles @ matrix.T
+
 
 def mirror_dof(dof: Dof) -> Dof:
     """Return a DOF for the mirror image (x ↦ −x): rotations about y and z change sign."""

@@ -89,6 +89,7 @@ class SentenceOptions:
     rate_hz: float = 60.0
     seed: int = 0
     dominant: str = "right"
+    gaps_ms: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -108,10 +109,16 @@ class Sentence:
     glosses: tuple[str, ...]
     tracks: tuple[Track, ...] = ()
     blinks_ms: tuple[float, ...] = ()
+    tokens_s: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
 
     @property
     def duration_s(self) -> float:
         return (len(self.dofs_rad) - 1) / self.rate_hz
+
+    def token_frames(self) -> np.ndarray:
+        """Return each token's first and last frame (n_tokens, 2): the frames nearest its
+        first and last key."""
+        return np.rint(np.asarray(self.tokens_s) * self.rate_hz).astype(int)
 
 
 def parse_glosses(text: str) -> tuple[str, ...]:
@@ -144,9 +151,18 @@ class _Key:
     head_deg: dict
 
 
-def _timeline(glosses, library: SignLibrary) -> tuple[list[_Key], list[tuple[float, float]]]:
+def _timeline(glosses, library: SignLibrary,
+              gaps_ms=None) -> tuple[list[_Key], list[tuple[float, float]]]:  # fmt: skip
     """Return the sentence's keys in time order, holds written out as repeated keys, and
-    each token's first and last key (ms)."""
+    each token's first and last key (ms).
+
+    *gaps_ms* gives each transition between tokens its own length (the library's
+    ``transition_ms`` by default).
+    """
+    if gaps_ms is not None and len(gaps_ms) != len(glosses) - 1:
+        raise SignError(f"{len(glosses)} signs have {len(glosses) - 1} transitions, "
+                        f"not {len(gaps_ms)}.")  # fmt: skip
+    gaps = list(gaps_ms) if gaps_ms is not None else [library.transition_ms] * (len(glosses) - 1)
     rest = {side: library.hand(side, library.rest, "rest") for side in ("right", "left")}
     keys = [_Key(0.0, dict(rest), {}, {}), _Key(REST_HOLD_MS, dict(rest), {}, {})]
     t = LEAD_MS
@@ -161,8 +177,9 @@ def _timeline(glosses, library: SignLibrary) -> tuple[list[_Key], list[tuple[flo
                 keys += [_Key(t, pose, {}, {}),
                          _Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
                 t = keys[-1].ms + float(spelling.get("transition_ms", 110))
-            t += library.transition_ms - float(spelling.get("transition_ms", 110))
             tokens_ms.append((keys[first].ms, keys[-1].ms))
+            t = keys[-1].ms + (gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps)
+                               else library.transition_ms)  # fmt: skip
             continue
         sign = library.sign(token)
         used = {side for key in sign for side in key.hands}
@@ -173,8 +190,9 @@ def _timeline(glosses, library: SignLibrary) -> tuple[list[_Key], list[tuple[flo
             keys.append(_Key(t + key.ms, hands, key.spine_deg, key.head_deg))
             if key.hold_ms > 0:
                 keys.append(_Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
-        t = keys[-1].ms + library.transition_ms
         tokens_ms.append((keys[first].ms, keys[-1].ms))
+        t = keys[-1].ms + (gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps)
+                           else library.transition_ms)  # fmt: skip
     keys += [_Key(t, dict(rest), {}, {}), _Key(t + REST_HOLD_MS, dict(rest), {}, {})]
     return keys, tokens_ms
 
@@ -291,7 +309,7 @@ def synthesize(
         raise SignError(str(error)) from None
     glosses = parse_glosses(plain)
     try:
-        keys, tokens_ms = _timeline(glosses, library)
+        keys, tokens_ms = _timeline(glosses, library, options.gaps_ms)
     except AlphabetError as error:
         raise SignError(str(error)) from None
     body = BodyModel(options.dominant)
@@ -324,7 +342,7 @@ def synthesize(
         rng = np.random.default_rng(options.seed)
         dofs = dofs + options.liveliness.sample(body, count, options.rate_hz, rng)
     return Sentence(body, body.clip(dofs), automated, options.rate_hz, times_s, glosses,
-                    tracks, blinks)  # fmt: skip
+                    tracks, blinks, np.array(tokens_ms).reshape(-1, 2) / 1000.0)  # fmt: skip
 
 
 def _tracks(glosses, spans, tokens_ms, library: SignLibrary) -> tuple[Track, ...]:

@@ -171,7 +171,16 @@ class Registry:
 
 def default_registry() -> Registry:
     """Return the engine's item kinds and techniques, in pipeline order."""
-    from synthesis.techniques import face, kinds, liveliness, signs, source, spine, timing
+    from synthesis.techniques import (
+        face,
+        kinds,
+        liveliness,
+        signs,
+        source,
+        spine,
+        timing,
+        transition,
+    )
 
     return Registry(
         kinds={kind.name: kind for kind in (kinds.WORD, kinds.SENTENCE)},
@@ -182,5 +191,6 @@ def default_registry() -> Registry:
             spine.TECHNIQUE,
             face.TECHNIQUE,
             liveliness.TECHNIQUE,
+            transition.TECHNIQUE,
         ],
     )

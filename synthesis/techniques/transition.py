@@ -1,0 +1,90 @@
+"""Inter-sign transitions as a technique: keyed, linear, simple Hermite, data-driven, blended.
+
+Seed 001's data-driven transitions and its baselines, and seed 004's concatenation with
+linear blending (spec 04). ``keyed`` is the engine's own interpolation of the keys
+(monotone cubics), what every sentence had before.
+"""
+
+from synthesis.techniques.parameters import ClipError, Parameter
+from synthesis.techniques.registry import MOTION, Technique
+from synthesis.techniques.request import Build
+
+TRANSITIONS = ("keyed", "linear", "simple_hermite", "hermite", "bspline", "blended")
+LABELS = {
+    "keyed": "keyed (the engine's monotone cubics between keys)",
+    "linear": "linear (seed 001 baseline)",
+    "simple_hermite": "simple Hermite (seed 001 baseline)",
+    "hermite": "data-driven Hermite (seed 001)",
+    "bspline": "data-driven B-spline (seed 001)",
+    "blended": "concatenated with linear blending (seed 004)",
+}
+
+
+def _search(path: str):
+    from synthesis.transitions.builtin import database_search
+    from synthesis.transitions.database import DatabaseError
+
+    try:
+        return database_search(path)
+    except DatabaseError as error:
+        raise ClipError(str(error)) from None
+
+
+def _apply(build: Build) -> Build:
+    import numpy as np
+
+    values = build.request.parameters
+    model = values["transition"]
+    if model == "keyed":
+        return build
+    if model == "blended":
+        from synthesis.transitions.sentence import blend_sentence
+
+        dofs, _ = blend_sentence(build.request.text, build.options, build.library)
+        return build.but(motion=np.asarray(dofs))
+    from synthesis.transitions.sentence import retransition
+
+    search = _search(values["transition_db"]) if model in ("hermite", "bspline") else None
+    return build.but(motion=retransition(build.result, model, search))
+
+
+def _summary(values) -> str:
+    words = LABELS[values["transition"]]
+    if values["transition"] in ("hermite", "bspline"):
+        words += (
+            f", database {values['transition_db']}"
+            if values["transition_db"]
+            else ", built-in database of simulated captures"
+        )
+    return words
+
+
+TECHNIQUE = Technique(
+    name="transition",
+    label="Inter-sign transitions",
+    kinds=frozenset({"sentence"}),
+    parameters=(
+        Parameter(
+            "transition",
+            "choice",
+            "keyed",
+            "How the arms move from one sign to the next; the signs themselves stay "
+            "as they are (except blended, which makes each sign from rest and back "
+            "and overlaps them).",
+            choices=TRANSITIONS,
+            labels=LABELS,
+        ),
+        Parameter(
+            "transition_db",
+            "file",
+            "",
+            "A transition database (python -m synthesis.transitions build); empty: "
+            "the built-in one, built from simulated captures.",
+        ),
+    ),
+    source="seed 001 ch. 3–5; seed 004 §4.1",
+    stage=MOTION,
+    order=10,
+    apply=_apply,
+    summary=_summary,
+)

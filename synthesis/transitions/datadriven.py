@@ -1,0 +1,136 @@
+"""Fill a gap between two signs with a stored transition, fitted in (seed 001 §3.6).
+
+The stored curve is stretched to the gap's length and *skewed* so it starts on the
+first sign's last value and ends on the second's first (Eq. 3.8; Hermite tangents Eq.
+3.10; B-spline coefficients at their basis peaks Eq. 3.12). The Hermite curve's end
+tangents then take the signs' own directions, averaged over W frames, shortened by
+``(π − Δθ)/π`` (Eq. 3.13–3.16). The signs are never modified.
+"""
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from synthesis.transitions.baselines import linear_transition, simple_hermite_transition
+from synthesis.transitions.database import StoredCurve, TransitionEntry
+from synthesis.transitions.descriptor import gap_descriptor
+from synthesis.transitions.hermite_fit import HermiteCurve
+from synthesis.transitions.joins import join_tangent, window_tangent
+from synthesis.transitions.skew import skew_bspline, skew_tangents, skew_values
+
+MODELS = ("linear", "simple_hermite", "hermite", "bspline")
+MODEL_LABELS = {
+    "linear": "linear",
+    "simple_hermite": "simple Hermite",
+    "hermite": "Hermite (data-driven)",
+    "bspline": "B-spline (data-driven)",
+}
+WINDOW_FRAMES = 4
+
+
+def skewed_hermite(curve: StoredCurve, v0: float, v1: float, duration: float) -> HermiteCurve:
+    """Return a stored Hermite curve stretched over *duration* frames and skewed to v0, v1."""
+    h = curve.hermite
+    y0, y_n = h.points[0, 1], h.points[-1, 1]
+    points = np.column_stack(
+        [
+            h.points[:, 0] * duration,
+            skew_values(h.points[:, 1], h.points[:, 0], curve.delta_rad, v0, v1),
+        ]
+    )
+    t0 = skew_tangents(h.t0, y0, y_n, curve.delta_rad, v0, v1, duration)
+    t1 = skew_tangents(h.t1, y0, y_n, curve.delta_rad, v0, v1, duration)
+    return HermiteCurve(points, t0, t1)
+
+
+def joined(curve: HermiteCurve, slope_in: float, slope_out: float) -> HermiteCurve:
+    """Return *curve* with its end tangents turned to the signs' slopes (Eq. 3.16)."""
+    t0, t1 = curve.t0.copy(), curve.t1.copy()
+    t0[0] = join_tangent(t0[0], slope_in)
+    t1[-1] = join_tangent(t1[-1], slope_out)
+    return HermiteCurve(curve.points, t0, t1)
+
+
+def skewed_spline(curve: StoredCurve, v0: float, v1: float) -> BSpline:
+    """Return a stored B-spline (normalized) in radians, its coefficients skewed (Eq. 3.12)."""
+    spline = curve.spline
+    count = len(spline.t) - spline.k - 1
+    return skew_bspline(BSpline(spline.t, spline.c[:count] * curve.delta_rad, spline.k), v0, v1)
+
+
+def slopes(before: np.ndarray, after: np.ndarray, window: int = WINDOW_FRAMES):
+    """Return the signs' slopes at the joins (per frame), each (n_curves,) (Eq. 3.13–3.14)."""
+    slope_in = np.array([window_tangent(before[:, c], window) for c in range(before.shape[1])])
+    slope_out = np.array([window_tangent(after[::-1, c], window) for c in range(after.shape[1])])
+    return slope_in, -slope_out
+
+
+def fit_entry(
+    entry: TransitionEntry,
+    before: np.ndarray,
+    after: np.ndarray,
+    n_frames: int,
+    model: str = "hermite",
+    window: int = WINDOW_FRAMES,
+) -> np.ndarray:
+    """Return *entry*'s transition fitted into a gap of *n_frames*, (n_frames, 7) rad.
+
+    *before* (≥ W + 1, 7) ends on the first sign's last frame, *after* starts on the
+    second's first; *model* ``hermite`` or ``bspline``.
+    """
+    duration = n_frames + 1
+    frames = np.arange(1, n_frames + 1, dtype=float)
+    slope_in, slope_out = slopes(before, after, window)
+    out = np.empty((n_frames, len(entry.curves)))
+    for c, curve in enumerate(entry.curves):
+        v0, v1 = before[-1, c], after[0, c]
+        if model == "hermite":
+            hermite = joined(skewed_hermite(curve, v0, v1, duration), slope_in[c], slope_out[c])
+            out[:, c] = hermite.evaluate(frames)
+        elif model == "bspline":
+            out[:, c] = skewed_spline(curve, v0, v1)(frames / duration)
+        else:
+            raise ValueError(f"A stored transition fits as 'hermite' or 'bspline', not {model!r}.")
+    return out
+
+
+def baseline(
+    model: str, before: np.ndarray, after: np.ndarray, n_frames: int, window: int = WINDOW_FRAMES
+) -> np.ndarray:
+    """Return the linear or simple-Hermite transition of every curve, (n_frames, 7) rad."""
+    if model == "linear":
+        return np.column_stack(
+            [
+                linear_transition(before[-1, c], after[0, c], n_frames)
+                for c in range(before.shape[1])
+            ]
+        )
+    if model == "simple_hermite":
+        slope_in, slope_out = slopes(before, after, window)
+        return np.column_stack(
+            [
+                simple_hermite_transition(
+                    before[-1, c], slope_in[c], after[0, c], slope_out[c], n_frames
+                )
+                for c in range(before.shape[1])
+            ]
+        )
+    raise ValueError(f"Unknown baseline {model!r}: 'linear' or 'simple_hermite'.")
+
+
+def transition(
+    model: str, before: np.ndarray, after: np.ndarray, n_frames: int, search=None, exclude=()
+) -> tuple[np.ndarray, TransitionEntry | None]:
+    """Return one arm's transition by *model* (:data:`MODELS`) and the entry it used.
+
+    The data-driven models need a :class:`~synthesis.transitions.search.DescriptorSearch`;
+    *exclude* keeps the query's own transition out (leave-one-out).
+    """
+    if model not in MODELS:
+        raise ValueError(f"Unknown transition model {model!r}; known: {', '.join(MODELS)}.")
+    if model in ("linear", "simple_hermite"):
+        return baseline(model, before, after, n_frames), None
+    if search is None:
+        raise ValueError(f"The {MODEL_LABELS[model]} model needs a transition database.")
+    index = search.nearest(gap_descriptor(before, after), exclude)
+    entry = search.database.entries[index]
+    return fit_entry(entry, before, after, n_frames, model), entry

@@ -1,0 +1,99 @@
+"""Join a sentence's signs by a chosen transition model, or concatenate them with blending.
+
+:func:`retransition` keeps every sign of a synthesized sentence as it is and fills the
+frames between one sign's last key and the next one's first with the chosen model
+(seed 001 §3.6: the signs are never modified). The search compares the gap's
+surroundings at the database's frame rate, so a 60 fps sentence finds transitions
+captured at 120 fps. An arm that stays put across a gap (a resting hand) keeps its
+frames: a stored transition would set it moving.
+
+:func:`blend_sentence` is seed 004 §4.1's concatenation: each sign made on its own, from
+the standard rest position and back (its attack and decay), overlapped and blended
+linearly. Every sign starts from the same standard position, which is the root reset of
+§3.2.3 for the engine's signs.
+"""
+
+import itertools
+from dataclasses import replace
+
+import numpy as np
+
+from synthesis.signing.sentence import Sentence, SentenceOptions, parse_glosses, synthesize
+from synthesis.signing.signs import SignLibrary
+from synthesis.transitions.blending import blend_signs
+from synthesis.transitions.curves import SIDES, arm_columns
+from synthesis.transitions.datadriven import baseline, fit_entry
+from synthesis.transitions.descriptor import DESCRIPTOR_FRAMES, gap_descriptor
+
+MOVING_DEG = 5.0
+
+
+def _resampled(curves: np.ndarray, rate_hz: float, at_s: np.ndarray) -> np.ndarray:
+    """Return *curves* (n, c) sampled at *rate_hz* read at times *at_s* (linear)."""
+    t = np.arange(len(curves)) / rate_hz
+    return np.column_stack([np.interp(at_s, t, curves[:, c]) for c in range(curves.shape[1])])
+
+
+def gap_context(
+    curves: np.ndarray, end: int, start: int, rate_hz: float, database_rate_hz: float
+) -> np.ndarray:
+    """Return the descriptor of the gap between frames *end* and *start* at the database's rate."""
+    step = 1.0 / database_rate_hz
+    before_s = end / rate_hz - step * np.arange(DESCRIPTOR_FRAMES)[::-1]
+    after_s = start / rate_hz + step * np.arange(DESCRIPTOR_FRAMES)
+    return gap_descriptor(
+        _resampled(curves, rate_hz, before_s), _resampled(curves, rate_hz, after_s)
+    )
+
+
+def retransition(sentence: Sentence, model: str, search=None) -> np.ndarray:
+    """Return the sentence's DOFs with every inter-sign gap filled by *model*.
+
+    *model*: ``linear``, ``simple_hermite``, or ``hermite``/``bspline`` with a
+    :class:`~synthesis.transitions.search.DescriptorSearch` over a transition database.
+    """
+    dofs = np.array(sentence.dofs_rad)
+    frames = sentence.token_frames()
+    rate = sentence.rate_hz
+    for side in SIDES:
+        columns = arm_columns(sentence.body.dof_names, side)
+        curves = dofs[:, columns]
+        for (_, end), (start, _) in itertools.pairwise(frames):
+            n = start - end - 1
+            span = curves[end : start + 1]
+            if n < 1 or np.degrees(np.ptp(span, axis=0)).max() < MOVING_DEG:
+                continue
+            before, after = curves[max(0, end - 8) : end + 1], curves[start : start + 9]
+            if model in ("linear", "simple_hermite"):
+                dofs[end + 1 : start, columns] = baseline(model, before, after, n)
+                continue
+            database = search.database
+            index = search.nearest(
+                gap_context(curves, end, start, rate, database.entries[0].rate_hz)
+            )
+            dofs[end + 1 : start, columns] = fit_entry(
+                database.entries[index], before, after, n, model
+            )
+    return sentence.body.clip(dofs)
+
+
+def blend_sentence(
+    text: str, options: SentenceOptions, library: SignLibrary | None = None
+) -> tuple[np.ndarray, int]:
+    """Return the sentence made sign by sign and blended (seed 004 §4.1), and the overlap.
+
+    Each gloss is synthesized alone, from rest to rest; the overlap is the shortest
+    decay (last key to the end) or attack (start to the first key), so each blend runs
+    from one sign's last key towards the next one's first.
+    """
+    glosses = parse_glosses(text)
+    signs = [
+        synthesize(gloss, replace(options, seed=options.seed + k), library)
+        for k, gloss in enumerate(glosses)
+    ]
+    if len(signs) == 1:
+        return signs[0].dofs_rad, 0
+    attacks = [int(s.token_frames()[0, 0]) for s in signs[1:]]
+    decays = [len(s.dofs_rad) - 1 - int(s.token_frames()[-1, 1]) for s in signs[:-1]]
+    overlap = min(attacks + decays)
+    return blend_signs([s.dofs_rad for s in signs], overlap), overlap

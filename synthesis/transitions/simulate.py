@@ -1,0 +1,158 @@
+"""Simulated sentence captures with known segments, to build and test a transition database.
+
+Labelled simulated everywhere: these are the engine's own sentences at 120 fps (the
+seed's capture rate), whose transitions are replaced by a model of a human arm's
+transition, not recordings of people. Between two signs each arm curve runs along a
+minimum-jerk profile (Flash and Hogan's reach), its velocity peak shifted by the
+signer's habit, and bulges away from the straight path in proportion to how far the arm
+travels (the elbow lifts to clear the body), with the sentence's liveliness noise on
+top. Each simulated signer has their own bulge and timing, as the seed's four
+interpreters had (seed 001 §3.1). Transitions last 0.3–0.9 s, 0.54 s on average as in
+the seed's captures (§4.2).
+"""
+
+import itertools
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from synthesis.signing.sentence import SentenceOptions, synthesize
+from synthesis.signing.signs import SignLibrary, default_library
+from synthesis.transitions.curves import SIDES, arm_columns
+from synthesis.transitions.recording import SegmentedRecording
+from synthesis.transitions.segments import Segment, Segmentation
+
+CAPTURE_RATE_HZ = 120.0
+MEAN_TRANSITION_MS = 540.0
+
+
+@dataclass(frozen=True)
+class SignerStyle:
+    """How a simulated signer moves between signs.
+
+    *bulge* (7,): each arm curve's mid-transition excursion per radian the shoulder and
+    elbow travel; *skew*: the exponent on normalized time (below 1 peaks early);
+    *jitter*: the spread (share) of each transition's bulge around the habit.
+    """
+
+    name: str
+    bulge: tuple[float, ...]
+    skew: float
+    jitter: float = 0.25
+
+
+def signer_styles(count: int, rng: np.random.Generator) -> tuple[SignerStyle, ...]:
+    """Return *count* simulated signers with their own habits (*rng* draws them)."""
+    base = np.array([0.10, 0.30, -0.10, 0.25, 0.05, 0.05, 0.0])
+    return tuple(
+        SignerStyle(
+            f"sim{k + 1}",
+            tuple(np.round(base * rng.uniform(0.5, 1.5, 7), 4)),
+            float(np.round(rng.uniform(0.75, 1.05), 3)),
+        )
+        for k in range(count)
+    )
+
+
+def minimum_jerk(s: np.ndarray) -> np.ndarray:
+    """Return the minimum-jerk profile ``10s³ − 15s⁴ + 6s⁵`` at normalized times *s*."""
+    return 10 * s**3 - 15 * s**4 + 6 * s**5
+
+
+def human_transition(
+    v0: np.ndarray, v1: np.ndarray, n_frames: int, style: SignerStyle, rng: np.random.Generator
+) -> np.ndarray:
+    """Return a simulated arm's *n_frames* between poses *v0* and *v1* (7,), (n, 7) rad."""
+    v0, v1 = np.asarray(v0, float), np.asarray(v1, float)
+    s = np.arange(1, n_frames + 1) / (n_frames + 1)
+    shaped = minimum_jerk(s ** (style.skew * rng.uniform(0.95, 1.05)))
+    travel = np.linalg.norm((v1 - v0)[:4])
+    bulge = np.asarray(style.bulge) * travel * (1 + style.jitter * rng.standard_normal(7))
+    return v0 + np.outer(shaped, v1 - v0) + np.outer(np.sin(np.pi * s) ** 2, bulge)
+
+
+def simulate_capture(
+    glosses: tuple[str, ...],
+    style: SignerStyle,
+    rng: np.random.Generator,
+    name: str,
+    library: SignLibrary | None = None,
+    rate_hz: float = CAPTURE_RATE_HZ,
+) -> SegmentedRecording:
+    """Return a simulated capture of *glosses* by *style*, segmented, labelled simulated."""
+    library = library or default_library()
+    gaps_ms = tuple(
+        np.clip(rng.lognormal(np.log(MEAN_TRANSITION_MS), 0.3, len(glosses) - 1), 300, 900).round()
+    )
+    seed = int(rng.integers(2**31))
+    options = SentenceOptions(rate_hz=rate_hz, seed=seed, gaps_ms=gaps_ms)
+    sentence = synthesize(" ".join(glosses), options, library)
+    clean = synthesize(" ".join(glosses), replace(options, liveliness=None), library).dofs_rad
+    dofs = np.array(sentence.dofs_rad)
+    noise = dofs - clean
+    frames = sentence.token_frames()
+    for side in SIDES:
+        columns = arm_columns(sentence.body.dof_names, side)
+        for (_, end), (start, _) in itertools.pairwise(frames):
+            inside = slice(end + 1, start)
+            path = human_transition(
+                clean[end, columns], clean[start, columns], start - end - 1, style, rng
+            )
+            dofs[inside, columns] = path + noise[inside, columns]
+    return SegmentedRecording(
+        name,
+        dofs,
+        tuple(sentence.body.dof_names),
+        rate_hz,
+        _segmentation(name, glosses, frames, len(dofs)),
+        style.name,
+        simulated=True,
+    )
+
+
+def _segmentation(name: str, glosses, frames: np.ndarray, n_frames: int) -> Segmentation:
+    """Return rest, sign, transition, sign, …, rest over a sentence's token frames."""
+    segments = [Segment("rest", 1, 0, int(frames[0, 0]) - 1, "approach")]
+    for k, (gloss, (start, end)) in enumerate(zip(glosses, frames, strict=True)):
+        if k:
+            segments.append(
+                Segment(
+                    "transition",
+                    len(segments) + 1,
+                    int(frames[k - 1, 1]) + 1,
+                    int(start) - 1,
+                    f"TRANSITION{k}",
+                )
+            )
+        segments.append(Segment("sign", len(segments) + 1, int(start), int(end), gloss))
+    segments.append(
+        Segment("rest", len(segments) + 1, int(frames[-1, 1]) + 1, n_frames - 1, "return")
+    )
+    return Segmentation(name, tuple(segments))
+
+
+def simulated_captures(
+    signers: int = 4,
+    sentences: int = 6,
+    seed: int = 0,
+    library: SignLibrary | None = None,
+    rate_hz: float = CAPTURE_RATE_HZ,
+) -> list[SegmentedRecording]:
+    """Return *sentences* simulated captures by each of *signers* simulated signers.
+
+    Every signer signs the same sentences (random glosses of the library, 4–6 signs), as
+    the seed's interpreters signed the same sentences; *seed* fixes everything.
+    """
+    library = library or default_library()
+    rng = np.random.default_rng(seed)
+    glosses = sorted(library.signs)
+    texts = [
+        tuple(str(g) for g in rng.choice(glosses, int(rng.integers(4, 7)), replace=False))
+        for _ in range(sentences)
+    ]
+    styles = signer_styles(signers, rng)
+    return [
+        simulate_capture(text, style, rng, f"{style.name}s{k + 1:02d}", library, rate_hz)
+        for style in styles
+        for k, text in enumerate(texts)
+    ]
