@@ -6,6 +6,7 @@ Never imports Django or any other SignStudy package; runs on a CSV from the comm
 
 from analysis.anova import rm_anova, sphericity
 from analysis.bradley_terry import bradley_terry
+from analysis.comparative import compare_preferences, preferences
 from analysis.exclusions import ExclusionRules, apply_exclusions
 from analysis.intelligibility import score_intelligibility, word_accuracy, words
 from analysis.outputs import write_report
@@ -31,12 +32,14 @@ __all__ = [
     "bradley_terry",
     "build_report",
     "check_responses",
+    "compare_preferences",
     "compare_ratings",
     "format_p",
     "friedman",
     "judgements",
     "paired_ttests",
     "parse_mapping",
+    "preferences",
     "read_mapping",
     "read_responses",
     "results_json",

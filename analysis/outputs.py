@@ -28,6 +28,25 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
         found["ratings"] = pd.DataFrame(data["ratings"])
     if data["rating_comparisons"]:
         found["rating_comparisons"] = pd.DataFrame(data["rating_comparisons"])
+    if data.get("comparative"):
+        found["comparative"] = pd.DataFrame(
+            [
+                {
+                    "a": c["a"],
+                    "b": c["b"],
+                    "mean_preference_a": c["mean_preference"],
+                    "ci_low": c["ci"][0],
+                    "ci_high": c["ci"][1],
+                    "W": c["statistic"],
+                    "p": c["pvalue"],
+                    "p_adjusted": c["pvalue_adjusted"],
+                    "rank_biserial": c["rank_biserial"],
+                    "participants": c["nobs"],
+                    "judgements": c["judgements"],
+                }
+                for c in data["comparative"]
+            ]
+        )
     if data["intelligibility"]:
         found["intelligibility"] = pd.DataFrame(data["intelligibility"])
     found.update(mixed_tables(data.get("mixed_models")))

@@ -8,6 +8,7 @@ from typing import Any
 
 import pandas as pd
 
+from analysis.comparative import compare_preferences
 from analysis.exclusions import ExclusionRules, apply_exclusions
 from analysis.intelligibility import score_intelligibility
 from analysis.mixed.results import MixedModels
@@ -16,6 +17,7 @@ from analysis.pairwise import analyze_pairwise
 from analysis.quality import ParticipantQuality, summarize_quality
 from analysis.ratings import compare_ratings, summarize_ratings
 from analysis.results import (
+    ComparativePreference,
     ExclusionReport,
     IntelligibilityScore,
     PairwiseAnalysis,
@@ -65,6 +67,8 @@ class Report(Result):
     mixed: MixedModels | None = None
     # How each participant took the pages (all participants, before exclusions).
     quality: tuple[ParticipantQuality, ...] = ()
+    # Comparative-scale preferences per pair of conditions (signed-rank tests).
+    comparative: tuple[ComparativePreference, ...] = ()
 
 
 def software_versions() -> dict[str, str]:
@@ -103,7 +107,7 @@ def build_report(
         )
         check_conditions(frame, options.conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
-    pairwise = ratings = comparisons = scores = mixed = None
+    pairwise = ratings = comparisons = scores = mixed = preferences = None
     if not kept.empty:
         pairwise = analyze_pairwise(
             kept,
@@ -115,6 +119,9 @@ def build_report(
         ratings = summarize_ratings(kept)
         comparisons = compare_ratings(kept, options.correction)
         scores = score_intelligibility(kept, options.fuzzy_scoring)
+        preferences = compare_preferences(
+            kept, options.conditions, options.comparative_points, options.correction
+        )
         if options.mixed_models:
             mixed = fit_mixed_models(
                 kept,
@@ -136,6 +143,7 @@ def build_report(
         software=software_versions(),
         mixed=mixed,
         quality=summarize_quality(frame),
+        comparative=preferences or (),
     )
 
 
@@ -189,6 +197,7 @@ def results_json(report: Report) -> dict[str, Any]:
             for c in report.rating_comparisons
         ],
         "intelligibility": [s.to_dict() for s in report.intelligibility],
+        "comparative": [{**c.to_dict(), "apa": c.apa()} for c in report.comparative],
         "mixed_models": None if report.mixed is None else mixed_json(report.mixed),
         "quality": [q.to_dict() for q in report.quality],
     }

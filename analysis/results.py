@@ -276,6 +276,38 @@ class RatingComparison(Result):
 
 
 @dataclasses.dataclass(frozen=True)
+class ComparativePreference(Result):
+    """Mean comparative-scale preference for *a* over *b* (scale points), signed-rank tested.
+
+    *statistic* is the Wilcoxon W of the participants' mean preferences against 0;
+    *ci* the t-based 95 % CI of their mean; *nobs* participants; *judgements* answers.
+    """
+
+    a: str
+    b: str
+    statistic: float
+    pvalue: float
+    pvalue_adjusted: float
+    mean_preference: float
+    ci: tuple[float, float]
+    rank_biserial: float
+    nobs: int
+    judgements: int
+    points: int = 5
+
+    def with_adjusted(self, pvalue: float) -> "ComparativePreference":
+        """Return a copy with its p-value corrected for the pairs tested."""
+        return dataclasses.replace(self, pvalue_adjusted=float(pvalue))
+
+    def apa(self) -> str:
+        return (
+            f"{self.a} vs {self.b}: M = {self.mean_preference:.2f} points toward {self.a} "
+            f"(95 % CI {self.ci[0]:.2f} to {self.ci[1]:.2f}), W = {self.statistic:g}, "
+            f"{format_p(self.pvalue)}, r = {_two(self.rank_biserial)}, n = {self.nobs}"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
 class IntelligibilityScore(Result):
     """Mean word-level accuracy of typed answers for one condition and item."""
 

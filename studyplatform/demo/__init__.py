@@ -3,8 +3,14 @@
 from studyplatform.demo.alphabet import alphabet_legibility_study, attach_human_letters
 from studyplatform.demo.fingerspelling import fingerspelling_timing_study
 from studyplatform.demo.spine import spine_study
+from studyplatform.demo.transitions import transitions_study
 
-DEMO_STUDIES = (fingerspelling_timing_study, spine_study, alphabet_legibility_study)
+DEMO_STUDIES = (
+    fingerspelling_timing_study,
+    spine_study,
+    alphabet_legibility_study,
+    transitions_study,
+)
 # What a demo study needs besides its definition, by slug: recordings to attach.
 DEMO_SETUP = {"alphabet-legibility": attach_human_letters}
 
@@ -15,4 +21,5 @@ __all__ = [
     "attach_human_letters",
     "fingerspelling_timing_study",
     "spine_study",
+    "transitions_study",
 ]

@@ -2,6 +2,7 @@
 
 from dataclasses import replace
 
+from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import Parameter
 from synthesis.techniques.registry import Technique
 from synthesis.techniques.request import Build
@@ -14,7 +15,7 @@ def _apply(build: Build) -> Build:
 TECHNIQUE = Technique(
     name="face",
     label="Face",
-    kinds=frozenset({"sentence"}),
+    kinds=SIGNED,
     parameters=(
         Parameter(
             "face",

@@ -1,4 +1,4 @@
-"""The item kinds the engine renders: fingerspelled words and signed sentences.
+"""The item kinds the engine renders: fingerspelled words, signed sentences and sign pairs.
 
 Each kind starts a clip's build from its request and, once the prepare-stage techniques
 have chosen a performance, a timing or synthesis options, makes the motion.
@@ -62,6 +62,23 @@ def _start_sentence(build: Build) -> Build:
     return build.but(options=options)
 
 
+def _start_sign_pair(build: Build) -> Build:
+    """Start a sign pair: exactly two glosses, the transition between them the point."""
+    from synthesis.signing.sentence import parse_glosses
+    from synthesis.signing.signs import SignError
+
+    try:
+        glosses = parse_glosses(build.request.text)
+    except SignError as error:
+        raise ClipError(str(error)) from None
+    if len(glosses) != 2:
+        raise ClipError(
+            f"A sign pair is two glosses (the transition between them is what is studied), "
+            f"not {len(glosses)}: {' '.join(glosses)}."
+        )
+    return _start_sentence(build)
+
+
 def _finish_sentence(build: Build) -> Build:
     from synthesis.signing.sentence import synthesize
 
@@ -71,3 +88,6 @@ def _finish_sentence(build: Build) -> Build:
 
 WORD = ItemKind("word", "fingerspelled word", ("hand", "upper-body"), _start_word, _finish_word)
 SENTENCE = ItemKind("sentence", "sentence", ("upper-body",), _start_sentence, _finish_sentence)
+SIGN_PAIR = ItemKind("sign_pair", "sign pair", ("upper-body",), _start_sign_pair, _finish_sentence)
+# The kinds made of signs: every sentence technique applies to them all.
+SIGNED = frozenset({SENTENCE.name, SIGN_PAIR.name})

@@ -2,6 +2,7 @@
 
 from dataclasses import replace
 
+from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import Parameter
 from synthesis.techniques.registry import Technique
 from synthesis.techniques.request import Build
@@ -17,7 +18,7 @@ def _apply(build: Build) -> Build:
 TECHNIQUE = Technique(
     name="liveliness",
     label="Liveliness noise",
-    kinds=frozenset({"sentence"}),
+    kinds=SIGNED,
     parameters=(
         Parameter(
             "liveliness",

@@ -183,7 +183,7 @@ def default_registry() -> Registry:
     )
 
     return Registry(
-        kinds={kind.name: kind for kind in (kinds.WORD, kinds.SENTENCE)},
+        kinds={kind.name: kind for kind in (kinds.WORD, kinds.SENTENCE, kinds.SIGN_PAIR)},
         techniques=[
             source.TECHNIQUE,
             timing.TECHNIQUE,

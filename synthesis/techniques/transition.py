@@ -5,6 +5,7 @@ linear blending (spec 04). ``keyed`` is the engine's own interpolation of the ke
 (monotone cubics), what every sentence had before.
 """
 
+from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import MOTION, Technique
 from synthesis.techniques.request import Build
@@ -62,7 +63,7 @@ def _summary(values) -> str:
 TECHNIQUE = Technique(
     name="transition",
     label="Inter-sign transitions",
-    kinds=frozenset({"sentence"}),
+    kinds=SIGNED,
     parameters=(
         Parameter(
             "transition",

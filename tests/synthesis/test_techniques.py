@@ -77,7 +77,7 @@ def test_a_registered_toy_technique_is_validated_offered_hashed_and_applied(caps
         ("word", {"hold_ms": float("nan")}, "hold_ms must be a finite number"),
         ("word", {"spine": False}, r"'spine' \(Automated spine motion\) does not apply to a "
                                    "fingerspelled word"),
-        ("sign_pair", {}, "Unknown item kind 'sign_pair'"),
+        ("poem", {}, "Unknown item kind 'poem'"),
         ("word", {"timing": "mocap"}, "timing 'mocap' plays a performance"),
         ("word", {"source": "recording"}, "source 'recording' needs the recording"),
         ("sentence", {"view": "hand"}, "renders in the upper-body view"),
@@ -120,7 +120,8 @@ def test_a_file_parameter_counts_by_its_content(tmp_path):
 
 def test_the_schema_lists_every_parameter_and_refuses_others():
     schema = REGISTRY.schema()
-    assert set(schema) == {"word", "sentence"}
+    assert set(schema) == {"word", "sentence", "sign_pair"}
+    assert schema["sign_pair"]["properties"] == schema["sentence"]["properties"]
     assert schema["word"]["additionalProperties"] is False
     assert schema["word"]["properties"]["timing"]["enum"] == [
         "mocap", "variable", "constant", "normalized", "simple",
