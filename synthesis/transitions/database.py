@@ -11,6 +11,7 @@ evaluation needs. The file is versioned JSON (:data:`FORMAT`), readable by eye.
 import json
 from collections.abc import Iterable
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,7 @@ from synthesis.transitions.curves import ARM_CURVES
 from synthesis.transitions.descriptor import DESCRIPTOR_FRAMES, gap_descriptor
 from synthesis.transitions.hermite_fit import HermiteCurve, fit_hermite
 from synthesis.transitions.recording import CutTransition, SegmentedRecording, cut_transitions
+from synthesis.transitions.skew import basis_peaks
 
 FORMAT = "signstudy.transition-database"
 FORMAT_VERSION = 1
@@ -39,6 +41,11 @@ class StoredCurve:
     delta_rad: float
     hermite: HermiteCurve
     spline: BSpline
+
+    @cached_property
+    def spline_peaks(self) -> np.ndarray:
+        """Return where the spline's basis functions peak (Eq. 3.11), computed once."""
+        return basis_peaks(self.spline.t, self.spline.k)
 
     def to_dict(self) -> dict:
         count = len(self.spline.t) - self.spline.k - 1

@@ -54,7 +54,8 @@ def skewed_spline(curve: StoredCurve, v0: float, v1: float) -> BSpline:
     """Return a stored B-spline (normalized) in radians, its coefficients skewed (Eq. 3.12)."""
     spline = curve.spline
     count = len(spline.t) - spline.k - 1
-    return skew_bspline(BSpline(spline.t, spline.c[:count] * curve.delta_rad, spline.k), v0, v1)
+    scaled = BSpline(spline.t, spline.c[:count] * curve.delta_rad, spline.k)
+    return skew_bspline(scaled, v0, v1, curve.spline_peaks)
 
 
 def slopes(before: np.ndarray, after: np.ndarray, window: int = WINDOW_FRAMES):

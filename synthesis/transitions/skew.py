@@ -72,17 +72,18 @@ def basis_peaks(knots: np.ndarray, degree: int, samples: int = 4001) -> np.ndarr
     return x[best] + shift * (x[1] - x[0])
 
 
-def skew_bspline(spline: BSpline, v0: float, v1: float) -> BSpline:
+def skew_bspline(spline: BSpline, v0: float, v1: float, peaks: np.ndarray | None = None) -> BSpline:
     """Return *spline* with its coefficients skewed to run from v0 to v1 (Eq. 3.12).
 
     ``c_i' = (c_i − c_0) + (Δv − (c_N − c_0))·x_i + v0``, x_i the normalized position of
     the i-th basis function's peak. With clamped knots the curve passes through its
-    first and last coefficients, so the result starts at v0 and ends at v1.
+    first and last coefficients, so the result starts at v0 and ends at v1. *peaks*:
+    :func:`basis_peaks` of the spline's knots, when the caller keeps them.
     """
     knots, degree = spline.t, spline.k
     count = len(knots) - degree - 1
     coefficients = np.asarray(spline.c[:count], dtype=float)
-    peaks = basis_peaks(knots, degree)
+    peaks = basis_peaks(knots, degree) if peaks is None else peaks
     start, end = knots[degree], knots[count]
     x = (peaks - start) / (end - start)
     c0, c_n = coefficients[0], coefficients[-1]
