@@ -80,8 +80,19 @@ def _start_sign_pair(build: Build) -> Build:
 
 
 def _finish_sentence(build: Build) -> Build:
-    from synthesis.signing.sentence import synthesize
+    from synthesis.signing.sentence import parse_glosses, synthesize
+    from synthesis.signing.signs import SignError
+    from synthesis.transitions.lexicon import GAP_MS, LexiconError, SignLexicon, assemble
 
+    if isinstance(build.library, SignLexicon):
+        request = build.request
+        gap_ms = request.parameters["transition_ms"] or GAP_MS
+        try:
+            glosses = parse_glosses(request.text)
+            sentence = assemble(glosses, build.library, request.rate_hz, gap_ms, request.side)
+        except (LexiconError, SignError) as error:
+            raise ClipError(str(error)) from None
+        return build.but(motion=np.asarray(sentence.dofs_rad), result=sentence)
     sentence = synthesize(build.request.text, build.options, build.library)
     return build.but(motion=np.asarray(sentence.dofs_rad), result=sentence)
 

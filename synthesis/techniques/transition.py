@@ -39,9 +39,16 @@ def _apply(build: Build) -> Build:
     if model == "keyed":
         return build
     if model == "blended":
+        from synthesis.transitions.lexicon import SignLexicon, blend_recorded
         from synthesis.transitions.sentence import blend_sentence
 
-        dofs, _ = blend_sentence(build.request.text, build.options, build.library)
+        if isinstance(build.library, SignLexicon):
+            request = build.request
+            dofs, _ = blend_recorded(
+                build.result.glosses, build.library, request.rate_hz, request.side
+            )
+        else:
+            dofs, _ = blend_sentence(build.request.text, build.options, build.library)
         return build.but(motion=np.asarray(dofs))
     from synthesis.transitions.sentence import retransition
 

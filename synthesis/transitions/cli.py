@@ -4,6 +4,8 @@
     python -m synthesis.transitions build captures/*.bvh … --out db.json
     python -m synthesis.transitions evaluate db.json --out results/ [--weighting raw]
     python -m synthesis.transitions speed "BUT SURPRISE MY BROTHER" --out speed.png
+    python -m synthesis.transitions lexicon HELLO.bvh THANKS.pose … --out lexicon.json
+    python -m synthesis.transitions lexicon --simulate WHERE SURPRISE --out signs/
 
 A recording is a BVH of the engine's body or a captured .pose file, with its
 segmentation beside it (NAME.segments.json or NAME.segments.xml; seed 001 §5.2.1).
@@ -14,6 +16,7 @@ import sys
 from pathlib import Path
 
 from synthesis.transitions.database import DatabaseError, TransitionDatabase, build_database
+from synthesis.transitions.lexicon import LexiconError
 from synthesis.transitions.recording import RecordingError, read_recording, write_recording
 from synthesis.transitions.search import WEIGHTINGS
 from synthesis.transitions.segments import SegmentationError
@@ -75,6 +78,18 @@ def _speed(args: argparse.Namespace) -> int:
     return 0
 
 
+def _lexicon(args: argparse.Namespace) -> int:
+    from synthesis.transitions.lexicon import simulated_lexicon, write_lexicon
+
+    if args.simulate:
+        path = simulated_lexicon(args.items, args.out)
+        print(f"wrote {path}: {len(args.items)} simulated recorded signs")
+        return 0
+    path = write_lexicon(args.items, args.out)
+    print(f"wrote {path}: {len(args.items)} recorded signs")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """Return the argument parser of ``python -m synthesis.transitions``."""
     root = argparse.ArgumentParser(
@@ -107,6 +122,15 @@ def parser() -> argparse.ArgumentParser:
     speed.add_argument("--out", type=Path, required=True)
     speed.add_argument("--models", default="keyed,blended,hermite")
     speed.set_defaults(run=_speed)
+    lexicon = commands.add_parser("lexicon", help="write a lexicon of recorded signs")
+    lexicon.add_argument("items", nargs="+", help="recordings (or glosses with --simulate)")
+    lexicon.add_argument(
+        "--out", type=Path, required=True, help="the manifest (a directory with --simulate)"
+    )
+    lexicon.add_argument(
+        "--simulate", action="store_true", help="record the engine's signs as simulated recordings"
+    )
+    lexicon.set_defaults(run=_lexicon)
     return root
 
 
@@ -115,6 +139,6 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         return args.run(args)
-    except (RecordingError, SegmentationError, DatabaseError, ValueError) as error:
+    except (RecordingError, SegmentationError, DatabaseError, LexiconError, ValueError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2

@@ -169,3 +169,14 @@ def test_evaluation_like_table_5_1(database):
     )
     expected = np.degrees(np.sqrt(np.mean((line - entry.values[1:-1]) ** 2, axis=0)))
     np.testing.assert_allclose(evaluation.rmse_deg[0, 0], expected)
+
+
+def test_a_sign_pair_is_two_glosses_and_its_transition_has_the_length_asked():
+    with pytest.raises(ClipError, match="A sign pair is two glosses"):
+        build_motion(ClipRequest("sign_pair", "WHERE SURPRISE LOST"))
+    short = build_motion(ClipRequest("sign_pair", "WHERE SURPRISE", rate_hz=100)).result
+    long = build_motion(
+        ClipRequest("sign_pair", "WHERE SURPRISE", {"transition_ms": 500}, rate_hz=100)
+    ).result
+    gap = lambda s: int(np.diff(s.token_frames().ravel())[1])  # noqa: E731
+    assert gap(short) == 20 and gap(long) == 50  # the library's 200 ms, then 500 ms at 100 Hz

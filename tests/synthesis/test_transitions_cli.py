@@ -69,3 +69,15 @@ def test_module_runs_and_plots_speed(tmp_path):
     )
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "speed.png").stat().st_size > 1000
+
+
+def test_lexicon_commands_write_manifests(tmp_path, capsys):
+    assert main(["lexicon", "--simulate", "WHERE", "SURPRISE", "--out", str(tmp_path)]) == 0
+    assert "2 simulated recorded signs" in capsys.readouterr().out
+    recordings = sorted(map(str, tmp_path.glob("*.bvh")))
+    assert main(["lexicon", *recordings, "--out", str(tmp_path / "mine.json")]) == 0
+    from synthesis.transitions.lexicon import read_lexicon
+
+    assert set(read_lexicon(tmp_path / "mine.json").signs) == {"WHERE", "SURPRISE"}
+    assert main(["lexicon", str(tmp_path / "nothing.txt"), "--out", str(tmp_path / "x.json")]) == 2
+    assert "a .bvh or a .pose file" in capsys.readouterr().err

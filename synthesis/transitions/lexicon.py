@@ -1,0 +1,311 @@
+"""A sign lexicon of recordings: sentences assembled from recorded sign clips.
+
+A lexicon is a manifest (:data:`FORMAT`, versioned JSON) naming each gloss's recording —
+a BVH of the engine's body or a captured ``.pose`` file, relative to the manifest — with
+its SHA-256, so a clip's hash changes when a recording does. A recording's segmentation
+beside it (``NAME.segments.json``/``.xml``) marks its sign; what comes before is the
+attack from rest and what follows the decay back to it (seed 004 §3.1.3). Without one,
+the whole clip is the sign. Each recording's root is reset to the standard position
+(seed 004 §3.2.3): the body stands at the origin facing the camera.
+
+:func:`assemble` plays the signs as recorded, one after the other, joined by an eased
+move of every DOF over the gap (which a transition technique then replaces for the
+arms); :func:`blend_recorded` is seed 004's concatenation of the whole clips.
+"""
+
+import hashlib
+import json
+import os
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from synthesis.rigs.body import BodyModel
+from synthesis.signing.sentence import Sentence
+from synthesis.skeleton.motion import Motion
+from synthesis.transitions.blending import blend_signs
+from synthesis.transitions.recording import (
+    SEGMENTATION_SUFFIXES,
+    SegmentedRecording,
+    write_recording,
+)
+from synthesis.transitions.segments import SegmentationError, parse_segmentation
+
+FORMAT = "signstudy.sign-lexicon"
+FORMAT_VERSION = 1
+GAP_MS = 300.0
+
+
+class LexiconError(ValueError):
+    """A lexicon that cannot be read, or a gloss it does not hold."""
+
+
+@dataclass(frozen=True, eq=False)
+class RecordedSign:
+    """One recorded sign: the body's DOFs over the clip and where the sign lies in it.
+
+    *dofs_rad* (n_frames, n_dofs) at *rate_hz*; *sign_frames* the sign's first and last
+    frame (before them the attack, after them the decay).
+    """
+
+    gloss: str
+    dofs_rad: np.ndarray
+    rate_hz: float
+    sign_frames: tuple[int, int]
+    simulated: bool = False
+
+    @property
+    def sign(self) -> np.ndarray:
+        """Return the sign's own frames, without attack and decay."""
+        first, last = self.sign_frames
+        return self.dofs_rad[first : last + 1]
+
+    def resampled(self, rate_hz: float) -> "RecordedSign":
+        """Return the sign at *rate_hz* (linear between frames, marks moved to the nearest)."""
+        if abs(rate_hz - self.rate_hz) < 1e-9:
+            return self
+        duration_s = (len(self.dofs_rad) - 1) / self.rate_hz
+        at = np.arange(int(np.floor(duration_s * rate_hz + 1e-9)) + 1) / rate_hz
+        t = np.arange(len(self.dofs_rad)) / self.rate_hz
+        dofs = np.column_stack([np.interp(at, t, column) for column in self.dofs_rad.T])
+        first, last = (round(f / self.rate_hz * rate_hz) for f in self.sign_frames)
+        return replace(
+            self, dofs_rad=dofs, rate_hz=rate_hz, sign_frames=(first, min(last, len(dofs) - 1))
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class SignLexicon:
+    """Recorded signs by gloss, read from the manifest at *source*."""
+
+    signs: dict[str, RecordedSign]
+    source: str = ""
+
+    @property
+    def simulated(self) -> bool:
+        """Return whether any sign is a simulated recording."""
+        return any(sign.simulated for sign in self.signs.values())
+
+    def sign(self, gloss: str) -> RecordedSign:
+        """Return the recording of *gloss*; raise :class:`LexiconError` naming what is held."""
+        try:
+            return self.signs[gloss]
+        except KeyError:
+            raise LexiconError(
+                f"The lexicon {self.source} has no recording of {gloss!r}; it holds "
+                f"{', '.join(sorted(self.signs))}."
+            ) from None
+
+
+def reset_root(motion: Motion) -> Motion:
+    """Return *motion* with its root's position and orientation set to zero (seed 004 §3.2.3).
+
+    The body then stands at the origin facing the camera, whatever the capture's room.
+    """
+    root = next(i for i, joint in enumerate(motion.skeleton.joints) if joint.parent < 0)
+    values = np.array(motion.values)
+    values[:, motion.skeleton.channel_slices()[root]] = 0.0
+    return Motion(motion.skeleton, values, motion.frame_time_s)
+
+
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def read_sign(path: str | Path, gloss: str | None = None, simulated: bool = False) -> RecordedSign:
+    """Return the recorded sign at *path* (its gloss the file's name unless given)."""
+    path = Path(path)
+    stem = path.name.split(".")[0]
+    gloss = gloss or stem.upper()
+    body = BodyModel("right")
+    if path.suffix.lower() == ".bvh":
+        from synthesis.skeleton.bvh import BvhError, read_bvh
+
+        try:
+            motion = reset_root(read_bvh(path))
+            dofs, rate_hz = body.dofs_from_motion(motion), motion.rate_hz
+        except (BvhError, ValueError, OSError) as error:
+            raise LexiconError(f"{path}: {error}") from None
+    elif path.suffix.lower() == ".pose":
+        from synthesis.capture import read_pose
+        from synthesis.capture.armfit import fit_arms
+
+        try:
+            captured = read_pose(path)
+        except (ValueError, OSError) as error:
+            raise LexiconError(f"{path}: {error}") from None
+        # The arms hang from shoulders placed at the standard position: the root reset.
+        dofs, rate_hz = fit_arms(body, captured).dofs_rad, captured.fps
+    else:
+        raise LexiconError(f"{path}: a recorded sign is a .bvh or a .pose file.")
+    return RecordedSign(gloss, dofs, rate_hz, _sign_frames(path, len(dofs)), simulated)
+
+
+def _sign_frames(path: Path, n_frames: int) -> tuple[int, int]:
+    """Return the sign's frames from the segmentation beside *path* (the whole clip without)."""
+    for suffix in SEGMENTATION_SUFFIXES:
+        beside = path.with_name(path.name.split(".")[0] + suffix)
+        if beside.exists():
+            try:
+                (sentence,) = parse_segmentation(beside.read_text("utf-8"))
+            except (SegmentationError, ValueError) as error:
+                raise LexiconError(f"{beside}: {error}") from None
+            signs = [s for s in sentence.segments if s.kind == "sign"]
+            if len(signs) != 1 or signs[0].end_frame >= n_frames:
+                raise LexiconError(
+                    f"{beside}: a recorded sign's segmentation marks one sign "
+                    f"within its {n_frames} frames."
+                )
+            return signs[0].start_frame, signs[0].end_frame
+    return 0, n_frames - 1
+
+
+def write_lexicon(recordings, out: str | Path, simulated: bool = False, glosses=None) -> Path:
+    """Write the manifest of *recordings* (paths) to *out*.
+
+    Each gloss is its file's name in capitals unless *glosses* gives them in order.
+    """
+    out = Path(out)
+    recordings = [Path(p) for p in recordings]
+    glosses = glosses or [p.name.split(".")[0].upper() for p in recordings]
+    if len(glosses) != len(recordings):
+        raise LexiconError(f"{len(recordings)} recordings but {len(glosses)} glosses.")
+    signs = {}
+    for gloss, path in zip(glosses, recordings, strict=True):
+        read_sign(path)  # refuse a bad recording now, not at render time
+        signs[gloss] = {
+            "file": os.path.relpath(path.resolve(), out.parent.resolve()),
+            "sha256": _sha256(path),
+        }
+    data = {"format": FORMAT, "version": FORMAT_VERSION, "simulated": simulated, "signs": signs}
+    out.write_text(json.dumps(data, indent=1) + "\n", "utf-8")
+    return out
+
+
+def read_lexicon(path: str | Path) -> SignLexicon:
+    """Return the lexicon at *path*; raise :class:`LexiconError` naming the problem."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text("utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise LexiconError(f"{path}: cannot be read as JSON ({error}).") from None
+    if not isinstance(data, dict) or data.get("format") != FORMAT:
+        raise LexiconError(f"{path}: not a sign lexicon (format {FORMAT!r}).")
+    if data.get("version") != FORMAT_VERSION or not isinstance(data.get("signs"), dict):
+        raise LexiconError(
+            f"{path}: version {data.get('version')!r} with a 'signs' table is "
+            f"needed (this engine reads version {FORMAT_VERSION})."
+        )
+    signs = {}
+    for gloss, entry in data["signs"].items():
+        try:
+            recording = path.parent / entry["file"]
+            digest = _sha256(recording)
+        except (KeyError, TypeError, OSError) as error:
+            raise LexiconError(
+                f"{path}: the recording of {gloss} cannot be read ({error})."
+            ) from None
+        if digest != entry.get("sha256"):
+            raise LexiconError(
+                f"{path}: {recording} changed since the lexicon was written; "
+                "write the lexicon again."
+            )
+        signs[gloss] = read_sign(recording, gloss, data.get("simulated") is True)
+    if not signs:
+        raise LexiconError(f"{path}: the lexicon holds no signs.")
+    return SignLexicon(signs, str(path))
+
+
+def simulated_lexicon(
+    glosses, directory: str | Path, seed: int = 0, rate_hz: float = 120.0
+) -> Path:
+    """Write simulated recordings of *glosses* (the engine's signs from rest to rest, with
+    liveliness noise; labelled simulated) and their lexicon; return the manifest's path."""
+    from synthesis.signing.sentence import SentenceOptions, synthesize
+    from synthesis.transitions.segments import Segment, Segmentation
+
+    directory = Path(directory)
+    paths = []
+    for k, gloss in enumerate(glosses):
+        sentence = synthesize(gloss, SentenceOptions(rate_hz=rate_hz, seed=seed + k))
+        (first, last), n = sentence.token_frames()[0], len(sentence.dofs_rad)
+        segments = (
+            Segment("rest", 1, 0, int(first) - 1, "attack"),
+            Segment("sign", 2, int(first), int(last), gloss),
+            Segment("rest", 3, int(last) + 1, n - 1, "decay"),
+        )
+        name = gloss.lower().replace("'", "")
+        recording = SegmentedRecording(
+            name,
+            sentence.dofs_rad,
+            tuple(sentence.body.dof_names),
+            rate_hz,
+            Segmentation(name, segments),
+            "sim",
+            True,
+        )
+        paths.append(write_recording(recording, directory))
+    return write_lexicon(paths, directory / "lexicon.json", simulated=True, glosses=list(glosses))
+
+
+def _eased(v0: np.ndarray, v1: np.ndarray, n_frames: int) -> np.ndarray:
+    """Return *n_frames* easing from v0 to v1 (smoothstep), exclusive of both ends."""
+    s = np.arange(1, n_frames + 1) / (n_frames + 1)
+    return v0 + np.outer(3 * s**2 - 2 * s**3, v1 - v0)
+
+
+def assemble(
+    glosses, lexicon: SignLexicon, rate_hz: float, gap_ms: float = GAP_MS, side: str = "right"
+) -> Sentence:
+    """Return a sentence of recorded signs played as recorded, eased from one to the next.
+
+    The first sign's attack and the last one's decay are kept (from and back to rest);
+    between signs, every DOF eases over *gap_ms*. The signs' frames are never changed.
+    """
+    signs = [lexicon.sign(g).resampled(rate_hz) for g in glosses]
+    gap = max(1, round(gap_ms / 1000 * rate_hz) - 1)
+    first, last = signs[0], signs[-1]
+    parts = [first.dofs_rad[: first.sign_frames[0]]]
+    tokens = []
+    for k, sign in enumerate(signs):
+        if k:
+            parts.append(_eased(parts[-1][-1], sign.sign[0], gap))
+        start = sum(len(p) for p in parts)
+        parts.append(sign.sign)
+        tokens.append((start, start + len(sign.sign) - 1))
+    parts.append(last.dofs_rad[last.sign_frames[1] + 1 :])
+    body = BodyModel(side)
+    dofs = np.vstack([p for p in parts if len(p)])
+    if side == "left":
+        dofs = body.mirror_pose(dofs)
+    tokens_s = np.array(tokens, dtype=float) / rate_hz
+    return Sentence(
+        body,
+        body.clip(dofs),
+        np.zeros_like(dofs),
+        rate_hz,
+        tokens_s.ravel(),
+        tuple(glosses),
+        tokens_s=tokens_s,
+    )
+
+
+def blend_recorded(
+    glosses, lexicon: SignLexicon, rate_hz: float, side: str = "right"
+) -> tuple[np.ndarray, int]:
+    """Return the whole recorded clips blended (seed 004 §4.1), and the overlap in frames."""
+    signs = [lexicon.sign(g).resampled(rate_hz) for g in glosses]
+    if len(signs) == 1:
+        return signs[0].dofs_rad, 0
+    attacks = [s.sign_frames[0] for s in signs[1:]]
+    decays = [len(s.dofs_rad) - 1 - s.sign_frames[1] for s in signs[:-1]]
+    overlap = min(attacks + decays)
+    if overlap < 1:
+        raise LexiconError(
+            "Blending needs each recording's attack and decay marked: segment "
+            "the recordings (rest, sign, rest)."
+        )
+    dofs = blend_signs([s.dofs_rad for s in signs], overlap)
+    body = BodyModel(side)
+    return (body.mirror_pose(dofs) if side == "left" else dofs), overlap

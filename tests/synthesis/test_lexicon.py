@@ -1,0 +1,98 @@
+"""Test sentences assembled from a lexicon of recorded signs (issue 17), and the root reset.
+
+Data: simulated recordings of the engine's signs (labelled simulated), written as BVH
+with their segmentation by ``simulated_lexicon``.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from synthesis.skeleton.motion import Motion
+from synthesis.techniques import ClipError, ClipRequest, build_motion
+from synthesis.transitions.lexicon import (
+    LexiconError,
+    assemble,
+    blend_recorded,
+    read_lexicon,
+    reset_root,
+    simulated_lexicon,
+)
+
+GLOSSES = ("WHERE", "SURPRISE", "CAN'T")
+
+
+@pytest.fixture(scope="module")
+def lexicon_path(tmp_path_factory):
+    return simulated_lexicon(GLOSSES, tmp_path_factory.mktemp("signs"))
+
+
+def test_root_reset_zeroes_the_root_and_nothing_else(lexicon_path):
+    from synthesis.skeleton.bvh import read_bvh
+
+    motion = read_bvh(lexicon_path.parent / "where.bvh")
+    values = np.array(motion.values)
+    values[:, :3] += [10.0, 5.0, -3.0]  # the root's rotation channels: turned away
+    moved = reset_root(Motion(motion.skeleton, values, motion.frame_time_s))
+    root = motion.skeleton.channel_slices()[0]
+    assert np.all(moved.values[:, root] == 0)
+    np.testing.assert_array_equal(moved.values[:, root.stop :], motion.values[:, root.stop :])
+
+
+def test_lexicon_reads_back_labelled_simulated(lexicon_path):
+    lexicon = read_lexicon(lexicon_path)
+    assert set(lexicon.signs) == set(GLOSSES) and lexicon.simulated
+    sign = lexicon.sign("WHERE")
+    assert 0 < sign.sign_frames[0] < sign.sign_frames[1] < len(sign.dofs_rad) - 1
+    with pytest.raises(LexiconError, match="no recording of 'HELLO'; it holds CAN'T"):
+        lexicon.sign("HELLO")
+
+
+def test_a_changed_recording_or_a_bad_manifest_is_named(lexicon_path, tmp_path):
+    data = json.loads(lexicon_path.read_text())
+    data["signs"]["WHERE"]["sha256"] = "0" * 64
+    copy = lexicon_path.parent / "stale.json"
+    copy.write_text(json.dumps(data))
+    with pytest.raises(LexiconError, match="changed since the lexicon was written"):
+        read_lexicon(copy)
+    (tmp_path / "x.json").write_text('{"format": "other"}')
+    with pytest.raises(LexiconError, match="not a sign lexicon"):
+        read_lexicon(tmp_path / "x.json")
+
+
+def test_assembled_signs_are_played_as_recorded(lexicon_path):
+    lexicon = read_lexicon(lexicon_path)
+    sentence = assemble(GLOSSES, lexicon, rate_hz=120.0, gap_ms=300)
+    for gloss, (start, end) in zip(GLOSSES, sentence.token_frames(), strict=True):
+        np.testing.assert_array_equal(sentence.dofs_rad[start : end + 1], lexicon.sign(gloss).sign)
+    gaps = np.diff(sentence.token_frames().ravel())[1::2]
+    assert list(gaps) == [36, 36]  # 300 ms at 120 Hz between last and first sign frames
+
+
+def test_blending_recorded_signs_overlaps_decay_and_attack(lexicon_path):
+    lexicon = read_lexicon(lexicon_path)
+    dofs, overlap = blend_recorded(GLOSSES[:2], lexicon, 120.0)
+    lengths = [len(lexicon.sign(g).dofs_rad) for g in GLOSSES[:2]]
+    assert overlap > 0 and len(dofs) == sum(lengths) - overlap
+
+
+def test_the_sentence_kind_plays_a_lexicon_with_any_transition(lexicon_path):
+    text = "WHERE SURPRISE"
+    keyed = build_motion(ClipRequest("sign_pair", text, {"lexicon": str(lexicon_path)}))
+    hermite = build_motion(
+        ClipRequest("sign_pair", text, {"lexicon": str(lexicon_path), "transition": "hermite"})
+    )
+    for start, end in keyed.result.token_frames():
+        np.testing.assert_array_equal(
+            hermite.motion[start : end + 1], keyed.motion[start : end + 1]
+        )
+    assert not np.array_equal(hermite.motion, keyed.motion)
+    blended = build_motion(
+        ClipRequest("sentence", text, {"lexicon": str(lexicon_path), "transition": "blended"})
+    )
+    assert len(blended.motion) != len(keyed.motion)
+    with pytest.raises(ClipError, match="carry their signer's own spine and face"):
+        ClipRequest("sentence", text, {"lexicon": str(lexicon_path), "spine": False})
+    with pytest.raises(ClipError, match="no recording of 'LOST'"):
+        build_motion(ClipRequest("sentence", "WHERE LOST", {"lexicon": str(lexicon_path)}))
