@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 from synthesis.transitions.database import DatabaseError, TransitionDatabase, build_database
+from synthesis.transitions.evaluate import HOLDOUTS
 from synthesis.transitions.lexicon import LexiconError
 from synthesis.transitions.recording import RecordingError, read_recording, write_recording
 from synthesis.transitions.search import WEIGHTINGS
@@ -52,7 +53,7 @@ def _evaluate(args: argparse.Namespace) -> int:
 
     database = TransitionDatabase.read(args.database)
     order = [args.weighting] + [w for w in WEIGHTINGS if w != args.weighting]
-    evaluations = {w: evaluate(database, w) for w in order}
+    evaluations = {w: evaluate(database, w, args.holdout) for w in order}
     main = evaluations[args.weighting]
     names = list(summary_rows(main)[0])
     print("\t".join(names))
@@ -116,6 +117,13 @@ def parser() -> argparse.ArgumentParser:
     evaluate.add_argument("database", type=Path)
     evaluate.add_argument("--out", type=Path, required=True)
     evaluate.add_argument("--weighting", choices=WEIGHTINGS, default="raw")
+    evaluate.add_argument(
+        "--holdout",
+        choices=HOLDOUTS,
+        default="transition",
+        help="leave out the query's own transition (seed 001), or every recording of the "
+        "same sign pair by any signer",
+    )
     evaluate.set_defaults(run=_evaluate)
     speed = commands.add_parser("speed", help="plot a sentence's arm speed per transition model")
     speed.add_argument("text")

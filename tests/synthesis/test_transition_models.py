@@ -178,5 +178,18 @@ def test_a_sign_pair_is_two_glosses_and_its_transition_has_the_length_asked():
     long = build_motion(
         ClipRequest("sign_pair", "WHERE SURPRISE", {"transition_ms": 500}, rate_hz=100)
     ).result
-    gap = lambda s: int(np.diff(s.token_frames().ravel())[1])  # noqa: E731
-    assert gap(short) == 20 and gap(long) == 50  # the library's 200 ms, then 500 ms at 100 Hz
+    gaps = [int(np.diff(s.token_frames().ravel())[1]) for s in (short, long)]
+    assert gaps == [20, 50]  # the library's 200 ms, then 500 ms, at 100 Hz
+
+
+def test_holding_out_the_sign_pair_leaves_out_every_signer_s_repeat(database):
+    evaluation = evaluate(database, "raw", holdout="sign-pair")
+    entries = {e.id: e for e in database.entries}
+    for query, match in zip(evaluation.ids, evaluation.matches, strict=True):
+        assert (entries[match].labels, entries[match].side) != (
+            entries[query].labels,
+            entries[query].side,
+        )
+    assert "sign-pair" in verdict(evaluation)
+    with pytest.raises(ValueError, match="holdout must be one of"):
+        evaluate(database, "raw", holdout="everything")
