@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import BSpline, make_splrep
 
-from synthesis.transitions.curves import ARM_CURVES
+from synthesis.transitions.curves import ARM_CURVES, SIDES
 from synthesis.transitions.descriptor import DESCRIPTOR_FRAMES, gap_descriptor
 from synthesis.transitions.hermite_fit import HermiteCurve, fit_hermite
 from synthesis.transitions.recording import CutTransition, SegmentedRecording, cut_transitions
@@ -116,7 +116,8 @@ class TransitionEntry:
 
     @classmethod
     def from_dict(cls, data: dict) -> "TransitionEntry":
-        return cls(
+        """Return the entry :meth:`to_dict` wrote; raise ValueError when a part is malformed."""
+        entry = cls(
             str(data["id"]),
             str(data["recording"]),
             str(data["signer"]),
@@ -130,6 +131,20 @@ class TransitionEntry:
             np.array(data["values_rad"], float),
             bool(data["simulated"]),
         )
+        curves = len(ARM_CURVES)
+        if entry.side not in SIDES or len(entry.labels) != 2 or not entry.rate_hz > 0:
+            raise ValueError("side, labels or rate_hz is not what a transition has")
+        if entry.descriptor.shape != (6 * curves,):
+            raise ValueError(f"the descriptor holds {6 * curves} numbers")
+        context = (entry.before, entry.after)
+        if any(a.ndim != 2 or a.shape[1] != curves or len(a) < 5 for a in context):
+            raise ValueError(f"before_rad and after_rad are at least 5 rows of {curves} angles")
+        if entry.values.ndim != 2 or entry.values.shape[1] != curves or len(entry.values) < 3:
+            raise ValueError(f"values_rad is at least 3 rows of {curves} angles")
+        arrays = (entry.descriptor, *context, entry.values)
+        if not all(np.all(np.isfinite(a)) for a in arrays):
+            raise ValueError("the entry holds non-finite numbers")
+        return entry
 
 
 def _rounded(values) -> list[float]:
@@ -228,7 +243,7 @@ class TransitionDatabase:
         for number, raw in enumerate(data.get("entries") or [], 1):
             try:
                 entries.append(TransitionEntry.from_dict(raw))
-            except (KeyError, TypeError, ValueError) as error:
+            except (KeyError, TypeError, ValueError, IndexError, AttributeError) as error:
                 raise DatabaseError(f"{source}: entry {number} is malformed ({error!r}).") from None
         if not entries:
             raise DatabaseError(f"{source}: the database has no transitions.")

@@ -8,6 +8,8 @@ import json
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from scipy.interpolate import BSpline
 
 from synthesis.rigs.body import BodyModel
@@ -213,3 +215,35 @@ def test_zscore_puts_every_column_on_one_scale(database):
     assert k0 > 10 * k2  # why the seed proposes it
     pca = DescriptorSearch(database, "pca")
     assert pca.transform(raw).shape[1] < 42
+
+
+JSON_VALUES = st.recursive(
+    st.none() | st.booleans() | st.integers() | st.floats(allow_nan=False) | st.text(max_size=4),
+    lambda inner: (
+        st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=3), inner, max_size=3)
+    ),
+    max_leaves=6,
+)
+
+
+@settings(
+    max_examples=200, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(data=st.data())
+def test_mangled_database_files_are_refused_never_crash(database, data):
+    """Fuzz: any field of an entry replaced by any JSON value reads or raises DatabaseError."""
+    document = json.loads(TransitionDatabase((database.entries[0],)).to_json())
+    entry = document["entries"][0]
+    path = [data.draw(st.sampled_from(sorted(entry)))]
+    target = entry
+    while isinstance(target[path[-1]], dict) and data.draw(st.booleans()):
+        target = target[path[-1]]
+        path.append(data.draw(st.sampled_from(sorted(target))))
+    target[path[-1]] = data.draw(JSON_VALUES)
+    text = json.dumps(document)
+    cut = data.draw(st.integers(0, len(text)))
+    text = text if data.draw(st.booleans()) else text[:cut]
+    try:
+        TransitionDatabase.from_json(text, "db.json")
+    except DatabaseError as error:
+        assert str(error).startswith("db.json: ")
