@@ -46,18 +46,23 @@ def gap_context(
     )
 
 
-def retransition(sentence: Sentence, model: str, search=None) -> np.ndarray:
+def retransition(sentence: Sentence, model: str, search=None, noise=None) -> np.ndarray:
     """Return the sentence's DOFs with every inter-sign gap filled by *model*.
 
     *model*: ``linear``, ``simple_hermite``, or ``hermite``/``bspline`` with a
     :class:`~synthesis.transitions.search.DescriptorSearch` over a transition database.
+    *noise* (n_frames, n_dofs): the liveliness noise in the sentence; the models work
+    on the motion without it and it is added back to the frames they fill, so every
+    condition breathes alike.
     """
     dofs = np.array(sentence.dofs_rad)
+    clean = dofs if noise is None else dofs - noise
+    noise = np.zeros_like(dofs) if noise is None else noise
     frames = sentence.token_frames()
     rate = sentence.rate_hz
     for side in SIDES:
         columns = arm_columns(sentence.body.dof_names, side)
-        curves = dofs[:, columns]
+        curves = clean[:, columns]
         for (_, end), (start, _) in itertools.pairwise(frames):
             n = start - end - 1
             span = curves[end : start + 1]
@@ -65,15 +70,13 @@ def retransition(sentence: Sentence, model: str, search=None) -> np.ndarray:
                 continue
             before, after = curves[max(0, end - 8) : end + 1], curves[start : start + 9]
             if model in ("linear", "simple_hermite"):
-                dofs[end + 1 : start, columns] = baseline(model, before, after, n)
-                continue
-            database = search.database
-            index = search.nearest(
-                gap_context(curves, end, start, rate, database.entries[0].rate_hz)
-            )
-            dofs[end + 1 : start, columns] = fit_entry(
-                database.entries[index], before, after, n, model
-            )
+                filled = baseline(model, before, after, n)
+            else:
+                database = search.database
+                context = gap_context(curves, end, start, rate, database.entries[0].rate_hz)
+                entry = database.entries[search.nearest(context)]
+                filled = fit_entry(entry, before, after, n, model)
+            dofs[end + 1 : start, columns] = filled + noise[end + 1 : start, columns]
     return sentence.body.clip(dofs)
 
 

@@ -193,3 +193,18 @@ def test_holding_out_the_sign_pair_leaves_out_every_signer_s_repeat(database):
     assert "sign-pair" in verdict(evaluation)
     with pytest.raises(ValueError, match="holdout must be one of"):
         evaluate(database, "raw", holdout="everything")
+
+
+def test_every_transition_model_keeps_the_liveliness_noise(database, tmp_path):
+    """The noise a keyed sentence carries is there in the filled gaps too (the conditions
+    differ in the transitions, not in how alive the signer looks)."""
+    path = str(database.write(tmp_path / "db.json"))
+
+    def motion(transition, liveliness):
+        values = {"transition": transition, "transition_db": path, "liveliness": liveliness}
+        return build_motion(ClipRequest("sentence", TEXT, values, rate_hz=30, seed=4)).motion
+
+    noise = motion("keyed", True) - motion("keyed", False)
+    assert np.abs(noise).max() > 1e-3
+    for model in ("linear", "hermite"):
+        np.testing.assert_allclose(motion(model, True) - motion(model, False), noise, atol=1e-9)
