@@ -82,6 +82,10 @@ def check_item(item) -> None:
     except ClipError as error:
         raise ValidationError({"kind": f"{error} No technique renders it yet."}) from None
     try:
+        REGISTRY.check_text(item.kind, item.text)
+    except ClipError as error:
+        raise ValidationError({"text": str(error)}) from None
+    try:
         validate_parameters(item.kind, item.parameters or {})
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None

@@ -11,13 +11,17 @@ from synthesis.techniques.registry import ItemKind
 from synthesis.techniques.request import Build
 
 
-def _start_word(build: Build) -> Build:
+def _check_word(text: str) -> None:
     from synthesis.fingerspelling.spelling import word_letters
 
     try:
-        word_letters(build.request.text)
+        word_letters(text)
     except ValueError as error:
         raise ClipError(str(error)) from None
+
+
+def _start_word(build: Build) -> Build:
+    _check_word(build.request.text)
     return build
 
 
@@ -62,13 +66,13 @@ def _start_sentence(build: Build) -> Build:
     return build.but(options=options)
 
 
-def _start_sign_pair(build: Build) -> Build:
-    """Start a sign pair: exactly two glosses, the transition between them the point."""
+def _check_sign_pair(text: str) -> None:
+    """Refuse anything but two glosses: the transition between them is the point."""
     from synthesis.signing.sentence import parse_glosses
     from synthesis.signing.signs import SignError
 
     try:
-        glosses = parse_glosses(build.request.text)
+        glosses = parse_glosses(text)
     except SignError as error:
         raise ClipError(str(error)) from None
     if len(glosses) != 2:
@@ -76,6 +80,10 @@ def _start_sign_pair(build: Build) -> Build:
             f"A sign pair is two glosses (the transition between them is what is studied), "
             f"not {len(glosses)}: {' '.join(glosses)}."
         )
+
+
+def _start_sign_pair(build: Build) -> Build:
+    _check_sign_pair(build.request.text)
     return _start_sentence(build)
 
 
@@ -97,8 +105,12 @@ def _finish_sentence(build: Build) -> Build:
     return build.but(motion=np.asarray(sentence.dofs_rad), result=sentence)
 
 
-WORD = ItemKind("word", "fingerspelled word", ("hand", "upper-body"), _start_word, _finish_word)
+WORD = ItemKind(
+    "word", "fingerspelled word", ("hand", "upper-body"), _start_word, _finish_word, _check_word
+)
 SENTENCE = ItemKind("sentence", "sentence", ("upper-body",), _start_sentence, _finish_sentence)
-SIGN_PAIR = ItemKind("sign_pair", "sign pair", ("upper-body",), _start_sign_pair, _finish_sentence)
+SIGN_PAIR = ItemKind(
+    "sign_pair", "sign pair", ("upper-body",), _start_sign_pair, _finish_sentence, _check_sign_pair
+)
 # The kinds made of signs: every sentence technique applies to them all.
 SIGNED = frozenset({SENTENCE.name, SIGN_PAIR.name})

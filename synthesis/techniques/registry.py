@@ -66,7 +66,9 @@ class ItemKind:
     """Signed content the engine renders, and how its motion is made.
 
     *start* turns a request into the first build; *finish* makes the motion from what
-    the prepare-stage techniques chose, for the rig of the clip's view.
+    the prepare-stage techniques chose, for the rig of the clip's view; *check_text*
+    refuses a text the kind cannot sign (it raises :class:`ClipError`), before any
+    rendering.
     """
 
     name: str
@@ -74,6 +76,7 @@ class ItemKind:
     views: tuple[str, ...]
     start: Callable[[Any], Any]
     finish: Callable[[Any, Any], Any]
+    check_text: Callable[[str], None] | None = None
 
     @property
     def default_view(self) -> str:
@@ -96,6 +99,12 @@ class Registry:
                 f"Unknown item kind {name!r}: a clip is of a {' or a '.join(self.kinds)}, "
                 f"not {name!r}."
             ) from None
+
+    def check_text(self, kind: str, text: str) -> None:
+        """Raise :class:`ClipError` when an item of *kind* cannot sign *text*."""
+        item_kind = self.kind(kind)
+        if item_kind.check_text is not None:
+            item_kind.check_text(text)
 
     def for_kind(self, kind: str) -> list[Technique]:
         """Return the techniques that apply to items of *kind*."""

@@ -212,3 +212,15 @@ def test_the_parameters_schema_comes_from_the_registry(alice_client):
     with REGISTRY.registered(TOY):
         assert "slowdown" in parameters_schema()["$defs"]["word"]["properties"]
     assert "Import" in alice_client.get(reverse("admin:studyplatform_study_import")).text
+
+
+def test_an_item_s_text_is_checked_for_its_kind(spine):
+    """A sign pair is two glosses and a word spells letters: refused on save, not at render."""
+    as_draft(spine)
+    item = spine.items.first()
+    item.kind = "sign_pair"
+    item.text = "WHERE SURPRISE LOST"
+    with pytest.raises(ValidationError, match="A sign pair is two glosses"):
+        item.full_clean()
+    item.text = "WHERE SURPRISE"
+    item.full_clean()
