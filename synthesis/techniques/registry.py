@@ -95,9 +95,9 @@ class Registry:
         try:
             return self.kinds[name]
         except (KeyError, TypeError):
+            *others, last = self.kinds
             raise ClipError(
-                f"Unknown item kind {name!r}: a clip is of a {' or a '.join(self.kinds)}, "
-                f"not {name!r}."
+                f"Unknown item kind {name!r}: the kinds are {', '.join(others)} and {last}."
             ) from None
 
     def check_text(self, kind: str, text: str) -> None:
@@ -182,6 +182,7 @@ def default_registry() -> Registry:
     """Return the engine's item kinds and techniques, in pipeline order."""
     from synthesis.techniques import (
         face,
+        hand,
         kinds,
         liveliness,
         signs,
@@ -201,5 +202,6 @@ def default_registry() -> Registry:
             face.TECHNIQUE,
             liveliness.TECHNIQUE,
             transition.TECHNIQUE,
+            hand.TECHNIQUE,
         ],
     )

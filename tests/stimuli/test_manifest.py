@@ -28,7 +28,7 @@ def test_the_hash_covers_every_parameter():
 def test_bad_specifications_are_named():
     with pytest.raises(ClipError, match="Unknown timing 'fast'"):
         ClipSpec("word", "CAT", {"timing": "fast"})
-    with pytest.raises(ClipError, match="word or a sentence, not 'poem'"):
+    with pytest.raises(ClipError, match="'poem': the kinds are word, sentence and sign_pair"):
         ClipSpec("poem", "CAT")
     with pytest.raises(ClipError, match="Malformed clip specification"):
         ClipSpec.from_dict({"kind": "word", "text": "CAT", "colour": "red"})

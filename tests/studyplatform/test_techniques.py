@@ -196,7 +196,7 @@ def test_the_admin_check_names_a_wrong_type_and_an_unknown_item_kind(fingerspell
         item.full_clean()
     assert "poem" in raised.value.message_dict["kind"][0]
     # A sign pair is a kind the engine renders, but not under the study's timing models.
-    item.kind = "sign_pair"
+    item.kind, item.text = "sign_pair", "WHERE SURPRISE"
     with pytest.raises(ValidationError, match="does not apply to a sign pair"):
         item.full_clean()
 

@@ -134,6 +134,7 @@ def test_techniques_describe_a_condition_in_plain_words():
     assert lines == [
         "Performance: a simulated capture",
         "Timing model: Constant (200 ms holds, the last 800 ms, 250 ms transitions)",
+        "Hand DOFs: full hand",
     ]
     assert REGISTRY.describe("sentence", {"spine": False})[1] == "Automated spine motion: off"
 

@@ -1,0 +1,95 @@
+"""Command line of hand dimensionality.
+
+    python -m synthesis.hands reduce motion.bvh --range-deg 5 --rmsd 0.5 \
+        --out reduced.bvh --report dir/
+    python -m synthesis.hands reduce --spell HEAVEN --out reduced.bvh --report dir/
+
+A motion is a BVH of the engine's hand or body, or a captured .pose file; --spell uses
+the engine's own fingerspelling of a word (at 30 fps, both as the seed analysed).
+"""
+
+import argparse
+import sys
+from pathlib import Path
+
+from synthesis.hands.motion import HandMotionError, from_dofs, read_hand_motion
+from synthesis.hands.reduction import apply_reduction, find_reduction
+
+
+def _engine_word(word: str, side: str):
+    from synthesis.fingerspelling.spelling import spell
+    from synthesis.rigs.hand import HandModel
+
+    return from_dofs(HandModel(side), spell(word, side, 30.0), 30.0)
+
+
+def _reduce(args: argparse.Namespace) -> int:
+    from synthesis.hands.report import write_reduction_report
+    from synthesis.skeleton.bvh import write_bvh
+
+    if bool(args.motion) == bool(args.spell):
+        raise HandMotionError("Give a motion file or --spell WORD (one of them).")
+    if args.spell:
+        motion, source = (
+            _engine_word(args.spell, args.side),
+            f"the engine's spelling of {args.spell}",
+        )
+    else:
+        motion, source = read_hand_motion(args.motion, args.side), f"{args.motion}"
+    analysis = motion.analysis_curves_deg()
+    reduction = find_reduction(analysis, motion.names, args.range_deg, args.rmsd)
+    print(
+        f"{source}: {reduction.dof_count} of {len(motion.names)} DOFs free "
+        f"({len(reduction.constant)} constant, {len(reduction.relations)} rebuilt)"
+    )
+    for relation in reduction.relations:
+        print(
+            f"  {relation.dependent} ← {relation.controller} "
+            f"({relation.metric} = {relation.rmsd:.2f})"
+        )
+    if args.out:
+        reduced = motion.with_curves_deg(apply_reduction(motion.curves_deg(), reduction))
+        write_bvh(reduced.as_bvh_motion(), args.out)
+        print(f"wrote {args.out}")
+    if args.report:
+        for path in write_reduction_report(analysis, reduction, args.report, source):
+            print(f"wrote {path}")
+    return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    """Return the argument parser of ``python -m synthesis.hands``."""
+    root = argparse.ArgumentParser(
+        prog="python -m synthesis.hands", description=__doc__.split("\n\n")[0]
+    )
+    commands = root.add_subparsers(dest="command", required=True)
+    reduce = commands.add_parser("reduce", help="seed 002's DOF reduction of a hand motion")
+    reduce.add_argument("motion", nargs="?", type=Path)
+    reduce.add_argument("--spell", metavar="WORD", help="reduce the engine's spelling of WORD")
+    reduce.add_argument("--side", choices=("right", "left"), default="right")
+    reduce.add_argument(
+        "--range-deg",
+        type=float,
+        default=1.0,
+        help="curves moving less than this become their mean (seed: 1 or 5)",
+    )
+    reduce.add_argument(
+        "--rmsd",
+        type=float,
+        default=0.3,
+        help="related curves closer than this are rebuilt (seed: 0.3 or 0.5)",
+    )
+    reduce.add_argument("--out", type=Path, help="the reduced motion (BVH)")
+    reduce.add_argument("--report", type=Path, help="a directory for the tables and figure")
+    reduce.set_defaults(run=_reduce)
+    return root
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; return its exit status (2 with a message on bad input)."""
+    args = parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except (HandMotionError, ValueError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2

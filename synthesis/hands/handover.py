@@ -1,0 +1,89 @@
+"""Hand-over: a clip's digits rebuilt from a few of its own markers (seed 000 ch. 3).
+
+The clip's hand motion is reduced to its sparse markers (the best m by PCA influence,
+Alg. 2) and the digits are reconstructed from them by LWR or the nearest k-means pose,
+from a pose database: the engine's alphabet (built once, kept on disk) unless another
+is given. The forearm and wrist keep their angles.
+"""
+
+from functools import cache
+
+import numpy as np
+
+from synthesis.diskcache import cached
+from synthesis.hands.markers import rank_markers, virtual_markers
+from synthesis.hands.motion import digit_columns
+from synthesis.hands.posedb import engine_pose_database
+from synthesis.hands.reconstruct import (
+    LwrModel,
+    PoseDatabase,
+    reconstruct_lwr,
+    reconstruct_nearest,
+)
+from synthesis.rigs.body import BodyModel
+from synthesis.rigs.hand import HandModel
+
+METHODS = ("lwr", "nearest")
+NEAREST_POSES = 1000
+
+
+def builtin_pose_database(side: str) -> PoseDatabase:
+    """Return the engine's alphabet pose database for *side*, from the disk cache when kept."""
+
+    def encode(database: PoseDatabase) -> dict[str, np.ndarray]:
+        return {"dofs": database.dofs_rad, "markers": database.markers}
+
+    def decode(arrays: dict[str, np.ndarray]) -> PoseDatabase:
+        return PoseDatabase(
+            arrays["dofs"], arrays["markers"], "the engine's alphabet spelled 2 times at 120 Hz"
+        )
+
+    return cached(
+        f"hand-poses-{side}", ("numpy", "scipy"), lambda: engine_pose_database(side), encode, decode
+    )
+
+
+@cache
+def _prepared(side: str, markers: int, method: str):
+    database = builtin_pose_database(side)
+    chosen = tuple(int(i) for i in rank_markers(database.markers)[0][:markers])
+    if method == "lwr":
+        return chosen, LwrModel.fit(database, chosen)
+    return chosen, database.clustered(NEAREST_POSES, np.random.default_rng(0))
+
+
+def reconstruct_hand(
+    hand_dofs_rad: np.ndarray, side: str, rate_hz: float, markers: int = 3, method: str = "lwr"
+) -> np.ndarray:
+    """Return hand-model DOFs (n, 30) with the digits rebuilt from *markers* of their markers."""
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}.")
+    hand = HandModel(side)
+    dofs = np.asarray(hand_dofs_rad, dtype=float)
+    chosen, model = _prepared(side, markers, method)
+    sparse = virtual_markers(hand, dofs)[:, list(chosen)]
+    if method == "lwr":
+        rebuilt = reconstruct_lwr(sparse, model, rate_hz)
+    else:
+        rebuilt = reconstruct_nearest(sparse, chosen, model, rate_hz)
+    columns, _ = digit_columns(hand)
+    out = dofs.copy()
+    out[:, columns] = rebuilt[:, columns]
+    return hand.clip(out)
+
+
+def reconstruct_motion(
+    rig, dofs_rad: np.ndarray, rate_hz: float, markers: int = 3, method: str = "lwr"
+) -> np.ndarray:
+    """Return a hand's or the body's DOFs with every hand's digits reconstructed."""
+    if isinstance(rig, HandModel):
+        return reconstruct_hand(dofs_rad, rig.side, rate_hz, markers, method)
+    if not isinstance(rig, BodyModel):
+        raise ValueError("Reconstruction needs the engine's hand or body.")
+    out = np.asarray(dofs_rad, dtype=float)
+    for side in ("right", "left"):
+        where = rig.hand_dofs(side)
+        hand = np.tile(HandModel(side).neutral(), (len(out), 1))
+        hand[:, where >= 0] = out[:, where[where >= 0]]
+        out = rig.with_hand(out, side, reconstruct_hand(hand, side, rate_hz, markers, method))
+    return out

@@ -1,0 +1,68 @@
+"""The pose database reconstructions learn from: the engine's alphabet, or recordings.
+
+Seed 000 §3.2.3's ASL database was two continuous runs of the alphabet by one signer
+(2,734 samples at 120 Hz). The engine's stand-in spells the alphabet twice, at two
+speeds, at 120 Hz; recordings (BVH of the engine's hand, captured ``.pose``) can be
+added. Every report names what the database was: the published errors came from Vicon
+captures, the engine's database from its own letters.
+"""
+
+from collections.abc import Iterable
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from synthesis.hands.markers import virtual_markers
+from synthesis.hands.motion import digit_columns, read_hand_motion
+from synthesis.hands.reconstruct import PoseDatabase
+from synthesis.rigs.hand import HandModel
+
+ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+RATE_HZ = 120.0
+
+
+def _digits_only(hand: HandModel, dofs_rad: np.ndarray) -> np.ndarray:
+    """Return the DOFs with the forearm and wrist at rest: the database holds handshapes."""
+    columns, _ = digit_columns(hand)
+    out = np.tile(hand.neutral(), (len(dofs_rad), 1))
+    out[:, columns] = np.asarray(dofs_rad)[:, columns]
+    return out
+
+
+def engine_pose_database(side: str = "right", runs: Iterable[float] = (1.0, 1.6)) -> PoseDatabase:
+    """Return the alphabet spelled once per speed factor in *runs* (1 = the engine's own)."""
+    from synthesis.fingerspelling.spelling import simple_timing, spell
+
+    hand = HandModel(side)
+    frames = []
+    for factor in runs:
+        timing = simple_timing(ALPHABET)
+        slower = replace(
+            timing,
+            hold_ms=tuple(h * factor for h in timing.hold_ms),
+            transition_ms=tuple(t * factor for t in timing.transition_ms),
+        )
+        frames.append(spell(ALPHABET, side, RATE_HZ, timing=slower))
+    dofs = _digits_only(hand, np.vstack(frames))
+    return PoseDatabase(
+        dofs,
+        virtual_markers(hand, dofs),
+        f"the engine's alphabet spelled {len(frames)} times at 120 Hz",
+    )
+
+
+def recorded_pose_database(paths: Iterable[str | Path], side: str = "right") -> PoseDatabase:
+    """Return the poses of hand recordings (engine hand BVH or .pose), resampled to 120 Hz."""
+    hand = HandModel(side)
+    parts, names = [], []
+    for path in paths:
+        motion = read_hand_motion(path, side)
+        if not isinstance(motion.rig, HandModel):
+            raise ValueError(f"{path}: a pose database takes hand recordings.")
+        t = np.arange(len(motion.dofs_rad)) / motion.rate_hz
+        at = np.arange(0.0, t[-1] + 1e-9, 1.0 / RATE_HZ)
+        parts.append(np.column_stack([np.interp(at, t, c) for c in motion.dofs_rad.T]))
+        names.append(Path(path).name)
+    dofs = _digits_only(hand, np.vstack(parts))
+    return PoseDatabase(dofs, virtual_markers(hand, dofs), f"recordings {', '.join(names)}")

@@ -1,0 +1,167 @@
+"""Write a DOF reduction's report: seed 002 Tables 1–5, errors per DOF, a figure."""
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from synthesis.hands.reduction import (
+    SEED_STEPS,
+    Reduction,
+    apply_reduction,
+    find_reduction,
+    reconstruction_error_deg,
+)
+
+# Seed 002 Table 5: free DOFs of two hands (50 curves) after each step.
+PUBLISHED_STEPS = (39, 27, 31, 15)
+
+
+def _write_csv(path: Path, rows: list[dict], columns: list[str]) -> Path:
+    with path.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=columns)
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
+
+
+def step_rows(curves_deg: np.ndarray, names) -> list[dict]:
+    """Return Table 5's rows for these curves: DOFs and mean error after each seed step."""
+    rows = []
+    for (range_deg, rmsd), published in zip(SEED_STEPS, PUBLISHED_STEPS, strict=True):
+        reduction = find_reduction(curves_deg, names, range_deg, rmsd)
+        errors = reconstruction_error_deg(curves_deg, apply_reduction(curves_deg, reduction))
+        step = f"range < {range_deg:g}" + (f" + rmsd < {rmsd:g}" if rmsd is not None else "")
+        rows.append(
+            {
+                "step": step,
+                "dofs": reduction.dof_count,
+                "of": len(names),
+                "mean_error_deg": round(float(errors.mean()), 3),
+                "max_error_deg": round(float(errors.max()), 3),
+                "published_dofs_of_50": published,
+            }
+        )
+    return rows
+
+
+def write_reduction_report(
+    curves_deg: np.ndarray, reduction: Reduction, directory: str | Path, source: str
+) -> list[Path]:
+    """Write the reduction of *curves_deg* (the analysis curves) to *directory*.
+
+    *source* says what the motion was (a recording, the engine's spelling, simulated):
+    every table's caption repeats it, as the published figures came from captures.
+    """
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    names = reduction.names
+    reduced = apply_reduction(curves_deg, reduction)
+    errors = reconstruction_error_deg(curves_deg, reduced)
+    means = curves_deg.mean(axis=0)
+    written = [
+        _write_csv(
+            directory / "irrelevant.csv",
+            [
+                {
+                    "curve": n,
+                    "range_deg": round(reduction.ranges_deg[n], 3),
+                    "mean_deg": round(reduction.constant[n], 3),
+                }
+                for n in reduction.constant
+            ],
+            ["curve", "range_deg", "mean_deg"],
+        ),
+        _write_csv(
+            directory / "relations.csv",
+            [
+                {
+                    "dependent": r.dependent,
+                    "controlling": r.controller,
+                    "metric": r.metric,
+                    "rmsd": round(r.rmsd, 3),
+                    "pair_rmsd": round(r.pair_rmsd, 3),
+                }
+                for r in reduction.relations
+            ],
+            ["dependent", "controlling", "metric", "rmsd", "pair_rmsd"],
+        ),
+        _write_csv(
+            directory / "errors.csv",
+            [
+                {
+                    "curve": n,
+                    "role": _role(reduction, n),
+                    "mean_deg": round(float(m), 3),
+                    "range_deg": round(reduction.ranges_deg[n], 3),
+                    "rms_error_deg": round(float(e), 4),
+                }
+                for n, m, e in zip(names, means, errors, strict=True)
+            ],
+            ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"],
+        ),
+    ]
+    steps = step_rows(curves_deg, names)
+    written.append(_write_csv(directory / "steps.csv", steps, list(steps[0])))
+    summary = directory / "report.md"
+    lines = [
+        f"# DOF reduction (seed 002): range < {reduction.range_deg:g}°"
+        + (f", rmsd < {reduction.rmsd:g}" if reduction.rmsd == reduction.rmsd else ""),
+        "",
+        f"Motion: {source}. {len(curves_deg)} frames at 30 fps, {len(names)} curves. The "
+        "published figures (seed 002) come from one 27 s motion-capture performance of "
+        "two hands; figures from other motions are not comparable one to one.",
+        "",
+        f"Free DOFs: {reduction.dof_count} of {len(names)} "
+        f"({len(reduction.constant)} constant, {len(reduction.relations)} rebuilt). "
+        f"Reconstruction error: mean {errors.mean():.3f}°, largest {errors.max():.3f}° "
+        f"({names[int(np.argmax(errors))]}).",
+        "",
+        "| step | DOFs | mean error (°) | published DOFs (of 50) |",
+        "|---|---|---|---|",
+        *(
+            f"| {r['step']} | {r['dofs']} of {r['of']} | {r['mean_error_deg']} | "
+            f"{r['published_dofs_of_50']} |"
+            for r in steps
+        ),
+        "",
+    ]
+    summary.write_text("\n".join(lines), "utf-8")
+    written += [summary, _plot_steps(steps, directory / "dofs-vs-error.png", source)]
+    return written
+
+
+def _role(reduction: Reduction, name: str) -> str:
+    if name in reduction.constant:
+        return "constant"
+    for relation in reduction.relations:
+        if relation.dependent == name:
+            return f"from {relation.controller}"
+    return "free"
+
+
+def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(5.6, 3.6))
+    dofs = [r["dofs"] for r in steps]
+    error = [r["mean_error_deg"] for r in steps]
+    axes.plot(dofs, error, "o-")
+    for row in steps:
+        axes.annotate(
+            row["step"],
+            (row["dofs"], row["mean_error_deg"]),
+            fontsize=7,
+            textcoords="offset points",
+            xytext=(4, 4),
+        )
+    axes.set_xlabel("free DOFs")
+    axes.set_ylabel("mean reconstruction error (°)")
+    axes.set_title(f"DOF count vs reconstruction error\n{source}", fontsize=9)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+    return path

@@ -1,0 +1,115 @@
+"""Golden tests of seed 000 ch. 3: marker ranking (Alg. 2), the exhaustive search (Alg. 1),
+the cone filter, LWR weights, and reconstruction from 3 and 6 markers.
+
+Data: the engine's alphabet as the pose database (as seed 000's ASL database was two
+runs of the alphabet) and the engine's spelling of a word as the test motion.
+"""
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from synthesis.hands.handover import builtin_pose_database, reconstruct_hand
+from synthesis.hands.markers import (
+    MARKERS,
+    marker_influence,
+    rank_markers,
+    search_marker_sets,
+    virtual_markers,
+)
+from synthesis.hands.motion import digit_columns
+from synthesis.hands.reconstruct import (
+    cone_filter,
+    cone_kernel,
+    filter_samples,
+    lwr_weights,
+    marker_error_cm,
+)
+from synthesis.rigs.hand import HandModel
+from synthesis.techniques import ClipRequest, build_motion
+
+
+def test_marker_influence_by_hand():
+    """Alg. 2 for 2 markers (6 rows) and 2 components, computed by hand."""
+    coefficients = np.array(
+        [[0.5, -0.1], [0.5, 0.2], [0.0, 0.0], [-0.5, 0.7], [0.1, -0.6], [0.5, 0.3]]
+    )
+    values = np.array([4.0, 1.0])
+    # marker 0: |0.5·4| + |−0.1·1| + |0.5·4| + |0.2·1| + 0 + 0 = 4.3
+    # marker 1: |−0.5·4| + |0.7| + |0.1·4| + |−0.6| + |0.5·4| + |0.3| = 6.0
+    np.testing.assert_allclose(marker_influence(coefficients, values), [4.3, 6.0])
+
+
+def test_the_marker_that_moves_most_ranks_first_and_sets_nest():
+    rng = np.random.default_rng(0)
+    markers = np.zeros((200, 4, 3))
+    markers[:, 2] = rng.normal(0, 0.05, (200, 3))  # moves most
+    markers[:, 0] = rng.normal(0, 0.02, (200, 3))
+    markers[:, 1] = rng.normal(0, 0.001, (200, 3))
+    markers[:, 3] = rng.normal(0, 0.01, (200, 3))
+    order, influence = rank_markers(markers)
+    assert list(order) == [2, 0, 3, 1]
+    assert influence[2] > influence[0] > influence[3] > influence[1]
+
+
+def test_cone_filter_matches_its_definition():
+    np.testing.assert_allclose(cone_kernel(5), np.array([1, 2, 3, 2, 1]) / 9)
+    assert cone_kernel(17).sum() == pytest.approx(1) and cone_kernel(17)[8] == cone_kernel(17).max()
+    impulse = np.zeros(31)
+    impulse[15] = 1
+    np.testing.assert_allclose(cone_filter(impulse, 7)[12:19], cone_kernel(7))
+    np.testing.assert_allclose(cone_filter(np.full(20, 3.0), 15), 3.0)  # keeps a constant
+    assert filter_samples(17, 120) == 17 and filter_samples(17, 60) == 9
+    with pytest.raises(ValueError, match="odd number"):
+        cone_kernel(4)
+
+
+def test_lwr_weights_are_inverse_distances():
+    samples = np.array([[0.0, 0.0], [3.0, 4.0], [0.0, 2.0]])
+    np.testing.assert_allclose(lwr_weights(np.zeros(2), samples[1:]), [1 / 5, 1 / 2])
+    assert lwr_weights(np.zeros(2), samples[:1])[0] > 1e8  # a sample on the query dominates
+
+
+def test_exhaustive_search_scores_every_set():
+    rng = np.random.default_rng(1)
+    database = rng.normal(size=(40, 5, 3))
+    test = database[:10] + rng.normal(0, 0.01, (10, 5, 3))
+    results = search_marker_sets(2, database, test)
+    assert len(results) == math.comb(5, 2)
+    assert [e for _, e in results] == sorted(e for _, e in results)
+    assert {s for s, _ in results} == set(itertools.combinations(range(5), 2))
+    assert results[0][1] < 0.05  # the right poses are found from 2 markers
+
+
+@pytest.fixture(scope="module")
+def heaven():
+    from synthesis.fingerspelling.spelling import spell
+
+    return spell("HEAVEN", "right", 120.0)
+
+
+def test_six_markers_reconstruct_better_than_three(heaven):
+    """Seed 000 Table 3.1 reports 0.62–1.2 cm; on the engine's letters, under 1 cm."""
+    hand = HandModel("right")
+    truth = virtual_markers(hand, heaven)
+    errors = {}
+    for method in ("lwr", "nearest"):
+        for markers in (3, 6):
+            rebuilt = reconstruct_hand(heaven, "right", 120.0, markers, method)
+            errors[method, markers] = marker_error_cm(truth, virtual_markers(hand, rebuilt))[0]
+            columns, _ = digit_columns(hand)
+            others = np.setdiff1d(np.arange(heaven.shape[1]), columns)
+            np.testing.assert_array_equal(rebuilt[:, others], heaven[:, others])
+    assert errors["lwr", 6] < errors["lwr", 3] < 1.5
+    assert errors["nearest", 6] < 1.0
+    database = builtin_pose_database("right")
+    assert "alphabet" in database.source and database.markers.shape[1:] == (len(MARKERS), 3)
+
+
+def test_the_reconstructed_hand_is_a_technique():
+    full = build_motion(ClipRequest("word", "CAB")).motion
+    rebuilt = build_motion(ClipRequest("word", "CAB", {"hand": "reconstructed"})).motion
+    assert rebuilt.shape == full.shape and not np.array_equal(rebuilt, full)
+    assert np.degrees(np.sqrt(np.mean((rebuilt - full) ** 2))) < 20
