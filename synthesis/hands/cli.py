@@ -3,6 +3,8 @@
     python -m synthesis.hands reduce motion.bvh --range-deg 5 --rmsd 0.5 \
         --out reduced.bvh --report dir/
     python -m synthesis.hands reduce --spell HEAVEN --out reduced.bvh --report dir/
+    python -m synthesis.hands reconstruct --spell HEAVEN --markers 3 --method lwr \
+        --out rebuilt.bvh --report dir/
 
 A motion is a BVH of the engine's hand or body, or a captured .pose file; --spell uses
 the engine's own fingerspelling of a word (at 30 fps, both as the seed analysed).
@@ -57,6 +59,34 @@ def _reduce(args: argparse.Namespace) -> int:
     return 0
 
 
+def _reconstruct(args: argparse.Namespace) -> int:
+    from synthesis.hands.report import write_reconstruction_report
+    from synthesis.skeleton.bvh import write_bvh
+
+    if bool(args.motion) == bool(args.spell):
+        raise HandMotionError("Give a motion file or --spell WORD (one of them).")
+    if args.spell:
+        from synthesis.fingerspelling.spelling import spell
+        from synthesis.rigs.hand import HandModel
+
+        motion = from_dofs(HandModel(args.side), spell(args.spell, args.side, 120.0), 120.0)
+        source = f"the engine's spelling of {args.spell} at 120 Hz"
+    else:
+        motion, source = read_hand_motion(args.motion, args.side), str(args.motion)
+    from synthesis.hands.handover import reconstruct_motion
+
+    rebuilt = reconstruct_motion(
+        motion.rig, motion.dofs_rad, motion.rate_hz, args.markers, args.method
+    )
+    if args.out:
+        write_bvh(motion.rig.as_motion(rebuilt, motion.rate_hz), args.out)
+        print(f"wrote {args.out}")
+    if args.report:
+        for path in write_reconstruction_report(motion, args.method, args.report, source):
+            print(f"wrote {path}")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """Return the argument parser of ``python -m synthesis.hands``."""
     root = argparse.ArgumentParser(
@@ -82,6 +112,24 @@ def parser() -> argparse.ArgumentParser:
     reduce.add_argument("--out", type=Path, help="the reduced motion (BVH)")
     reduce.add_argument("--report", type=Path, help="a directory for the tables and figure")
     reduce.set_defaults(run=_reduce)
+    rebuild = commands.add_parser("reconstruct", help="seed 000's full hand from sparse markers")
+    rebuild.add_argument("motion", nargs="?", type=Path)
+    rebuild.add_argument("--spell", metavar="WORD", help="rebuild the engine's spelling of WORD")
+    rebuild.add_argument("--side", choices=("right", "left"), default="right")
+    rebuild.add_argument(
+        "--markers",
+        type=int,
+        default=3,
+        choices=range(1, 14),
+        metavar="M",
+        help="how many markers are kept (1–13; seed 000: 3 and 6)",
+    )
+    rebuild.add_argument("--method", choices=("lwr", "nearest"), default="lwr")
+    rebuild.add_argument("--out", type=Path, help="the rebuilt motion (BVH)")
+    rebuild.add_argument(
+        "--report", type=Path, help="a directory for the marker ranking and errors by marker count"
+    )
+    rebuild.set_defaults(run=_reconstruct)
     return root
 
 

@@ -165,3 +165,62 @@ def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
     figure.savefig(path, dpi=120)
     plt.close(figure)
     return path
+
+
+def write_reconstruction_report(
+    motion, method: str, directory: str | Path, source: str
+) -> list[Path]:
+    """Write the marker ranking and the error by marker count (1–13) of reconstructing
+    *motion*'s hands, and a figure of marker count against error."""
+    from synthesis.hands.handover import builtin_pose_database, reconstruct_hand
+    from synthesis.hands.markers import MARKERS, rank_markers, virtual_markers
+    from synthesis.hands.reconstruct import marker_error_cm
+    from synthesis.rigs.hand import HandModel
+
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    side = getattr(motion.rig, "side", "right")
+    if not isinstance(motion.rig, HandModel):
+        raise ValueError("The reconstruction report takes a hand motion (not the body).")
+    database = builtin_pose_database(side)
+    order, influence = rank_markers(database.markers)
+    ranking = [
+        {"rank": k + 1, "marker": MARKERS[i], "influence": round(float(influence[i]), 6)}
+        for k, i in enumerate(order)
+    ]
+    hand = HandModel(side)
+    truth = virtual_markers(hand, motion.dofs_rad)
+    rows = []
+    for count in range(1, len(MARKERS) + 1):
+        rebuilt = reconstruct_hand(motion.dofs_rad, side, motion.rate_hz, count, method)
+        error, spread = marker_error_cm(truth, virtual_markers(hand, rebuilt))
+        rows.append(
+            {
+                "markers": count,
+                "method": method,
+                "error_cm": round(error, 3),
+                "sd_cm": round(spread, 3),
+            }
+        )
+    written = [
+        _write_csv(directory / "marker-ranking.csv", ranking, ["rank", "marker", "influence"]),
+        _write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
+    ]
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(5.6, 3.6))
+    axes.plot([r["markers"] for r in rows], [r["error_cm"] for r in rows], "o-")
+    axes.set_xlabel("markers kept (PCA rank order)")
+    axes.set_ylabel("mean marker error (cm)")
+    axes.set_title(
+        f"Marker count vs reconstruction error ({method})\n{source}; database: {database.source}",
+        fontsize=8,
+    )
+    figure.tight_layout()
+    figure.savefig(directory / "markers-vs-error.png", dpi=120)
+    plt.close(figure)
+    written.append(directory / "markers-vs-error.png")
+    return written

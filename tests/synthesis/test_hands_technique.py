@@ -78,3 +78,31 @@ def test_bad_motions_are_named(tmp_path, capsys):
     assert "a .bvh or a .pose file" in capsys.readouterr().err
     assert main(["reduce"]) == 2
     assert "--spell WORD" in capsys.readouterr().err
+
+
+def test_reconstruct_command_ranks_markers_and_reports_errors_by_count(tmp_path, capsys):
+    out, report = tmp_path / "rebuilt.bvh", tmp_path / "report"
+    assert (
+        main(
+            [
+                "reconstruct",
+                "--spell",
+                "CAB",
+                "--markers",
+                "3",
+                "--out",
+                str(out),
+                "--report",
+                str(report),
+            ]
+        )
+        == 0
+    )
+    assert read_hand_motion(out).rate_hz == pytest.approx(120.0)
+    with (report / "marker-ranking.csv").open() as handle:
+        ranking = list(csv.DictReader(handle))
+    assert len(ranking) == 13 and ranking[0]["marker"].endswith("_tip")
+    with (report / "errors-by-markers.csv").open() as handle:
+        errors = [float(row["error_cm"]) for row in csv.DictReader(handle)]
+    assert len(errors) == 13 and errors[-1] < errors[0]
+    assert (report / "markers-vs-error.png").stat().st_size > 1000
