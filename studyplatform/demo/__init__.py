@@ -2,6 +2,7 @@
 
 from studyplatform.demo.alphabet import alphabet_legibility_study, attach_human_letters
 from studyplatform.demo.fingerspelling import fingerspelling_timing_study
+from studyplatform.demo.hands import hands_study
 from studyplatform.demo.spine import spine_study
 from studyplatform.demo.transitions import transitions_study
 
@@ -10,6 +11,7 @@ DEMO_STUDIES = (
     spine_study,
     alphabet_legibility_study,
     transitions_study,
+    hands_study,
 )
 # What a demo study needs besides its definition, by slug: recordings to attach.
 DEMO_SETUP = {"alphabet-legibility": attach_human_letters}
@@ -20,6 +22,7 @@ __all__ = [
     "alphabet_legibility_study",
     "attach_human_letters",
     "fingerspelling_timing_study",
+    "hands_study",
     "spine_study",
     "transitions_study",
 ]

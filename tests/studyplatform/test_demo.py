@@ -34,7 +34,7 @@ def test_seeding_again_changes_nothing_and_prints_the_same_login(seeded, capsys)
     counts = Study.objects.count()
     call_command("seed_demo")
     again = capsys.readouterr().out
-    assert Study.objects.count() == counts == 4
+    assert Study.objects.count() == counts == 5
     assert Recording.objects.count() == 9  # the alphabet study's human letters, once
     assert re.search(r"Password:\s+(\S+)", again).group(1) == re.search(
         r"Password:\s+(\S+)", seeded

@@ -11,8 +11,6 @@ intelligibility scores, which match what was typed and clicked.
 
 import csv
 import io
-import zipfile
-from pathlib import Path
 
 import pytest
 from playwright.sync_api import expect
@@ -21,8 +19,8 @@ from analysis.intelligibility import word_accuracy
 from studyplatform.actions import do_import_study
 from studyplatform.demo import transitions_study
 from studyplatform.lib import presented_conditions
-from studyplatform.models import Participant, Stimulus, Trial
-from tests.conftest import close_context
+from studyplatform.models import Stimulus, Trial
+from tests.studyplatform.taking import download_report, generate_and_open, sign_in_at, take_study
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
@@ -36,43 +34,23 @@ def _small(definition: dict) -> dict:
     return definition
 
 
-def _take(browser, url: str, slug: str) -> tuple[Participant, dict, dict]:
-    """Take the study; return the participant, the rating per page and the typed answers."""
-    context = browser.new_context(bypass_csp=True)
-    ratings, typed = {}, {}
-    try:
-        page = context.new_page()
-        page.goto(f"{url}/s/{slug}/")
-        page.get_by_role("button", name="Continue (I agree to take part)").click()
-        while True:
-            page.wait_for_selector("#page-form.ready")
-            form = page.locator("#page-form")
-            number, key = int(form.get_attribute("data-page")), form.get_attribute("data-trial")
-            if page.locator('[name="q-asl-fluency"]').count():
-                page.locator('input[name="q-asl-fluency"][value="2"]').check()
-            elif page.locator('[name="q-saying"]').count():
-                item = Trial.objects.get(study__slug=slug, key=key).item.key
-                page.locator('[name="q-saying"]').fill(TYPED[item])
-                page.locator('[name="q-saying"]').press("Tab")
-                typed[key] = TYPED[item]
-            else:
-                rating = 3 if key.startswith("attention") else 1 + number % 5
-                page.locator(f'input[name="q-compare-transitions"][value="{rating}"]').check()
-                ratings[key] = rating
-            page.get_by_text("Answer saved.").wait_for()
-            button = page.locator("#next-button")
-            finishing = button.text_content().strip() == "Finish"
-            button.click()
-            if finishing:
-                break
-            page.wait_for_function(
-                f"document.getElementById('page-form').dataset.page !== '{number}'"
-            )
-        page.get_by_text("Thank you", exact=True).wait_for()
-    finally:
-        close_context(context)
-    participant = Participant.objects.filter(study__slug=slug).order_by("-pk").first()
-    return participant, ratings, typed
+def _answer(slug: str):
+    """Answer as a participant who types what is signed and rates pairs 1–5 in turn."""
+
+    def answer(page, key: str, number: int):
+        if page.locator('[name="q-asl-fluency"]').count():
+            page.locator('input[name="q-asl-fluency"][value="2"]').check()
+            return None
+        if page.locator('[name="q-saying"]').count():
+            item = Trial.objects.get(study__slug=slug, key=key).item.key
+            page.locator('[name="q-saying"]').fill(TYPED[item])
+            page.locator('[name="q-saying"]').press("Tab")
+            return TYPED[item]
+        rating = 3 if key.startswith("attention") else 1 + number % 5
+        page.locator(f'input[name="q-compare-transitions"][value="{rating}"]').check()
+        return rating
+
+    return answer
 
 
 def test_the_transition_study_renders_from_the_admin_is_taken_and_reported(
@@ -81,32 +59,18 @@ def test_the_transition_study_renders_from_the_admin_is_taken_and_reported(
     settings.MEDIA_ROOT = tmp_path
     study = do_import_study(_small(transitions_study()), owner=alice, status="draft").study
     url = live_server.url
-    page.goto(f"{url}/admin/login/?next=/admin/studyplatform/study/{study.pk}/change/")
-    page.get_by_label("Username").fill("alice")
-    page.get_by_label("Password").fill("pw-alice")
-    page.get_by_role("button", name="Log in").click()
+    sign_in_at(page, url, f"/admin/studyplatform/study/{study.pk}/change/")
     expect(page.get_by_text("Inter-sign transitions: data-driven Hermite").first).to_be_visible()
-
-    page.get_by_role("link", name="Generate stimuli").first.click()
-    page.get_by_role("button", name="Generate stimuli").click()
-    expect(page.locator("#stimuli-percent")).to_have_text("100", timeout=300_000)
-    expect(page.locator("#stimuli-failed")).to_have_text("0")
+    generate_and_open(page, url, study)
     assert Stimulus.objects.filter(condition__study=study, status="ready").count() == 8
-
-    page.goto(f"{url}/admin/studyplatform/study/{study.pk}/change/")
-    page.locator("#id_status").select_option("open")
-    page.get_by_role("button", name="Save and continue editing").click()
-    expect(page.locator(".messagelist .success")).to_be_visible()
-    participant, ratings, typed = _take(browser, url, study.slug)
+    participant, answers = take_study(browser, url, study.slug, _answer(study.slug))
+    ratings = {k: v for k, v in answers.items() if isinstance(v, int)}
+    typed = {k: v for k, v in answers.items() if isinstance(v, str)}
     assert participant.is_finished and len(ratings) == 13 and len(typed) == 2
 
-    page.goto(f"{url}/admin/studyplatform/study/{study.pk}/change/")
-    page.locator(".object-tools").get_by_role("link", name="Results").click()
+    archive = download_report(page, url, study)
     expect(page.get_by_role("heading", name="Comparative scale")).to_be_visible()
     expect(page.get_by_role("heading", name="Intelligibility")).to_be_visible()
-    with page.expect_download() as download:
-        page.get_by_role("link", name="report (zip)").click()
-    archive = zipfile.ZipFile(io.BytesIO(Path(download.value.path()).read_bytes()))
 
     # What the participant did, by pair of models: preference in points for the first.
     # The report names conditions by key, simulated ones so labelled, in alphabetical order.

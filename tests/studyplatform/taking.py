@@ -1,0 +1,74 @@
+"""Take a study in Chromium as a participant, page by page, answering as a test says."""
+
+from collections.abc import Callable
+
+from studyplatform.models import Participant
+from tests.conftest import close_context
+
+
+def take_study(browser, url: str, slug: str, answer: Callable) -> tuple[Participant, dict]:
+    """Take the study at /s/*slug*/ to its end; return the participant and the answers.
+
+    *answer(page, trial_key, page_number)* fills the page's answers and returns what it
+    chose (kept by trial key); the helper waits for "Answer saved." and goes on.
+    """
+    context = browser.new_context(bypass_csp=True)
+    answers = {}
+    try:
+        page = context.new_page()
+        page.goto(f"{url}/s/{slug}/")
+        page.get_by_role("button", name="Continue (I agree to take part)").click()
+        while True:
+            page.wait_for_selector("#page-form.ready")
+            form = page.locator("#page-form")
+            number, key = int(form.get_attribute("data-page")), form.get_attribute("data-trial")
+            answers[key] = answer(page, key, number)
+            page.get_by_text("Answer saved.").wait_for()
+            button = page.locator("#next-button")
+            finishing = button.text_content().strip() == "Finish"
+            button.click()
+            if finishing:
+                break
+            page.wait_for_function(
+                f"document.getElementById('page-form').dataset.page !== '{number}'"
+            )
+        page.get_by_text("Thank you", exact=True).wait_for()
+    finally:
+        close_context(context)
+    return Participant.objects.filter(study__slug=slug).order_by("-pk").first(), answers
+
+
+def sign_in_at(page, url: str, path: str) -> None:
+    """Sign in as alice and land on *path*."""
+    page.goto(f"{url}/admin/login/?next={path}")
+    page.get_by_label("Username").fill("alice")
+    page.get_by_label("Password").fill("pw-alice")
+    page.get_by_role("button", name="Log in").click()
+
+
+def generate_and_open(page, url: str, study) -> None:
+    """Generate the study's clips from its admin page, wait for them, and open it."""
+    from playwright.sync_api import expect
+
+    page.goto(f"{url}/admin/studyplatform/study/{study.pk}/change/")
+    page.get_by_role("link", name="Generate stimuli").first.click()
+    page.get_by_role("button", name="Generate stimuli").click()
+    expect(page.locator("#stimuli-percent")).to_have_text("100", timeout=300_000)
+    expect(page.locator("#stimuli-failed")).to_have_text("0")
+    page.goto(f"{url}/admin/studyplatform/study/{study.pk}/change/")
+    page.locator("#id_status").select_option("open")
+    page.get_by_role("button", name="Save and continue editing").click()
+    expect(page.locator(".messagelist .success")).to_be_visible()
+
+
+def download_report(page, url: str, study):
+    """Open the study's results page and return its report zip (a ZipFile)."""
+    import io
+    import zipfile
+    from pathlib import Path
+
+    page.goto(f"{url}/admin/studyplatform/study/{study.pk}/change/")
+    page.locator(".object-tools").get_by_role("link", name="Results").click()
+    with page.expect_download() as download:
+        page.get_by_role("link", name="report (zip)").click()
+    return zipfile.ZipFile(io.BytesIO(Path(download.value.path()).read_bytes()))
