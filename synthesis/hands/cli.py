@@ -5,6 +5,7 @@
     python -m synthesis.hands reduce --spell HEAVEN --out reduced.bvh --report dir/
     python -m synthesis.hands reconstruct --spell HEAVEN --markers 3 --method lwr \
         --out rebuilt.bvh --report dir/
+    python -m synthesis.hands markers --out dir/   # Table 3.1 and Alg. 1 vs Alg. 2
 
 A motion is a BVH of the engine's hand or body, or a captured .pose file; --spell uses
 the engine's own fingerspelling of a word (at 30 fps, both as the seed analysed).
@@ -87,6 +88,34 @@ def _reconstruct(args: argparse.Namespace) -> int:
     return 0
 
 
+def _markers(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from synthesis.fingerspelling.spelling import spell
+    from synthesis.hands.evaluation import compare_marker_choices, table_3_1
+    from synthesis.hands.handover import builtin_pose_database
+    from synthesis.hands.report import write_csv
+    from synthesis.rigs.hand import HandModel
+
+    hand = HandModel(args.side)
+    test = np.vstack([spell(word, args.side, 120.0) for word in args.words])
+    database = builtin_pose_database(args.side)
+    print(f"database: {database.source}; test: the engine's spelling of {', '.join(args.words)}")
+    rows = table_3_1(database, hand, test, 120.0, np.random.default_rng(args.seed))
+    for row in rows:
+        print(
+            f"p = {row['poses']:4d}, m = {row['markers']:2d}: {row['error_cm']:.2f} cm "
+            f"(s.d. {row['sd_cm']:.2f}); published {row['published_cm']} cm"
+        )
+    choices = compare_marker_choices(database, hand, test, np.random.default_rng(args.seed))
+    for row in choices:
+        print(f"m = {row['markers']}, {row['method']}: {row['set']} — {row['error_cm']:.2f} cm")
+    args.out.mkdir(parents=True, exist_ok=True)
+    print(f"wrote {write_csv(args.out / 'table-3-1.csv', rows)}")
+    print(f"wrote {write_csv(args.out / 'marker-sets.csv', choices)}")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """Return the argument parser of ``python -m synthesis.hands``."""
     root = argparse.ArgumentParser(
@@ -130,6 +159,12 @@ def parser() -> argparse.ArgumentParser:
         "--report", type=Path, help="a directory for the marker ranking and errors by marker count"
     )
     rebuild.set_defaults(run=_reconstruct)
+    markers = commands.add_parser("markers", help="Table 3.1 and the marker-set choices")
+    markers.add_argument("--out", type=Path, required=True)
+    markers.add_argument("--words", nargs="+", default=["GIRL", "WALK", "HELLO"])
+    markers.add_argument("--side", choices=("right", "left"), default="right")
+    markers.add_argument("--seed", type=int, default=0)
+    markers.set_defaults(run=_markers)
     return root
 
 

@@ -31,12 +31,14 @@ def builtin_pose_database(side: str) -> PoseDatabase:
     """Return the engine's alphabet pose database for *side*, from the disk cache when kept."""
 
     def encode(database: PoseDatabase) -> dict[str, np.ndarray]:
-        return {"dofs": database.dofs_rad, "markers": database.markers}
+        return {
+            "dofs": database.dofs_rad,
+            "markers": database.markers,
+            "source": np.array(database.source),
+        }
 
     def decode(arrays: dict[str, np.ndarray]) -> PoseDatabase:
-        return PoseDatabase(
-            arrays["dofs"], arrays["markers"], "the engine's alphabet spelled 2 times at 120 Hz"
-        )
+        return PoseDatabase(arrays["dofs"], arrays["markers"], str(arrays["source"]))
 
     return cached(
         f"hand-poses-{side}", ("numpy", "scipy"), lambda: engine_pose_database(side), encode, decode

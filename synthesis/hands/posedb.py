@@ -30,25 +30,47 @@ def _digits_only(hand: HandModel, dofs_rad: np.ndarray) -> np.ndarray:
     return out
 
 
-def engine_pose_database(side: str = "right", runs: Iterable[float] = (1.0, 1.6)) -> PoseDatabase:
-    """Return the alphabet spelled once per speed factor in *runs* (1 = the engine's own)."""
+def engine_pose_database(
+    side: str = "right",
+    runs: Iterable[float] = (1.0, 1.6),
+    words: Iterable[str] = (),
+    simulated: int = 0,
+) -> PoseDatabase:
+    """Return the engine's poses: the alphabet and *words* spelled once per speed factor in
+    *runs* (1 = the engine's own pace), plus *simulated* simulated captures of each word
+    (seed 000 §4.3's stand-in: sampled timing and capture noise), all at 120 Hz."""
     from synthesis.fingerspelling.spelling import simple_timing, spell
 
     hand = HandModel(side)
-    frames = []
-    for factor in runs:
-        timing = simple_timing(ALPHABET)
-        slower = replace(
-            timing,
-            hold_ms=tuple(h * factor for h in timing.hold_ms),
-            transition_ms=tuple(t * factor for t in timing.transition_ms),
-        )
-        frames.append(spell(ALPHABET, side, RATE_HZ, timing=slower))
+    frames, parts = (
+        [],
+        [
+            f"alphabet{' and ' + ', '.join(words) if words else ''} "
+            f"spelled at {len(tuple(runs))} speeds"
+        ],
+    )
+    for text in (ALPHABET, *words):
+        for factor in runs:
+            timing = simple_timing(text)
+            slower = replace(
+                timing,
+                hold_ms=tuple(h * factor for h in timing.hold_ms),
+                transition_ms=tuple(t * factor for t in timing.transition_ms),
+            )
+            frames.append(spell(text, side, RATE_HZ, timing=slower))
+    if simulated:
+        from synthesis.timing.recordings import Recording
+
+        for word in words:
+            for seed in range(simulated):
+                capture = Recording.simulate(word, seed, side=side, rate_hz=RATE_HZ)
+                frames.append(hand.dofs_from_motion(capture.motion))
+        parts.append(f"{simulated} simulated captures of each word")
     dofs = _digits_only(hand, np.vstack(frames))
     return PoseDatabase(
         dofs,
         virtual_markers(hand, dofs),
-        f"the engine's alphabet spelled {len(frames)} times at 120 Hz",
+        f"the engine's {' and '.join(parts)}, {len(dofs)} poses at 120 Hz",
     )
 
 

@@ -17,6 +17,11 @@ from synthesis.hands.reduction import (
 PUBLISHED_STEPS = (39, 27, 31, 15)
 
 
+def write_csv(path: Path, rows: list[dict], columns: list[str] | None = None) -> Path:
+    """Write *rows* to *path* as CSV (columns: the first row's keys by default)."""
+    return _write_csv(path, rows, columns or list(rows[0]))
+
+
 def _write_csv(path: Path, rows: list[dict], columns: list[str]) -> Path:
     with path.open("w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=columns)

@@ -113,3 +113,29 @@ def test_the_reconstructed_hand_is_a_technique():
     rebuilt = build_motion(ClipRequest("word", "CAB", {"hand": "reconstructed"})).motion
     assert rebuilt.shape == full.shape and not np.array_equal(rebuilt, full)
     assert np.degrees(np.sqrt(np.mean((rebuilt - full) ** 2))) < 20
+
+
+def test_table_3_1_and_the_marker_choices_command(tmp_path, capsys):
+    import csv
+
+    from synthesis.hands.cli import main
+
+    assert main(["markers", "--out", str(tmp_path), "--words", "CAB"]) == 0
+    out = capsys.readouterr().out
+    assert "database: the engine's alphabet" in out and "published 0.62 cm" in out
+    with (tmp_path / "table-3-1.csv").open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert [(int(r["poses"]), int(r["markers"])) for r in rows][:4] == [
+        (50, 2),
+        (50, 4),
+        (50, 6),
+        (50, 13),
+    ]
+    full = [float(r["error_cm"]) for r in rows if r["markers"] == "13"]
+    two = [float(r["error_cm"]) for r in rows if r["markers"] == "2"]
+    assert all(f <= t for f, t in zip(full, two, strict=True))  # more markers, less error
+    with (tmp_path / "marker-sets.csv").open() as handle:
+        choices = list(csv.DictReader(handle))
+    searched = {r["markers"]: float(r["error_cm"]) for r in choices if "exhaustive" in r["method"]}
+    ranked = {r["markers"]: float(r["error_cm"]) for r in choices if "PCA" in r["method"]}
+    assert all(searched[m] <= ranked[m] for m in searched)  # the search is the optimum
