@@ -11,12 +11,12 @@ figures, asserts nothing. Uses a throwaway test database (SQLite unless DATABASE
 
 import argparse
 import os
-import statistics
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 os.environ.setdefault("DJANGO_SETTINGS_MODULE", "studyplatform.settings")
 
 import django
@@ -25,18 +25,9 @@ django.setup()
 
 from django.contrib.auth import get_user_model  # noqa: E402  (needs django.setup())
 from django.db import connection  # noqa: E402
+from machine import timed_ms  # noqa: E402
 
 WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
-
-
-def timed_ms(function, repeat: int = 5) -> tuple[float, object]:
-    """Return the median time of *repeat* calls in ms, and the last result."""
-    times, result = [], None
-    for _ in range(repeat):
-        started = time.perf_counter()
-        result = function()
-        times.append((time.perf_counter() - started) * 1000)
-    return statistics.median(times), result
 
 
 def _events(participant, study) -> list:

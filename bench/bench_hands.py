@@ -8,14 +8,16 @@ repeated to 60 s (no two-hand capture ships). Prints figures, asserts nothing:
     .venv/bin/python bench/bench_hands.py
 """
 
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import machine
+from machine import timed_ms
 
 from synthesis.fingerspelling.spelling import spell
 from synthesis.hands import (
@@ -34,16 +36,6 @@ from synthesis.signing.sentence import SentenceOptions, synthesize
 from synthesis.signing.stories import SPINE_STORY
 
 
-def timed_ms(function, repeat: int = 3):
-    """Return the median time of *repeat* calls in ms, and the last result."""
-    times, result = [], None
-    for _ in range(repeat):
-        started = time.perf_counter()
-        result = function()
-        times.append((time.perf_counter() - started) * 1000)
-    return statistics.median(times), result
-
-
 def two_hands_60_s():
     """Return 60 s of the engine's two-handed signing at 30 fps, as a hand motion."""
     parts = [synthesize(text, SentenceOptions(rate_hz=30.0)) for text in SPINE_STORY]
@@ -54,6 +46,7 @@ def two_hands_60_s():
 
 
 def main() -> int:
+    print(machine.describe())
     motion = two_hands_60_s()
     curves = motion.curves_deg()
     for range_deg, rmsd in ((1.0, 0.3), (5.0, 0.5)):

@@ -8,12 +8,14 @@ asserts nothing:
     .venv/bin/python bench/bench_transitions.py
 """
 
-import statistics
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import machine
+from machine import timed_ms
 
 from synthesis.signing.sentence import SentenceOptions, synthesize
 from synthesis.transitions import (
@@ -29,17 +31,8 @@ from synthesis.transitions.sentence import retransition
 TEN_SIGNS = "BUT SURPRISE MY BROTHER GET NEW BLUE COLOR FINALLY HAPPY"
 
 
-def timed_ms(function, repeat: int = 5):
-    """Return the median time of *repeat* calls in ms, and the last result."""
-    times, result = [], None
-    for _ in range(repeat):
-        started = time.perf_counter()
-        result = function()
-        times.append((time.perf_counter() - started) * 1000)
-    return statistics.median(times), result
-
-
 def main() -> int:
+    print(machine.describe())
     recordings = simulated_captures(signers=4, sentences=6, seed=0)
     cuts = [cut for recording in recordings for cut in cut_transitions(recording, 5.0)][:100]
     build_ms, _entries = timed_ms(lambda: [entry_from_cut(c) for c in cuts], repeat=3)

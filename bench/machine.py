@@ -6,6 +6,7 @@ machine from slower code.
 """
 
 import os
+import statistics
 import time
 
 import numpy as np
@@ -34,3 +35,13 @@ def describe() -> str:
         f"machine: {os.cpu_count()} cores, load average {load}, "
         f"baseline workload {baseline_ms():.0f} ms (fixed Python + numpy; lower is faster)"
     )
+
+
+def timed_ms(function, repeat: int = 5) -> tuple[float, object]:
+    """Return the median time of *repeat* calls of *function* in ms, and its last result."""
+    times, result = [], None
+    for _ in range(repeat):
+        started = time.perf_counter()
+        result = function()
+        times.append((time.perf_counter() - started) * 1000)
+    return statistics.median(times), result

@@ -33,3 +33,25 @@ def scale(labels: list[str]) -> list[dict[str, Any]]:
 def likert5(low: str, high: str) -> list[dict[str, Any]]:
     """Return a 5-point scale labelled only at its ends (seed 003 Table 2)."""
     return scale([low, "", "", "", high])
+
+
+def asl_fluency() -> dict[str, Any]:
+    """Return the demographic question on ASL fluency the newer demos ask first."""
+    return {
+        "key": "asl-fluency",
+        "kind": "choice",
+        "text": "How fluent are you in ASL?",
+        "options": scale(["Native or primary language", "Fluent", "Somewhat fluent", "Not fluent"]),
+    }
+
+
+def about_you() -> tuple[dict[str, Any], dict[str, Any]]:
+    """Return the "About you" block and its page, which asks :func:`asl_fluency`."""
+    block = {"key": "about-you", "kind": "demographics", "title": "About you"}
+    page = {
+        "key": "about-you",
+        "block": "about-you",
+        "kind": "demographic",
+        "questions": ["asl-fluency"],
+    }
+    return block, page

@@ -8,7 +8,7 @@ which word is spelled (scored automatically); part 2 compares the hands in pairs
 from typing import Any
 
 from stimuli import balanced_pair_assignment
-from studyplatform.demo.common import definition, numbered, scale
+from studyplatform.demo.common import about_you, asl_fluency, definition, numbered
 
 SLUG = "hand-dimensionality"
 WORDS = ("CAB", "HIKE")
@@ -44,16 +44,10 @@ CONDITIONS = (
 
 def hands_study() -> dict[str, Any]:
     """Return the definition of the 3 hands × 2 words study."""
+    block, page = about_you()
     questions = numbered(
         [
-            {
-                "key": "asl-fluency",
-                "kind": "choice",
-                "text": "How fluent are you in ASL?",
-                "options": scale(
-                    ["Native or primary language", "Fluent", "Somewhat fluent", "Not fluent"]
-                ),
-            },
+            asl_fluency(),
             {
                 "key": "which-word",
                 "kind": "intelligibility",
@@ -65,7 +59,7 @@ def hands_study() -> dict[str, Any]:
     )
     blocks = numbered(
         [
-            {"key": "about-you", "kind": "demographics", "title": "About you"},
+            block,
             {"key": "reading", "kind": "trials", "title": "Part 1: which word?"},
             {
                 "key": "comparisons",
@@ -76,14 +70,7 @@ def hands_study() -> dict[str, Any]:
         ]
     )
     keys = [condition["key"] for condition in CONDITIONS]
-    trials = [
-        {
-            "key": "about-you",
-            "block": "about-you",
-            "kind": "demographic",
-            "questions": ["asl-fluency"],
-        }
-    ]
+    trials = [page]
     # Each participant reads each word once; the rotation moves the conditions on.
     for index, word in enumerate(WORDS):
         trials.append(

@@ -10,7 +10,7 @@ with blending.
 from typing import Any
 
 from stimuli import attention_checks, balanced_pair_assignment
-from studyplatform.demo.common import definition, numbered, scale
+from studyplatform.demo.common import about_you, asl_fluency, definition, numbered, scale
 
 SLUG = "sign-transitions"
 # Two sign pairs whose arms travel far between the signs (the simulated database's
@@ -59,16 +59,10 @@ CONDITIONS = (
 
 def transitions_study() -> dict[str, Any]:
     """Return the definition of the 4 transition models × 2 sign pairs study."""
+    block, page = about_you()
     questions = numbered(
         [
-            {
-                "key": "asl-fluency",
-                "kind": "choice",
-                "text": "How fluent are you in ASL?",
-                "options": scale(
-                    ["Native or primary language", "Fluent", "Somewhat fluent", "Not fluent"]
-                ),
-            },
+            asl_fluency(),
             {
                 "key": "saying",
                 "kind": "intelligibility",
@@ -94,7 +88,7 @@ def transitions_study() -> dict[str, Any]:
     )
     blocks = numbered(
         [
-            {"key": "about-you", "kind": "demographics", "title": "About you"},
+            block,
             {
                 "key": "understanding",
                 "kind": "trials",
@@ -111,14 +105,7 @@ def transitions_study() -> dict[str, Any]:
     )
     keys = [condition["key"] for condition in CONDITIONS]
     items = [key for key, _ in SIGN_PAIRS]
-    trials = [
-        {
-            "key": "about-you",
-            "block": "about-you",
-            "kind": "demographic",
-            "questions": ["asl-fluency"],
-        }
-    ]
+    trials = [page]
     # Each participant reads each sign pair once, under conditions the study's rotation
     # moves on from one participant to the next (a Latin square over participants).
     for index, item in enumerate(items):

@@ -6,6 +6,13 @@ from studyplatform.models import Participant
 from tests.conftest import close_context
 
 
+def filmed_small(definition: dict, width: int = 160, height: int = 120) -> dict:
+    """Return a study definition whose conditions film small at 20 fps (quick to render)."""
+    for condition in definition["conditions"]:
+        condition["parameters"].update(width=width, height=height, rate_hz=20.0)
+    return definition
+
+
 def take_study(browser, url: str, slug: str, answer: Callable) -> tuple[Participant, dict]:
     """Take the study at /s/*slug*/ to its end; return the participant and the answers.
 

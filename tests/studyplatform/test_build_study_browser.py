@@ -17,7 +17,7 @@ from playwright.sync_api import expect
 
 from studyplatform.lib import presented_conditions
 from studyplatform.models import Condition, Participant, Study, Trial
-from tests.conftest import close_context
+from tests.studyplatform.taking import take_study
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
 
@@ -62,32 +62,13 @@ def _set_status(page, url: str, study: Study, status: str) -> None:
 
 def _take(browser, url: str, slug: str) -> tuple[Participant, dict]:
     """Take the study as a new participant; return them and the clip clicked per page."""
-    context = browser.new_context(bypass_csp=True)
-    clicked = {}
-    try:
-        page = context.new_page()
-        page.goto(f"{url}/s/{slug}/")
-        page.get_by_role("button", name="Continue (I agree to take part)").click()
-        while True:
-            page.wait_for_selector("#page-form.ready")
-            form = page.locator("#page-form")
-            number, key = int(form.get_attribute("data-page")), form.get_attribute("data-trial")
-            position = 1 if number % 2 else 2
-            page.locator(f'input[name="q-more-natural"][value="{position}"]').check()
-            clicked[key] = position
-            page.get_by_text("Answer saved.").wait_for()
-            button = page.locator("#next-button")
-            finishing = button.text_content().strip() == "Finish"
-            button.click()
-            if finishing:
-                break
-            page.wait_for_function(
-                f"document.getElementById('page-form').dataset.page !== '{number}'"
-            )
-        page.get_by_text("Thank you", exact=True).wait_for()
-    finally:
-        close_context(context)
-    return Participant.objects.filter(study__slug=slug).order_by("-pk").first(), clicked
+
+    def answer(page, key: str, number: int) -> int:
+        position = 1 if number % 2 else 2
+        page.locator(f'input[name="q-more-natural"][value="{position}"]').check()
+        return position
+
+    return take_study(browser, url, slug, answer)
 
 
 def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_reported(

@@ -16,17 +16,17 @@ from studyplatform.actions import do_import_study
 from studyplatform.demo import hands_study
 from studyplatform.lib import presented_conditions
 from studyplatform.models import Stimulus, Trial
-from tests.studyplatform.taking import download_report, generate_and_open, sign_in_at, take_study
+from tests.studyplatform.taking import (
+    download_report,
+    filmed_small,
+    generate_and_open,
+    sign_in_at,
+    take_study,
+)
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
 TYPED = {"CAB": "cab", "HIKE": "hike"}
-
-
-def _small(definition: dict) -> dict:
-    for condition in definition["conditions"]:
-        condition["parameters"].update(width=96, height=72, rate_hz=20.0)
-    return definition
 
 
 def _answer(slug: str):
@@ -50,7 +50,7 @@ def test_reduced_and_reconstructed_hands_render_from_the_admin_and_are_taken(
     page, browser, live_server, alice, settings, tmp_path, renderable
 ):
     settings.MEDIA_ROOT = tmp_path
-    study = do_import_study(_small(hands_study()), owner=alice, status="draft").study
+    study = do_import_study(filmed_small(hands_study(), 96, 72), owner=alice, status="draft").study
     url = live_server.url
     sign_in_at(page, url, f"/admin/studyplatform/study/{study.pk}/change/")
     generate_and_open(page, url, study)

@@ -20,18 +20,17 @@ from studyplatform.actions import do_import_study
 from studyplatform.demo import transitions_study
 from studyplatform.lib import presented_conditions
 from studyplatform.models import Stimulus, Trial
-from tests.studyplatform.taking import download_report, generate_and_open, sign_in_at, take_study
+from tests.studyplatform.taking import (
+    download_report,
+    filmed_small,
+    generate_and_open,
+    sign_in_at,
+    take_study,
+)
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
 TYPED = {"P1": "where surprise", "P2": "search"}
-
-
-def _small(definition: dict) -> dict:
-    """Return the template filmed small, so its eight clips render in seconds."""
-    for condition in definition["conditions"]:
-        condition["parameters"].update(width=160, height=120, rate_hz=20.0)
-    return definition
 
 
 def _answer(slug: str):
@@ -57,7 +56,7 @@ def test_the_transition_study_renders_from_the_admin_is_taken_and_reported(
     page, browser, live_server, alice, settings, tmp_path, renderable
 ):
     settings.MEDIA_ROOT = tmp_path
-    study = do_import_study(_small(transitions_study()), owner=alice, status="draft").study
+    study = do_import_study(filmed_small(transitions_study()), owner=alice, status="draft").study
     url = live_server.url
     sign_in_at(page, url, f"/admin/studyplatform/study/{study.pk}/change/")
     expect(page.get_by_text("Inter-sign transitions: data-driven Hermite").first).to_be_visible()
