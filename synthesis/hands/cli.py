@@ -6,6 +6,7 @@
     python -m synthesis.hands reconstruct --spell HEAVEN --markers 3 --method lwr \
         --out rebuilt.bvh --report dir/
     python -m synthesis.hands markers --out dir/   # Table 3.1 and Alg. 1 vs Alg. 2
+    python -m synthesis.hands database [RECORDINGS…] --words CAT DOG --simulated 2 --out poses.npz
 
 A motion is a BVH of the engine's hand or body, or a captured .pose file; --spell uses
 the engine's own fingerspelling of a word (at 30 fps, both as the seed analysed).
@@ -76,14 +77,15 @@ def _reconstruct(args: argparse.Namespace) -> int:
         motion, source = read_hand_motion(args.motion, args.side), str(args.motion)
     from synthesis.hands.handover import reconstruct_motion
 
+    database = str(args.database or "")
     rebuilt = reconstruct_motion(
-        motion.rig, motion.dofs_rad, motion.rate_hz, args.markers, args.method
+        motion.rig, motion.dofs_rad, motion.rate_hz, args.markers, args.method, database
     )
     if args.out:
         write_bvh(motion.rig.as_motion(rebuilt, motion.rate_hz), args.out)
         print(f"wrote {args.out}")
     if args.report:
-        for path in write_reconstruction_report(motion, args.method, args.report, source):
+        for path in write_reconstruction_report(motion, args.method, args.report, source, database):
             print(f"wrote {path}")
     return 0
 
@@ -113,6 +115,18 @@ def _markers(args: argparse.Namespace) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     print(f"wrote {write_csv(args.out / 'table-3-1.csv', rows)}")
     print(f"wrote {write_csv(args.out / 'marker-sets.csv', choices)}")
+    return 0
+
+
+def _database(args: argparse.Namespace) -> int:
+    from synthesis.hands.posedb import combined, engine_pose_database, recorded_pose_database
+
+    parts = [engine_pose_database(args.side, tuple(args.speeds), tuple(args.words), args.simulated)]
+    if args.recordings:
+        parts.append(recorded_pose_database(args.recordings, args.side))
+    database = combined(*parts) if len(parts) > 1 else parts[0]
+    database.write(args.out)
+    print(f"wrote {args.out}: {database.source}")
     return 0
 
 
@@ -158,6 +172,11 @@ def parser() -> argparse.ArgumentParser:
     rebuild.add_argument(
         "--report", type=Path, help="a directory for the marker ranking and errors by marker count"
     )
+    rebuild.add_argument(
+        "--database",
+        type=Path,
+        help="a pose database (python -m synthesis.hands database); default: the engine's alphabet",
+    )
     rebuild.set_defaults(run=_reconstruct)
     markers = commands.add_parser("markers", help="Table 3.1 and the marker-set choices")
     markers.add_argument("--out", type=Path, required=True)
@@ -165,6 +184,27 @@ def parser() -> argparse.ArgumentParser:
     markers.add_argument("--side", choices=("right", "left"), default="right")
     markers.add_argument("--seed", type=int, default=0)
     markers.set_defaults(run=_markers)
+    database = commands.add_parser("database", help="write a pose database to rebuild from")
+    database.add_argument(
+        "recordings",
+        nargs="*",
+        type=Path,
+        help="hand recordings to add (engine hand BVH, captured .pose)",
+    )
+    database.add_argument("--words", nargs="*", default=[], help="words the engine spells too")
+    database.add_argument(
+        "--speeds",
+        nargs="+",
+        type=float,
+        default=[1.0, 1.6],
+        help="speed factors of the engine's spelling (1 = its own pace)",
+    )
+    database.add_argument(
+        "--simulated", type=int, default=0, help="simulated captures of each word to add"
+    )
+    database.add_argument("--side", choices=("right", "left"), default="right")
+    database.add_argument("--out", type=Path, required=True)
+    database.set_defaults(run=_database)
     return root
 
 

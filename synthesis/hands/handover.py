@@ -7,6 +7,7 @@ is given. The forearm and wrist keep their angles.
 """
 
 from functools import cache
+from pathlib import Path
 
 import numpy as np
 
@@ -45,24 +46,43 @@ def builtin_pose_database(side: str) -> PoseDatabase:
     )
 
 
+def pose_database(side: str, path: str = "") -> PoseDatabase:
+    """Return the pose database at *path* (a file from ``python -m synthesis.hands
+    database``), or the built-in one for *side* when empty."""
+    return PoseDatabase.read(path) if path else builtin_pose_database(side)
+
+
 @cache
-def _prepared(side: str, markers: int, method: str):
-    database = builtin_pose_database(side)
+def _prepared(side: str, markers: int, method: str, path: str = "", version: int = 0):
+    database = pose_database(side, path)
     chosen = tuple(int(i) for i in rank_markers(database.markers)[0][:markers])
     if method == "lwr":
         return chosen, LwrModel.fit(database, chosen)
     return chosen, database.clustered(NEAREST_POSES, np.random.default_rng(0))
 
 
+def _version(path: str) -> int:
+    """Return the file's modification time (ns): a changed database is read again."""
+    try:
+        return Path(path).stat().st_mtime_ns if path else 0
+    except OSError as error:
+        raise ValueError(f"{path}: cannot be read ({error}).") from None
+
+
 def reconstruct_hand(
-    hand_dofs_rad: np.ndarray, side: str, rate_hz: float, markers: int = 3, method: str = "lwr"
+    hand_dofs_rad: np.ndarray,
+    side: str,
+    rate_hz: float,
+    markers: int = 3,
+    method: str = "lwr",
+    database: str = "",
 ) -> np.ndarray:
     """Return hand-model DOFs (n, 30) with the digits rebuilt from *markers* of their markers."""
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}.")
     hand = HandModel(side)
     dofs = np.asarray(hand_dofs_rad, dtype=float)
-    chosen, model = _prepared(side, markers, method)
+    chosen, model = _prepared(side, markers, method, database, _version(database))
     sparse = virtual_markers(hand, dofs)[:, list(chosen)]
     if method == "lwr":
         rebuilt = reconstruct_lwr(sparse, model, rate_hz)
@@ -75,11 +95,16 @@ def reconstruct_hand(
 
 
 def reconstruct_motion(
-    rig, dofs_rad: np.ndarray, rate_hz: float, markers: int = 3, method: str = "lwr"
+    rig,
+    dofs_rad: np.ndarray,
+    rate_hz: float,
+    markers: int = 3,
+    method: str = "lwr",
+    database: str = "",
 ) -> np.ndarray:
     """Return a hand's or the body's DOFs with every hand's digits reconstructed."""
     if isinstance(rig, HandModel):
-        return reconstruct_hand(dofs_rad, rig.side, rate_hz, markers, method)
+        return reconstruct_hand(dofs_rad, rig.side, rate_hz, markers, method, database)
     if not isinstance(rig, BodyModel):
         raise ValueError("Reconstruction needs the engine's hand or body.")
     out = np.asarray(dofs_rad, dtype=float)
@@ -87,5 +112,6 @@ def reconstruct_motion(
         where = rig.hand_dofs(side)
         hand = np.tile(HandModel(side).neutral(), (len(out), 1))
         hand[:, where >= 0] = out[:, where[where >= 0]]
-        out = rig.with_hand(out, side, reconstruct_hand(hand, side, rate_hz, markers, method))
+        rebuilt = reconstruct_hand(hand, side, rate_hz, markers, method, database)
+        out = rig.with_hand(out, side, rebuilt)
     return out

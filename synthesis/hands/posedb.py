@@ -88,3 +88,12 @@ def recorded_pose_database(paths: Iterable[str | Path], side: str = "right") -> 
         names.append(Path(path).name)
     dofs = _digits_only(hand, np.vstack(parts))
     return PoseDatabase(dofs, virtual_markers(hand, dofs), f"recordings {', '.join(names)}")
+
+
+def combined(*databases: PoseDatabase) -> PoseDatabase:
+    """Return the poses of several databases together, their sources joined."""
+    return PoseDatabase(
+        np.vstack([d.dofs_rad for d in databases]),
+        np.vstack([d.markers for d in databases]),
+        "; ".join(d.source for d in databases),
+    )

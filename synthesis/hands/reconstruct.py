@@ -15,7 +15,9 @@
 Filter widths scale with the frame rate (17 and 15 samples are at 120 Hz).
 """
 
+import zipfile
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 from scipy.cluster.vq import kmeans2
@@ -81,6 +83,33 @@ class PoseDatabase:
     dofs_rad: np.ndarray
     markers: np.ndarray
     source: str
+
+    def write(self, path) -> Path:
+        """Write the database as ``.npz`` (angles, markers, source) at *path*."""
+        path = Path(path)
+        with path.open("wb") as handle:
+            np.savez(
+                handle, dofs_rad=self.dofs_rad, markers=self.markers, source=np.array(self.source)
+            )
+        return path
+
+    @classmethod
+    def read(cls, path) -> "PoseDatabase":
+        """Return the database at *path*; raise ValueError naming what is wrong with it."""
+        try:
+            with np.load(path, allow_pickle=False) as stored:
+                dofs, markers = stored["dofs_rad"], stored["markers"]
+                source = str(stored["source"])
+        except (OSError, KeyError, ValueError, zipfile.BadZipFile) as error:
+            raise ValueError(
+                f"{path}: not a pose database (python -m synthesis.hands "
+                f"database writes one): {error}"
+            ) from None
+        if markers.ndim != 3 or markers.shape[1:] != (13, 3) or len(dofs) != len(markers):
+            raise ValueError(f"{path}: a pose database holds 13 markers per pose.")
+        if len(dofs) < 2 or not (np.all(np.isfinite(dofs)) and np.all(np.isfinite(markers))):
+            raise ValueError(f"{path}: a pose database needs at least 2 finite poses.")
+        return cls(dofs, markers, source)
 
     def clustered(self, poses: int, rng: np.random.Generator) -> "PoseDatabase":
         """Return *poses* representative poses by k-means over the full marker set (§3.1.2):

@@ -173,11 +173,11 @@ def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
 
 
 def write_reconstruction_report(
-    motion, method: str, directory: str | Path, source: str
+    motion, method: str, directory: str | Path, source: str, database_path: str = ""
 ) -> list[Path]:
     """Write the marker ranking and the error by marker count (1–13) of reconstructing
     *motion*'s hands, and a figure of marker count against error."""
-    from synthesis.hands.handover import builtin_pose_database, reconstruct_hand
+    from synthesis.hands.handover import pose_database, reconstruct_hand
     from synthesis.hands.markers import MARKERS, rank_markers, virtual_markers
     from synthesis.hands.reconstruct import marker_error_cm
     from synthesis.rigs.hand import HandModel
@@ -187,7 +187,7 @@ def write_reconstruction_report(
     side = getattr(motion.rig, "side", "right")
     if not isinstance(motion.rig, HandModel):
         raise ValueError("The reconstruction report takes a hand motion (not the body).")
-    database = builtin_pose_database(side)
+    database = pose_database(side, database_path)
     order, influence = rank_markers(database.markers)
     ranking = [
         {"rank": k + 1, "marker": MARKERS[i], "influence": round(float(influence[i]), 6)}
@@ -197,7 +197,9 @@ def write_reconstruction_report(
     truth = virtual_markers(hand, motion.dofs_rad)
     rows = []
     for count in range(1, len(MARKERS) + 1):
-        rebuilt = reconstruct_hand(motion.dofs_rad, side, motion.rate_hz, count, method)
+        rebuilt = reconstruct_hand(
+            motion.dofs_rad, side, motion.rate_hz, count, method, database_path
+        )
         error, spread = marker_error_cm(truth, virtual_markers(hand, rebuilt))
         rows.append(
             {

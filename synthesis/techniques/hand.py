@@ -4,8 +4,8 @@
 become their mean) and those that follow another (rebuilt from it), as seed 002 does at
 30 fps, and shows the hand with only the remaining DOFs free. ``reconstructed`` keeps
 only the clip's best few markers and rebuilds the digits from them by seed 000's LWR or
-nearest k-means pose, from the engine's alphabet as the pose database. The forearm and
-wrist are left as they are.
+nearest k-means pose, from a pose database (the engine's alphabet unless another is
+given). The forearm and wrist are left as they are.
 """
 
 from synthesis.techniques.kinds import SIGNED
@@ -36,13 +36,17 @@ def _apply(build: Build) -> Build:
     if values["hand"] == "reconstructed":
         from synthesis.hands.handover import reconstruct_motion
 
-        dofs = reconstruct_motion(
-            build.rig,
-            build.motion,
-            build.request.rate_hz,
-            values["hand_markers"],
-            values["hand_method"],
-        )
+        try:
+            dofs = reconstruct_motion(
+                build.rig,
+                build.motion,
+                build.request.rate_hz,
+                values["hand_markers"],
+                values["hand_method"],
+                values["hand_database"],
+            )
+        except ValueError as error:
+            raise ClipError(str(error)) from None
         return build.but(motion=dofs)
     from synthesis.hands import apply_reduction, find_reduction
     from synthesis.hands.motion import from_dofs
@@ -59,10 +63,10 @@ def _summary(values) -> str:
     if values["hand"] == "full":
         return LABELS["full"]
     if values["hand"] == "reconstructed":
+        database = values["hand_database"] or "the engine's alphabet"
         return (
             f"{LABELS['reconstructed']}: {values['hand_markers']} markers, "
-            f"{METHOD_LABELS[values['hand_method']]}, the engine's alphabet as the pose "
-            "database"
+            f"{METHOD_LABELS[values['hand_method']]}, pose database: {database}"
         )
     return (
         f"{LABELS['reduced']}: curves moving under {values['hand_range_deg']:g}° fixed, "
@@ -120,6 +124,13 @@ TECHNIQUE = Technique(
             "(seed 000 §3.2) or the nearest of 1,000 k-means poses (§3.1).",
             choices=("lwr", "nearest"),
             labels=METHOD_LABELS,
+        ),
+        Parameter(
+            "hand_database",
+            "file",
+            "",
+            "Reconstructed: a pose database (python -m synthesis.hands database: recordings, "
+            "words, simulated captures); empty: the engine's alphabet.",
         ),
     ),
     source="seed 002 §4–5; seed 000 ch. 3",

@@ -139,3 +139,43 @@ def test_table_3_1_and_the_marker_choices_command(tmp_path, capsys):
     searched = {r["markers"]: float(r["error_cm"]) for r in choices if "exhaustive" in r["method"]}
     ranked = {r["markers"]: float(r["error_cm"]) for r in choices if "PCA" in r["method"]}
     assert all(searched[m] <= ranked[m] for m in searched)  # the search is the optimum
+
+
+def test_a_pose_database_of_words_and_recordings_is_written_and_used(tmp_path, capsys):
+    from synthesis.hands.cli import main
+    from synthesis.hands.reconstruct import PoseDatabase
+
+    assert main(["reduce", "--spell", "DOG", "--out", str(tmp_path / "dog.bvh")]) == 0
+    out = tmp_path / "poses.npz"
+    assert (
+        main(
+            [
+                "database",
+                str(tmp_path / "dog.bvh"),
+                "--words",
+                "CAB",
+                "--speeds",
+                "1",
+                "--simulated",
+                "1",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
+    database = PoseDatabase.read(out)
+    assert "CAB" in database.source and "simulated" in database.source
+    assert "dog.bvh" in database.source and database.markers.shape[1:] == (13, 3)
+    motion = build_motion(
+        ClipRequest("word", "CAB", {"hand": "reconstructed", "hand_database": str(out)})
+    )
+    assert motion.motion.shape[1] == 30
+    (tmp_path / "bad.npz").write_bytes(b"nonsense")
+    with pytest.raises(Exception, match="not a pose database"):
+        build_motion(
+            ClipRequest(
+                "word", "CAB", {"hand": "reconstructed", "hand_database": str(tmp_path / "bad.npz")}
+            )
+        )
+    capsys.readouterr()
