@@ -28,7 +28,7 @@ from synthesis.hands.reconstruct import (
     marker_error_cm,
 )
 from synthesis.rigs.hand import HandModel
-from synthesis.techniques import ClipRequest, build_motion
+from synthesis.techniques import ClipError, ClipRequest, build_motion
 
 
 def test_marker_influence_by_hand():
@@ -172,7 +172,7 @@ def test_a_pose_database_of_words_and_recordings_is_written_and_used(tmp_path, c
     )
     assert motion.motion.shape[1] == 30
     (tmp_path / "bad.npz").write_bytes(b"nonsense")
-    with pytest.raises(Exception, match="not a pose database"):
+    with pytest.raises(ClipError, match="not a pose database"):
         build_motion(
             ClipRequest(
                 "word", "CAB", {"hand": "reconstructed", "hand_database": str(tmp_path / "bad.npz")}
