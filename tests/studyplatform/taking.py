@@ -13,6 +13,13 @@ def filmed_small(definition: dict, width: int = 160, height: int = 120) -> dict:
     return definition
 
 
+def without_trials(definition: dict, leave_out) -> dict:
+    """Return a study definition without the trials *leave_out(trial)* is true of (a shorter
+    study to take in a test; what it still holds keeps its order)."""
+    definition["trials"] = [t for t in definition["trials"] if not leave_out(t)]
+    return definition
+
+
 def take_study(browser, url: str, slug: str, answer: Callable) -> tuple[Participant, dict]:
     """Take the study at /s/*slug*/ to its end; return the participant and the answers.
 

@@ -22,11 +22,12 @@ from tests.studyplatform.taking import (
     generate_and_open,
     sign_in_at,
     take_study,
+    without_trials,
 )
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
-TYPED = {"CAB": "cab", "HIKE": "hike"}
+TYPED = {"CAB": "cab"}
 
 
 def _answer(slug: str):
@@ -50,12 +51,16 @@ def test_reduced_and_reconstructed_hands_render_from_the_admin_and_are_taken(
     page, browser, live_server, alice, settings, tmp_path, renderable
 ):
     settings.MEDIA_ROOT = tmp_path
-    study = do_import_study(filmed_small(hands_study(), 96, 72), owner=alice, status="draft").study
+    # One word, every pair of hands once: a shorter study to take and render.
+    definition = without_trials(
+        filmed_small(hands_study(), 96, 72), lambda t: t.get("item") == "HIKE"
+    )
+    study = do_import_study(definition, owner=alice, status="draft").study
     url = live_server.url
     sign_in_at(page, url, f"/admin/studyplatform/study/{study.pk}/change/")
     generate_and_open(page, url, study)
     ready = Stimulus.objects.filter(condition__study=study, status="ready")
-    assert ready.count() == 6
+    assert ready.count() == 3
     assert {s.condition.key for s in ready} == {"full", "reduced", "reconstructed"}
 
     participant, answers = take_study(browser, url, study.slug, _answer(study.slug))
@@ -77,7 +82,7 @@ def test_reduced_and_reconstructed_hands_render_from_the_admin_and_are_taken(
 
     scores = list(csv.DictReader(io.StringIO(archive.read("report/intelligibility.csv").decode())))
     typed = {k: v for k, v in answers.items() if isinstance(v, str)}
-    assert len(scores) == len(typed) == 2
+    assert len(scores) == len(typed) == 1
     for key, text in typed.items():
         trial = Trial.objects.get(study=study, key=key)
         row = next(r for r in scores if r["item"] == trial.item.key)
