@@ -187,11 +187,15 @@ def tidy_table(study: Study):
     return check_responses(frame, source=f"{study.slug} responses")
 
 
-def tidy_csv(study: Study) -> str:
-    """Return *study*'s responses as tidy CSV text, safe to open in a spreadsheet."""
-    columns, rows = tidy_rows(study)
+def safe_csv(columns, rows) -> str:
+    """Return *rows* (dicts of text) as CSV text whose cells are safe in a spreadsheet."""
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, fieldnames=columns, lineterminator="\n")
     writer.writeheader()
     writer.writerows({key: spreadsheet_safe(value) for key, value in row.items()} for row in rows)
     return buffer.getvalue()
+
+
+def tidy_csv(study: Study) -> str:
+    """Return *study*'s responses as tidy CSV text, safe to open in a spreadsheet."""
+    return safe_csv(*tidy_rows(study))

@@ -1,7 +1,6 @@
 """Analyse a study's collected responses with :mod:`analysis`, for the admin's results page."""
 
 import base64
-import csv
 import io
 import json
 import tempfile
@@ -20,7 +19,7 @@ from analysis import (
 )
 from analysis.figures import condition_rates_figure, pairwise_matrix_figure, ratings_figure
 from studyplatform.exchange import export_study
-from studyplatform.export import spreadsheet_safe, tidy_csv, tidy_table
+from studyplatform.export import safe_csv, tidy_csv, tidy_table
 from studyplatform.lib.quality import (
     EVENT_COLUMNS,
     PARTICIPANT_COLUMNS,
@@ -66,14 +65,6 @@ def figure_images(results: StudyResults) -> dict[str, str]:
     return images
 
 
-def _csv(columns, rows) -> str:
-    buffer = io.StringIO()
-    writer = csv.DictWriter(buffer, fieldnames=columns, lineterminator="\n")
-    writer.writeheader()
-    writer.writerows({key: spreadsheet_safe(value) for key, value in row.items()} for row in rows)
-    return buffer.getvalue()
-
-
 def report_archive(study: Study, results: StudyResults, *, everything: bool) -> bytes:
     """Zip the report files; with *everything*, add the data, the media events, each
     participant's seed and schedule, and the study definition."""
@@ -88,9 +79,9 @@ def report_archive(study: Study, results: StudyResults, *, everything: bool) -> 
                 archive.write(out / name, f"report/{name}")
         if everything:
             archive.writestr("responses.csv", tidy_csv(study))
-            archive.writestr("media_events.csv", _csv(EVENT_COLUMNS, media_event_rows(study)))
+            archive.writestr("media_events.csv", safe_csv(EVENT_COLUMNS, media_event_rows(study)))
             archive.writestr("participants.csv",
-                             _csv(PARTICIPANT_COLUMNS, participant_rows(study)))  # fmt: skip
+                             safe_csv(PARTICIPANT_COLUMNS, participant_rows(study)))  # fmt: skip
             archive.writestr(
                 f"{study.slug}.study.json",
                 json.dumps(export_study(study), indent=2, ensure_ascii=False) + "\n",

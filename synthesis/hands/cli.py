@@ -16,32 +16,31 @@ import argparse
 import sys
 from pathlib import Path
 
-from synthesis.hands.motion import HandMotionError, from_dofs, read_hand_motion
-from synthesis.hands.reduction import apply_reduction, find_reduction
+from synthesis.hands.motion import HandMotionError, from_dofs, read_hand_motion, reduce_motion
 
 
-def _engine_word(word: str, side: str):
+def _motion(args: argparse.Namespace, rate_hz: float):
+    """Return the motion the command works on and what it is, in words."""
+    if bool(args.motion) == bool(args.spell):
+        raise HandMotionError("Give a motion file or --spell WORD (one of them).")
+    if args.motion:
+        return read_hand_motion(args.motion, args.side), str(args.motion)
     from synthesis.fingerspelling.spelling import spell
     from synthesis.rigs.hand import HandModel
 
-    return from_dofs(HandModel(side), spell(word, side, 30.0), 30.0)
+    spelled = spell(args.spell, args.side, rate_hz)
+    return (
+        from_dofs(HandModel(args.side), spelled, rate_hz),
+        f"the engine's spelling of {args.spell} at {rate_hz:g} Hz",
+    )
 
 
 def _reduce(args: argparse.Namespace) -> int:
     from synthesis.hands.report import write_reduction_report
     from synthesis.skeleton.bvh import write_bvh
 
-    if bool(args.motion) == bool(args.spell):
-        raise HandMotionError("Give a motion file or --spell WORD (one of them).")
-    if args.spell:
-        motion, source = (
-            _engine_word(args.spell, args.side),
-            f"the engine's spelling of {args.spell}",
-        )
-    else:
-        motion, source = read_hand_motion(args.motion, args.side), f"{args.motion}"
-    analysis = motion.analysis_curves_deg()
-    reduction = find_reduction(analysis, motion.names, args.range_deg, args.rmsd)
+    motion, source = _motion(args, 30.0)
+    reduced, reduction = reduce_motion(motion, args.range_deg, args.rmsd)
     print(
         f"{source}: {reduction.dof_count} of {len(motion.names)} DOFs free "
         f"({len(reduction.constant)} constant, {len(reduction.relations)} rebuilt)"
@@ -52,11 +51,11 @@ def _reduce(args: argparse.Namespace) -> int:
             f"({relation.metric} = {relation.rmsd:.2f})"
         )
     if args.out:
-        reduced = motion.with_curves_deg(apply_reduction(motion.curves_deg(), reduction))
         write_bvh(reduced.as_bvh_motion(), args.out)
         print(f"wrote {args.out}")
     if args.report:
-        for path in write_reduction_report(analysis, reduction, args.report, source):
+        curves = motion.analysis_curves_deg()
+        for path in write_reduction_report(curves, reduction, args.report, source):
             print(f"wrote {path}")
     return 0
 
@@ -65,16 +64,7 @@ def _reconstruct(args: argparse.Namespace) -> int:
     from synthesis.hands.report import write_reconstruction_report
     from synthesis.skeleton.bvh import write_bvh
 
-    if bool(args.motion) == bool(args.spell):
-        raise HandMotionError("Give a motion file or --spell WORD (one of them).")
-    if args.spell:
-        from synthesis.fingerspelling.spelling import spell
-        from synthesis.rigs.hand import HandModel
-
-        motion = from_dofs(HandModel(args.side), spell(args.spell, args.side, 120.0), 120.0)
-        source = f"the engine's spelling of {args.spell} at 120 Hz"
-    else:
-        motion, source = read_hand_motion(args.motion, args.side), str(args.motion)
+    motion, source = _motion(args, 120.0)
     from synthesis.hands.handover import reconstruct_motion
 
     database = str(args.database or "")

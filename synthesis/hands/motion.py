@@ -12,9 +12,10 @@ from pathlib import Path
 
 import numpy as np
 
+from synthesis.hands.reduction import apply_reduction, find_reduction
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.hand import HandModel
-from synthesis.skeleton.retime import resample
+from synthesis.skeleton.retime import resample_curves
 
 # The hand model's DOFs that place the hand rather than shape it.
 PLACEMENT = (
@@ -51,12 +52,7 @@ class HandMotion:
 
     def analysis_curves_deg(self, rate_hz: float = ANALYSIS_RATE_HZ) -> np.ndarray:
         """Return the digit curves resampled to *rate_hz* (seed 002 works at 30 fps)."""
-        curves = self.curves_deg()
-        if abs(rate_hz - self.rate_hz) < 1e-9:
-            return curves
-        t = np.arange(len(curves)) / self.rate_hz
-        at = np.arange(0.0, t[-1] + 1e-9, 1.0 / rate_hz)
-        return np.column_stack([np.interp(at, t, c) for c in curves.T])
+        return resample_curves(self.curves_deg(), self.rate_hz, rate_hz)
 
     def with_curves_deg(self, curves_deg: np.ndarray) -> "HandMotion":
         """Return the motion with its digit curves replaced (degrees, at its own rate)."""
@@ -122,7 +118,11 @@ def read_hand_motion(path: str | Path, side: str = "right") -> HandMotion:
     )
 
 
-def resampled(motion: HandMotion, rate_hz: float) -> HandMotion:
-    """Return *motion* at *rate_hz* (for a BVH written at the analysis rate)."""
-    bvh = resample(motion.as_bvh_motion(), rate_hz)
-    return from_dofs(motion.rig, motion.rig.dofs_from_motion(bvh), rate_hz)
+def reduce_motion(motion: HandMotion, range_deg: float, rmsd: float | None):
+    """Return *motion* with seed 002's reduction applied, and the reduction.
+
+    The relations are found on the curves at 30 fps, as the seed analysed them, and
+    applied to the motion at its own rate.
+    """
+    reduction = find_reduction(motion.analysis_curves_deg(), motion.names, range_deg, rmsd)
+    return motion.with_curves_deg(apply_reduction(motion.curves_deg(), reduction)), reduction

@@ -17,6 +17,7 @@ from synthesis.hands.markers import virtual_markers
 from synthesis.hands.motion import digit_columns, read_hand_motion
 from synthesis.hands.reconstruct import PoseDatabase
 from synthesis.rigs.hand import HandModel
+from synthesis.skeleton.retime import resample_curves
 
 ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 RATE_HZ = 120.0
@@ -82,9 +83,7 @@ def recorded_pose_database(paths: Iterable[str | Path], side: str = "right") -> 
         motion = read_hand_motion(path, side)
         if not isinstance(motion.rig, HandModel):
             raise ValueError(f"{path}: a pose database takes hand recordings.")
-        t = np.arange(len(motion.dofs_rad)) / motion.rate_hz
-        at = np.arange(0.0, t[-1] + 1e-9, 1.0 / RATE_HZ)
-        parts.append(np.column_stack([np.interp(at, t, c) for c in motion.dofs_rad.T]))
+        parts.append(resample_curves(motion.dofs_rad, motion.rate_hz, RATE_HZ))
         names.append(Path(path).name)
     dofs = _digits_only(hand, np.vstack(parts))
     return PoseDatabase(dofs, virtual_markers(hand, dofs), f"recordings {', '.join(names)}")

@@ -98,7 +98,11 @@ class Sentence:
 
     *dofs_rad* (n_frames, n_dofs); *automated_rad* the automated spine and clavicle part
     (zero with the spine off); *key_times_s* (n_keys,); *glosses* the parsed tokens;
-    *tracks* the non-manual signals placed in time and *blinks_ms* the blinks' starts.
+    *tracks* the non-manual signals placed in time and *blinks_ms* the blinks' starts;
+    *tokens_s* (n_tokens, 2) each token's first and last key (between one token's last
+    key and the next one's first lies the transition); *liveliness_rad* (n_frames,
+    n_dofs) what the liveliness noise added (zeros without), so a later step can work on
+    the motion without it and put it back.
     """
 
     body: BodyModel
@@ -110,6 +114,7 @@ class Sentence:
     tracks: tuple[Track, ...] = ()
     blinks_ms: tuple[float, ...] = ()
     tokens_s: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    liveliness_rad: np.ndarray | None = None
 
     @property
     def duration_s(self) -> float:
@@ -338,11 +343,13 @@ def synthesize(
     dofs = dofs + blink_channels(names, blinks, at_s)
     if options.dominant == "left":
         dofs, automated = body.mirror_pose(dofs), body.mirror_pose(automated)
+    quiet = body.clip(dofs)
     if options.liveliness is not None:
         rng = np.random.default_rng(options.seed)
         dofs = dofs + options.liveliness.sample(body, count, options.rate_hz, rng)
-    return Sentence(body, body.clip(dofs), automated, options.rate_hz, times_s, glosses,
-                    tracks, blinks, np.array(tokens_ms).reshape(-1, 2) / 1000.0)  # fmt: skip
+    lively = body.clip(dofs)
+    return Sentence(body, lively, automated, options.rate_hz, times_s, glosses, tracks, blinks,
+                    np.array(tokens_ms).reshape(-1, 2) / 1000.0, lively - quiet)  # fmt: skip
 
 
 def _tracks(glosses, spans, tokens_ms, library: SignLibrary) -> tuple[Track, ...]:

@@ -2,13 +2,15 @@
 
 Everything rests on :func:`sample`: a motion's value at arbitrary times, with joint
 rotations interpolated on the sphere (slerp) and positions linearly. Times that fall
-exactly on a frame return that frame's values unchanged.
+exactly on a frame return that frame's values unchanged. Curves of angles (DOF vectors)
+are sampled linearly by :func:`sample_curves` and :func:`resample_curves`;
+:func:`reset_root` puts a motion's root at the standard position.
 """
 
 from collections.abc import Callable, Sequence
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
+from scipy.interpolate import PchipInterpolator, interp1d
 from scipy.spatial.transform import Rotation
 
 from synthesis.skeleton.motion import Motion
@@ -126,3 +128,39 @@ def interpolate_poses(
     """Return poses between two channel-value vectors at *fractions* in [0, 1] (slerp)."""
     pair = Motion(skeleton, np.stack([pose_a, pose_b]), 1.0)
     return sample(pair, np.clip(np.asarray(fractions, dtype=np.float64), 0.0, 1.0))
+
+
+def reset_root(motion: Motion) -> Motion:
+    """Return *motion* with its root's position and orientation set to zero (seed 004 §3.2.3).
+
+    The body then stands at the origin facing the camera, whatever the capture's room.
+    """
+    root = next(i for i, joint in enumerate(motion.skeleton.joints) if joint.parent < 0)
+    values = np.array(motion.values)
+    values[:, motion.skeleton.channel_slices()[root]] = 0.0
+    return Motion(motion.skeleton, values, motion.frame_time_s)
+
+
+def sample_curves(values: np.ndarray, rate_hz: float, times_s: np.ndarray) -> np.ndarray:
+    """Return curves (n_frames, n_curves) sampled at *rate_hz*, read at *times_s* (linear,
+    held at the first and last frame outside the clip)."""
+    values = np.asarray(values, dtype=float)
+    frames_s = np.arange(len(values)) / rate_hz
+    read = interp1d(
+        frames_s,
+        values,
+        axis=0,
+        bounds_error=False,
+        fill_value=(values[0], values[-1]),
+        assume_sorted=True,
+    )
+    return read(np.asarray(times_s, dtype=float))
+
+
+def resample_curves(values: np.ndarray, rate_hz: float, new_rate_hz: float) -> np.ndarray:
+    """Return curves (n_frames, n_curves) at *new_rate_hz* over the same duration (linear)."""
+    if abs(new_rate_hz - rate_hz) < 1e-9:
+        return np.asarray(values, dtype=float)
+    duration_s = (len(values) - 1) / rate_hz
+    count = int(np.floor(duration_s * new_rate_hz + 1e-9)) + 1
+    return sample_curves(values, rate_hz, np.arange(count) / new_rate_hz)

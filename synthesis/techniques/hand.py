@@ -48,14 +48,10 @@ def _apply(build: Build) -> Build:
         except ValueError as error:
             raise ClipError(str(error)) from None
         return build.but(motion=dofs)
-    from synthesis.hands import apply_reduction, find_reduction
-    from synthesis.hands.motion import from_dofs
+    from synthesis.hands.motion import from_dofs, reduce_motion
 
     motion = from_dofs(build.rig, build.motion, build.request.rate_hz)
-    reduction = find_reduction(
-        motion.analysis_curves_deg(), motion.names, values["hand_range_deg"], values["hand_rmsd"]
-    )
-    reduced = motion.with_curves_deg(apply_reduction(motion.curves_deg(), reduction))
+    reduced, _ = reduce_motion(motion, values["hand_range_deg"], values["hand_rmsd"])
     return build.but(motion=build.rig.clip(reduced.dofs_rad))
 
 

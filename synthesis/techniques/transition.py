@@ -50,22 +50,11 @@ def _apply(build: Build) -> Build:
         else:
             dofs, _ = blend_sentence(build.request.text, build.options, build.library)
         return build.but(motion=np.asarray(dofs))
-    from synthesis.transitions.lexicon import SignLexicon
     from synthesis.transitions.sentence import retransition
 
     search = _search(values["transition_db"]) if model in ("hermite", "bspline") else None
-    noise = None
-    if not isinstance(build.library, SignLexicon) and build.options.liveliness is not None:
-        from dataclasses import replace
-
-        from synthesis.signing.sentence import synthesize
-
-        # The same sentence without its liveliness noise: the models fill the gaps of
-        # the motion, and the noise goes back on top.
-        quiet = replace(build.options, liveliness=None)
-        clean = synthesize(build.request.text, quiet, build.library).dofs_rad
-        noise = build.result.dofs_rad - clean
-    return build.but(motion=retransition(build.result, model, search, noise))
+    sentence = build.result
+    return build.but(motion=retransition(sentence, model, search, sentence.liveliness_rad))
 
 
 def _summary(values) -> str:

@@ -48,12 +48,11 @@ def _build(args: argparse.Namespace) -> int:
 
 
 def _evaluate(args: argparse.Namespace) -> int:
-    from synthesis.transitions.evaluate import evaluate, summary_rows, verdict
+    from synthesis.transitions.evaluate import compare_weightings, summary_rows, verdict
     from synthesis.transitions.report import write_evaluation
 
     database = TransitionDatabase.read(args.database)
-    order = [args.weighting] + [w for w in WEIGHTINGS if w != args.weighting]
-    evaluations = {w: evaluate(database, w, args.holdout) for w in order}
+    evaluations = compare_weightings(database, args.holdout)
     main = evaluations[args.weighting]
     names = list(summary_rows(main)[0])
     print("\t".join(names))
@@ -67,7 +66,7 @@ def _evaluate(args: argparse.Namespace) -> int:
     best = min(evaluations, key=lambda w: evaluations[w].mean_by_model["hermite"])
     print(f"best search for the data-driven Hermite: {best}")
     print(verdict(main))
-    for path in write_evaluation(database, evaluations, args.out):
+    for path in write_evaluation(database, evaluations, args.out, args.weighting):
         print(f"wrote {path}")
     return 0
 

@@ -17,7 +17,8 @@ from synthesis.transitions.hermite_fit import HermiteCurve
 from synthesis.transitions.joins import join_tangent, window_tangent
 from synthesis.transitions.skew import skew_bspline, skew_tangents, skew_values
 
-MODELS = ("linear", "simple_hermite", "hermite", "bspline")
+BASELINES = ("linear", "simple_hermite")
+MODELS = (*BASELINES, "hermite", "bspline")
 MODEL_LABELS = {
     "linear": "linear",
     "simple_hermite": "simple Hermite",
@@ -60,9 +61,7 @@ def skewed_spline(curve: StoredCurve, v0: float, v1: float) -> BSpline:
 
 def slopes(before: np.ndarray, after: np.ndarray, window: int = WINDOW_FRAMES):
     """Return the signs' slopes at the joins (per frame), each (n_curves,) (Eq. 3.13–3.14)."""
-    slope_in = np.array([window_tangent(before[:, c], window) for c in range(before.shape[1])])
-    slope_out = np.array([window_tangent(after[::-1, c], window) for c in range(after.shape[1])])
-    return slope_in, -slope_out
+    return window_tangent(before, window), -window_tangent(after[::-1], window)
 
 
 def fit_entry(
@@ -119,19 +118,29 @@ def baseline(
 
 
 def transition(
-    model: str, before: np.ndarray, after: np.ndarray, n_frames: int, search=None, exclude=()
+    model: str,
+    before: np.ndarray,
+    after: np.ndarray,
+    n_frames: int,
+    search=None,
+    exclude=(),
+    descriptor: np.ndarray | None = None,
 ) -> tuple[np.ndarray, TransitionEntry | None]:
     """Return one arm's transition by *model* (:data:`MODELS`) and the entry it used.
 
     The data-driven models need a :class:`~synthesis.transitions.search.DescriptorSearch`;
-    *exclude* keeps the query's own transition out (leave-one-out).
+    *exclude* keeps the query's own transition out (leave-one-out); *descriptor* is the
+    gap's, when the caller has it at the database's frame rate (else it is computed
+    from *before* and *after*).
     """
     if model not in MODELS:
         raise ValueError(f"Unknown transition model {model!r}; known: {', '.join(MODELS)}.")
-    if model in ("linear", "simple_hermite"):
+    if model in BASELINES:
         return baseline(model, before, after, n_frames), None
     if search is None:
         raise ValueError(f"The {MODEL_LABELS[model]} model needs a transition database.")
-    index = search.nearest(gap_descriptor(before, after), exclude)
+    if descriptor is None:
+        descriptor = gap_descriptor(before, after)
+    index = search.nearest(descriptor, exclude)
     entry = search.database.entries[index]
     return fit_entry(entry, before, after, n_frames, model), entry

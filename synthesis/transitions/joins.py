@@ -8,16 +8,18 @@ shrinks by ``(π − Δθ)/π`` (Eq. 3.16) so that a large turn does not oversho
 import numpy as np
 
 
-def window_tangent(values: np.ndarray, window: int) -> float:
+def window_tangent(values: np.ndarray, window: int) -> float | np.ndarray:
     """Return the mean frame-to-frame slope of the last *window* + 1 *values* (per frame).
 
     Eq. 3.13–3.14 average the slope over W frames instead of taking the noisy last
-    difference; pass the sign's frames nearest the join, ordered in time.
+    difference; pass the sign's frames nearest the join, ordered in time. *values*
+    (n,) gives a number, (n, n_curves) one slope per curve.
     """
     values = np.asarray(values, dtype=float)
     if window < 1 or len(values) < window + 1:
         raise ValueError(f"A window of {window} frames needs {window + 1} values.")
-    return float(np.mean(np.diff(values[-(window + 1) :])))
+    slope = np.mean(np.diff(values[-(window + 1) :], axis=0), axis=0)
+    return float(slope) if slope.ndim == 0 else slope
 
 
 def join_tangent(tangent: np.ndarray, sign_slope: float) -> np.ndarray:

@@ -5,8 +5,9 @@ a BVH of the engine's body or a captured ``.pose`` file, relative to the manifes
 its SHA-256, so a clip's hash changes when a recording does. A recording's segmentation
 beside it (``NAME.segments.json``/``.xml``) marks its sign; what comes before is the
 attack from rest and what follows the decay back to it (seed 004 §3.1.3). Without one,
-the whole clip is the sign. Each recording's root is reset to the standard position
-(seed 004 §3.2.3): the body stands at the origin facing the camera.
+the whole clip is the sign. Recordings are read as the transition recordings are
+(:func:`~synthesis.transitions.recording.read_body_dofs`), their root reset to the
+standard position (seed 004 §3.2.3).
 
 :func:`assemble` plays the signs as recorded, one after the other, joined by an eased
 move of every DOF over the gap (which a transition technique then replaces for the
@@ -23,14 +24,17 @@ import numpy as np
 
 from synthesis.rigs.body import BodyModel
 from synthesis.signing.sentence import Sentence
-from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.retime import resample_curves
 from synthesis.transitions.blending import blend_signs
 from synthesis.transitions.recording import (
-    SEGMENTATION_SUFFIXES,
+    RecordingError,
     SegmentedRecording,
+    read_body_dofs,
+    read_segmentation,
+    segmentation_file,
     write_recording,
 )
-from synthesis.transitions.segments import SegmentationError, parse_segmentation
+from synthesis.transitions.segments import SegmentationError
 
 FORMAT = "signstudy.sign-lexicon"
 FORMAT_VERSION = 1
@@ -65,10 +69,7 @@ class RecordedSign:
         """Return the sign at *rate_hz* (linear between frames, marks moved to the nearest)."""
         if abs(rate_hz - self.rate_hz) < 1e-9:
             return self
-        duration_s = (len(self.dofs_rad) - 1) / self.rate_hz
-        at = np.arange(int(np.floor(duration_s * rate_hz + 1e-9)) + 1) / rate_hz
-        t = np.arange(len(self.dofs_rad)) / self.rate_hz
-        dofs = np.column_stack([np.interp(at, t, column) for column in self.dofs_rad.T])
+        dofs = resample_curves(self.dofs_rad, self.rate_hz, rate_hz)
         first, last = (round(f / self.rate_hz * rate_hz) for f in self.sign_frames)
         return replace(
             self, dofs_rad=dofs, rate_hz=rate_hz, sign_frames=(first, min(last, len(dofs) - 1))
@@ -98,67 +99,33 @@ class SignLexicon:
             ) from None
 
 
-def reset_root(motion: Motion) -> Motion:
-    """Return *motion* with its root's position and orientation set to zero (seed 004 §3.2.3).
-
-    The body then stands at the origin facing the camera, whatever the capture's room.
-    """
-    root = next(i for i, joint in enumerate(motion.skeleton.joints) if joint.parent < 0)
-    values = np.array(motion.values)
-    values[:, motion.skeleton.channel_slices()[root]] = 0.0
-    return Motion(motion.skeleton, values, motion.frame_time_s)
-
-
 def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def read_sign(path: str | Path, gloss: str | None = None, simulated: bool = False) -> RecordedSign:
-    """Return the recorded sign at *path* (its gloss the file's name unless given)."""
+    """Return the recorded sign at *path* (its gloss the file's name unless given).
+
+    Its segmentation beside it marks the sign (one ``sign`` segment); without one, the
+    whole clip is the sign.
+    """
     path = Path(path)
-    stem = path.name.split(".")[0]
-    gloss = gloss or stem.upper()
-    body = BodyModel("right")
-    if path.suffix.lower() == ".bvh":
-        from synthesis.skeleton.bvh import BvhError, read_bvh
-
-        try:
-            motion = reset_root(read_bvh(path))
-            dofs, rate_hz = body.dofs_from_motion(motion), motion.rate_hz
-        except (BvhError, ValueError, OSError) as error:
-            raise LexiconError(f"{path}: {error}") from None
-    elif path.suffix.lower() == ".pose":
-        from synthesis.capture import read_pose
-        from synthesis.capture.armfit import fit_arms
-
-        try:
-            captured = read_pose(path)
-        except (ValueError, OSError) as error:
-            raise LexiconError(f"{path}: {error}") from None
-        # The arms hang from shoulders placed at the standard position: the root reset.
-        dofs, rate_hz = fit_arms(body, captured).dofs_rad, captured.fps
-    else:
-        raise LexiconError(f"{path}: a recorded sign is a .bvh or a .pose file.")
-    return RecordedSign(gloss, dofs, rate_hz, _sign_frames(path, len(dofs)), simulated)
-
-
-def _sign_frames(path: Path, n_frames: int) -> tuple[int, int]:
-    """Return the sign's frames from the segmentation beside *path* (the whole clip without)."""
-    for suffix in SEGMENTATION_SUFFIXES:
-        beside = path.with_name(path.name.split(".")[0] + suffix)
-        if beside.exists():
-            try:
-                (sentence,) = parse_segmentation(beside.read_text("utf-8"))
-            except (SegmentationError, ValueError) as error:
-                raise LexiconError(f"{beside}: {error}") from None
-            signs = [s for s in sentence.segments if s.kind == "sign"]
-            if len(signs) != 1 or signs[0].end_frame >= n_frames:
-                raise LexiconError(
-                    f"{beside}: a recorded sign's segmentation marks one sign "
-                    f"within its {n_frames} frames."
-                )
-            return signs[0].start_frame, signs[0].end_frame
-    return 0, n_frames - 1
+    gloss = gloss or path.name.split(".")[0].upper()
+    try:
+        dofs, _, rate_hz = read_body_dofs(path)
+        beside = segmentation_file(path)
+        segments = read_segmentation(beside)[0].segments if beside else ()
+    except (RecordingError, SegmentationError) as error:
+        raise LexiconError(str(error)) from None
+    signs = [s for s in segments if s.kind == "sign"]
+    if beside is None:
+        return RecordedSign(gloss, dofs, rate_hz, (0, len(dofs) - 1), simulated)
+    if len(signs) != 1 or signs[0].end_frame >= len(dofs):
+        raise LexiconError(
+            f"{beside}: a recorded sign's segmentation marks one sign within its "
+            f"{len(dofs)} frames."
+        )
+    return RecordedSign(gloss, dofs, rate_hz, (signs[0].start_frame, signs[0].end_frame), simulated)
 
 
 def write_lexicon(recordings, out: str | Path, simulated: bool = False, glosses=None) -> Path:

@@ -134,34 +134,39 @@ def _cut(curves, before: Segment, middle: Segment, after: Segment):
     )
 
 
-def segmentation_file(path: Path) -> Path:
-    """Return the segmentation beside recording *path* (``NAME.segments.json|xml``)."""
+def segmentation_file(path: Path) -> Path | None:
+    """Return the segmentation beside recording *path* (``NAME.segments.json|xml``), if any."""
     for suffix in SEGMENTATION_SUFFIXES:
         candidate = path.with_name(path.name.split(".")[0] + suffix)
         if candidate.exists():
             return candidate
-    raise RecordingError(
-        f"{path}: no segmentation beside it (expected "
-        f"{path.stem}{SEGMENTATION_SUFFIXES[0]} or …{SEGMENTATION_SUFFIXES[1]})."
-    )
+    return None
 
 
-def _body_dofs(path: Path) -> tuple[np.ndarray, tuple[str, ...], float]:
-    """Return the body DOFs, their names and the rate of a BVH or .pose recording."""
+def read_body_dofs(path: str | Path) -> tuple[np.ndarray, tuple[str, ...], float]:
+    """Return the body DOFs, their names and the rate of a BVH or .pose recording.
+
+    A BVH must be of the engine's body; its root is reset to the standard position
+    (seed 004 §3.2.3). A ``.pose`` file's arms are fitted as ``capture --body`` does,
+    hung from shoulders at the standard position. Problems raise :class:`RecordingError`
+    naming the file.
+    """
     from synthesis.rigs.body import BodyModel
 
+    path = Path(path)
     body = BodyModel("right")
     suffix = path.suffix.lower()
     if suffix == ".bvh":
         from synthesis.skeleton.bvh import BvhError, read_bvh
+        from synthesis.skeleton.retime import reset_root
 
         try:
-            motion = read_bvh(path)
+            motion = reset_root(read_bvh(path))
             dofs = body.dofs_from_motion(motion)
         except (BvhError, ValueError, OSError) as error:
             raise RecordingError(
-                f"{path}: {error} A transition recording is a BVH of the "
-                "engine's body skeleton or a captured .pose file."
+                f"{path}: {error} A recording is a BVH of the engine's body skeleton or a "
+                "captured .pose file."
             ) from None
         return dofs, tuple(body.dof_names), motion.rate_hz
     if suffix == ".pose":
@@ -176,35 +181,47 @@ def _body_dofs(path: Path) -> tuple[np.ndarray, tuple[str, ...], float]:
     raise RecordingError(f"{path}: a recording is a .bvh or a .pose file, not {suffix or 'this'}.")
 
 
+def read_segmentation(path: Path) -> tuple[Segmentation, dict]:
+    """Return the one sentence of the segmentation file *path* and its JSON metadata.
+
+    A JSON segmentation may say ``"simulated": true`` and ``"signer"``.
+    """
+    try:
+        text = path.read_text("utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise RecordingError(f"{path}: cannot be read ({error}).") from None
+    try:
+        sentences = parse_segmentation(text)
+    except SegmentationError as error:
+        raise SegmentationError(f"{path}: {error}") from None
+    if len(sentences) != 1:
+        raise RecordingError(
+            f"{path}: a recording's segmentation holds one sentence, not {len(sentences)}."
+        )
+    return sentences[0], (json.loads(text) if text.lstrip().startswith("{") else {})
+
+
 def read_recording(path: str | Path, segmentation: str | Path | None = None) -> SegmentedRecording:
     """Return the recording at *path* with its segmentation (found beside it by default).
 
-    The segmentation holds one sentence; a JSON one may say ``"simulated": true`` and
-    ``"signer"``. Every problem raises :class:`RecordingError` or
+    Every problem raises :class:`RecordingError` or
     :class:`~synthesis.transitions.segments.SegmentationError` naming the file.
     """
     path = Path(path)
     seg_path = Path(segmentation) if segmentation else segmentation_file(path)
-    try:
-        text = seg_path.read_text("utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise RecordingError(f"{seg_path}: cannot be read ({error}).") from None
-    try:
-        sentences = parse_segmentation(text)
-    except SegmentationError as error:
-        raise SegmentationError(f"{seg_path}: {error}") from None
-    if len(sentences) != 1:
+    if seg_path is None:
         raise RecordingError(
-            f"{seg_path}: a recording's segmentation holds one sentence, not {len(sentences)}."
+            f"{path}: no segmentation beside it (expected "
+            f"{path.stem}{SEGMENTATION_SUFFIXES[0]} or …{SEGMENTATION_SUFFIXES[1]})."
         )
-    meta = json.loads(text) if text.lstrip().startswith("{") else {}
-    dofs, names, rate_hz = _body_dofs(path)
+    sentence, meta = read_segmentation(seg_path)
+    dofs, names, rate_hz = read_body_dofs(path)
     return SegmentedRecording(
         path.name.split(".")[0],
         dofs,
         names,
         rate_hz,
-        sentences[0],
+        sentence,
         str(meta.get("signer", "")),
         meta.get("simulated") is True,
     )

@@ -7,14 +7,13 @@ import numpy as np
 
 from synthesis.transitions.curves import SEED_NAMES
 from synthesis.transitions.database import TransitionDatabase
-from synthesis.transitions.datadriven import MODEL_LABELS, MODELS, transition
+from synthesis.transitions.datadriven import BASELINES, MODEL_LABELS, MODELS, baseline, fit_entry
 from synthesis.transitions.evaluate import (
     PUBLISHED_RMSE_DEG,
     Evaluation,
     summary_rows,
     verdict,
 )
-from synthesis.transitions.search import DescriptorSearch
 
 SIMULATED = " (simulated captures)"
 
@@ -81,21 +80,29 @@ def _plot_means(evaluation: Evaluation, path: Path) -> Path:
     return path
 
 
-def plot_transition(database: TransitionDatabase, index: int, weighting: str, path: Path) -> Path:
-    """Plot one transition's seven curves: recording vs each model (seed 001 Fig. 4.4)."""
+def plot_transition(
+    database: TransitionDatabase, index: int, evaluation: Evaluation, path: Path
+) -> Path:
+    """Plot one transition's seven curves: recording vs each model (seed 001 Fig. 4.4).
+
+    The data-driven models fit the stored transition *evaluation* matched to it.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     entry = database.entries[index]
-    search = DescriptorSearch(database, weighting)
+    matched = next(e for e in database.entries if e.id == evaluation.matches[index])
     n = entry.gap_frames
     frames = np.arange(-len(entry.before) + 1, n + 1 + len(entry.after))
     recorded = np.degrees(np.vstack([entry.before, entry.values[1:-1], entry.after]))
     figure, axes = plt.subplots(2, 4, figsize=(12, 5.2), sharex=True)
     for model in MODELS:
-        synthesized, _ = transition(model, entry.before, entry.after, n, search, exclude={entry.id})
+        if model in BASELINES:
+            synthesized = baseline(model, entry.before, entry.after, n)
+        else:
+            synthesized = fit_entry(matched, entry.before, entry.after, n, model)
         for c, ax in enumerate(axes.flat[:7]):
             ax.plot(
                 np.arange(1, n + 1), np.degrees(synthesized[:, c]), label=MODEL_LABELS[model], lw=1
@@ -122,16 +129,17 @@ def write_evaluation(
     database: TransitionDatabase,
     evaluations: dict[str, Evaluation],
     directory: str | Path,
+    weighting: str,
     plots: int = 3,
 ) -> list[Path]:
     """Write every output of an evaluation to *directory*; return the files written.
 
-    *evaluations* by weighting; the first is the one tabulated and plotted, and
+    *evaluations* by weighting; *weighting*'s is the one tabulated and plotted, and
     ``weightings.csv`` compares them all (which search wins).
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    main = next(iter(evaluations.values()))
+    main = evaluations[weighting]
     written = [_write_csv(directory / "table.csv", summary_rows(main))]
     rows = [
         {
@@ -172,9 +180,7 @@ def write_evaluation(
     written += [tex, text, _plot_means(main, directory / "rmse.png")]
     for index in range(min(plots, len(database.entries))):
         entry = database.entries[index]
-        written.append(
-            plot_transition(database, index, main.weighting, directory / f"curves-{entry.id}.png")
-        )
+        written.append(plot_transition(database, index, main, directory / f"curves-{entry.id}.png"))
     return written
 
 

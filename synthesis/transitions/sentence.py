@@ -20,18 +20,13 @@ import numpy as np
 
 from synthesis.signing.sentence import Sentence, SentenceOptions, parse_glosses, synthesize
 from synthesis.signing.signs import SignLibrary
+from synthesis.skeleton.retime import sample_curves
 from synthesis.transitions.blending import blend_signs
 from synthesis.transitions.curves import SIDES, arm_columns
-from synthesis.transitions.datadriven import baseline, fit_entry
+from synthesis.transitions.datadriven import BASELINES, transition
 from synthesis.transitions.descriptor import DESCRIPTOR_FRAMES, gap_descriptor
 
 MOVING_DEG = 5.0
-
-
-def _resampled(curves: np.ndarray, rate_hz: float, at_s: np.ndarray) -> np.ndarray:
-    """Return *curves* (n, c) sampled at *rate_hz* read at times *at_s* (linear)."""
-    t = np.arange(len(curves)) / rate_hz
-    return np.column_stack([np.interp(at_s, t, curves[:, c]) for c in range(curves.shape[1])])
 
 
 def gap_context(
@@ -42,7 +37,7 @@ def gap_context(
     before_s = end / rate_hz - step * np.arange(DESCRIPTOR_FRAMES)[::-1]
     after_s = start / rate_hz + step * np.arange(DESCRIPTOR_FRAMES)
     return gap_descriptor(
-        _resampled(curves, rate_hz, before_s), _resampled(curves, rate_hz, after_s)
+        sample_curves(curves, rate_hz, before_s), sample_curves(curves, rate_hz, after_s)
     )
 
 
@@ -69,13 +64,11 @@ def retransition(sentence: Sentence, model: str, search=None, noise=None) -> np.
             if n < 1 or np.degrees(np.ptp(span, axis=0)).max() < MOVING_DEG:
                 continue
             before, after = curves[max(0, end - 8) : end + 1], curves[start : start + 9]
-            if model in ("linear", "simple_hermite"):
-                filled = baseline(model, before, after, n)
-            else:
-                database = search.database
-                context = gap_context(curves, end, start, rate, database.entries[0].rate_hz)
-                entry = database.entries[search.nearest(context)]
-                filled = fit_entry(entry, before, after, n, model)
+            descriptor = None
+            if search is not None and model not in BASELINES:
+                database_rate = search.database.entries[0].rate_hz
+                descriptor = gap_context(curves, end, start, rate, database_rate)
+            filled, _ = transition(model, before, after, n, search, descriptor=descriptor)
             dofs[end + 1 : start, columns] = filled + noise[end + 1 : start, columns]
     return sentence.body.clip(dofs)
 

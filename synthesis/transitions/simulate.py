@@ -12,7 +12,7 @@ the seed's captures (§4.2).
 """
 
 import itertools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -87,9 +87,8 @@ def simulate_capture(
     seed = int(rng.integers(2**31))
     options = SentenceOptions(rate_hz=rate_hz, seed=seed, gaps_ms=gaps_ms)
     sentence = synthesize(" ".join(glosses), options, library)
-    clean = synthesize(" ".join(glosses), replace(options, liveliness=None), library).dofs_rad
-    dofs = np.array(sentence.dofs_rad)
-    noise = dofs - clean
+    dofs, noise = np.array(sentence.dofs_rad), sentence.liveliness_rad
+    clean = dofs - noise
     frames = sentence.token_frames()
     for side in SIDES:
         columns = arm_columns(sentence.body.dof_names, side)

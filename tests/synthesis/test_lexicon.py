@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.retime import reset_root
 from synthesis.techniques import ClipError, ClipRequest, build_motion
 from synthesis.transitions.lexicon import (
     LexiconError,
     assemble,
     blend_recorded,
     read_lexicon,
-    reset_root,
     simulated_lexicon,
 )
 
