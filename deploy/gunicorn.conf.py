@@ -27,3 +27,11 @@ errorlog = "-"
 loglevel = os.environ.get("SIGNSTUDY_LOG_LEVEL", "info").lower()
 # Behind a proxy on this machine (nginx, Caddy): trust its X-Forwarded-* headers.
 forwarded_allow_ips = os.environ.get("SIGNSTUDY_FORWARDED_ALLOW_IPS", "127.0.0.1,::1")
+# gunicorn's control socket defaults to one path per user (~/.gunicorn/gunicorn.ctl), which
+# every instance on the host shares: a second instance replaced the first's and stopping
+# it deleted it. Off; SIGNSTUDY_CONTROL_SOCKET gives an instance a socket of its own.
+_control_socket = os.environ.get("SIGNSTUDY_CONTROL_SOCKET", "")
+control_socket_disable = not _control_socket
+if _control_socket:
+    control_socket = _control_socket
+control_socket_mode = 0o600

@@ -11,5 +11,5 @@ class StudyPlatformConfig(AppConfig):
     default_auto_field = "django.db.models.BigAutoField"
 
     def ready(self) -> None:
-        """Connect the signal handlers that keep researcher permissions in place."""
-        from studyplatform import signals  # noqa: F401
+        """Connect the signal handlers: researcher permissions, known sign-in devices."""
+        from studyplatform import signals, signin  # noqa: F401

@@ -4,10 +4,14 @@ An archive (``.tar.gz``) holds ``manifest.json`` (format, time, row counts per m
 SHA-256 of every file), ``data.json`` (Django's ``dumpdata`` of every model, with
 natural keys for content types and permissions, so it loads into SQLite or PostgreSQL
 alike) and the files of the public media root (``media/``) and the private one
-(``private/``). A restore loads it into a migrated, empty database, puts the files back,
-and checks every count and checksum against the manifest; any difference is an error.
+(``private/``), and ``withdrawals.jsonl``, the withdrawal ledger (:mod:`studyplatform.ledger`).
+A restore loads it into a migrated, empty database, puts the files back, and checks every
+count and checksum against the manifest; any difference is an error. It then applies
+every withdrawal that this installation's ledger or the archive's records: a participant
+who withdrew after the backup was made stays withdrawn, data and files (issue 33).
 """
 
+import hashlib
 import io
 import json
 import shutil
@@ -23,12 +27,14 @@ from django.db import transaction
 from django.utils import timezone
 
 from stimuli.clips import file_sha256
+from studyplatform import ledger
 
 FORMAT = "signstudy.backup"
 VERSION = 1
 # Rebuilt by `migrate` (content types, permissions) or worthless in another installation
 # (sessions, sign-in attempts).
 EXCLUDED = ("contenttypes", "auth.permission", "sessions", "axes")
+LEDGER = "withdrawals.jsonl"
 
 
 class BackupError(Exception):
@@ -42,6 +48,8 @@ class BackupSummary:
     rows: int
     files: int
     bytes: int
+    # A restore's re-applied withdrawals: the numbers of the participants withdrawn again.
+    withdrawn_again: tuple[int, ...] = ()
 
 
 def _roots() -> dict[str, Path]:
@@ -73,6 +81,10 @@ def make_backup(out: Path) -> BackupSummary:
         out.parent.mkdir(parents=True, exist_ok=True)
         with tarfile.open(out, "w:gz") as archive:
             archive.add(data, "data.json")
+            ledger_text = _ledger_bytes()
+            info = tarfile.TarInfo(LEDGER)
+            info.size = len(ledger_text)
+            archive.addfile(info, io.BytesIO(ledger_text))
             for prefix, root in _roots().items():
                 for path in sorted(p for p in root.rglob("*") if p.is_file()):
                     name = f"{prefix}/{path.relative_to(root).as_posix()}"
@@ -81,12 +93,37 @@ def make_backup(out: Path) -> BackupSummary:
                     archive.add(path, name)
             manifest = {"format": FORMAT, "version": VERSION,
                         "created_at": timezone.now().isoformat(), "counts": counts,
-                        "files": files, "data_sha256": file_sha256(data)}  # fmt: skip
+                        "files": files, "data_sha256": file_sha256(data),
+                        "ledger_sha256": hashlib.sha256(ledger_text).hexdigest()}  # fmt: skip
             encoded = json.dumps(manifest, indent=1, sort_keys=True).encode()
             info = tarfile.TarInfo("manifest.json")
             info.size = len(encoded)
             archive.addfile(info, io.BytesIO(encoded))
     return BackupSummary(rows=sum(counts.values()), files=len(files), bytes=size)
+
+
+def _ledger_bytes() -> bytes:
+    """Return the withdrawal ledger's bytes as they are now (empty: no withdrawal yet)."""
+    try:
+        return ledger.ledger_path().read_bytes()
+    except FileNotFoundError:
+        return b""
+
+
+def _archived_ledger(archive: tarfile.TarFile, manifest: dict) -> list[ledger.LedgerEntry]:
+    """Return the archive's ledger (an archive from before ledgers has none)."""
+    if "ledger_sha256" not in manifest:
+        return []
+    try:
+        text = archive.extractfile(LEDGER).read()
+    except (KeyError, AttributeError):
+        raise BackupError(f"The archive has no {LEDGER} though its manifest names one.") from None
+    if hashlib.sha256(text).hexdigest() != manifest["ledger_sha256"]:
+        raise BackupError(f"{LEDGER} does not match its checksum: the archive is damaged.")
+    try:
+        return ledger.parse(text.decode("utf-8"), LEDGER)
+    except (UnicodeDecodeError, ValueError) as error:
+        raise BackupError(f"The archive's {LEDGER} cannot be read ({error}).") from None
 
 
 def _read_manifest(archive: tarfile.TarFile) -> dict:
@@ -109,9 +146,13 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
 
     The database must be migrated and empty, unless *replace*, which deletes what it
     holds first (``flush``). The whole archive is checked before anything is deleted, and
-    the flush, the load and the count check run in one transaction: a failure leaves the
-    database as it was. Files are written where the settings put media.
+    the flush, the load, the count check and re-applying the withdrawal ledgers (this
+    installation's and the archive's) run in one transaction: a failure leaves the
+    database as it was. Files are written where the settings put media; those of
+    participants withdrawn again are deleted once it commits.
     """
+    from studyplatform.actions.privacy import do_reapply_withdrawals
+
     if not archive_path.is_file():
         raise BackupError(f"There is no archive at {archive_path}.")
     roots = _roots()
@@ -129,6 +170,11 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
             if file_sha256(data) != manifest["data_sha256"]:
                 raise BackupError("data.json does not match its checksum: the archive is damaged.")
             staged = _stage_files(archive, manifest["files"], stages)
+            try:
+                known = ledger.merge(ledger.read(), _archived_ledger(archive, manifest))
+            except ValueError as error:
+                raise BackupError(f"This installation's withdrawal ledger cannot be read "
+                                  f"({error}); nothing was changed.") from None  # fmt: skip
             with transaction.atomic():
                 if not empty:
                     call_command("flush", interactive=False, verbosity=0)
@@ -139,17 +185,27 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
                              if counts.get(label) != expected}  # fmt: skip
                 if differing:
                     raise BackupError(f"Restored row counts differ from the backup's: {differing}.")
-        size = 0
-        for name, path in staged.items():
-            prefix, _, relative = name.partition("/")
-            target = roots[prefix] / relative
-            target.parent.mkdir(parents=True, exist_ok=True)
-            path.replace(target)
-            size += target.stat().st_size
+                # The files are in place before the commit deletes those withdrawn again.
+                size = _place_files(staged, roots)
+                reapplied = do_reapply_withdrawals(known)
+        ledger.rewrite(known)
     finally:
         for stage in stages.values():
             shutil.rmtree(stage, ignore_errors=True)
-    return BackupSummary(rows=sum(counts.values()), files=len(staged), bytes=size)
+    return BackupSummary(rows=sum(counts.values()), files=len(staged), bytes=size,
+                         withdrawn_again=reapplied.participants)  # fmt: skip
+
+
+def _place_files(staged: dict[str, Path], roots: dict[str, Path]) -> int:
+    """Move the staged files to their media roots; return their bytes."""
+    size = 0
+    for name, path in staged.items():
+        prefix, _, relative = name.partition("/")
+        target = roots[prefix] / relative
+        target.parent.mkdir(parents=True, exist_ok=True)
+        path.replace(target)
+        size += target.stat().st_size
+    return size
 
 
 def _stage_files(archive: tarfile.TarFile, files: dict[str, str], stages: dict[str, Path]):

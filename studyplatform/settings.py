@@ -15,7 +15,8 @@ configuration at all:
 - ``SIGNSTUDY_HTTPS``: ``1`` behind a TLS proxy: secure cookies, HTTPS redirect, HSTS
   (``SIGNSTUDY_HSTS_SECONDS``, default one year).
 - ``SIGNSTUDY_LOGIN_FAILURE_LIMIT`` / ``SIGNSTUDY_LOGIN_COOLOFF_MINUTES``: failed admin
-  sign-ins (per user name and address) before that sign-in is locked, and for how long.
+  sign-ins (per user name, and per address) before it is locked, and for how long;
+  ``SIGNSTUDY_TRUSTED_PROXIES``: the proxies whose ``X-Forwarded-For`` names the client.
 - ``CELERY_BROKER_URL`` / ``REDIS_URL``: the Redis broker for rendering jobs; jobs run
   in-process (eagerly) when neither is set.
 """
@@ -29,6 +30,11 @@ import dj_database_url
 from csp.constants import NONCE, NONE, SELF, UNSAFE_INLINE
 
 BASE_DIR = Path(__file__).resolve().parent.parent
+# What the platform writes (the database, media, backups, keys, the ledger) is its own
+# user's alone: files 0600, folders 0700. SIGNSTUDY_UMASK (octal) loosens it, e.g. 027
+# when a web server of the same group serves MEDIA_ROOT (docs/deployment.md).
+SIGNSTUDY_UMASK = int(os.environ.get("SIGNSTUDY_UMASK", "077"), 8)
+os.umask(SIGNSTUDY_UMASK)
 VAR_DIR = Path(os.environ.get("SIGNSTUDY_VAR_DIR", BASE_DIR / "var"))
 
 
@@ -86,6 +92,7 @@ INSTALLED_APPS = [
 
 MIDDLEWARE = [
     "django.middleware.security.SecurityMiddleware",
+    "studyplatform.middleware.RefuseNulMiddleware",
     "whitenoise.middleware.WhiteNoiseMiddleware",
     "django.contrib.sessions.middleware.SessionMiddleware",
     "django.middleware.common.CommonMiddleware",
@@ -94,6 +101,7 @@ MIDDLEWARE = [
     "django.contrib.messages.middleware.MessageMiddleware",
     "django.middleware.clickjacking.XFrameOptionsMiddleware",
     "csp.middleware.CSPMiddleware",
+    "studyplatform.signin.KnownDeviceMiddleware",
     # Last, as django-axes asks: it turns a locked-out sign-in into its 429 answer.
     "axes.middleware.AxesMiddleware",
 ]
@@ -164,7 +172,7 @@ STATIC_ROOT = Path(os.environ.get("SIGNSTUDY_STATIC_ROOT", VAR_DIR / "static"))
 MEDIA_URL = "media/"
 MEDIA_ROOT = Path(os.environ.get("SIGNSTUDY_MEDIA_ROOT", VAR_DIR / "media"))
 STORAGES = {
-    "default": {"BACKEND": "django.core.files.storage.FileSystemStorage"},
+    "default": {"BACKEND": "studyplatform.storage.MediaStorage"},
     "staticfiles": {
         "BACKEND": (
             "django.contrib.staticfiles.storage.StaticFilesStorage"
@@ -180,6 +188,8 @@ SIGNSTUDY_PRIVATE_MEDIA_ROOT = Path(
 )
 for _directory in (STATIC_ROOT, MEDIA_ROOT, SIGNSTUDY_PRIVATE_MEDIA_ROOT):
     _directory.mkdir(parents=True, exist_ok=True)
+FILE_UPLOAD_PERMISSIONS = 0o666 & ~SIGNSTUDY_UMASK
+FILE_UPLOAD_DIRECTORY_PERMISSIONS = 0o777 & ~SIGNSTUDY_UMASK
 # Serve public media (stimulus clips, ASL prompts) through Django; a large deployment
 # puts a web server or object store in front instead.
 SIGNSTUDY_SERVE_MEDIA = _env_flag("SIGNSTUDY_SERVE_MEDIA", default=True)
@@ -188,6 +198,11 @@ SIGNSTUDY_SERVE_MEDIA = _env_flag("SIGNSTUDY_SERVE_MEDIA", default=True)
 # mod_xsendfile, with the file's absolute path); empty: Django sends them itself.
 SIGNSTUDY_SENDFILE_HEADER = os.environ.get("SIGNSTUDY_SENDFILE_HEADER", "")
 SIGNSTUDY_SENDFILE_PREFIX = os.environ.get("SIGNSTUDY_SENDFILE_PREFIX", "/protected/")
+# The append-only record of withdrawals that a restore re-applies (studyplatform.ledger):
+# outside the database and the media roots, so neither a restore nor a flush replaces it.
+SIGNSTUDY_WITHDRAWAL_LEDGER = Path(
+    os.environ.get("SIGNSTUDY_WITHDRAWAL_LEDGER", VAR_DIR / "withdrawals.jsonl")
+)
 # An upload nobody has added to for this long was abandoned: `clean_uploads` removes it.
 SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS = float(
     os.environ.get("SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS", "24")
@@ -231,14 +246,25 @@ CONTENT_SECURITY_POLICY = {
     }
 }
 
-# django-axes: the 11th failed sign-in of a user name from one address within the
-# cool-off is refused (429) without checking the password, until the cool-off ends.
+# django-axes (studyplatform.signin): the 10th failed sign-in of a user name within the
+# cool-off, from any addresses, locks that name, and the 10th from one address locks that
+# address: until the cool-off ends every sign-in there is refused (429) without checking
+# the password. A browser that signed in as the user before is not locked by it.
 AXES_FAILURE_LIMIT = int(os.environ.get("SIGNSTUDY_LOGIN_FAILURE_LIMIT", "10"))
 AXES_COOLOFF_TIME = timedelta(
     minutes=float(os.environ.get("SIGNSTUDY_LOGIN_COOLOFF_MINUTES", "15"))
 )
-AXES_LOCKOUT_PARAMETERS = [["username", "ip_address"]]
-AXES_RESET_ON_SUCCESS = True
+AXES_LOCKOUT_PARAMETERS = ["username", "ip_address"]
+AXES_WHITELIST_CALLABLE = "studyplatform.signin.is_known_device"
+AXES_CLIENT_IP_CALLABLE = "studyplatform.signin.client_address"
+# The reverse proxies whose X-Forwarded-For is believed (comma-separated addresses);
+# none by default: then the client is REMOTE_ADDR (docs/deployment.md).
+SIGNSTUDY_TRUSTED_PROXIES = frozenset(
+    a.strip() for a in os.environ.get("SIGNSTUDY_TRUSTED_PROXIES", "").split(",") if a.strip()
+)
+# A success does not clear the failures counted: an owner signing in must not reopen
+# their account to the guesser who locked it.
+AXES_RESET_ON_SUCCESS = False
 AXES_VERBOSE = False  # its banner on every start; lockouts are logged all the same
 
 _BROKER_URL = os.environ.get("CELERY_BROKER_URL") or os.environ.get("REDIS_URL") or ""

@@ -9,13 +9,40 @@ authenticated view :func:`studyplatform.views.private_media`.
 import os
 
 from django.conf import settings
+from django.core.files import File
 from django.core.files.storage import FileSystemStorage
 from django.urls import reverse
 from django.utils.deconstruct import deconstructible
 
+from studyplatform.media_types import MediaRejected, safe_name, sniff_file
+
+
+class ContentNamedMixin:
+    """Name every saved file by what its content is, and refuse any other kind.
+
+    The last line of defence of issue 33's rule (no upload is ever served as a page or
+    a script): whatever path stored it, a file's extension, and so the type it is served
+    with, comes from its first bytes (studyplatform.media_types).
+    """
+
+    def save(self, name, content, max_length=None):
+        if name is None:
+            name = content.name
+        if not hasattr(content, "chunks"):
+            content = File(content, name)
+        kind = sniff_file(content)
+        if kind is None:
+            raise MediaRejected(f"“{os.path.basename(name)}” is no video, picture or motion file.")
+        return super().save(safe_name(name, kind), content, max_length)
+
 
 @deconstructible
-class PrivateStorage(FileSystemStorage):
+class MediaStorage(ContentNamedMixin, FileSystemStorage):
+    """Store public media (clips, posters, ASL prompts) under names their content gives."""
+
+
+@deconstructible
+class PrivateStorage(ContentNamedMixin, FileSystemStorage):
     """Store files under ``SIGNSTUDY_PRIVATE_MEDIA_ROOT``, served only to those allowed."""
 
     @property

@@ -76,6 +76,12 @@ def _private_media_root(settings, tmp_path_factory):
 
 
 @pytest.fixture(autouse=True)
+def _withdrawal_ledger(settings, tmp_path_factory):
+    """Give each test a withdrawal ledger of its own (a restore re-applies the ledger)."""
+    settings.SIGNSTUDY_WITHDRAWAL_LEDGER = tmp_path_factory.mktemp("ledger") / "withdrawals.jsonl"
+
+
+@pytest.fixture(autouse=True)
 def _plain_static_storage(settings):
     """Serve static files without the collected manifest, which tests do not build."""
     settings.STORAGES = {

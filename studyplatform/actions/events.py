@@ -47,7 +47,8 @@ def _event(
             raise EventsRejected(f"Event {number}: {error.message}") from None
     trial = trials[page]
     clip = raw.get("clip")
-    if clip not in (None, 1, 2):
+    # Exactly None, 1 or 2: 1.0 and True compare equal to 1 but index nothing.
+    if not (clip is None or (type(clip) is int and clip in (1, 2))):
         raise EventsRejected(f"Event {number} names clip {clip!r}; a page has clips 1 and 2.")
     if not isinstance(raw.get("client_time_ms"), int | float):
         # The browser's clock tells a resent event from a new one (see do_log_media_events).

@@ -5,10 +5,9 @@ from django.core.exceptions import ValidationError
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
+from studyplatform.media_types import check_upload
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, STUDY_PATHS, AslVideo, Study
 
-# The containers an ASL video may come in: uploads and webcam recordings alike.
-VIDEO_SUFFIXES = (".mp4", ".webm", ".mov", ".m4v")
 MAX_ASL_VIDEO_BYTES = 300 * 1024 * 1024
 
 
@@ -26,11 +25,11 @@ def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, fiel
     in_study = {path: study} if path else {"pk": study.pk}
     if not model._default_manager.filter(pk=object_id).filter(**in_study).exists():
         raise ValidationError("This text is not part of the study.")
-    name = getattr(upload, "name", "") or ""
-    if not name.lower().endswith(VIDEO_SUFFIXES):
-        raise ValidationError(f"“{name}” is not a video file ({', '.join(VIDEO_SUFFIXES)}).")
+    name = getattr(upload, "name", "") or "video"
     if upload.size > MAX_ASL_VIDEO_BYTES:
         raise ValidationError("The video is larger than 300 MB.")
+    # By content, not by name: MP4 (also .mov, .m4v) or WebM that decodes; stored as such.
+    check_upload(upload, ("video",), f"“{name}”")
     with transaction.atomic():
         video, _ = AslVideo.objects.select_for_update().get_or_create(
             content_type_id=content_type_id, object_id=object_id, field_name=field_name,

@@ -14,8 +14,8 @@ from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
+from studyplatform.media_types import POSE, MediaKind, MediaRejected, check_upload
 from studyplatform.models import Item, Recording, Study
-from studyplatform.models.recordings import MOTION_SUFFIXES, VIDEO_SUFFIXES
 
 MAX_RECORDING_BYTES = 300 * 1024 * 1024
 
@@ -24,13 +24,13 @@ class RecordingRejected(ValidationError):
     """An upload that cannot be a recording of the item; nothing was stored."""
 
 
-def _check_motion_file(name: str, data: bytes) -> None:
-    """Raise RecordingRejected if a .pose or BVH upload does not parse."""
+def check_motion_file(name: str, data: bytes, kind: MediaKind) -> None:
+    """Raise RecordingRejected if a .pose or BVH file (by content: *kind*) does not parse."""
     from synthesis.capture import PoseFileError, parse_pose
     from synthesis.skeleton.bvh import BvhError, parse_bvh
 
     try:
-        if name.lower().endswith(".pose"):
+        if kind is POSE:
             recording = parse_pose(data, name)
             if not any(recording.found_hands().values()):
                 raise PoseFileError(f"{name}: no hand in any frame.")
@@ -47,8 +47,9 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
     """Store *upload* as a recording of *item* and queue its preparation.
 
     Raise RecordingRejected for an item that is not a word, a file that is neither a
-    video nor a .pose or BVH file, one over 300 MB, or a .pose or BVH file that does not
-    parse; nothing is stored then.
+    video nor a .pose or BVH file (by content, whatever its name), one over 300 MB, a
+    video that does not decode, or a .pose or BVH file that does not parse; nothing is
+    stored then.
     """
     from studyplatform.tasks import prepare_recording
 
@@ -58,20 +59,21 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
             f"{item.key} is a {item.get_kind_display().lower()}: only fingerspelled words "
             "take recordings."
         )
-    suffixes = VIDEO_SUFFIXES + MOTION_SUFFIXES
-    if not name.lower().endswith(suffixes):
-        raise RecordingRejected(
-            f"“{name}” is not a recording: upload a video ({', '.join(VIDEO_SUFFIXES)}), "
-            "a .pose file or a BVH file."
-        )
     if upload.size > MAX_RECORDING_BYTES:
         raise RecordingRejected("The recording is larger than 300 MB.")
+    try:
+        kind = check_upload(upload, ("video", "motion"), f"“{name}”")
+    except MediaRejected:
+        raise RecordingRejected(
+            f"“{name}” is not a recording: upload a video (MP4, WebM, MOV), a .pose file "
+            "or a BVH file (judged by its content)."
+        ) from None
     digest = hashlib.sha256()
     for chunk in upload.chunks():  # a video may be large: never all in memory
         digest.update(chunk)
-    if not name.lower().endswith(VIDEO_SUFFIXES):
+    if kind.family == "motion":
         upload.seek(0)
-        _check_motion_file(name, upload.read())
+        check_motion_file(name, upload.read(), kind)
     upload.seek(0)
     with transaction.atomic():
         recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand,

@@ -1,18 +1,25 @@
 """Create studies from definitions: import, duplicate."""
 
-import hashlib
 from dataclasses import dataclass
 from pathlib import PurePosixPath
 from typing import Any
 
 from django.core.exceptions import ValidationError
-from django.core.files.base import ContentFile
+from django.core.files import File
 from django.db import models, transaction
 
 from studyplatform import exchange
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.actions.recordings import do_relabel_stand_ins
-from studyplatform.lib.bundle import definition_files, owned_files, storage_of
+from studyplatform.actions.recordings import check_motion_file, do_relabel_stand_ins
+from studyplatform.lib.bundle import (
+    BundleFiles,
+    BundleRejected,
+    definition_files,
+    owned_files,
+    storage_of,
+)
+from studyplatform.lib.field_input import values_problems
+from studyplatform.media_types import MediaRejected, check_upload
 from studyplatform.models import (
     AnswerOption,
     AslVideo,
@@ -38,14 +45,24 @@ class ImportResult:
     warnings: tuple[str, ...] = ()
 
 
-def _pick(row: Any, fields: tuple[str, ...], where: str) -> dict[str, Any]:
-    """Return *row*'s values for *fields*, rejecting anything else it holds."""
+def _pick(row: Any, fields: tuple[str, ...], where: str,
+          model: type[models.Model] | None = None) -> dict[str, Any]:  # fmt: skip
+    """Return *row*'s values for *fields*, rejecting anything else it holds.
+
+    With *model*, each value must be of the kind its field holds (lib.field_input).
+    """
     if not isinstance(row, dict):
         raise StudyImportError(f"{where}: expected an object, got {type(row).__name__}.")
     unknown = sorted(set(row) - set(fields))
     if unknown:
-        raise StudyImportError(f"{where}: unknown field(s) {', '.join(unknown)}.")
-    return {name: row[name] for name in fields if name in row}
+        raise StudyImportError(f"{where}: unknown field(s) {', '.join(unknown)[:200]}.")
+    values = {name: row[name] for name in fields if name in row}
+    if model is not None:
+        problems = values_problems(model, values)
+        if problems:
+            details = "; ".join(f"{name} {problem}" for name, problem in problems.items())
+            raise StudyImportError(f"{where}: {details}.")
+    return values
 
 
 def _rows(data: dict[str, Any], name: str) -> list[Any]:
@@ -84,7 +101,7 @@ def _create_keyed(
     created = {}
     for index, row in enumerate(_rows(data, name)):
         where = f"{name}[{index}]"
-        obj = model(study=study, **_pick(row, fields, where))
+        obj = model(study=study, **_pick(row, fields, where, model))
         save(obj, where)
         created[obj.key] = obj
     return created
@@ -135,7 +152,7 @@ def do_import_study(
     slug: str | None = None,
     title: str | None = None,
     status: str | None = None,
-    files: dict[str, bytes] | None = None,
+    files: BundleFiles | None = None,
     allowed_files: set[str] = frozenset(),
 ) -> ImportResult:
     """Create a study owned by *owner* from an exported definition, all or nothing.
@@ -143,9 +160,9 @@ def do_import_study(
     *slug*, *title* and *status* override the definition's. Without *slug*, the
     definition's slug is used, or a free variant of it when a study already has it.
     A media file the definition names must come in *files* (a bundle's, by media name;
-    stored under a name made from its content) or be one *owner*'s studies already use
-    (or one of *allowed_files*); a file of someone else's is refused. Files in neither
-    place are left out, with a warning each; the motion-capture stand-ins are then
+    checked by content and stored under a name made from it) or be one *owner*'s studies
+    already use (or one of *allowed_files*). Files in neither place, someone else's
+    among them, are left out, with a warning each; the motion-capture stand-ins are then
     labelled by the recordings that came (:func:`do_relabel_stand_ins`).
 
     Rows are written in short transactions (BATCH_ROWS), so participants' saves never
@@ -164,7 +181,7 @@ def do_import_study(
             f"Unsupported study definition version {data.get('version')!r} "
             f"(this installation reads version {exchange.VERSION})."
         )
-    values = _pick(data.get("study"), exchange.STUDY_FIELDS, "study")
+    values = _pick(data.get("study"), exchange.STUDY_FIELDS, "study", Study)
     if slug:
         values["slug"] = slug
     elif "slug" in values and isinstance(values["slug"], str):
@@ -176,7 +193,7 @@ def do_import_study(
     study = Study(owner=owner, **values)
     with transaction.atomic():
         _save(study, "study")
-    media = _Media(owner, files or {}, allowed_files)
+    media = _Media(owner, files, allowed_files)
     batches = _Batches()
     try:
         # A draft while its rows arrive: an open study's design is locked.
@@ -193,38 +210,59 @@ def do_import_study(
     return ImportResult(study=study, warnings=tuple(warnings))
 
 
+# What each media name of a definition must be, by content.
+ASL_VIDEO, ASL_POSTER = ("video",), ("image",)
+RECORDING_KINDS = {"upload": ("video", "motion"), "motion": ("motion",), "sheet": ("image",)}
+
+
 class _Media:
     """Resolve the media names of a definition being imported (see do_import_study)."""
 
-    def __init__(self, owner, files: dict[str, bytes], allowed: set[str]):
-        self.owner, self.files, self.allowed, self.stored = owner, files, set(allowed), []
+    def __init__(self, owner, files: BundleFiles | None, allowed: set[str]):
+        self.owner, self.allowed, self.stored = owner, set(allowed), []
+        self.files = files if files is not None else BundleFiles()
         self._owned: set[str] | None = None  # the owner's files, read when first needed
 
-    def resolve(self, name: Any, folder: str, whose: str, where: str) -> str | None:
-        """Return the name to store for *name* ("" for none, None if it is not here)."""
+    def resolve(self, name: Any, folder: str, families: tuple[str, ...], whose: str,
+                where: str) -> str | None:  # fmt: skip
+        """Return the name to store for *name* ("" for none, None if it is not here).
+
+        A bundled file is checked by content (one of *families*, whole) and stored under
+        its hash and the extension of what it is. A name already in media is only
+        looked up when it is the owner's: "not yours" and "not there" read the same, so
+        an import never tells whether another researcher has a file of that name.
+        """
         _check_media_file(name, folder, whose, where)
         if not name:
             return ""
         storage = storage_of(folder)
         if name in self.files:
-            content = self.files[name]
-            digest = hashlib.sha256(content).hexdigest()[:32]
-            stored = f"{folder}/{digest}{PurePosixPath(name).suffix.lower()[:10]}"
-            if not storage.exists(stored):
-                stored = storage.save(stored, ContentFile(content))
-                self.stored.append((storage, stored))
+            try:
+                digest, content = self.files.unpack(name)
+            except BundleRejected as error:
+                raise StudyImportError(f"{where}: the bundle is {error}.") from None
+            with content:
+                try:
+                    kind = check_upload(content, families, f"{name!r}")
+                except MediaRejected as error:
+                    raise StudyImportError(f"{where}: {error.messages[0]}") from None
+                if kind.family == "motion":
+                    try:
+                        check_motion_file(name, content.read(), kind)
+                    except ValidationError as error:
+                        raise StudyImportError(f"{where}: {error.messages[0]}") from None
+                    content.seek(0)
+                stored = f"{folder}/{digest[:32]}{kind.suffix}"
+                if not storage.exists(stored):
+                    stored = storage.save(stored, File(content, name=stored))
+                    self.stored.append((storage, stored))
             return stored
-        if not storage.exists(name):
-            return None
-        if name not in self.allowed and not self.owner.is_superuser:
+        if not (name in self.allowed or self.owner.is_superuser):
             if self._owned is None:
                 self._owned = owned_files(self.owner)
             if name not in self._owned:
-                raise StudyImportError(
-                    f"{where}: {name!r} is a file of another researcher's study. Import a "
-                    "bundle that brings its files (Export with media) instead."
-                )
-        return name
+                return None
+        return name if storage.exists(name) else None
 
 
 def _discard(study: Study, stored: list) -> None:
@@ -249,7 +287,7 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> 
     options: dict[str, AnswerOption] = {}
     for index, row in enumerate(_rows(data, "questions")):
         where = f"questions[{index}]"
-        values = _pick(row, (*exchange.QUESTION_FIELDS, "options"), where)
+        values = _pick(row, (*exchange.QUESTION_FIELDS, "options"), where, Question)
         option_rows = values.pop("options", [])
         question = Question(study=study, **values)
         save(question, where)
@@ -259,7 +297,8 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> 
         for option_index, option_row in enumerate(option_rows):
             option_where = f"{where}.options[{option_index}]"
             option = AnswerOption(
-                question=question, **_pick(option_row, exchange.OPTION_FIELDS, option_where)
+                question=question,
+                **_pick(option_row, exchange.OPTION_FIELDS, option_where, AnswerOption),
             )
             save(option, option_where)
             options[f"{question.key}:{option.value}"] = option
@@ -276,7 +315,7 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> 
     for index, row in enumerate(_rows(data, "trials")):
         where = f"trials[{index}]"
         values = _pick(
-            row, (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"), where
+            row, (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"), where, Trial
         )
         question_keys = values.pop("questions", [])
         for ref in exchange.TRIAL_REFERENCES:
@@ -304,7 +343,8 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> 
     }
     for index, row in enumerate(_rows(data, "asl_videos")):
         where = f"asl_videos[{index}]"
-        values = _pick(row, (*exchange.ASL_VIDEO_FIELDS, "target", "video", "poster"), where)
+        values = _pick(row, (*exchange.ASL_VIDEO_FIELDS, "target", "video", "poster"), where,
+                       AslVideo)  # fmt: skip
         target_ref = values.pop("target", None)
         if not (isinstance(target_ref, list) and len(target_ref) == 2):
             raise StudyImportError(f"{where}.target: expected [model, key].")
@@ -316,8 +356,8 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> 
         else:
             raise StudyImportError(f"{where}.target: unknown model {model!r}.")
         video_name = values.pop("video", "")
-        video = media.resolve(video_name, "asl", "an ASL video's", f"{where}.video")
-        poster = media.resolve(values.pop("poster", ""), "asl", "an ASL video's",
+        video = media.resolve(video_name, "asl", ASL_VIDEO, "an ASL video's", f"{where}.video")
+        poster = media.resolve(values.pop("poster", ""), "asl", ASL_POSTER, "an ASL video's",
                                f"{where}.poster")  # fmt: skip
         if not video:
             warnings.append(f"{where}: video file {video_name!r} is not in media; left out.")
@@ -328,13 +368,14 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: _Media) -> 
     for index, row in enumerate(_rows(data, "recordings")):
         where = f"recordings[{index}]"
         values = _pick(row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
-                       where)  # fmt: skip
+                       where, Recording)  # fmt: skip
         item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
         if item is None or item.kind != Item.Kind.WORD:
             raise StudyImportError(f"{where}.item: recordings belong to words; "
                                    f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
         named = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
-        found = {name: media.resolve(file_name, "recordings", "a recording's", f"{where}.{name}")
+        found = {name: media.resolve(file_name, "recordings", RECORDING_KINDS[name],
+                                     "a recording's", f"{where}.{name}")
                  for name, file_name in named.items()}  # fmt: skip
         missing = [name for name in ("upload", "motion") if not found[name]]
         if missing:

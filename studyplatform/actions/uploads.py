@@ -1,10 +1,15 @@
 """Receive signed answers recorded with the webcam, in chunks that survive a lost connection.
 
-The browser sends the recording in chunks, each saying at which byte it starts. A chunk
-that does not start where the stored part ends is refused with the stored length, so
-the browser resumes from there after a dropped connection, and a repeated chunk is
-never appended twice; a chunk at byte 0 starts a new recording. The last chunk turns
-the part into the answer's video file.
+Each recording the participant makes (a *take*) has an id the browser creates, a UUID,
+sent with every chunk and every question of where to resume. The browser sends a take in
+chunks, each saying at which byte it starts. A chunk that does not start where that
+take's stored part ends is refused with the stored length, so the browser resumes from
+there after a dropped connection, and a repeated chunk is never appended twice; a chunk
+at byte 0 starts the take afresh and discards every other take's part of the answer. A
+take's bytes are never joined to another's (issue 33: resuming by offset alone spliced a
+discarded take's head onto the saved answer). The last chunk says the whole file's
+SHA-256 and, optionally, its length in time; the part becomes the answer's video only if
+it matches them and decodes to its end.
 
 Unfinished parts and finished answers live in private storage
 (``SIGNSTUDY_PRIVATE_MEDIA_ROOT``, :mod:`studyplatform.storage`); no public URL
@@ -12,9 +17,13 @@ reaches them. A part nobody has added to for ``SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_
 was abandoned, and :func:`do_remove_abandoned_uploads` deletes it.
 """
 
+import hashlib
+import math
 import os
 import secrets
 import time
+import uuid
+from dataclasses import dataclass
 from pathlib import Path
 
 from django.conf import settings
@@ -23,10 +32,14 @@ from django.core.files import File
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.lib.video_check import container_suffix, decodes_as_video
+from studyplatform.media_types import decoded_duration_s, sniff
 from studyplatform.models import Participant, Question, Response, Trial
 
 MAX_SIGNED_ANSWER_BYTES = 200 * 1024 * 1024
+# How far the decoded length may be from the one the browser measured between starting
+# and stopping the recorder (which starts a moment after it is asked to).
+DURATION_TOLERANCE_S = 1.0
+DURATION_TOLERANCE_SHARE = 0.25
 
 
 class UploadRejected(ValidationError):
@@ -41,10 +54,29 @@ class UploadOffsetMismatch(UploadRejected):
         self.offset = offset
 
 
-def partial_path(participant: Participant, trial: Trial, question: Question) -> Path:
-    """Return where the unfinished upload of this answer is kept."""
-    name = f"{participant.pk}-{trial.pk}-{question.pk}.part"
-    return partial_directory() / name
+@dataclass(frozen=True)
+class FinalChunk:
+    """What the browser says of the whole take with its last chunk."""
+
+    sha256: str
+    duration_ms: float | None = None
+
+
+def take_id(value: object) -> str:
+    """Return the take id *value* (a UUID) in its canonical form; UploadRejected if it is none."""
+    try:
+        return str(uuid.UUID(str(value)))
+    except ValueError:
+        raise UploadRejected("The recording does not say which take it is.") from None
+
+
+def partial_path(participant: Participant, trial: Trial, question: Question, take: str) -> Path:
+    """Return where the unfinished upload of this take of the answer is kept."""
+    return partial_directory() / f"{_answer_prefix(participant, trial, question)}{take}.part"
+
+
+def _answer_prefix(participant: Participant, trial: Trial, question: Question) -> str:
+    return f"{participant.pk}-{trial.pk}-{question.pk}-"
 
 
 def partial_directory() -> Path:
@@ -52,10 +84,28 @@ def partial_directory() -> Path:
     return Path(settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT) / "answers" / "partial"
 
 
-def upload_offset(participant: Participant, trial: Trial, question: Question) -> int:
-    """Return how many bytes of this answer's recording are stored so far."""
-    path = partial_path(participant, trial, question)
+def upload_offset(participant: Participant, trial: Trial, question: Question, take: str) -> int:
+    """Return how many bytes of this take of the answer are stored so far."""
+    path = partial_path(participant, trial, question, take)
     return path.stat().st_size if path.exists() else 0
+
+
+def _discard_other_takes(participant: Participant, trial: Trial, question: Question,
+                         keep: Path | None) -> None:  # fmt: skip
+    directory = partial_directory()
+    for path in directory.glob(f"{_answer_prefix(participant, trial, question)}*.part"):
+        if path != keep:
+            path.unlink(missing_ok=True)
+
+
+def discard_partial_uploads(participant_pk: int) -> int:
+    """Delete every unfinished upload of the participant numbered *participant_pk*."""
+    directory = partial_directory()
+    removed = 0
+    for path in directory.glob(f"{participant_pk}-*.part") if directory.is_dir() else ():
+        path.unlink(missing_ok=True)
+        removed += 1
+    return removed
 
 
 def _check_question(trial: Trial, question: Question) -> None:
@@ -69,24 +119,27 @@ def do_append_signed_answer_chunk(
     participant: Participant,
     trial: Trial,
     question: Question,
+    take: str,
     offset: int,
     chunk: bytes,
-    final: bool,
+    final: FinalChunk | None,
 ) -> tuple[int, Response | None]:
-    """Append *chunk* at byte *offset*; with *final*, save the recording as the answer.
+    """Append *chunk* of *take* at byte *offset*; with *final*, save the take as the answer.
 
     Return the stored length and, after the final chunk, the saved Response.
     """
     if participant.is_finished:
         raise UploadRejected("This study is finished; answers can no longer change.")
     _check_question(trial, question)
+    take = take_id(take)
     with transaction.atomic():
         # One writer per participant at a time: concurrent chunks cannot interleave.
         Participant.objects.select_for_update().get(pk=participant.pk)
-        path = partial_path(participant, trial, question)
+        path = partial_path(participant, trial, question, take)
         if offset == 0:
-            path.unlink(missing_ok=True)  # a new recording starts over
-        stored = upload_offset(participant, trial, question)
+            path.unlink(missing_ok=True)  # the take starts over
+            _discard_other_takes(participant, trial, question, keep=None)
+        stored = upload_offset(participant, trial, question, take)
         if offset != stored:
             raise UploadOffsetMismatch(stored)
         if stored + len(chunk) > MAX_SIGNED_ANSWER_BYTES:
@@ -99,25 +152,73 @@ def do_append_signed_answer_chunk(
             part.flush()
             os.fsync(part.fileno())
         stored += len(chunk)
-    if not final:
+    if final is None:
         return stored, None
     # Decoding takes a moment: outside the lock, so other participants' saves don't wait
     # on SQLite's single writer. A final chunk sent again after a failure here finds the
     # whole part stored (409 with its length) and sends an empty final chunk.
-    suffix = container_suffix(path)
-    if suffix is None or not decodes_as_video(path):
+    suffix = _check_take(path, final)
+    return stored, _save_recording(participant, trial, question, take, path, stored, suffix)
+
+
+def _check_take(path: Path, final: FinalChunk) -> str:
+    """Return the video's extension if the stored take is what the browser sent, whole.
+
+    Refused (and discarded): bytes whose SHA-256 is not the browser's, a file that is
+    not WebM or MP4, one that does not decode to its end (cut short), and one whose
+    decoded length is far from the length the browser measured.
+    """
+    digest = hashlib.sha256()
+    with open(path, "rb") as part:
+        head = part.read(64)
+        part.seek(0)
+        for block in iter(lambda: part.read(1 << 20), b""):
+            digest.update(block)
+    problem = ""
+    kind = sniff(head)
+    if digest.hexdigest() != final.sha256.lower():
+        problem = "The recording arrived damaged (its checksum differs); please send it again."
+    elif kind is None or kind.family != "video":
+        problem = "The recording is not a WebM or MP4 video."
+    else:
+        duration_s = decoded_duration_s(path)
+        if duration_s is None:
+            problem = "The recording is incomplete or does not play; please record it again."
+        elif final.duration_ms is not None:
+            claimed_s = final.duration_ms / 1000
+            if abs(duration_s - claimed_s) > max(DURATION_TOLERANCE_S,
+                                                 DURATION_TOLERANCE_SHARE * claimed_s):  # fmt: skip
+                problem = (f"The recording plays for {duration_s:.1f} s, not the "
+                           f"{claimed_s:.1f} s recorded; please record it again.")  # fmt: skip
+    if problem:
         path.unlink(missing_ok=True)
-        raise UploadRejected("The recording is not a WebM or MP4 video.")
-    return stored, _save_recording(participant, trial, question, path, stored, suffix)
+        raise UploadRejected(problem)
+    return kind.suffix
 
 
-def _save_recording(participant: Participant, trial: Trial, question: Question, path: Path,
-                    length: int, suffix: str) -> Response:  # fmt: skip
+def parse_final(sha256: object, duration_ms: object) -> FinalChunk:
+    """Return the final chunk's claims from its headers; UploadRejected if malformed."""
+    text = str(sha256 or "").strip().lower()
+    if len(text) != 64 or any(c not in "0123456789abcdef" for c in text):
+        raise UploadRejected("The last chunk does not give the recording's SHA-256.")
+    duration = None
+    if duration_ms not in (None, ""):
+        try:
+            duration = float(str(duration_ms))
+        except ValueError:
+            duration = math.nan
+        if not (math.isfinite(duration) and 0 < duration <= 24 * 3600 * 1000):
+            raise UploadRejected("The last chunk gives no valid length in milliseconds.")
+    return FinalChunk(sha256=text, duration_ms=duration)
+
+
+def _save_recording(participant: Participant, trial: Trial, question: Question, take: str,
+                    path: Path, length: int, suffix: str) -> Response:  # fmt: skip
     """Save the checked part at *path* as the answer's video (replacing an older one)."""
     with transaction.atomic():
         Participant.objects.select_for_update().get(pk=participant.pk)
-        stored = upload_offset(participant, trial, question)
-        if stored != length:  # a new recording started meanwhile
+        stored = upload_offset(participant, trial, question, take)
+        if stored != length:  # the take started over meanwhile
             raise UploadOffsetMismatch(stored)
         response = Response.objects.select_for_update().filter(
             participant=participant, trial=trial, question=question
@@ -131,6 +232,7 @@ def _save_recording(participant: Participant, trial: Trial, question: Question, 
             response.revision += 1
         response.save()
         path.unlink(missing_ok=True)
+        _discard_other_takes(participant, trial, question, keep=None)
         delete_unused_files_on_commit(response.video.storage, [old])
     return response
 

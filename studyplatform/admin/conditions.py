@@ -11,6 +11,7 @@ from django import forms
 from django.contrib import admin
 from django.http import HttpRequest
 
+from studyplatform.admin.design import OwnStudyFilter
 from studyplatform.admin.permissions import DesignLockMixin, StudyScopedMixin
 from studyplatform.lib.techniques import (
     condition_item_kinds,
@@ -122,7 +123,7 @@ def condition_form(kinds) -> type[ConditionForm]:
 @admin.register(Condition)
 class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
     list_display = ("label", "key", "study", "is_simulated", "compares")
-    list_filter = ("study", "is_simulated")
+    list_filter = (("study", OwnStudyFilter), "is_simulated")
     search_fields = ("key", "label")
     readonly_fields = ("compares",)
 

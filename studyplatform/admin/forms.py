@@ -91,7 +91,7 @@ class StudyImportForm(forms.Form):
             if upload.size > self.MAX_BUNDLE_BYTES:
                 raise ValidationError("The bundle is larger than 1 GB.")
             try:
-                return read_bundle(upload.read())
+                return read_bundle(upload)  # read while the import runs
             except BundleRejected as error:
                 raise ValidationError(f"The file is {error}.") from None
         if upload.size > self.MAX_BYTES:

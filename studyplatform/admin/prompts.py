@@ -58,8 +58,8 @@ class StudyAslMixin:
             try:
                 video = do_attach_asl_video(
                     study,
-                    int(request.POST.get("content_type", 0)),
-                    int(request.POST.get("object_id", 0)),
+                    _posted_id(request.POST.get("content_type")),
+                    _posted_id(request.POST.get("object_id")),
                     request.POST.get("field_name", ""),
                     request.FILES.get("video") or _missing_file(),
                 )
@@ -77,6 +77,14 @@ class StudyAslMixin:
         signed = sum(1 for prompt in prompts if prompt.video is not None)
         return self._page(request, "asl.html", f"ASL videos of “{study.title}”", study=study,
                           prompts=prompts, signed=signed)  # fmt: skip
+
+
+def _posted_id(value) -> int:
+    """Return a posted row number, or ValidationError naming no Python internals."""
+    text = str(value or "")
+    if not (text.isascii() and text.isdigit() and len(text) <= 18):
+        raise ValidationError("This text is not part of the study.")
+    return int(text)
 
 
 def _missing_file():

@@ -32,7 +32,9 @@ class StudyRosterMixin:
         can_review = self.has_change_permission(request, study)
         if request.method == "POST" and can_review:
             review = REVIEWS.get(request.POST.get("review", ""))
-            chosen = [v for v in request.POST.getlist("participant") if v.isdigit()]
+            # A participant's number: a 64-bit integer (a longer one names nobody).
+            chosen = [v for v in request.POST.getlist("participant")
+                      if v.isascii() and v.isdigit() and len(v) <= 18]  # fmt: skip
             if review is None or not chosen:
                 messages.error(request, "Tick participants and choose Approve or Reject.")
             else:

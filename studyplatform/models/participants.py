@@ -7,6 +7,9 @@ from django.db import models
 from studyplatform.models.design import Question
 from studyplatform.models.studies import Study
 
+# Where a browser's session remembers its participants: {study slug: token}.
+PARTICIPANT_SESSION_KEY = "signstudy_participants"
+
 
 def new_participant_token() -> str:
     """Return a random, unguessable participant token (256 bits, URL-safe)."""

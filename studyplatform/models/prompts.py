@@ -5,6 +5,8 @@ from django.contrib.contenttypes.fields import GenericForeignKey
 from django.contrib.contenttypes.models import ContentType
 from django.db import models
 
+from studyplatform.media_types import ContentValidator
+
 # The participant-facing text fields of each model, by model name: every one of them
 # can carry an ASL video, shown before the text, and the admin lists those that lack
 # one. Titles are headings, not prompts: the signed intro or instructions carry them.
@@ -26,8 +28,17 @@ class AslVideo(models.Model):
     field_name = models.CharField(
         max_length=40, help_text="The text field this video signs, e.g. 'text' or 'consent_text'."
     )
-    video = models.FileField(upload_to="asl/")
-    poster = models.FileField(upload_to="asl/", blank=True)
+    video = models.FileField(
+        upload_to="asl/",
+        validators=[ContentValidator("video")],
+        help_text="An MP4 or WebM video (checked by its content).",
+    )
+    poster = models.FileField(
+        upload_to="asl/",
+        blank=True,
+        validators=[ContentValidator("image")],
+        help_text="Optional: a PNG, JPEG or WebP still.",
+    )
     transcript = models.TextField(
         blank=True, help_text="English gloss or caption of the video, if it differs from the text."
     )
@@ -68,8 +79,17 @@ class SignedTemplate(models.Model):
     )
     kind = models.CharField(max_length=20, choices=Kind.choices)
     name = models.CharField(max_length=100, help_text="How you find it, e.g. 'Consent (lab)'.")
-    video = models.FileField(upload_to="asl/")
-    poster = models.FileField(upload_to="asl/", blank=True)
+    video = models.FileField(
+        upload_to="asl/",
+        validators=[ContentValidator("video")],
+        help_text="An MP4 or WebM video (checked by its content).",
+    )
+    poster = models.FileField(
+        upload_to="asl/",
+        blank=True,
+        validators=[ContentValidator("image")],
+        help_text="Optional: a PNG, JPEG or WebP still.",
+    )
     transcript = models.TextField(
         blank=True, help_text="What the video signs, in English (shown as its caption)."
     )

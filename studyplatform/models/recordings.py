@@ -5,8 +5,7 @@ from django.db import models
 from studyplatform.models.studies import Item
 from studyplatform.storage import private_storage
 
-VIDEO_SUFFIXES = (".mp4", ".webm", ".mov")
-MOTION_SUFFIXES = (".pose", ".bvh")
+VIDEO_SUFFIXES = (".mp4", ".webm", ".mov", ".m4v")
 
 
 class Recording(models.Model):

@@ -5,6 +5,10 @@ ASL prompts can be replaced under the same name, so they are revalidated daily.
 Signed answers and signers' recordings are private (:mod:`studyplatform.storage`): the
 study's researchers may open them in the admin, and a participant may play back their
 own answer while taking part. Everyone else gets 404, as if the file did not exist.
+
+Every file is served with the fixed type of its extension (studyplatform.media_types),
+``nosniff`` and a sandboxing policy; a motion file is a download. A file of any other
+extension is not served at all, whoever put it there.
 """
 
 from pathlib import Path
@@ -18,6 +22,7 @@ from django.views.decorators.http import require_safe
 
 from studyplatform import exchange
 from studyplatform.admin.permissions import owned_studies
+from studyplatform.media_types import MEDIA_CSP, SERVED
 from studyplatform.models import Recording, Response
 from studyplatform.storage import PRIVATE_STORAGE
 from studyplatform.views.files import file_response
@@ -32,9 +37,20 @@ def _existing_file(root, name: str) -> Path:
         path = Path(safe_join(root, name))
     except SuspiciousFileOperation:  # a path that leaves the root
         raise Http404("No such file.") from None
-    if not path.is_file():
+    if path.suffix.lower() not in SERVED or not path.is_file():
         raise Http404("No such file.")
     return path
+
+
+def _as_media(response: HttpResponse, path: Path) -> HttpResponse:
+    """Give *response* the headers every media file is served with."""
+    kind = SERVED[path.suffix.lower()]
+    response["Content-Type"] = kind.content_type
+    response["Content-Security-Policy"] = MEDIA_CSP
+    response["X-Content-Type-Options"] = "nosniff"
+    if not kind.inline:
+        response["Content-Disposition"] = f'attachment; filename="{path.name}"'
+    return response
 
 
 @require_safe
@@ -42,21 +58,26 @@ def media(request: HttpRequest, path: str) -> HttpResponse:
     """Send the public media file at *path* (read at request time: it can change)."""
     found = _existing_file(settings.MEDIA_ROOT, path)
     cache = PUBLIC_CACHE.get(path.split("/", 1)[0], PUBLIC_CACHE_DEFAULT)
-    return file_response(request, found, cache_control=cache)
+    kind = SERVED[found.suffix.lower()]
+    response = file_response(request, found, cache_control=cache, content_type=kind.content_type)
+    return _as_media(response, found)
 
 
 def _private_file(request: HttpRequest, name: str) -> HttpResponse:
     path = _existing_file(PRIVATE_STORAGE.location, name)
     header = settings.SIGNSTUDY_SENDFILE_HEADER
     if not header:
-        return file_response(request, path, cache_control=PRIVATE_CACHE)
-    response = HttpResponse(content_type="")  # the web server sets type, length, ranges
+        kind = SERVED[path.suffix.lower()]
+        response = file_response(request, path, cache_control=PRIVATE_CACHE,
+                                 content_type=kind.content_type)  # fmt: skip
+        return _as_media(response, path)
+    response = HttpResponse()  # the web server sends the body, its length and ranges
     if header.lower() == "x-accel-redirect":
         response[header] = settings.SIGNSTUDY_SENDFILE_PREFIX.rstrip("/") + "/" + name
     else:
         response[header] = str(path)
     response["Cache-Control"] = PRIVATE_CACHE
-    return response
+    return _as_media(response, path)
 
 
 def _may_open(request: HttpRequest, name: str) -> bool:

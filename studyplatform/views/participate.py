@@ -31,6 +31,8 @@ from studyplatform.actions.uploads import (
     UploadOffsetMismatch,
     UploadRejected,
     do_append_signed_answer_chunk,
+    parse_final,
+    take_id,
     upload_offset,
 )
 from studyplatform.lib import (
@@ -43,10 +45,11 @@ from studyplatform.lib import (
     unwatched_clips,
 )
 from studyplatform.models import Participant, Study, Trial
+from studyplatform.models.participants import PARTICIPANT_SESSION_KEY
 from studyplatform.pages import participant_page, study_asl
 from studyplatform.views.posted import BodyRejected, json_body, page_number, parse_answer
 
-SESSION_KEY = "signstudy_participants"
+SESSION_KEY = PARTICIPANT_SESSION_KEY
 UPLOAD_CONTENT_TYPES = ("application/octet-stream", "video/webm", "video/mp4")
 NEW_PARTICIPANT_PARAM = "new"
 
@@ -285,10 +288,12 @@ def save_answer(request: HttpRequest, token: str) -> JsonResponse:
 def upload_signed_answer(
     request: HttpRequest, token: str, number: int, question: str
 ) -> JsonResponse:
-    """Take a chunk of a webcam recording (POST), or say how much is stored (GET).
+    """Take a chunk of a webcam recording (POST), or say how much of a take is stored (GET).
 
-    Headers ``X-Upload-Offset`` (where the chunk starts) and ``X-Upload-Final: 1`` on the
-    last chunk; a chunk at the wrong offset gets 409 and the offset to resume from.
+    Headers ``X-Upload-Take`` (the take's UUID; ``?take=`` on GET), ``X-Upload-Offset``
+    (where the chunk starts), and on the last chunk ``X-Upload-Final: 1`` with
+    ``X-Upload-Sha256`` (of the whole file) and optionally ``X-Upload-Duration-Ms``; a
+    chunk at the wrong offset gets 409 and the offset to resume from.
     """
     participant = _participant(token)
     if participant is None:
@@ -299,19 +304,23 @@ def upload_signed_answer(
         if found is None:
             raise UploadRejected(f"“{question}” is not asked on this page.")
         if request.method == "GET":
-            return JsonResponse({"offset": upload_offset(participant, trial, found)})
+            take = take_id(request.GET.get("take"))
+            return JsonResponse({"offset": upload_offset(participant, trial, found, take)})
         if request.content_type not in UPLOAD_CONTENT_TYPES:
             sent = request.content_type or "nothing"
             message = f"A recording is sent as application/octet-stream, not “{sent}”."
             return JsonResponse({"error": message}, status=415)
-        try:
-            offset = int(request.headers.get("X-Upload-Offset", ""))
-        except ValueError:
-            raise UploadRejected("The chunk does not say where it starts.") from None
-        final = request.headers.get("X-Upload-Final") == "1"
+        offset_text = request.headers.get("X-Upload-Offset", "")
+        if not (offset_text.isascii() and offset_text.isdigit() and len(offset_text) < 16):
+            raise UploadRejected("The chunk does not say where it starts.")
+        final = None
+        if request.headers.get("X-Upload-Final") == "1":
+            final = parse_final(request.headers.get("X-Upload-Sha256"),
+                                request.headers.get("X-Upload-Duration-Ms"))  # fmt: skip
         stored, response = do_append_signed_answer_chunk(
-            participant, trial, found, offset, request.body, final
-        )
+            participant, trial, found, request.headers.get("X-Upload-Take", ""),
+            int(offset_text), request.body, final,
+        )  # fmt: skip
     except UploadOffsetMismatch as mismatch:
         return JsonResponse({"error": mismatch.messages[0], "offset": mismatch.offset}, status=409)
     except ValidationError as error:

@@ -38,7 +38,8 @@ def json_body(request: HttpRequest):
             f"The request must be sent as JSON (application/json), not "
             f"“{request.content_type or 'nothing'}”.", status=415)  # fmt: skip
     try:
-        return strict_json.loads(request.body or b"null")
+        # NUL is stripped like the other control characters no answer needs (above).
+        return strict_json.loads(request.body or b"null", strip_nul=True)
     except strict_json.JsonRejected as error:
         raise BodyRejected(f"The request is not in the expected form: {error}.") from None
 

@@ -7,9 +7,10 @@ from django.urls import reverse
 
 from studyplatform.asl import study_prompts
 from studyplatform.models import AslVideo, Question, SignedTemplate
+from tests.conftest import tiny_webm
 
 pytestmark = pytest.mark.django_db
-WEBM = b"\x1a\x45\xdf\xa3" + b"\0" * 200
+WEBM = tiny_webm()
 
 
 @pytest.fixture
@@ -81,8 +82,13 @@ def test_replacing_a_video_deletes_the_old_file_unless_a_copy_still_uses_it(
 
 def test_bad_uploads_are_refused(client, alice, bob, fingerspelling, spine, media):
     client.force_login(alice)
-    not_video = _post(client, fingerspelling, fingerspelling, "consent_text", name="notes.txt")
-    assert "Not saved: “notes.txt” is not a video file" in not_video.text
+    not_video = _post(client, fingerspelling, fingerspelling, "consent_text", name="notes.txt",
+                      data=b"some notes")  # fmt: skip
+    assert "Not saved: “notes.txt” is not a video file (judged by its content)" in not_video.text
+    # A page named as a video is judged by what it is, too (issue 33).
+    page = _post(client, fingerspelling, fingerspelling, "consent_text", name="consent.webm",
+                 data=b"\x1a\x45\xdf\xa3<html><script>alert(1)</script></html>")  # fmt: skip
+    assert "does not decode as a video" in page.text
     wrong_field = _post(client, fingerspelling, fingerspelling, "slug")
     assert "“slug” is not a text participants read" in wrong_field.text
     elsewhere = _post(client, fingerspelling, spine, "consent_text")  # bob's study's text

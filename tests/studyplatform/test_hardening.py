@@ -120,7 +120,7 @@ def test_a_video_header_followed_by_html_is_no_video(client, at_comments):
                  b"\x00\x00\x00\x18ftypmp42" + b"<html>" * 500):  # fmt: skip
         refused = _chunk(client, participant, number, fake, 0, final=True)
         assert refused.status_code == 400
-        assert "not a WebM or MP4 video" in refused.json()["error"]
+        assert "incomplete or does not play" in refused.json()["error"]
     assert not Response.objects.exists()
 
 

@@ -1,5 +1,6 @@
 """Take studies through the participant views: flow, idempotent saves, tampering, isolation."""
 
+import hashlib
 import json
 import re
 from collections import Counter
@@ -152,7 +153,7 @@ def test_a_tampered_answer_is_rejected_and_changes_nothing(
         ('"rt_ms": NaN', "not in the expected form"),
         ('"rt_ms": "1e999"', "The response time '1e999' is not a number of milliseconds"),
         ('"rt_ms": true', "The response time 'True' is not a number of milliseconds"),
-        ('"rt_ms": 1' + "0" * 400, "is not a number of milliseconds"),  # beyond any float
+        ('"rt_ms": 1' + "0" * 400, "integer too large to use"),  # beyond 64 bits and floats
         ('"rt_ms": 1' + "0" * 5000, "not in the expected form"),  # beyond Python's digits
         ('"rt_ms": "\u0663"', "is not a number of milliseconds"),  # an Arabic-Indic 3
         ('"value": "\\ud800"', "not in the expected form"),  # a lone surrogate
@@ -181,13 +182,14 @@ def test_a_crafted_answer_gets_a_message_and_changes_nothing(client, fingerspell
         ('{"kind": "page_shown", "page": 1, "client_time_ms": 1e20}', "out of range"),
         (
             '{"kind": "page_shown", "page": 1, "client_time_ms": 100000000000000000000}',
-            "out of range",
+            "integer too large to use",
         ),
         (
             '{"kind": "play", "page": 1, "clip": 1, "media_time_s": -1e9, "client_time_ms": 1}',
             "out of range",
         ),
-        ('{"kind": "page_shown", "page": 1, "client_time_ms": 1' + "0" * 400 + "}", "out of range"),
+        ('{"kind": "page_shown", "page": 1, "client_time_ms": 1' + "0" * 400 + "}", "too large"),
+        ('{"kind": "page_shown", "page": 1, "client_time_ms": 9007199254740993}', "out of range"),
         ('{"kind": "page_shown", "page": 1, "client_time_ms": Infinity}', "JSON with Infinity"),
     ],
 )
@@ -423,9 +425,17 @@ def test_latin_square_rotation_balances_cells_over_participants(fingerspelling):
 WEBM = tiny_webm()
 
 
-def _chunk(client, participant, number, data, offset, final=False, question="comments"):
+TAKE = "0b7c6f2e-4a1d-4e8b-9c3f-5d2a1b0e9f81"
+
+
+def _chunk(client, participant, number, data, offset, final=False, question="comments",
+           take=TAKE, whole=None):  # fmt: skip
+    """Send a chunk of take *take*; a final one says the SHA-256 of *whole* (default *data*)."""
     url = reverse("participant_signed_answer", args=[participant.token, number, question])
-    headers = {"X-Upload-Offset": str(offset), "X-Upload-Final": "1" if final else "0"}
+    headers = {"X-Upload-Take": take, "X-Upload-Offset": str(offset),
+               "X-Upload-Final": "1" if final else "0"}  # fmt: skip
+    if final:
+        headers["X-Upload-Sha256"] = hashlib.sha256(data if whole is None else whole).hexdigest()
     return client.post(url, data, content_type="application/octet-stream", headers=headers)
 
 
@@ -437,8 +447,9 @@ def test_a_signed_answer_arrives_in_chunks_that_resume(client, at_comments):
     again = _chunk(client, participant, number, first, 1)
     assert again.status_code == 409 and again.json()["offset"] == 4000
     url = reverse("participant_signed_answer", args=[participant.token, number, "comments"])
+    url += f"?take={TAKE}"
     assert client.get(url).json() == {"offset": 4000}
-    done = _chunk(client, participant, number, rest, 4000, final=True)
+    done = _chunk(client, participant, number, rest, 4000, final=True, whole=WEBM)
     assert done.json() == {"offset": len(WEBM), "saved": True}
     response = Response.objects.get(participant=participant)
     assert response.video.read() == WEBM and response.text == ""

@@ -32,6 +32,7 @@ from synthesis.rigs.hand import HandModel
 from synthesis.skeleton.bvh import format_bvh
 from synthesis.timing import simulate_recording
 from tests.conftest import as_draft
+from tests.conftest import tiny_webm
 
 pytestmark = pytest.mark.django_db
 SMALL = {"width": 64, "height": 48, "rate_hz": 20.0}
@@ -132,7 +133,9 @@ def test_a_new_recording_replaces_the_old_only_once_it_is_ready(
         ("notes.txt", b"hello", "is not a recording"),
         ("HEAVEN.pose", b"\x00\x01 not a pose file", "HEAVEN.pose"),
         ("HEAVEN.bvh", b"HIERARCHY\nROOT", "HEAVEN.bvh"),
-        ("HEAVEN.bvh", b"\xff\xfe\x00", "not a BVH text file"),
+        ("HEAVEN.bvh", b"\xff\xfe\x00", "is not a recording"),
+        ("HEAVEN.bvh", b"HIERARCHY\n\xff\xfe", "not a BVH text file"),
+        ("HEAVEN.mp4", b"<html><script>alert(1)</script></html>", "judged by its content"),
     ],
 )
 def test_bad_uploads_are_named_and_store_nothing(fingerspelling, media, name, data, message):
@@ -231,7 +234,7 @@ def test_a_video_captured_without_a_contact_sheet_keeps_its_landmarks(fingerspel
 
     item = fingerspelling.items.get(key="HEAVEN")
     video = Recording(item=item)
-    video.upload.save("HEAVEN.mp4", SimpleUploadedFile("HEAVEN.mp4", b"video"), save=True)
+    video.upload.save("HEAVEN.webm", SimpleUploadedFile("HEAVEN.webm", tiny_webm()), save=True)
     pose = _pose("HEAVEN").read()
     assert do_finish_recording(video, {"frames": 3}, pose=pose, sheet=None) == "ready"
     video.refresh_from_db()

@@ -23,21 +23,72 @@ def _sign_in(client, username: str, password: str):
                                "next": "/admin/"})  # fmt: skip
 
 
-def test_the_eleventh_wrong_password_is_throttled(client, alice, settings):
+def _from(client, address: str, username: str, password: str):
+    return client.post(LOGIN, {"username": username, "password": password, "next": "/admin/"},
+                       REMOTE_ADDR=address)  # fmt: skip
+
+
+def test_the_tenth_wrong_password_locks_the_account_and_the_address(client, alice, bob,
+                                                                    settings):  # fmt: skip
+    """Issue 33: the settings said the 11th failure locks (the 10th did), and a guesser
+    with several addresses had ten tries at each."""
     assert settings.AXES_FAILURE_LIMIT == 10
-    for _ in range(10):
-        wrong = _sign_in(client, "alice", "not-her-password")
-        assert wrong.status_code in (200, 429)
-    throttled = _sign_in(client, "alice", "still-wrong")
-    assert throttled.status_code == 429
-    # Locked: even the right password is refused, without being checked, until the cool-off.
-    assert _sign_in(client, "alice", "pw-alice").status_code == 429
+    for attempt in range(9):  # three addresses share one count per account
+        assert _from(client, f"10.0.0.{attempt % 3}", "alice", "wrong").status_code == 200
+    assert _from(client, "10.0.0.0", "alice", "wrong").status_code == 429  # the 10th
+    # Locked from every address, the right password too, without being checked.
+    assert _from(client, "10.0.0.9", "alice", "pw-alice").status_code == 429
     assert "_auth_user_id" not in client.session
-    # Another user name from the same address is not locked.
-    assert _sign_in(client, "bob", "wrong").status_code == 200
-    # After the cool-off the right password works again.
-    AccessAttempt.objects.all().delete()
-    assert _sign_in(client, "alice", "pw-alice").status_code == 302
+    # Another account from a fresh address is not locked …
+    assert _from(client, "10.0.0.9", "bob", "pw-bob").status_code == 302
+    client.logout()
+    # … but ten failures from one address lock that address, whatever the user names.
+    for attempt in range(10):
+        _from(client, "10.0.1.1", f"nobody{attempt}", "wrong")
+    assert _from(client, "10.0.1.1", "bob", "pw-bob").status_code == 429
+    AccessAttempt.objects.all().delete()  # the cool-off's end
+    assert _from(client, "10.0.1.1", "alice", "pw-alice").status_code == 302
+
+
+def test_a_locked_account_still_opens_on_a_browser_that_signed_in_before(alice, settings):
+    """Issue 33: ten failures sent by anyone locked the real researcher out, renewably."""
+    from django.test import Client
+
+    owner, attacker = Client(), Client()
+    assert _from(owner, "10.0.0.5", "alice", "pw-alice").status_code == 302
+    device = owner.cookies["signstudy_device"]
+    assert device["httponly"] and device["path"] == "/admin/"
+
+    def sign_out() -> None:  # the test client's logout forgets every cookie; a browser doesn't
+        owner.logout()
+        owner.cookies["signstudy_device"] = device.value
+
+    sign_out()
+    for _ in range(12):  # the attacker locks the account, from the owner's address even
+        _from(attacker, "10.0.0.5", "alice", "wrong")
+    assert _from(attacker, "10.0.0.5", "alice", "pw-alice").status_code == 429
+    assert _from(owner, "10.0.0.5", "alice", "pw-alice").status_code == 302  # known device
+    sign_out()
+    # A known device that fails as often as the limit loses that standing.
+    for _ in range(10):
+        _from(owner, "10.0.0.5", "alice", "wrong")
+    assert _from(owner, "10.0.0.5", "alice", "pw-alice").status_code == 429
+    # A device cookie made for another user, or forged, counts for nothing.
+    stranger = Client()
+    stranger.cookies["signstudy_device"] = "forged:value"
+    assert _from(stranger, "10.0.0.7", "alice", "pw-alice").status_code == 429
+
+
+def test_the_client_address_comes_from_a_proxy_only_when_it_is_trusted(rf, settings):
+    from studyplatform.signin import client_address
+
+    request = rf.get("/", REMOTE_ADDR="127.0.0.1", HTTP_X_FORWARDED_FOR="6.6.6.6, 1.2.3.4")
+    settings.SIGNSTUDY_TRUSTED_PROXIES = frozenset()
+    assert client_address(request) == "127.0.0.1"  # nobody said to believe the header
+    settings.SIGNSTUDY_TRUSTED_PROXIES = frozenset({"127.0.0.1"})
+    assert client_address(request) == "1.2.3.4"  # the nearest hop the proxy saw
+    settings.SIGNSTUDY_TRUSTED_PROXIES = frozenset({"127.0.0.1", "1.2.3.4"})
+    assert client_address(request) == "6.6.6.6"
 
 
 def test_weak_passwords_are_refused():

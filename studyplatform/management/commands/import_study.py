@@ -21,22 +21,25 @@ class Command(BaseCommand):
         user = get_user_model().objects.filter(username=owner).first()
         if user is None:
             raise CommandError(f"No user '{owner}'.")
-        files = {}
+        files = None
         try:
-            with open(file, "rb") as handle:
-                content = handle.read()
-            if content.startswith(b"PK\x03\x04"):
-                data, files = read_bundle(content)
-            else:
-                data = strict_json.loads(content)
+            handle = open(file, "rb")  # noqa: SIM115 (a bundle's files are read from it below)
         except OSError as error:
             raise CommandError(f"Cannot read {file}: {error.strerror}.") from None
-        except (strict_json.JsonRejected, BundleRejected) as error:
-            raise CommandError(f"{file} is {error}.") from None
-        try:
-            result = do_import_study(data, owner=user, slug=slug, files=files)
-        except StudyImportError as error:
-            raise CommandError(f"{file}: {error}") from None
+        with handle:
+            try:
+                if handle.read(4) == b"PK\x03\x04":
+                    handle.seek(0)
+                    data, files = read_bundle(handle)
+                else:
+                    handle.seek(0)
+                    data = strict_json.loads(handle.read())
+            except (strict_json.JsonRejected, BundleRejected) as error:
+                raise CommandError(f"{file} is {error}.") from None
+            try:
+                result = do_import_study(data, owner=user, slug=slug, files=files)
+            except StudyImportError as error:
+                raise CommandError(f"{file}: {error}") from None
         for warning in result.warnings:
             self.stderr.write(self.style.WARNING(warning))
         self.stdout.write(

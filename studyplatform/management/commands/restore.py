@@ -25,3 +25,8 @@ class Command(BaseCommand):
             raise CommandError(str(error)) from error
         self.stdout.write(f"Restored and verified {summary.rows} rows and {summary.files} "
                           f"files ({summary.bytes / 1e6:.1f} MB).")  # fmt: skip
+        if summary.withdrawn_again:
+            numbers = ", ".join(f"#{n}" for n in summary.withdrawn_again)
+            self.stdout.write(self.style.WARNING(
+                f"{len(summary.withdrawn_again)} participants had withdrawn after this backup "
+                f"was made and were withdrawn again, with their files: {numbers}."))  # fmt: skip

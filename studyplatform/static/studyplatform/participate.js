@@ -227,8 +227,21 @@
   });
 
   /* Signed answers: record with the webcam, watch, record again, then send in chunks
-   * that resume where the server stopped after a lost connection. */
+   * that resume where the server stopped after a lost connection. Each recording (take)
+   * has its own id, so the server never joins one take's bytes to another's, and the
+   * last chunk says the whole file's SHA-256 and how long the recording ran. */
   const CHUNK_BYTES = 256 * 1024;
+  function newTakeId() {
+    if (window.crypto && crypto.randomUUID) { return crypto.randomUUID(); }
+    const b = crypto.getRandomValues(new Uint8Array(16));
+    b[6] = (b[6] & 0x0f) | 0x40; b[8] = (b[8] & 0x3f) | 0x80;
+    const h = Array.from(b, function (x) { return x.toString(16).padStart(2, "0"); }).join("");
+    return h.slice(0, 8) + "-" + h.slice(8, 12) + "-" + h.slice(12, 16) + "-" + h.slice(16, 20) + "-" + h.slice(20);
+  }
+  async function sha256Hex(blob) {
+    const digest = await crypto.subtle.digest("SHA-256", await blob.arrayBuffer());
+    return Array.from(new Uint8Array(digest), function (x) { return x.toString(16).padStart(2, "0"); }).join("");
+  }
   function makeButton(text) {
     const element = document.createElement("button");
     element.type = "button";
@@ -252,6 +265,7 @@
     controls.append(record, stop, send);
     let recorder = null;
     let blob = null;
+    let take = "", startedAt = 0, durationMs = 0;
     record.addEventListener("click", async function () {
       let stream;
       try {
@@ -269,6 +283,7 @@
       recorder = new MediaRecorder(stream);
       recorder.ondataavailable = function (event) { if (event.data.size) { parts.push(event.data); } };
       recorder.onstop = function () {
+        durationMs = Date.now() - startedAt;
         stream.getTracks().forEach(function (track) { track.stop(); });
         blob = new Blob(parts, {type: recorder.mimeType || "video/webm"});
         preview.srcObject = null;
@@ -281,7 +296,9 @@
         send.focus();
         state.textContent = "Watch your recording, then send it or record again.";
       };
+      take = newTakeId();
       recorder.start(500);
+      startedAt = Date.now();
       record.hidden = send.hidden = true;
       stop.hidden = false;
       stop.focus();
@@ -292,17 +309,23 @@
     });
     send.addEventListener("click", async function () {
       send.disabled = record.disabled = true;
+      const digest = await sha256Hex(blob);
+      const takeUrl = url + "?take=" + encodeURIComponent(take);
       let offset = 0;
       for (let attempt = 0; ;) {
         const end = Math.min(offset + CHUNK_BYTES, blob.size);
         const final = end >= blob.size;
+        const headers = {"X-CSRFToken": csrf, "X-Upload-Take": take, "X-Upload-Offset": String(offset),
+          "X-Upload-Final": final ? "1" : "0", "Content-Type": "application/octet-stream",
+          "Accept": "application/json"};
+        if (final) {
+          headers["X-Upload-Sha256"] = digest;
+          headers["X-Upload-Duration-Ms"] = String(durationMs);
+        }
         let retry = false;
         try {
           const response = await fetch(url, {
-            method: "POST", credentials: "same-origin", body: blob.slice(offset, end),
-            headers: {"X-CSRFToken": csrf, "X-Upload-Offset": String(offset),
-              "X-Upload-Final": final ? "1" : "0", "Content-Type": "application/octet-stream",
-              "Accept": "application/json"},
+            method: "POST", credentials: "same-origin", body: blob.slice(offset, end), headers: headers,
           });
           const data = await response.json().catch(function () { return {}; });
           if (response.ok) {
@@ -322,7 +345,7 @@
           state.textContent = "Connection lost. The recording keeps sending when it is back…";
           await sleep(backoff(attempt++));
           try {
-            const where = await fetch(url, {credentials: "same-origin", headers: {"Accept": "application/json"}});
+            const where = await fetch(takeUrl, {credentials: "same-origin", headers: {"Accept": "application/json"}});
             if (where.ok) { offset = (await where.json()).offset; }
           } catch (error) { /* still offline: try again */ }
         }

@@ -1,0 +1,74 @@
+"""Check values from outside (a study definition, a request) against the model fields they fill.
+
+Django's ``full_clean`` trusts a value's Python type and skips a blank field's empty
+values, so a definition's ``null`` for a text field, a list for a title, a NUL character
+(which PostgreSQL cannot store) or an integer past the column's range reached the
+database and failed there with a server error (issue 33). Every value of an import passes
+here first; the message names what is wrong, to follow the field's name.
+"""
+
+import math
+from typing import Any
+
+from django.core.exceptions import FieldDoesNotExist
+from django.db import connection, models
+
+# A JSON field of these models holds an object (parameters, a design), never a list.
+OBJECT_FIELDS = (models.JSONField,)
+
+
+def _integer_range(field: models.Field) -> tuple[int | None, int | None]:
+    internal = field.get_internal_type()
+    low, high = connection.ops.integer_field_range(internal)
+    # SQLite reports no range for any integer; its columns are 64-bit.
+    return (-(2**63) if low is None else low), (2**63 - 1 if high is None else high)
+
+
+def value_problem(field: models.Field, value: Any) -> str | None:
+    """Return why *value* cannot fill *field* (None if it can, for full_clean to judge)."""
+    if value is None:
+        return None if field.null else "must not be null"
+    if isinstance(field, models.BooleanField):
+        return None if isinstance(value, bool) else "must be true or false"
+    if isinstance(field, models.CharField | models.TextField):
+        if not isinstance(value, str):
+            return f"must be text, not {type(value).__name__}"
+        if "\x00" in value:
+            return "must not contain a NUL character"
+        return None
+    if isinstance(field, models.IntegerField | models.BigAutoField | models.AutoField):
+        if isinstance(value, bool) or not isinstance(value, int):
+            return f"must be a whole number, not {type(value).__name__}"
+        low, high = _integer_range(field)
+        if not low <= value <= high:
+            return f"must be between {low} and {high}"
+        return None
+    if isinstance(field, models.FloatField):
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            return f"must be a number, not {type(value).__name__}"
+        try:
+            finite = math.isfinite(float(value))
+        except OverflowError:  # an integer beyond any float
+            finite = False
+        return None if finite else "must be a finite number"
+    if isinstance(field, OBJECT_FIELDS):
+        if not isinstance(value, dict):
+            return f"must be an object, not {type(value).__name__}"
+        return None
+    return None
+
+
+def values_problems(model: type[models.Model], values: dict[str, Any]) -> dict[str, str]:
+    """Return, by field name, why each of *values* cannot fill *model*'s field."""
+    problems = {}
+    for name, value in values.items():
+        try:
+            field = model._meta.get_field(name)
+        except FieldDoesNotExist:  # not a column (options, questions, …)
+            continue
+        if isinstance(field, models.ForeignKey):
+            continue
+        problem = value_problem(field, value)
+        if problem:
+            problems[name] = problem
+    return problems
