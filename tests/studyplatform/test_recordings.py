@@ -31,8 +31,7 @@ from synthesis.fingerspelling.spelling import spell
 from synthesis.rigs.hand import HandModel
 from synthesis.skeleton.bvh import format_bvh
 from synthesis.timing import simulate_recording
-from tests.conftest import as_draft
-from tests.conftest import tiny_webm
+from tests.conftest import as_draft, tiny_webm
 
 pytestmark = pytest.mark.django_db
 SMALL = {"width": 64, "height": 48, "rate_hz": 20.0}
