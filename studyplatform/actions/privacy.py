@@ -54,7 +54,6 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
             personal_answers=PersonalAnswer.objects.filter(participant=locked).count(),
             files=len(videos) + partials,
         )
-        _erase(locked, videos)
         entry = ledger.LedgerEntry(
             study_id=locked.study_id, participant_number=locked.pk,
             token_sha256=ledger.token_sha256(locked.token),
@@ -63,6 +62,7 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
             responses=withdrawal.responses, events=withdrawal.events,
             personal_answers=withdrawal.personal_answers, files=withdrawal.files,
         )  # fmt: skip
+        _erase(locked, videos)
         transaction.on_commit(lambda: ledger.append(entry))
     log.info("participant %s withdrew from study %s: %s responses, %s events, %s files deleted",
              withdrawal.participant_number, withdrawal.study_id, withdrawal.responses,

@@ -335,7 +335,10 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
                 for warning in result.warnings:
                     messages.warning(request, warning)
                 return redirect(reverse("admin:studyplatform_study_change", args=[result.study.pk]))
-        return self._page(request, "import.html", "Import a study definition", form=form)
+        page = self._page(request, "import.html", "Import a study definition", form=form)
+        if request.method == "POST":
+            page.status_code = 400  # refused: the form says why
+        return page
 
     @admin.action(description="Duplicate the selected studies (as drafts)")
     def duplicate_studies(self, request: HttpRequest, queryset) -> None:

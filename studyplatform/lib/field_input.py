@@ -11,17 +11,18 @@ import math
 from typing import Any
 
 from django.core.exceptions import FieldDoesNotExist
-from django.db import connection, models
+from django.db import models
+from django.db.backends.base.operations import BaseDatabaseOperations
 
 # A JSON field of these models holds an object (parameters, a design), never a list.
 OBJECT_FIELDS = (models.JSONField,)
 
 
-def _integer_range(field: models.Field) -> tuple[int | None, int | None]:
-    internal = field.get_internal_type()
-    low, high = connection.ops.integer_field_range(internal)
-    # SQLite reports no range for any integer; its columns are 64-bit.
-    return (-(2**63) if low is None else low), (2**63 - 1 if high is None else high)
+def _integer_range(field: models.Field) -> tuple[int, int]:
+    # The standard column sizes (PostgreSQL's), on every database: SQLite would store any
+    # 64-bit number in a small integer column, and a study moved to PostgreSQL then fails.
+    ranges = BaseDatabaseOperations.integer_field_ranges
+    return ranges.get(field.get_internal_type(), (-(2**63), 2**63 - 1))
 
 
 def value_problem(field: models.Field, value: Any) -> str | None:

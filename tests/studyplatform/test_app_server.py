@@ -44,6 +44,7 @@ def server(tmp_path):
     subprocess.run([sys.executable, "manage.py", "collectstatic", "--noinput", "-v0"], cwd=ROOT,
                    env=env, check=True)  # fmt: skip
     app = AppServer(env, workers=2, threads=4)
+    app.media_root = tmp_path / "media"
     app.start()
     yield app
     app.stop()
