@@ -19,6 +19,24 @@ PARTICIPANT_FACING_FIELDS: dict[str, tuple[str, ...]] = {
 }
 
 
+def _video_field() -> models.FileField:
+    """Return the field of a signed text's video: checked by content, stored as what it is."""
+    return models.FileField(
+        upload_to="asl/",
+        validators=[ContentValidator("video")],
+        help_text="An MP4 or WebM video (checked by its content).",
+    )
+
+
+def _poster_field() -> models.FileField:
+    return models.FileField(
+        upload_to="asl/",
+        blank=True,
+        validators=[ContentValidator("image")],
+        help_text="Optional: a PNG, JPEG or WebP still.",
+    )
+
+
 class AslVideo(models.Model):
     """An ASL rendering of one text field of a study object (a prompt, a label, consent)."""
 
@@ -28,17 +46,8 @@ class AslVideo(models.Model):
     field_name = models.CharField(
         max_length=40, help_text="The text field this video signs, e.g. 'text' or 'consent_text'."
     )
-    video = models.FileField(
-        upload_to="asl/",
-        validators=[ContentValidator("video")],
-        help_text="An MP4 or WebM video (checked by its content).",
-    )
-    poster = models.FileField(
-        upload_to="asl/",
-        blank=True,
-        validators=[ContentValidator("image")],
-        help_text="Optional: a PNG, JPEG or WebP still.",
-    )
+    video = _video_field()
+    poster = _poster_field()
     transcript = models.TextField(
         blank=True, help_text="English gloss or caption of the video, if it differs from the text."
     )
@@ -79,17 +88,8 @@ class SignedTemplate(models.Model):
     )
     kind = models.CharField(max_length=20, choices=Kind.choices)
     name = models.CharField(max_length=100, help_text="How you find it, e.g. 'Consent (lab)'.")
-    video = models.FileField(
-        upload_to="asl/",
-        validators=[ContentValidator("video")],
-        help_text="An MP4 or WebM video (checked by its content).",
-    )
-    poster = models.FileField(
-        upload_to="asl/",
-        blank=True,
-        validators=[ContentValidator("image")],
-        help_text="Optional: a PNG, JPEG or WebP still.",
-    )
+    video = _video_field()
+    poster = _poster_field()
     transcript = models.TextField(
         blank=True, help_text="What the video signs, in English (shown as its caption)."
     )

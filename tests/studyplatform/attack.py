@@ -86,13 +86,13 @@ class Attacker:
                      f'filename="{filename}"\r\nContent-Type: application/zip\r\n\r\n'.encode()
                      + content + b"\r\n")  # fmt: skip
         parts.append(f"--{boundary}--\r\n".encode())
-        return self.request("POST", path, b"".join(parts),
-                            {"Content-Type": f"multipart/form-data; boundary={boundary}"})  # fmt: skip
+        content_type = f"multipart/form-data; boundary={boundary}"
+        return self.request("POST", path, b"".join(parts), {"Content-Type": content_type})
 
     def sign_in(self, username: str, password: str) -> Answer:
         self.get("/admin/login/")
-        return self.post_form("/admin/login/?next=/admin/",
-                              {"username": username, "password": password, "next": "/admin/"})  # fmt: skip
+        fields = {"username": username, "password": password, "next": "/admin/"}
+        return self.post_form("/admin/login/?next=/admin/", fields)
 
     def enroll(self, slug: str, query: str = "") -> str:
         """Take part in study *slug*; return the participant's token."""

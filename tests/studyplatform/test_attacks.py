@@ -64,7 +64,7 @@ def test_1_a_bundle_cannot_plant_a_page_or_a_script(live_server, fingerspelling,
     assert not list(media.rglob("*.js")) and not list(media.rglob("*.html"))
 
 
-def test_1_a_planted_page_never_runs_for_a_superuser_in_chromium(server, browser, settings,
+def test_1_a_planted_page_never_runs_for_a_superuser_in_chromium(server, browser, settings,  # noqa: F811
                                                                  fingerspelling):  # fmt: skip
     """Files put in media by any other way: not served (.html, .js), or served as what their
     extension says with a sandbox (a page saved as .webm), so no script runs.

@@ -45,7 +45,7 @@ def _value(rng: random.Random, depth: int = 0):
         return rng.choice(["1", "2", "yes", "left", "right", "a", "page_shown", "play"])
     if kind == 4:
         return [_value(rng, depth + 1) for _ in range(rng.randrange(4))]
-    return {rng.choice(HOSTILE_TEXT + ["kind", "page", "clip"]): _value(rng, depth + 1)
+    return {rng.choice([*HOSTILE_TEXT, "kind", "page", "clip"]): _value(rng, depth + 1)
             for _ in range(rng.randrange(4))}  # fmt: skip
 
 
@@ -84,13 +84,14 @@ def _participant_request(rng: random.Random, client: Client, token: str, page: d
                    "X-Upload-Offset": rng.choice(["0", "-1", "1e3", "99999999999999999999", ""]),
                    "X-Upload-Final": rng.choice(["0", "1"]),
                    "X-Upload-Sha256": rng.choice(["", "0" * 64, "zz"]),
-                   "X-Upload-Duration-Ms": rng.choice(["", "NaN", "-5", "1e400", "1000"])}  # fmt: skip
+                   "X-Upload-Duration-Ms": rng.choice(["", "NaN", "-5", "1e400"])}  # fmt: skip
         body = rng.randbytes(rng.randrange(1, 2000))
         number = rng.choice([page["page"], 0, 10**12])
         url = f"{base}{number}/signed/{rng.choice(['comments', 'x'])}/"
         return client.post(url, body, content_type="application/octet-stream", headers=headers)
     if choice == 3:
-        return client.get(f"{base}{rng.choice([1, 2, 0, 10**15])}/?{rng.choice(['a=1', 'x=%00'])}")
+        query = rng.choice(["a=1", "x=%00"])
+        return client.get(f"{base}{rng.choice([1, 2, 0, 10**15])}/?{query}")
     if choice == 4:
         form = {f"q-{rng.choice([page['question'], 'x'])}": str(_value(rng)),
                 "nav": rng.choice(["next", "back", "\x00"])}  # fmt: skip
