@@ -143,7 +143,7 @@ def test_import_of_a_bad_file_says_why(alice_client, content, message):
         reverse("admin:studyplatform_study_import"),
         {"definition": SimpleUploadedFile("s.json", content)},
     )
-    assert page.status_code == 200
+    assert page.status_code == 400  # refused, and the form says why
     assert message in page.text
     assert Study.objects.count() == before
 
