@@ -336,7 +336,7 @@ def log_events(request: HttpRequest, token: str) -> JsonResponse:
     if participant is None:
         return _invalid_link()
     try:
-        data = json_body(request)
+        data = json_body(request, strip_nul=False)
     except BodyRejected as error:
         return JsonResponse({"error": str(error)}, status=error.status)
     events = data.get("events") if isinstance(data, dict) else None

@@ -31,15 +31,18 @@ class BodyRejected(ValueError):
         self.status = status
 
 
-def json_body(request: HttpRequest):
-    """Return the request's JSON body; BodyRejected if it is not strict JSON sent as JSON."""
+def json_body(request: HttpRequest, *, strip_nul: bool = True):
+    """Return the request's JSON body; BodyRejected if it is not strict JSON sent as JSON.
+
+    NUL is stripped from its text like the other control characters no answer needs
+    (above), or with *strip_nul* false refused: the page's own event log never holds one.
+    """
     if request.content_type != "application/json":
         raise BodyRejected(
             f"The request must be sent as JSON (application/json), not "
             f"“{request.content_type or 'nothing'}”.", status=415)  # fmt: skip
     try:
-        # NUL is stripped like the other control characters no answer needs (above).
-        return strict_json.loads(request.body or b"null", strip_nul=True)
+        return strict_json.loads(request.body or b"null", strip_nul=strip_nul)
     except strict_json.JsonRejected as error:
         raise BodyRejected(f"The request is not in the expected form: {error}.") from None
 
