@@ -294,7 +294,8 @@ def test_6_no_crafted_request_gets_a_server_error(live_server, fingerspelling, b
         assert answer.status == 400, (field, answer.status)
     for change in (lambda d: d["conditions"][0].update(parameters=[1, 2]),
                    lambda d: d["conditions"][0]["parameters"].update(rate_hz=int("9" * 4000)),
-                   lambda d: d["questions"][0]["options"][0].update(value=2**40)):  # fmt: skip
+                   lambda d: d["questions"][0]["options"][0].update(value=2**40),
+                   lambda d: d["questions"][0].update(min_value=5, max_value=1)):  # fmt: skip
         definition = json.loads(json.dumps(base))
         change(definition)
         text = json.dumps(definition).encode()
@@ -318,6 +319,19 @@ def test_7_filters_and_messages_leak_nothing(live_server, fingerspelling, spine,
     conditions = researcher.get("/admin/studyplatform/condition/")
     assert conditions.status == 200 and fingerspelling.title not in conditions.text
     assert spine.title in conditions.text
+
+
+def test_7_the_asl_page_names_no_python_internals(live_server, fingerspelling, alice, media):
+    as_draft(fingerspelling)
+    owner = Attacker(live_server.url)
+    owner.sign_in("alice", "pw-alice")
+    url = f"/admin/studyplatform/study/{fingerspelling.pk}/asl/"
+    owner.get(url)
+    answer = owner.request("POST", url, b"content_type=x&object_id=1e9&field_name=text",
+                           {"Content-Type": "application/x-www-form-urlencoded",
+                            "Accept": "application/json"})  # fmt: skip
+    assert answer.status == 400
+    assert answer.json()["error"] == "This text is not part of the study."
 
 
 def test_7_stored_files_are_the_services_alone(settings, media, fingerspelling, tmp_path):
