@@ -2,7 +2,9 @@
 
 Target (issue 19): with realistic think time, p95 of a trial page, an answer save and Next
 under 100 ms, 0 answers lost, 0 duplicated; with the application server killed in the
-middle of the run (and restarted), or PostgreSQL restarted, still 0 lost and 0 duplicated.
+middle of the run (and restarted), PostgreSQL restarted, one worker killed (issue 33) or a
+backup taken (issue 33), still 0 lost and 0 duplicated. --database sqlite runs the same
+on the embedded database.
 
 Each participant is a thread speaking HTTP to the server as the page's script does
 (bench/participant_http.py: each answer saved at once and sent twice, as a retry of a lost
@@ -16,7 +18,8 @@ duplicated or wrong (a revision above 1 or another value).
 Prints figures; asserts nothing.
 
     .venv/bin/python bench/bench_load.py [--participants 200] [--pages 10] [--think-s 15]
-        [--arrival-s 60] [--fault none|app-kill|pg-restart] [--workers 3] [--threads 8]
+        [--arrival-s 60] [--fault none|app-kill|worker-kill|backup|pg-restart]
+        [--database postgres|sqlite] [--workers 3] [--threads 8]
 """
 
 import argparse
@@ -47,9 +50,10 @@ def _percentile(values: list[float], share: float) -> float:
 
 def _prepare(env: dict[str, str]) -> None:
     """Create the database afresh, migrate it, collect static files, load the demo studies."""
-    psql = ["psql", "-h", "127.0.0.1", "-U", "postgres", "-q", "-c"]
-    subprocess.run([*psql, f"DROP DATABASE IF EXISTS {DATABASE}"], check=True)
-    subprocess.run([*psql, f"CREATE DATABASE {DATABASE}"], check=True)
+    if env["DATABASE_URL"] == POSTGRES:
+        psql = ["psql", "-h", "127.0.0.1", "-U", "postgres", "-q", "-c"]
+        subprocess.run([*psql, f"DROP DATABASE IF EXISTS {DATABASE}"], check=True)
+        subprocess.run([*psql, f"CREATE DATABASE {DATABASE}"], check=True)
     for command in (["migrate", "--noinput"], ["collectstatic", "--noinput"], ["seed_demo"]):
         subprocess.run([sys.executable, "manage.py", *command, "-v0"], cwd=ROOT, env=env,
                        check=True, stdout=subprocess.DEVNULL)  # fmt: skip
@@ -77,6 +81,13 @@ def _fault(kind: str, server: AppServer, at_s: float, log: list[str]) -> None:
         server.kill()
         time.sleep(2.0)
         server.start()
+    elif kind == "worker-kill":
+        log.append(f"worker {server.kill_worker()} killed (SIGKILL)")
+    elif kind == "backup":
+        archive = Path(server.env["SIGNSTUDY_VAR_DIR"]) / "under-load.tar.gz"
+        subprocess.run([sys.executable, "manage.py", "backup", str(archive)], cwd=ROOT,
+                       env=server.env, check=True, stdout=subprocess.DEVNULL)  # fmt: skip
+        log.append(f"backup of {archive.stat().st_size / 1e6:.1f} MB written")
     elif kind == "pg-restart":
         subprocess.run(["pg_ctlcluster", "15", "main", "restart"], check=True)
     log.append(f"{kind} at {at_s:.0f} s: back after {time.perf_counter() - started:.1f} s")
@@ -130,7 +141,12 @@ def main() -> None:
     parser.add_argument("--think-s", type=float, default=15.0, help="mean seconds per page")
     parser.add_argument("--arrival-s", type=float, default=60.0,
                         help="participants start at random within this many seconds")  # fmt: skip
-    parser.add_argument("--fault", choices=("none", "app-kill", "pg-restart"), default="none")
+    parser.add_argument(
+        "--fault",
+        default="none",
+        choices=("none", "app-kill", "worker-kill", "backup", "pg-restart"),
+    )
+    parser.add_argument("--database", choices=("postgres", "sqlite"), default="postgres")
     parser.add_argument("--workers", type=int, default=3)
     parser.add_argument("--threads", type=int, default=8)
     args = parser.parse_args()
@@ -139,7 +155,8 @@ def main() -> None:
         kept = ("SIGNSTUDY_ACCESS_LOG",)
         env = {k: v for k, v in os.environ.items()
                if not k.startswith(("SIGNSTUDY_", "CELERY_")) or k in kept}  # fmt: skip
-        env.update(SIGNSTUDY_VAR_DIR=var_dir, DATABASE_URL=POSTGRES,
+        database = POSTGRES if args.database == "postgres" else f"sqlite:///{var_dir}/load.sqlite3"
+        env.update(SIGNSTUDY_VAR_DIR=var_dir, DATABASE_URL=database,
                    DJANGO_SETTINGS_MODULE="studyplatform.settings")  # fmt: skip
         try:
             _prepare(env)
@@ -169,7 +186,8 @@ def main() -> None:
                for kind in ("page", "save", "next")}  # fmt: skip
     requests = sum(len(v) for v in timings.values())
     failed = [error for _, error in results if error]
-    print(f"PostgreSQL through gunicorn ({args.workers} workers × {args.threads} threads): "
+    engine = "PostgreSQL" if args.database == "postgres" else "SQLite"
+    print(f"{engine} through gunicorn ({args.workers} workers × {args.threads} threads): "
           f"{args.participants} participants arriving within {args.arrival_s:g} s × {args.pages} "
           f"pages, think time {args.think_s:g} s, fault {args.fault}; {requests} requests in "
           f"{wall:.1f} s "

@@ -352,7 +352,8 @@ def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     page.get_by_role("button", name="Send this recording").click()
     page.get_by_text("Connection lost").wait_for()
     page.context.set_offline(False)
-    page.get_by_text("Your signed answer is saved.").wait_for(timeout=20000)
+    status = page.locator(".signed-status")
+    expect(status).to_have_text("Your signed answer is saved.", timeout=20000)
     response = Response.objects.get(participant=participant, question__key="comments")
     assert response.video.name.endswith(".webm") and response.video.size > 1000
     assert response.video.open("rb").read(4) == b"\x1a\x45\xdf\xa3"

@@ -283,7 +283,6 @@
       recorder = new MediaRecorder(stream);
       recorder.ondataavailable = function (event) { if (event.data.size) { parts.push(event.data); } };
       recorder.onstop = function () {
-        durationMs = Date.now() - startedAt;
         stream.getTracks().forEach(function (track) { track.stop(); });
         blob = new Blob(parts, {type: recorder.mimeType || "video/webm"});
         preview.srcObject = null;
@@ -305,7 +304,8 @@
       state.textContent = "Recording…";
     });
     stop.addEventListener("click", function () {
-      if (recorder && recorder.state !== "inactive") { recorder.stop(); }
+      // Measured here, not when the stop event arrives (late on a busy page).
+      if (recorder && recorder.state !== "inactive") { durationMs = Date.now() - startedAt; recorder.stop(); }
     });
     send.addEventListener("click", async function () {
       send.disabled = record.disabled = true;
