@@ -1,7 +1,11 @@
 """Refuse what no view can use before any view or database sees it."""
 
+import logging
+
 from django.core.exceptions import BadRequest
-from django.http import HttpRequest
+from django.http import HttpRequest, JsonResponse
+
+logger = logging.getLogger(__name__)
 
 NUL = "\x00"
 
@@ -34,3 +38,31 @@ FORMS = ("application/x-www-form-urlencoded", "multipart/form-data")
 def _has_nul(query) -> bool:
     return any(NUL in key or any(NUL in value for value in values)
                for key, values in query.lists())  # fmt: skip
+
+
+class DatabaseUnavailableMiddleware:
+    """Answer 503 with Retry-After when the database cannot be reached, not 500.
+
+    A restart of PostgreSQL (or SQLite's lock held past its timeout) is the server's
+    trouble for a moment, not a fault in the request: the page's script retries a 5xx
+    with backoff, and 503 says so to any other client and to monitoring.
+    """
+
+    RETRY_AFTER_S = 5
+
+    def __init__(self, get_response):
+        self.get_response = get_response
+
+    def __call__(self, request: HttpRequest):
+        return self.get_response(request)
+
+    def process_exception(self, request: HttpRequest, exception: Exception):
+        from django.db import InterfaceError, OperationalError
+
+        if not isinstance(exception, OperationalError | InterfaceError):
+            return None
+        logger.warning("database unavailable for %s: %s", request.path, exception)
+        response = JsonResponse({"error": "The server is busy for a moment; trying again."},
+                                status=503)  # fmt: skip
+        response["Retry-After"] = str(self.RETRY_AFTER_S)
+        return response

@@ -356,3 +356,16 @@ def test_7_gunicorn_shares_no_control_socket(monkeypatch):
     exec((ROOT / "deploy" / "gunicorn.conf.py").read_text(), values)
     assert values["control_socket"] == "/run/signstudy/gunicorn.ctl"
     assert not values["control_socket_disable"]
+
+
+def test_6_a_database_outage_answers_503_not_500(rf):
+    """bench_load --fault pg-restart: requests during the restart were 500s."""
+    from django.db import OperationalError
+
+    from studyplatform.middleware import DatabaseUnavailableMiddleware
+
+    middleware = DatabaseUnavailableMiddleware(lambda request: None)
+    refused = OperationalError("connection refused: the database system is starting up")
+    answer = middleware.process_exception(rf.get("/s/x/"), refused)
+    assert answer.status_code == 503 and answer["Retry-After"] == "5"
+    assert middleware.process_exception(rf.get("/"), ValueError("a bug")) is None
