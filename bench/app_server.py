@@ -61,14 +61,12 @@ class AppServer:
 
     def kill_worker(self) -> int:
         """Kill one worker (SIGKILL) and leave the master to replace it; return its pid."""
-        children = [int(stat.split()[0]) for stat in (
-            Path(f"/proc/{pid}/stat").read_text() for pid in os.listdir("/proc")
-            if pid.isdigit() and Path(f"/proc/{pid}/stat").exists()
-        ) if int(stat.rsplit(")", 1)[1].split()[1]) == self.process.pid]  # fmt: skip
-        if not children:
+        children = Path(f"/proc/{self.process.pid}/task/{self.process.pid}/children")
+        workers = [int(pid) for pid in children.read_text().split()]
+        if not workers:
             raise RuntimeError("gunicorn has no worker to kill")
-        os.kill(children[0], signal.SIGKILL)
-        return children[0]
+        os.kill(workers[0], signal.SIGKILL)
+        return workers[0]
 
     def stop(self) -> None:
         """Stop the server gracefully (SIGTERM), or kill it if it does not stop."""

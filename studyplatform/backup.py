@@ -82,9 +82,7 @@ def make_backup(out: Path) -> BackupSummary:
         with tarfile.open(out, "w:gz") as archive:
             archive.add(data, "data.json")
             ledger_text = _ledger_bytes()
-            info = tarfile.TarInfo(LEDGER)
-            info.size = len(ledger_text)
-            archive.addfile(info, io.BytesIO(ledger_text))
+            _add_bytes(archive, LEDGER, ledger_text)
             for prefix, root in _roots().items():
                 for path in sorted(p for p in root.rglob("*") if p.is_file()):
                     name = f"{prefix}/{path.relative_to(root).as_posix()}"
@@ -95,11 +93,15 @@ def make_backup(out: Path) -> BackupSummary:
                         "created_at": timezone.now().isoformat(), "counts": counts,
                         "files": files, "data_sha256": file_sha256(data),
                         "ledger_sha256": hashlib.sha256(ledger_text).hexdigest()}  # fmt: skip
-            encoded = json.dumps(manifest, indent=1, sort_keys=True).encode()
-            info = tarfile.TarInfo("manifest.json")
-            info.size = len(encoded)
-            archive.addfile(info, io.BytesIO(encoded))
+            _add_bytes(archive, "manifest.json",
+                       json.dumps(manifest, indent=1, sort_keys=True).encode())  # fmt: skip
     return BackupSummary(rows=sum(counts.values()), files=len(files), bytes=size)
+
+
+def _add_bytes(archive: tarfile.TarFile, name: str, data: bytes) -> None:
+    info = tarfile.TarInfo(name)
+    info.size = len(data)
+    archive.addfile(info, io.BytesIO(data))
 
 
 def _ledger_bytes() -> bytes:

@@ -20,7 +20,7 @@ from django.utils import timezone
 
 from studyplatform import ledger
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.actions.uploads import discard_partial_uploads, partial_directory
+from studyplatform.actions.uploads import discard_partial_uploads, partial_uploads
 from studyplatform.models import (
     MediaEvent,
     Participant,
@@ -42,8 +42,8 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
     with transaction.atomic():
         locked = Participant.objects.select_for_update().get(pk=participant.pk)
         responses = Response.objects.filter(participant=locked)
-        videos = [name for name in responses.values_list("video", flat=True) if name]
-        partials = _partial_uploads(locked.pk)
+        videos = _answer_videos(locked)
+        partials = len(partial_uploads(locked.pk))
         withdrawal = Withdrawal.objects.create(
             study_id=locked.study_id,
             participant_number=locked.pk,
@@ -62,6 +62,7 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
             responses=withdrawal.responses, events=withdrawal.events,
             personal_answers=withdrawal.personal_answers, files=withdrawal.files,
         )  # fmt: skip
+        forget_in_sessions({locked.token})
         _erase(locked, videos)
         transaction.on_commit(lambda: ledger.append(entry))
     log.info("participant %s withdrew from study %s: %s responses, %s events, %s files deleted",
@@ -70,17 +71,17 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
     return withdrawal
 
 
-def _partial_uploads(participant_pk: int) -> int:
-    directory = partial_directory()
-    return len(list(directory.glob(f"{participant_pk}-*.part"))) if directory.is_dir() else 0
+def _answer_videos(participant: Participant) -> list[str]:
+    """Return the names of *participant*'s signed-answer videos."""
+    names = Response.objects.filter(participant=participant).values_list("video", flat=True)
+    return [name for name in names if name]
 
 
 def _erase(participant: Participant, videos: list[str]) -> None:
-    """Delete *participant* (rows cascade), and once committed their files and sessions."""
-    number, token = participant.pk, participant.token
+    """Delete *participant* (rows cascade), and once committed their files."""
+    number = participant.pk
     participant.delete()  # responses, events and personal answers cascade
     delete_unused_files_on_commit(Response._meta.get_field("video").storage, videos)
-    forget_in_sessions({token})
     transaction.on_commit(lambda: discard_partial_uploads(number))
 
 
@@ -132,14 +133,14 @@ def do_reapply_withdrawals(entries: list[ledger.LedgerEntry]) -> Reapplied:
         present = {(w.study_id, w.participant_number)
                    for w in Withdrawal.objects.only("study_id", "participant_number")}  # fmt: skip
         studies = set(Study.objects.values_list("pk", flat=True))
+        tokens = set()
         for participant in Participant.objects.select_for_update().order_by("pk"):
-            entry = by_hash.get(ledger.token_sha256(participant.token))
-            if entry is None:
+            if ledger.token_sha256(participant.token) not in by_hash:
                 continue
-            videos = [name for name in Response.objects.filter(participant=participant)
-                      .exclude(video="").values_list("video", flat=True)]  # fmt: skip
             withdrawn.append(participant.pk)
-            _erase(participant, videos)
+            tokens.add(participant.token)
+            _erase(participant, _answer_videos(participant))
+        forget_in_sessions(tokens)
         for entry in entries:
             key = (entry.study_id, entry.participant_number)
             if key in present or entry.study_id not in studies:

@@ -16,10 +16,7 @@ from studyplatform.actions.import_media import (
 )
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.recordings import do_relabel_stand_ins
-from studyplatform.lib.bundle import (
-    BundleFiles,
-    definition_files,
-)
+from studyplatform.lib.bundle import BundleFiles, definition_files
 from studyplatform.lib.field_input import values_problems
 from studyplatform.models import (
     AnswerOption,

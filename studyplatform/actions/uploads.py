@@ -91,22 +91,22 @@ def upload_offset(participant: Participant, trial: Trial, question: Question, ta
     return path.stat().st_size if path.exists() else 0
 
 
-def _discard_other_takes(participant: Participant, trial: Trial, question: Question,
-                         keep: Path | None) -> None:  # fmt: skip
-    directory = partial_directory()
-    for path in directory.glob(f"{_answer_prefix(participant, trial, question)}*.part"):
-        if path != keep:
-            path.unlink(missing_ok=True)
-
-
-def discard_partial_uploads(participant_pk: int) -> int:
-    """Delete every unfinished upload of the participant numbered *participant_pk*."""
-    directory = partial_directory()
-    removed = 0
-    for path in directory.glob(f"{participant_pk}-*.part") if directory.is_dir() else ():
+def _discard_takes(participant: Participant, trial: Trial, question: Question) -> None:
+    """Delete every unfinished take of this answer."""
+    for path in partial_directory().glob(f"{_answer_prefix(participant, trial, question)}*.part"):
         path.unlink(missing_ok=True)
-        removed += 1
-    return removed
+
+
+def partial_uploads(participant_pk: int) -> list[Path]:
+    """Return the unfinished uploads of the participant numbered *participant_pk*."""
+    directory = partial_directory()
+    return sorted(directory.glob(f"{participant_pk}-*.part")) if directory.is_dir() else []
+
+
+def discard_partial_uploads(participant_pk: int) -> None:
+    """Delete every unfinished upload of the participant numbered *participant_pk*."""
+    for path in partial_uploads(participant_pk):
+        path.unlink(missing_ok=True)
 
 
 def _check_question(trial: Trial, question: Question) -> None:
@@ -137,9 +137,8 @@ def do_append_signed_answer_chunk(
         # One writer per participant at a time: concurrent chunks cannot interleave.
         Participant.objects.select_for_update().get(pk=participant.pk)
         path = partial_path(participant, trial, question, take)
-        if offset == 0:
-            path.unlink(missing_ok=True)  # the take starts over
-            _discard_other_takes(participant, trial, question, keep=None)
+        if offset == 0:  # the take starts over, and every other take of the answer goes
+            _discard_takes(participant, trial, question)
         stored = upload_offset(participant, trial, question, take)
         if offset != stored:
             raise UploadOffsetMismatch(stored)
@@ -232,8 +231,7 @@ def _save_recording(participant: Participant, trial: Trial, question: Question, 
         if response.pk:
             response.revision += 1
         response.save()
-        path.unlink(missing_ok=True)
-        _discard_other_takes(participant, trial, question, keep=None)
+        _discard_takes(participant, trial, question)  # this take's part among them
         delete_unused_files_on_commit(response.video.storage, [old])
     return response
 

@@ -14,9 +14,6 @@ from django.core.exceptions import FieldDoesNotExist
 from django.db import models
 from django.db.backends.base.operations import BaseDatabaseOperations
 
-# A JSON field of these models holds an object (parameters, a design), never a list.
-OBJECT_FIELDS = (models.JSONField,)
-
 
 def _integer_range(field: models.Field) -> tuple[int, int]:
     # The standard column sizes (PostgreSQL's), on every database: SQLite would store any
@@ -37,7 +34,7 @@ def value_problem(field: models.Field, value: Any) -> str | None:
         if "\x00" in value:
             return "must not contain a NUL character"
         return None
-    if isinstance(field, models.IntegerField | models.BigAutoField | models.AutoField):
+    if isinstance(field, models.IntegerField):  # AutoFields among them
         if isinstance(value, bool) or not isinstance(value, int):
             return f"must be a whole number, not {type(value).__name__}"
         low, high = _integer_range(field)
@@ -52,7 +49,7 @@ def value_problem(field: models.Field, value: Any) -> str | None:
         except OverflowError:  # an integer beyond any float
             finite = False
         return None if finite else "must be a finite number"
-    if isinstance(field, OBJECT_FIELDS):
+    if isinstance(field, models.JSONField):  # parameters, a design: objects, never lists
         if not isinstance(value, dict):
             return f"must be an object, not {type(value).__name__}"
         return None

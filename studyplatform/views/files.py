@@ -54,12 +54,8 @@ def _requested_range(header: str, size: int) -> tuple[int, int] | bool | None:
     return start, min(int(last), size - 1) if last else size - 1
 
 
-def file_response(request: HttpRequest, path: Path, *, cache_control: str,
-                  content_type: str | None = None) -> HttpResponse:  # fmt: skip
-    """Answer a GET or HEAD for the file at *path* (which exists), honouring ranges.
-
-    *content_type* is sent as given; without it, it is guessed from the file's name.
-    """
+def file_response(request: HttpRequest, path: Path, *, cache_control: str) -> HttpResponse:
+    """Answer a GET or HEAD for the file at *path* (which exists), honouring ranges."""
     stat = path.stat()
     size = stat.st_size
     etag = quote_etag(f"{stat.st_mtime_ns:x}-{size:x}")
@@ -73,7 +69,7 @@ def file_response(request: HttpRequest, path: Path, *, cache_control: str,
     still_same = request.headers.get("If-Range", etag) in (etag, last_modified)
     if "Range" in request.headers and still_same:
         byte_range = _requested_range(request.headers["Range"], size)
-    content_type = content_type or mimetypes.guess_type(path.name)[0] or "application/octet-stream"
+    content_type = mimetypes.guess_type(path.name)[0] or "application/octet-stream"
     if byte_range is False:
         response = HttpResponse(status=416, content_type=content_type)
         response["Content-Range"] = f"bytes */{size}"

@@ -43,7 +43,7 @@ def _existing_file(root, name: str) -> Path:
 
 
 def _as_media(response: HttpResponse, path: Path) -> HttpResponse:
-    """Give *response* the headers every media file is served with."""
+    """Give *response* the headers every media file is served with (its fixed type too)."""
     kind = SERVED[path.suffix.lower()]
     response["Content-Type"] = kind.content_type
     response["Content-Security-Policy"] = MEDIA_CSP
@@ -58,19 +58,14 @@ def media(request: HttpRequest, path: str) -> HttpResponse:
     """Send the public media file at *path* (read at request time: it can change)."""
     found = _existing_file(settings.MEDIA_ROOT, path)
     cache = PUBLIC_CACHE.get(path.split("/", 1)[0], PUBLIC_CACHE_DEFAULT)
-    kind = SERVED[found.suffix.lower()]
-    response = file_response(request, found, cache_control=cache, content_type=kind.content_type)
-    return _as_media(response, found)
+    return _as_media(file_response(request, found, cache_control=cache), found)
 
 
 def _private_file(request: HttpRequest, name: str) -> HttpResponse:
     path = _existing_file(PRIVATE_STORAGE.location, name)
     header = settings.SIGNSTUDY_SENDFILE_HEADER
     if not header:
-        kind = SERVED[path.suffix.lower()]
-        response = file_response(request, path, cache_control=PRIVATE_CACHE,
-                                 content_type=kind.content_type)  # fmt: skip
-        return _as_media(response, path)
+        return _as_media(file_response(request, path, cache_control=PRIVATE_CACHE), path)
     response = HttpResponse()  # the web server sends the body, its length and ranges
     if header.lower() == "x-accel-redirect":
         response[header] = settings.SIGNSTUDY_SENDFILE_PREFIX.rstrip("/") + "/" + name
