@@ -7,7 +7,8 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.mixed.problem import Component
+from analysis.mixed.convergence import singular_note
+from analysis.mixed.problem import Component, LaplaceFit
 from analysis.mixed.results import Coefficient, Contrast, VarianceComponent
 from analysis.within import adjust
 
@@ -30,29 +31,38 @@ def covariance_note(cov: np.ndarray) -> list[str]:
     ]
 
 
-def coefficient(name: str, estimate: float, se: float) -> Coefficient:
-    """Return a Wald z test and 95 % CI of one estimate."""
+def coefficient(name: str, estimate: float, se: float, df: float | None = None) -> Coefficient:
+    """Return a Wald z test and 95 % CI of one estimate, or a t test on *df* df."""
     statistic = estimate / se if se > 0 else np.nan
-    pvalue = 2 * stats.norm.sf(abs(statistic)) if np.isfinite(statistic) else np.nan
+    law = stats.norm if df is None else stats.t(df)
+    pvalue = 2 * law.sf(abs(statistic)) if np.isfinite(statistic) else np.nan
+    half = float(law.ppf(0.975)) * se
     return Coefficient(
         name=name,
         estimate=float(estimate),
         se=float(se),
         statistic=float(statistic),
         pvalue=float(pvalue),
-        ci=(float(estimate - Z95 * se), float(estimate + Z95 * se)),
+        ci=(float(estimate - half), float(estimate + half)),
+        df=None if df is None else float(df),
     )
 
 
 def condition_effects(
-    conditions: Sequence[str], estimates: np.ndarray, cov: np.ndarray
+    conditions: Sequence[str], estimates: np.ndarray, cov: np.ndarray, df_of=None
 ) -> tuple[list[Coefficient], np.ndarray, np.ndarray]:
     """Return the non-reference conditions' coefficients and the full effect vector/cov.
 
     *estimates* and *cov* cover conditions[1:]; the reference's effect is 0 exactly.
+    ``df_of(0, j)``, where given, is the df of condition j's t test.
     """
     coefficients = [
-        coefficient(condition, estimates[i], standard_error(cov[i, i]))
+        coefficient(
+            condition,
+            estimates[i],
+            standard_error(cov[i, i]),
+            None if df_of is None else df_of(0, i + 1),
+        )
         for i, condition in enumerate(conditions[1:])
     ]
     full = np.concatenate([[0.0], estimates])
@@ -62,15 +72,19 @@ def condition_effects(
 
 
 def contrasts(
-    conditions: Sequence[str], effects: np.ndarray, cov: np.ndarray, correction: str
+    conditions: Sequence[str], effects: np.ndarray, cov: np.ndarray, correction: str, df_of=None
 ) -> tuple[Contrast, ...]:
-    """Return every pair's difference b − a (a before b in *conditions*), corrected."""
+    """Return every pair's difference b − a (a before b in *conditions*), corrected.
+
+    ``df_of(i, j)``, where given, is the df of the t test of conditions i and j.
+    """
     rows = []
     for i, j in combinations(range(len(conditions)), 2):
         estimate = effects[j] - effects[i]
         variance = cov[i, i] + cov[j, j] - 2 * cov[i, j]
+        df = None if df_of is None else df_of(i, j)
         rows.append(
-            (conditions[j], conditions[i], coefficient("", estimate, standard_error(variance)))
+            (conditions[j], conditions[i], coefficient("", estimate, standard_error(variance), df))
         )
     adjusted = adjust([c.pvalue for _, _, c in rows], correction) if rows else []
     return tuple(
@@ -83,6 +97,7 @@ def contrasts(
             pvalue=c.pvalue,
             pvalue_adjusted=float(p_adj),
             ci=c.ci,
+            df=c.df,
         )
         for (a, b, c), p_adj in zip(rows, adjusted, strict=True)
     )
@@ -125,3 +140,18 @@ def variance_components(
         )
         for c, sd in zip(components, sds, strict=True)
     )
+
+
+def fit_notes(fit: LaplaceFit, random: Sequence[VarianceComponent], at_zero) -> list[str]:
+    """Return the notes every mixed model carries: a singular fit, failed checks.
+
+    *at_zero* says which of the *random* components sit on their bound (by lme4's θ).
+    """
+    notes = []
+    zero = [c.name for c, flag in zip(random, at_zero, strict=True) if flag]
+    if fit.singular and zero:
+        notes.append(singular_note(zero))
+    notes += [f"Convergence: {message}." for message in fit.checks]
+    if not fit.converged and not fit.checks:
+        notes.append(f"The optimiser did not report convergence: {fit.message}")
+    return notes

@@ -18,12 +18,14 @@ statsmodels has no maximum-likelihood fit of crossed random effects for binary o
 ordinal responses (its mixed GLMs are variational Bayes), hence this module.
 """
 
+import dataclasses
 import itertools
 
 import numpy as np
-from scipy import linalg, optimize
+from scipy import linalg
 from statsmodels.tools.numdiff import approx_hess3
 
+from analysis.mixed import convergence, optimize
 from analysis.mixed.modes import ConditionalModes
 from analysis.mixed.problem import (
     BOUNDARY_SD,
@@ -33,6 +35,9 @@ from analysis.mixed.problem import (
     LaplaceFit,
     MixedProblem,
 )
+
+# Starting SDs of the search on the logit scale: the optimum is kept of both.
+SD_STARTS = (1.0, 0.3)
 
 __all__ = ["BOUNDARY_SD", "LARGEST_SD", "Component", "LaplaceFit", "MixedProblem", "fit_laplace"]
 
@@ -55,13 +60,16 @@ def fit_laplace(
     problem: MixedProblem,
     *,
     stage: str = "laplace",
-    sd_start: float | np.ndarray = 1.0,
+    sd_start: float | np.ndarray | None = None,
     extra_start: np.ndarray | None = None,
 ) -> LaplaceFit:
     """Fit *problem* by maximum likelihood; ``stage="fast"`` stops after glmer's nAGQ = 0.
 
     *sd_start* (one value, or one per component) and *extra_start* (the family's extra
     parameters, natural scale) start the search; simulations pass the true values.
+    Without *sd_start* the search starts from SDs of 1 and of 0.3 (logit scale) and
+    keeps the better; both stages are BOBYQA with the bound test of
+    :mod:`analysis.mixed.optimize`.
     """
     if stage not in ("laplace", "fast"):
         raise ValueError(f"stage must be 'laplace' or 'fast', not {stage!r}")
@@ -84,18 +92,21 @@ def fit_laplace(
             memo["beta"] = found
         return -2 * value if np.isfinite(value) else np.inf
 
-    start = np.concatenate([np.broadcast_to(np.asarray(sd_start, float), (k,)), extra_free])
-    bounds = [(0.0, LARGEST_SD)] * k + [(None, None)] * n_extra
+    sd_starts = SD_STARTS if sd_start is None else (sd_start,)
+    starts = [
+        np.concatenate([np.broadcast_to(np.asarray(s, float), (k,)), extra_free]) for s in sd_starts
+    ]
+    lower = np.concatenate([np.zeros(k), np.full(n_extra, -np.inf)])
+    upper = np.concatenate([np.full(k, LARGEST_SD), np.full(n_extra, np.inf)])
+    step = np.concatenate([np.full(k, 0.2), np.full(n_extra, 0.2)])
     # The first stage only needs to land near the optimum: the second refines it, and
     # power simulations, which stop here, need no more than a few digits.
-    first = optimize.minimize(
-        fast_objective, start, method="L-BFGS-B", bounds=bounds, options={"ftol": 1e-7}
-    )
+    first = optimize.minimize(fast_objective, starts, lower, upper, step, xtol=1e-6)
     sd, extra_free = first.x[:k], first.x[k:]
     # Evaluating at the optimum leaves β and v there (the search's last call need not be).
     fast_loglik = -fast_objective(first.x) / 2
     beta = memo["beta"]
-    converged, message = bool(first.success), str(first.message)
+    converged, message = first.converged, first.message
 
     if stage == "fast":
         scale = sd[state.owner]
@@ -125,13 +136,13 @@ def fit_laplace(
         return -2 * value if np.isfinite(value) else np.inf
 
     start = np.concatenate([beta, extra_free, sd])
-    bounds = [(None, None)] * (p + n_extra) + [(0.0, LARGEST_SD)] * k
-    second = optimize.minimize(
-        full_objective, start, method="L-BFGS-B", bounds=bounds, options={"maxiter": 500}
-    )
+    lower = np.concatenate([np.full(p + n_extra, -np.inf), np.zeros(k)])
+    upper = np.concatenate([np.full(p + n_extra, np.inf), np.full(k, LARGEST_SD)])
+    step = np.concatenate([np.full(p + n_extra, 0.05), np.maximum(0.05, 0.1 * sd)])
+    second = optimize.minimize(full_objective, [start], lower, upper, step)
     beta, extra_free, sd = second.x[:p], second.x[p : p + n_extra], second.x[p + n_extra :]
     extra = family.extra_natural(extra_free)
-    converged, message = bool(second.success), str(second.message)
+    converged, message = second.converged, second.message
 
     # Covariance from the Hessian of ℓ_L in natural parameters; a component fitted at
     # zero is held there (its likelihood is not smooth across the boundary).
@@ -144,6 +155,9 @@ def fit_laplace(
         return -state.loglik(vector[:p], vector[p : p + n_extra], sd_)
 
     hessian = approx_hess3(natural, negative)
+    checks = convergence.check(
+        lambda vector: 2 * negative(vector), natural, np.ones(len(natural), bool), 2 * hessian
+    )
     try:
         cov = np.linalg.inv(hessian)[: p + n_extra, : p + n_extra]
     except np.linalg.LinAlgError:
@@ -153,7 +167,8 @@ def fit_laplace(
     loglik = state.loglik(beta, extra, sd)
     names = problem.fixed_names + family.extra_names(state.y)
     params = np.concatenate([beta, extra])
-    return finish_fit(problem, state, names, params, cov, sd, converged, "laplace", message, loglik)
+    fit = finish_fit(problem, state, names, params, cov, sd, converged, "laplace", message, loglik)
+    return dataclasses.replace(fit, converged=converged and checks.ok, checks=checks.messages)
 
 
 def finish_fit(
@@ -175,4 +190,5 @@ def finish_fit(
         stage=stage,
         modes=tuple(modes),
         message=message,
+        singular=bool(np.any(np.asarray(sd) < BOUNDARY_SD)),
     )

@@ -1,27 +1,119 @@
 """Linear mixed model of ratings as numbers, for researchers who report means.
 
 rating = μ + β[condition] + b_p + b_i + ε with crossed random intercepts for
-participants and items, fitted by REML (analysis.mixed.reml) like
-``lme4::lmer(rating ~ condition + (1 | participant) + (1 | item))``.
+participants and items (and, on request, participants' own condition effects, correlated
+with their intercepts), fitted by REML or ML (analysis.mixed.lmm) like
+``lmerTest::lmer(rating ~ condition + (1 | participant) + (1 | item))``: t and F tests
+with Satterthwaite's df, the likelihood-ratio test of ``anova(m0, m1)`` and profile CIs
+of the SDs.
 """
 
 from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
+from scipy import stats
 
 from analysis.mixed.common import (
+    codes,
     condition_effects,
     contrasts,
+    fit_notes,
     intercepts,
-    variance_components,
-    wald_test,
 )
-from analysis.mixed.laplace import BOUNDARY_SD, MixedProblem
+from analysis.mixed.lmm import LinearFit, fit_lmm
 from analysis.mixed.ordinal import rated_conditions
-from analysis.mixed.reml import fit_reml
-from analysis.mixed.results import LinearMixedResult
+from analysis.mixed.problem import Component, MixedProblem
+from analysis.mixed.profile import sd_intervals
+from analysis.mixed.results import (
+    Correlation,
+    LikelihoodRatioTest,
+    LinearMixedResult,
+    VarianceComponent,
+)
+from analysis.mixed.satterthwaite import Satterthwaite
 from analysis.tidy import TidyFormatError
+
+SLOPES = "(condition | participant)"
+
+
+def slopes_identifiable(data: pd.DataFrame, conditions: Sequence[str]) -> str:
+    """Return why participants' own condition effects cannot be estimated ("" if they can).
+
+    Each participant must have rated every condition, there must be five or more of
+    them, and more ratings than random effects (lme4's check).
+    """
+    seen = data.groupby("participant")["condition"].nunique()
+    complete = int((seen == len(conditions)).sum())
+    if complete < len(seen) or complete < 5:
+        return (
+            f"participants' own condition effects {SLOPES} need five or more participants "
+            f"who each rated every condition; {complete} of {len(seen)} did"
+        )
+    effects = len(seen) * len(conditions) + data["item"].nunique()
+    if len(data) <= effects:
+        return (
+            f"participants' own condition effects {SLOPES} need more ratings ({len(data)}) "
+            f"than random effects ({effects})"
+        )
+    return ""
+
+
+def _problem(data, order, *, with_conditions: bool, slopes: bool) -> MixedProblem:
+    dummies = [data["condition"].eq(c).to_numpy(float) for c in order[1:]]
+    X = np.column_stack([np.ones(len(data)), *(dummies if with_conditions else [])])
+    components = intercepts(data)
+    if slopes:
+        participant, levels = codes(data["participant"])
+        components[0] = Component.from_codes(
+            "participant",
+            "participant",
+            participant,
+            levels,
+            values=np.column_stack([np.ones(len(data)), *dummies]),
+            columns=("(Intercept)", *order[1:]),
+            correlated=True,
+        )
+    return MixedProblem(
+        y=data["rating"].to_numpy(float),
+        X=X,
+        fixed_names=("(Intercept)", *order[1:]) if with_conditions else ("(Intercept)",),
+        components=tuple(components),
+    )
+
+
+def _random(problem: MixedProblem, fit: LinearFit, intervals) -> tuple[VarianceComponent, ...]:
+    levels = {c.name: len(c.levels) for c in problem.components}
+    groups = {c.name: c.group for c in problem.components}
+    return tuple(
+        VarianceComponent(
+            name=name,
+            group=groups[name],
+            sd=float(sd),
+            variance=float(sd**2),
+            levels=levels[name],
+            column=column,
+            ci=ci,
+        )
+        for (name, column), sd, ci in zip(fit.columns, fit.sd, intervals, strict=True)
+    )
+
+
+def likelihood_ratio(data, order, *, slopes: bool) -> LikelihoodRatioTest:
+    """Test that the conditions are alike by ML fits with and without them (R's anova)."""
+    full = fit_lmm(_problem(data, order, with_conditions=True, slopes=slopes), reml=False)
+    reduced = fit_lmm(_problem(data, order, with_conditions=False, slopes=slopes), reml=False)
+    statistic = max(2 * (full.loglik - reduced.loglik), 0.0)
+    df = len(order) - 1
+    return LikelihoodRatioTest(
+        reduced="rating ~ 1 + random effects",
+        full="rating ~ condition + random effects",
+        statistic=statistic,
+        df=df,
+        pvalue=float(stats.chi2.sf(statistic, df)),
+        loglik_reduced=reduced.loglik,
+        loglik_full=full.loglik,
+    )
 
 
 def linear_mixed(
@@ -30,49 +122,75 @@ def linear_mixed(
     conditions: Sequence[str] | None = None,
     *,
     correction: str = "holm",
+    reml: bool = True,
+    slopes: bool | None = False,
+    sd_ci: bool = True,
 ) -> LinearMixedResult:
-    """Fit the linear mixed model to one question's ratings in *frame* by REML."""
+    """Fit the linear mixed model to one question's ratings in *frame*.
+
+    ``reml=False`` fits by maximum likelihood. ``slopes=True`` adds participants' own
+    condition effects, correlated with their intercepts (an error naming why where the
+    design cannot identify them); ``None`` adds them where it can. ``sd_ci`` computes
+    profile CIs of the SDs (intercept-only models).
+    """
     data, order = rated_conditions(frame, question, conditions)
     if len(order) < 2 or data["participant"].nunique() < 2:
         raise TidyFormatError(
             f"question {question!r}: a linear mixed model needs ratings of two or more "
             "conditions by two or more participants."
         )
-    components = intercepts(data)
-    dummies = [data["condition"].eq(c).to_numpy(float) for c in order[1:]]
-    problem = MixedProblem(
-        y=data["rating"].to_numpy(float),
-        X=np.column_stack([np.ones(len(data)), *dummies]),
-        fixed_names=("(Intercept)", *order[1:]),
-        components=tuple(components),
-    )
-    fit = fit_reml(problem)
+    asked = slopes
+    reason = slopes_identifiable(data, order) if asked is not False else ""
+    if asked and reason:
+        raise TidyFormatError(f"question {question!r}: {reason}.")
+    slopes = asked is not False and not reason
+    problem = _problem(data, order, with_conditions=True, slopes=slopes)
+    fit = fit_lmm(problem, reml=reml)
     width = len(order) - 1
-    estimates, cov = fit.params[1 : 1 + width], fit.cov[1 : 1 + width, 1 : 1 + width]
-    effects, full, full_cov = condition_effects(order, estimates, cov)
-    statistic, df, pvalue = wald_test(estimates, cov)
-    random = variance_components(components, fit.sd)
+    satterthwaite = Satterthwaite.of(fit)
+
+    def vector(i: int, j: int) -> np.ndarray:
+        row = np.zeros(len(fit.beta))
+        row[j] = 1.0
+        if i:
+            row[i] = -1.0
+        return row
+
+    def df_of(i: int, j: int) -> float:
+        return satterthwaite.df(vector(i, j))
+
+    estimates, cov = fit.beta[1 : 1 + width], fit.cov[1 : 1 + width, 1 : 1 + width]
+    effects, full, full_cov = condition_effects(order, estimates, cov, df_of)
+    statistic, df, den_df, pvalue = satterthwaite.f_test(np.eye(len(fit.beta))[1:], fit.beta)
+    intervals = sd_intervals(fit) if sd_ci else [None] * (len(fit.sd) + 1)
+    random = _random(problem, fit, intervals[:-1])
     notes = [
         f"Effects are differences of mean rating from {order[0]}; ratings are treated "
         "as interval numbers (see the ordinal model for the ordered-category analysis).",
-        "p-values are Wald z tests (no Satterthwaite or Kenward–Roger df).",
+        "t and F tests use Satterthwaite's degrees of freedom (as lmerTest).",
     ]
-    notes += [
-        f"The {c.name} SD is estimated at zero (a boundary fit)."
-        for c in random
-        if c.sd < BOUNDARY_SD
-    ]
-    converged = fit.converged
-    if not converged:
-        notes.append(f"The optimiser did not report convergence: {fit.message}")
+    if reason:
+        notes.append(f"Intercepts only: {reason}.")
+    at_zero = [False] * len(random)
+    if fit.singular:
+        at_zero = [sd < 1e-4 * fit.sigma for sd in fit.sd]
+        if not any(at_zero):
+            at_zero = [c.column != "(Intercept)" for c in random]
+    notes += fit_notes(fit, random, at_zero)
+    formula = f"{question} ~ condition + " + " + ".join(
+        f"(1 + condition | {c.name})" if c.correlated else f"(1 | {c.name})"
+        for c in problem.components
+    )
     return LinearMixedResult(
         model="Linear mixed model",
-        estimator="REML, lme4::lmer's profiled criterion",
-        formula=f"{question} ~ condition + " + " + ".join(f"(1 | {c.name})" for c in components),
+        estimator="REML, lme4::lmer's profiled criterion"
+        if reml
+        else "maximum likelihood, lme4::lmer(REML = FALSE)",
+        formula=formula,
         conditions=tuple(order),
         reference=order[0],
         effects=tuple(effects),
-        contrasts=contrasts(order, full, full_cov, correction),
+        contrasts=contrasts(order, full, full_cov, correction, df_of),
         random=random,
         statistic=statistic,
         df=df,
@@ -81,10 +199,16 @@ def linear_mixed(
         participants=int(data["participant"].nunique()),
         items=int(data["item"].nunique()),
         loglik=fit.loglik,
-        aic=-2 * fit.loglik + 2 * (len(order) + len(components) + 1),
-        converged=converged,
+        aic=-2 * fit.loglik + 2 * (len(fit.beta) + len(fit.theta) + 1),
+        converged=fit.converged,
         correction=correction,
         notes=tuple(notes),
+        singular=fit.singular,
         question=question,
-        residual_sd=float(fit.params[-1]),
+        residual_sd=fit.sigma,
+        residual_sd_ci=intervals[-1],
+        reml=reml,
+        den_df=den_df,
+        likelihood_ratio=likelihood_ratio(data, order, slopes=slopes),
+        correlations=tuple(Correlation(g, a, b, r) for g, a, b, r in fit.correlations),
     )

@@ -57,6 +57,10 @@ class ConditionalModes:
             self.coupling_index = (self.cols[:, :1] * self.rest_width + rest).ravel()
             self.rest_pairs = (rest[:, :, None] * self.rest_width + rest[:, None, :]).ravel()
 
+    def set_values(self, vals: np.ndarray) -> None:
+        """Replace Z's non-zero values (n_obs, m): a linear model's ZΛ at its current θ."""
+        self.vals = vals
+
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""
         return (self.vals * vector[self.cols]).sum(axis=1)

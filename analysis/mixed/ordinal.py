@@ -20,6 +20,7 @@ from analysis.mixed.common import (
     condition_effects,
     contrasts,
     covariance_note,
+    fit_notes,
     intercepts,
     standard_error,
     variance_components,
@@ -138,14 +139,8 @@ def ordinal_mixed(
         else "Proportional odds is doubtful: report the per-threshold proportions beside "
         "the model.",
     ]
-    notes += [
-        f"The {c.name} SD is estimated at zero (a boundary fit)."
-        for c in random
-        if c.sd < BOUNDARY_SD
-    ]
+    notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
     notes += covariance_note(fit.cov)
-    if not fit.converged:
-        notes.append(f"The optimiser did not report convergence: {fit.message}")
     formula = f"{question} ~ condition + (1 | participant)" + (
         " + (1 | item)" if len(problem.components) > 1 else ""
     )
@@ -167,6 +162,7 @@ def ordinal_mixed(
         loglik=fit.loglik,
         aic=-2 * fit.loglik + 2 * (len(fit.params) + len(fit.sd)),
         converged=fit.converged,
+        singular=fit.singular,
         correction=correction,
         notes=tuple(notes),
         question=question,

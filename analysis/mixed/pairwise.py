@@ -20,6 +20,7 @@ from analysis.mixed.common import (
     condition_effects,
     contrasts,
     covariance_note,
+    fit_notes,
     intercepts,
     standard_error,
     variance_components,
@@ -145,12 +146,8 @@ def mixed_bradley_terry(
         notes.append(f"{ties_seen} “cannot see a difference” answers were left out.")
     if ties == "davidson":
         notes.append(f"{ties_seen} “cannot see a difference” answers were modelled as ties.")
-    for component in random:
-        if component.sd < BOUNDARY_SD:
-            notes.append(f"The {component.name} SD is estimated at zero (a boundary fit).")
+    notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
     notes += covariance_note(fit.cov[:p, :p])
-    if not fit.converged:
-        notes.append(f"The optimiser did not report convergence: {fit.message}")
     n_params = len(fit.params) + len(fit.sd)
     formula = "chose clip 1 ~ position + strengths + (1 | participant)" + (
         " + (1 | item)" if any(c.group == "item" for c in problem.components) else ""
@@ -176,6 +173,7 @@ def mixed_bradley_terry(
         loglik=fit.loglik,
         aic=-2 * fit.loglik + 2 * n_params,
         converged=fit.converged,
+        singular=fit.singular,
         correction=correction,
         notes=tuple(notes),
         position=position,

@@ -24,6 +24,8 @@ class Component:
     Observation i has ``values[i]`` in the columns of level ``codes[i]`` of the grouping
     factor: ``codes`` (n_obs,), ``values`` (n_obs, len(columns)); the block is
     len(levels) × len(columns) wide (an intercept per level, or one slope per column).
+    The columns share one SD unless ``correlated``: then they have an unstructured
+    covariance, lme4's ``(1 + x | group)`` (linear mixed models only).
     """
 
     name: str
@@ -32,6 +34,7 @@ class Component:
     columns: tuple[str, ...]
     codes: np.ndarray
     values: np.ndarray
+    correlated: bool = False
 
     @property
     def width(self) -> int:
@@ -46,12 +49,20 @@ class Component:
         levels: tuple[str, ...],
         values: np.ndarray | None = None,
         columns: tuple[str, ...] = ("(Intercept)",),
+        *,
+        correlated: bool = False,
     ) -> "Component":
         """Build the component for level codes (n_obs,) and per-level values (n_obs, c)."""
         codes = np.asarray(codes, dtype=np.int64)
         values = np.ones((len(codes), 1)) if values is None else np.asarray(values, float)
         return cls(
-            name, group, tuple(levels), tuple(columns), codes, values.reshape(len(codes), -1)
+            name,
+            group,
+            tuple(levels),
+            tuple(columns),
+            codes,
+            values.reshape(len(codes), -1),
+            correlated,
         )
 
 
@@ -89,3 +100,7 @@ class LaplaceFit:
     stage: str
     modes: tuple[np.ndarray, ...]
     message: str = ""
+    # A variance component on its bound of zero (lme4's isSingular), and what the
+    # convergence checks found wrong (analysis.mixed.convergence), if anything.
+    singular: bool = False
+    checks: tuple[str, ...] = ()

@@ -16,7 +16,10 @@ def _two(value: float) -> str:
 
 @dataclasses.dataclass(frozen=True)
 class Coefficient(Result):
-    """One fixed effect with its Wald z test and 95 % CI (scale of the linear predictor)."""
+    """One fixed effect with its test and 95 % CI (scale of the linear predictor).
+
+    A Wald z test, or with ``df`` (Satterthwaite's, linear models) a t test.
+    """
 
     name: str
     estimate: float
@@ -24,17 +27,50 @@ class Coefficient(Result):
     statistic: float
     pvalue: float
     ci: tuple[float, float]
+    df: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
 class VarianceComponent(Result):
-    """One random effect's standard deviation, over ``levels`` levels of ``group``."""
+    """One random effect's standard deviation, over ``levels`` levels of ``group``.
+
+    ``column`` is what varies by level (the intercept, or a condition's effect), and
+    ``ci`` the profile-likelihood 95 % CI of the SD where it was computed.
+    """
 
     name: str
     group: str
     sd: float
     variance: float
     levels: int
+    column: str = "(Intercept)"
+    ci: tuple[float, float] | None = None
+
+
+@dataclasses.dataclass(frozen=True)
+class Correlation(Result):
+    """The correlation of two random effects of one grouping factor (lme4's ``(x | g)``)."""
+
+    group: str
+    a: str
+    b: str
+    r: float
+
+
+@dataclasses.dataclass(frozen=True)
+class LikelihoodRatioTest(Result):
+    """A likelihood-ratio test of nested models fitted by ML (R's ``anova(m0, m1)``)."""
+
+    reduced: str
+    full: str
+    statistic: float
+    df: int
+    pvalue: float
+    loglik_reduced: float
+    loglik_full: float
+
+    def apa(self) -> str:
+        return f"LR χ²({self.df}) = {self.statistic:.2f}, {format_p(self.pvalue)}"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -49,11 +85,13 @@ class Contrast(Result):
     pvalue: float
     pvalue_adjusted: float
     ci: tuple[float, float]
+    df: float | None = None
 
     def apa(self) -> str:
+        test = "z" if self.df is None else f"t({self.df:.1f})"
         return (
             f"{self.a} − {self.b} = {_two(self.estimate)} "
-            f"[{_two(self.ci[0])}, {_two(self.ci[1])}], z = {_two(self.statistic)}, "
+            f"[{_two(self.ci[0])}, {_two(self.ci[1])}], {test} = {_two(self.statistic)}, "
             f"{format_p(self.pvalue)} "
             f"({format_p(self.pvalue_adjusted).replace('p', 'p_adj', 1)})"
         )
@@ -102,28 +140,43 @@ class _ModelResult(Result):
     converged: bool
     correction: str
     notes: tuple[str, ...]
+    # A variance component on its bound of zero (lme4's isSingular): named in summary()
+    # and apa() as well as in the notes.
+    singular: bool = False
 
     def apa(self) -> str:
-        return f"Wald χ²({self.df}) = {self.statistic:.2f}, {format_p(self.pvalue)}"
+        return f"Wald χ²({self.df}) = {self.statistic:.2f}, {format_p(self.pvalue)}" + (
+            " (singular fit: a random-effect SD estimated at zero)" if self.singular else ""
+        )
 
     def _lines(self) -> list[str]:
         lines = [
             f"{self.model}: {self.formula}",
             f"{self.estimator}; {self.nobs} observations, {self.participants} participants, "
             f"{self.items} items; log-likelihood {self.loglik:.2f}, AIC {self.aic:.1f}"
-            + ("" if self.converged else " — NOT CONVERGED"),
+            + ("" if self.converged else " — NOT CONVERGED")
+            + (" — SINGULAR (boundary) FIT" if self.singular else ""),
             "",
-            f"{'effect':<28}{'estimate':>10}{'SE':>8}{'z':>8}{'p':>10}   95 % CI",
         ]
-        for c in self._rows():
+        rows = self._rows()
+        with_df = any(c.df is not None for c in rows)
+        lines.append(
+            f"{'effect':<28}{'estimate':>10}{'SE':>8}"
+            + (f"{'df':>8}{'t':>8}" if with_df else f"{'z':>8}")
+            + f"{'p':>10}   95 % CI"
+        )
+        for c in rows:
+            df = "" if not with_df else f"{c.df:>8.1f}" if c.df is not None else " " * 8
             lines.append(
-                f"{c.name:<28}{c.estimate:>10.3f}{c.se:>8.3f}{c.statistic:>8.2f}"
+                f"{c.name:<28}{c.estimate:>10.3f}{c.se:>8.3f}{df}{c.statistic:>8.2f}"
                 f"{format_p(c.pvalue).removeprefix('p = ').removeprefix('p '):>10}   "
                 f"[{c.ci[0]:.3f}, {c.ci[1]:.3f}]"
             )
-        lines += ["", f"{'random effect':<36}{'SD':>8}{'levels':>8}"]
+        lines += ["", f"{'random effect':<36}{'SD':>8}{'levels':>8}   95 % CI (profile)"]
         for r in self.random:
-            lines.append(f"{r.name:<36}{r.sd:>8.3f}{r.levels:>8}")
+            label = r.name if r.column == "(Intercept)" else f"{r.name}: {r.column}"
+            ci = "" if r.ci is None else f"   [{r.ci[0]:.3f}, {r.ci[1]:.3f}]"
+            lines.append(f"{label:<36}{r.sd:>8.3f}{r.levels:>8}{ci}")
         lines += ["", f"conditions alike: {self.apa()}"]
         lines += [f"contrast {c.apa()}" for c in self.contrasts]
         lines += [f"note: {note}" for note in self.notes]
@@ -172,10 +225,37 @@ class CumulativeLinkMixedResult(_ModelResult):
 
 @dataclasses.dataclass(frozen=True)
 class LinearMixedResult(_ModelResult):
-    """Linear mixed model of ratings as numbers (REML): effects are differences of means."""
+    """Linear mixed model of ratings as numbers (REML or ML): effects are differences of means.
+
+    ``statistic``/``df``/``pvalue`` are the F test that the conditions are alike, with
+    Satterthwaite's denominator df ``den_df`` (lmerTest's ``anova``); effects and
+    contrasts carry t tests with their own df. ``likelihood_ratio`` tests the same
+    hypothesis by ML refits, as R's ``anova(m0, m1)``.
+    """
 
     question: str = ""
     residual_sd: float = float("nan")
+    residual_sd_ci: tuple[float, float] | None = None
+    reml: bool = True
+    den_df: float = float("nan")
+    likelihood_ratio: LikelihoodRatioTest | None = None
+    correlations: tuple[Correlation, ...] = ()
+
+    def apa(self) -> str:
+        return f"F({self.df}, {self.den_df:.1f}) = {self.statistic:.2f}, " + (
+            f"{format_p(self.pvalue)}"
+            + (" (singular fit: a random-effect SD estimated at zero)" if self.singular else "")
+        )
+
+    def _lines(self) -> list[str]:
+        lines = super()._lines()
+        lines += [
+            f"random-effect correlation {c.group} {c.a}–{c.b}: r = {c.r:.2f}"
+            for c in self.correlations
+        ]
+        if self.likelihood_ratio is not None:
+            lines.append(f"conditions alike (ML refits): {self.likelihood_ratio.apa()}")
+        return lines
 
 
 @dataclasses.dataclass(frozen=True)

@@ -1,0 +1,129 @@
+"""Minimise a mixed model's criterion over parameters some of which are bounded at zero.
+
+A variance parameter (an SD, or lme4's relative factor θ) enters the likelihood through
+its square, so the criterion is flat to first order at θ = 0: a gradient method that
+steps onto the bound finds a zero projected gradient there and stops, whether or not a
+positive θ is better (issue 34). The search here is the one lme4 uses instead:
+
+- BOBYQA (Powell 2009, "The BOBYQA algorithm for bound constrained optimization without
+  derivatives"; nlopt's ``LN_BOBYQA``, lme4's default for ``lmer`` and ``glmer``'s first
+  stage), which models the criterion by quadratic interpolation and needs no gradient;
+- from several starts, the best kept;
+- then every bounded parameter that ended on its bound is tested by a short profile
+  (the criterion at small positive values, the others held): if one is lower, the
+  search restarts from it, as lme4's ``restart_edge`` does for linear mixed models.
+"""
+
+import dataclasses
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+# A bounded parameter this close to its bound is on it (lme4's isSingular tolerance).
+ON_BOUND = 1e-4
+# The short profile's trial values, as multiples of the parameter's initial step.
+PROFILE = (1e-3, 1e-2, 0.1, 0.3, 1.0, 3.0)
+RESTARTS = 5
+# Returned to BOBYQA for an infeasible point (a factorisation that failed): large and
+# finite, since interpolating an infinite value would poison its quadratic model.
+INFEASIBLE = 1e100
+
+
+@dataclasses.dataclass(frozen=True)
+class Optimum:
+    """The minimum found: ``x``, ``fun`` = criterion(x), what it took, and from where."""
+
+    x: np.ndarray
+    fun: float
+    evaluations: int
+    converged: bool
+    message: str
+    restarts: int
+
+
+def _bobyqa(criterion, start, lower, upper, step, xtol, maxeval):
+    import nlopt
+
+    optimiser = nlopt.opt(nlopt.LN_BOBYQA, len(start))
+    optimiser.set_lower_bounds(lower)
+    optimiser.set_upper_bounds(upper)
+    optimiser.set_initial_step(step)
+    optimiser.set_xtol_abs(xtol)
+    optimiser.set_ftol_abs(1e-13)
+    optimiser.set_maxeval(maxeval)
+
+    def wrapped(x, grad):
+        value = criterion(np.asarray(x))
+        return float(value) if np.isfinite(value) else INFEASIBLE
+
+    optimiser.set_min_objective(wrapped)
+    try:
+        x = optimiser.optimize(np.clip(start, lower, upper))
+    except nlopt.RoundoffLimited:
+        return None
+    result = optimiser.last_optimize_result()
+    converged = result in (nlopt.FTOL_REACHED, nlopt.XTOL_REACHED, nlopt.SUCCESS)
+    names = {nlopt.FTOL_REACHED: "ftol reached", nlopt.XTOL_REACHED: "xtol reached"}
+    message = names.get(result, f"nlopt result {result}")
+    return np.asarray(x), float(optimiser.last_optimum_value()), converged, message
+
+
+def minimize(
+    criterion: Callable[[np.ndarray], float],
+    starts: Sequence[np.ndarray],
+    lower: np.ndarray,
+    upper: np.ndarray,
+    step: np.ndarray,
+    *,
+    xtol: float = 1e-9,
+    maxeval: int = 20000,
+) -> Optimum:
+    """Minimise *criterion* within [lower, upper] from each start; keep the best (module doc).
+
+    Parameters whose lower bound is finite are the ones tested on their bound; *step* is
+    BOBYQA's initial step per parameter and the scale of the short profile.
+    """
+    lower, upper = np.asarray(lower, float), np.asarray(upper, float)
+    step = np.asarray(step, float)
+    bounded = np.flatnonzero(np.isfinite(lower))
+    calls = [0]
+
+    def counted(x):
+        calls[0] += 1
+        return criterion(x)
+
+    best = None
+    for start in starts:
+        found = _bobyqa(counted, np.asarray(start, float), lower, upper, step, xtol, maxeval)
+        if found is not None and (best is None or found[1] < best[1]):
+            best = found
+    if best is None:
+        raise ArithmeticError("the optimiser could not evaluate the criterion at any start")
+    x, fun, converged, message = best
+    restarts = 0
+    while restarts < RESTARTS:
+        better = _off_the_bound(counted, x, fun, lower, upper, step, bounded)
+        if better is None:
+            break
+        restarts += 1
+        found = _bobyqa(counted, better, lower, upper, step, xtol, maxeval)
+        if found is None or found[1] >= fun:
+            x, fun = better, counted(better)
+            continue
+        x, fun, converged, message = found
+    return Optimum(x, fun, calls[0], converged, message, restarts)
+
+
+def _off_the_bound(criterion, x, fun, lower, upper, step, bounded):
+    """Return a point with a bounded parameter moved off its bound that lowers *fun*, if any."""
+    best, best_value = None, fun - 1e-10 * max(1.0, abs(fun))
+    for j in bounded:
+        if x[j] - lower[j] > ON_BOUND:
+            continue
+        for multiple in PROFILE:
+            trial = x.copy()
+            trial[j] = min(lower[j] + multiple * step[j], upper[j])
+            value = criterion(trial)
+            if value < best_value:
+                best, best_value = trial, value
+    return best
