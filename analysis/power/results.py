@@ -85,6 +85,7 @@ class PowerCurve(Result):
             self.table().to_string(index=False, float_format=lambda v: f"{v:.3f}"),
         ]
         lines += [self.apa(test) for test in self.tests]
+        lines += [f"note: {note}" for note in self.effects.get("notes", ())]
         failed = sum(p.failures for p in self.points)
         if failed:
             lines.append(

@@ -22,7 +22,7 @@ from scipy import stats
 
 from analysis.mixed.common import coefficient, standard_error, wald_test
 from analysis.mixed.families import Bernoulli, CumulativeLogit
-from analysis.mixed.laplace import fit_laplace
+from analysis.mixed.laplace import BOUNDARY_SD, fit_laplace
 from analysis.mixed.ordinal import ordinal_problem
 from analysis.mixed.pairwise import pairwise_problem
 from analysis.power.design import PlannedDesign
@@ -49,6 +49,8 @@ class Effects:
     position: float = 0.0
     thresholds: tuple[float, ...] = ()
     source: str = "stated"
+    # What a researcher must know about where the effects came from (a singular pilot).
+    notes: tuple[str, ...] = ()
 
 
 def effects_from_pilot(mixed_result, source: str = "pilot") -> Effects:
@@ -56,6 +58,15 @@ def effects_from_pilot(mixed_result, source: str = "pilot") -> Effects:
     effects = {mixed_result.reference: 0.0}
     effects.update({c.name: c.estimate for c in mixed_result.effects})
     sds = {c.name: c.sd for c in mixed_result.random}
+    zero = [c.name for c in mixed_result.random if c.sd < BOUNDARY_SD]
+    notes = ()
+    if getattr(mixed_result, "singular", False) and zero:
+        notes = (
+            f"The pilot's {' and '.join(zero)} SD{'s' if len(zero) > 1 else ''} sit"
+            f"{'' if len(zero) > 1 else 's'} on the boundary of zero (a singular fit): the "
+            "simulation assumes no such variation, which overstates power if there is "
+            "some; a larger pilot, or an SD stated from the literature, is safer.",
+        )
     return Effects(
         effects=effects,
         sd_participant=sds.get("participant", 0.0),
@@ -64,6 +75,7 @@ def effects_from_pilot(mixed_result, source: str = "pilot") -> Effects:
         position=mixed_result.position.estimate if getattr(mixed_result, "position", None) else 0.0,
         thresholds=tuple(t.estimate for t in getattr(mixed_result, "thresholds", ())),
         source=source,
+        notes=notes,
     )
 
 

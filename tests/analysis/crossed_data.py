@@ -12,7 +12,7 @@ import pandas as pd
 
 from analysis.mixed import MixedProblem
 from analysis.mixed.common import intercepts
-from tests.analysis.mixed_data import REFERENCE, _tidy
+from tests.analysis.mixed_data import REFERENCE, pairwise_rows, rating_rows
 
 
 @functools.cache
@@ -38,40 +38,15 @@ def within(number: int) -> pd.DataFrame:
 
 
 def ratings_tidy(number: int, column: str = "rating") -> pd.DataFrame:
-    """Return set *number*'s ratings (or its numeric responses) as tidy rows of one question."""
+    """Return set *number*'s ratings (or its numeric responses) as tidy rows of question q."""
     data = within(number)
-    return _tidy(
-        pd.DataFrame(
-            {
-                "participant": data["participant"],
-                "trial": [f"t{i}" for i in range(len(data))],
-                "item": data["item"],
-                "kind": "rating",
-                "condition_a": data["condition"],
-                "question": "q",
-                "rating": data[column].round(12),
-            }
-        )
-    )
+    return rating_rows(data.assign(**{column: data[column].round(12)}), "q", column)
 
 
 def pairwise_tidy(number: int) -> pd.DataFrame:
     """Return set *number*'s forced choices as tidy pairwise rows."""
     rows = _pairs()
-    data = rows[rows["set"].eq(number)]
-    return _tidy(
-        pd.DataFrame(
-            {
-                "participant": data["participant"],
-                "trial": [f"t{i}" for i in range(len(data))],
-                "item": data["item"],
-                "kind": "pairwise",
-                "condition_a": data["clip1"],
-                "condition_b": data["clip2"],
-                "chosen": data["clip1"].where(data["first"].eq(1), data["clip2"]),
-            }
-        )
-    )
+    return pairwise_rows(rows[rows["set"].eq(number)])
 
 
 def binary_problem(number: int) -> MixedProblem:

@@ -18,9 +18,8 @@ def _tidy(rows: pd.DataFrame) -> pd.DataFrame:
     return check_responses(rows.astype(str))
 
 
-def pairwise_tidy() -> pd.DataFrame:
-    """Return the forced-choice reference data as tidy pairwise rows."""
-    data = pd.read_csv(REFERENCE / "mixed_pairwise.csv")
+def pairwise_rows(data: pd.DataFrame) -> pd.DataFrame:
+    """Return rows with participant, item, clip1, clip2 and first (0/1) as tidy pairwise rows."""
     return _tidy(
         pd.DataFrame(
             {
@@ -36,9 +35,8 @@ def pairwise_tidy() -> pd.DataFrame:
     )
 
 
-def ratings_tidy(name: str = "mixed_ratings.csv", question: str = "clarity") -> pd.DataFrame:
-    """Return a Likert reference data set as tidy rating rows of one question."""
-    data = pd.read_csv(REFERENCE / name)
+def rating_rows(data: pd.DataFrame, question: str, column: str = "rating") -> pd.DataFrame:
+    """Return rows with participant, item, condition and *column* as tidy rating rows."""
     return _tidy(
         pd.DataFrame(
             {
@@ -48,7 +46,17 @@ def ratings_tidy(name: str = "mixed_ratings.csv", question: str = "clarity") -> 
                 "kind": "rating",
                 "condition_a": data["condition"],
                 "question": question,
-                "rating": data["rating"],
+                "rating": data[column],
             }
         )
     )
+
+
+def pairwise_tidy() -> pd.DataFrame:
+    """Return the forced-choice reference data as tidy pairwise rows."""
+    return pairwise_rows(pd.read_csv(REFERENCE / "mixed_pairwise.csv"))
+
+
+def ratings_tidy(name: str = "mixed_ratings.csv", question: str = "clarity") -> pd.DataFrame:
+    """Return a Likert reference data set as tidy rating rows of one question."""
+    return rating_rows(pd.read_csv(REFERENCE / name), question)

@@ -100,3 +100,18 @@ def test_no_start_lands_on_a_false_boundary():
     fit = fit_laplace(crossed_data.binary_problem(1), sd_start=np.array([0.0, 0.0]))
     assert fit.loglik >= reference["loglik"] - 1e-4
     assert fit.sd == pytest.approx([reference["theta"][0], reference["theta"][1]], abs=2e-3)
+
+
+def test_report_and_results_json_say_singular(tmp_path):
+    """The report a researcher publishes names the singular fit (set 5, true SDs 0)."""
+    import json
+
+    from analysis import ReportOptions, build_report, write_report
+
+    frame = crossed_data.pairwise_tidy(5)
+    report = build_report(frame, ReportOptions())
+    write_report(report, frame, tmp_path, draw_figures=False)
+    pairwise = json.loads((tmp_path / "results.json").read_text())["mixed_models"]["pairwise"]
+    assert pairwise["singular"] is True and "singular fit" in pairwise["apa"]
+    assert "SINGULAR (boundary) FIT" in pairwise["summary"]
+    assert "singular (boundary) fit" in (tmp_path / "report.html").read_text()

@@ -127,6 +127,8 @@ def test_results_page_shows_the_analysis(bob_client, spine):
     assert "Pairwise preferences" in page.text and "Ratings" in page.text
     assert "data:image/png;base64," in page.text
     assert "Only participants whose hearing-status is" in page.text
+    assert 'id="mixed-models"' in page.text and "Mixed-effects Bradley–Terry" in page.text
+    assert "Conditions alike:" in page.text
 
 
 def test_results_page_applies_exclusions_and_filters(bob_client, spine):
