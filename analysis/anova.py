@@ -61,18 +61,44 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
     """Test whether the level means of a subjects × levels table differ.
 
     The F test is statsmodels' ``AnovaRM``; sphericity and effect size are added:
-    ``eta_p2 = SS_effect / (SS_effect + SS_error) = F·df1 / (F·df1 + df2)``.
+    ``eta_p2 = SS_effect / (SS_effect + SS_error) = F·df1 / (F·df1 + df2)``. Subjects
+    without a score at every level are left out and named in ``notes``; where the
+    error variance is zero the F test is undefined, and the result says why instead of
+    giving a number.
     """
+    notes = []
+    missing = scores.index[scores.isna().any(axis=1)]
+    if len(missing):
+        named = ", ".join(str(s) for s in missing[:5]) + (" …" if len(missing) > 5 else "")
+        notes.append(
+            f"{len(missing)} subject(s) without a score at every level are left out ({named})."
+        )
     scores = scores.dropna()
     n, k = scores.shape
     if n < 2 or k < 2:
         raise ValueError(f"A repeated-measures ANOVA needs ≥ 2 subjects and levels; got {n}×{k}.")
+    values = scores.to_numpy(dtype=float)
+    residual = values - values.mean(axis=1, keepdims=True) - values.mean(axis=0) + values.mean()
+    ss_error = float(np.sum(residual**2))
+    ss_effect = float(n * np.sum((values.mean(axis=0) - values.mean()) ** 2))
+    levels = tuple(str(level) for level in scores.columns)
+    if ss_error <= 1e-12 * max(ss_effect + ss_error, np.sum(values**2), 1e-300):
+        notes.append(
+            "Every subject's scores are the same at every level: there is no variance to test."
+            if ss_effect <= 1e-12 * max(np.sum(values**2), 1e-300)
+            else "The error variance is zero (every subject's scores differ between levels "
+            "by the same amounts), so F is undefined: report the level means, not a test."
+        )
+        nan = float("nan")
+        return RmAnovaResult(
+            nan, k - 1.0, (n - 1.0) * (k - 1), nan, nan, nan, nan, nan, nan, n, levels, tuple(notes)
+        )
     long = scores.rename_axis(index="subject", columns="level").stack().rename("value")
     table = AnovaRM(long.reset_index(), "value", "subject", within=["level"]).fit().anova_table
     f_value = float(table["F Value"].iloc[0])
     df_num = float(table["Num DF"].iloc[0])
     df_den = float(table["Den DF"].iloc[0])
-    w, w_p, epsilon = sphericity(scores.to_numpy(dtype=float))
+    w, w_p, epsilon = sphericity(values)
     return RmAnovaResult(
         statistic=f_value,
         df_num=df_num,
@@ -84,5 +110,6 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
         mauchly_w=w,
         mauchly_pvalue=w_p,
         nobs=n,
-        levels=tuple(str(level) for level in scores.columns),
+        levels=levels,
+        notes=tuple(notes),
     )

@@ -115,8 +115,11 @@ class RmAnovaResult(Result):
     mauchly_pvalue: float
     nobs: int
     levels: tuple[str, ...]
+    notes: tuple[str, ...] = ()
 
     def apa(self) -> str:
+        if not math.isfinite(self.statistic):
+            return "F not computed: " + (self.notes[-1] if self.notes else "undefined")
         text = (
             f"F({_df(self.df_num)}, {_df(self.df_den)}) = {self.statistic:.2f}, "
             f"{format_p(self.pvalue)}, η²p = {_two(self.eta_p2).lstrip('0')}"

@@ -151,7 +151,23 @@ def fit_notes(fit: LaplaceFit, random: Sequence[VarianceComponent], at_zero) -> 
     zero = [c.name for c, flag in zip(random, at_zero, strict=True) if flag]
     if fit.singular and zero:
         notes.append(singular_note(zero))
-    notes += [f"Convergence: {message}." for message in fit.checks]
+    notes += [f"{message[0].upper()}{message[1:]}." for message in fit.checks]
     if not fit.converged and not fit.checks:
         notes.append(f"The optimiser did not report convergence: {fit.message}")
     return notes
+
+
+def separation_note(effects: Sequence[Coefficient]) -> list[str]:
+    """Name effects that run off to infinity: choices or ratings separated by condition.
+
+    On the logit scale an estimate beyond ±10 (odds of 22,000 to 1) with no usable SE
+    means the likelihood rises without bound (lme4 and clmm print such numbers too).
+    """
+    runaway = [c.name for c in effects if abs(c.estimate) > 10 and not c.se < abs(c.estimate) / 2]
+    if not runaway:
+        return []
+    return [
+        f"The estimate of {', '.join(runaway)} is unbounded: the answers are (nearly) "
+        "separated by condition (one always chosen, or always rated higher), so the "
+        "estimate and its test are not meaningful; report the counts instead."
+    ]

@@ -26,6 +26,7 @@ from scipy import linalg
 from statsmodels.tools.numdiff import approx_hess3
 
 from analysis.mixed import convergence, optimize
+from analysis.mixed.degenerate import dropped_message, full_rank
 from analysis.mixed.modes import ConditionalModes
 from analysis.mixed.problem import (
     BOUNDARY_SD,
@@ -73,6 +74,16 @@ def fit_laplace(
     """
     if stage not in ("laplace", "fast"):
         raise ValueError(f"stage must be 'laplace' or 'fast', not {stage!r}")
+    problem, dropped = full_rank(problem)
+    fit = _fit(problem, stage, sd_start, extra_start)
+    if not dropped:
+        return fit
+    message = dropped_message(dropped)
+    return dataclasses.replace(fit, dropped=dropped, checks=(message, *fit.checks))
+
+
+def _fit(problem, stage, sd_start, extra_start) -> LaplaceFit:
+    """Fit a problem with a full-rank fixed-effect design (fit_laplace's search)."""
     family = problem.family
     state = ConditionalModes(problem)
     p, k = state.p, len(problem.components)

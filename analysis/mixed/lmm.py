@@ -23,6 +23,7 @@ import dataclasses
 import numpy as np
 
 from analysis.mixed import convergence, optimize
+from analysis.mixed.degenerate import dropped_message, full_rank
 from analysis.mixed.modes import ConditionalModes
 from analysis.mixed.problem import LARGEST_SD, MixedProblem
 
@@ -52,6 +53,7 @@ class LinearFit:
     message: str
     evaluations: int
     criterion: "LinearCriterion"
+    dropped: tuple[str, ...] = ()
 
 
 def _lower_triangle(c: int) -> tuple[np.ndarray, np.ndarray]:
@@ -164,7 +166,12 @@ class LinearCriterion:
 
 
 def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
-    """Fit *problem* (its family is ignored: the response is Gaussian) by REML or ML."""
+    """Fit *problem* (its family is ignored: the response is Gaussian) by REML or ML.
+
+    Fixed-effect columns that repeat others are dropped and named in ``dropped`` and
+    ``checks`` (lme4's message).
+    """
+    problem, dropped = full_rank(problem)
     criterion = LinearCriterion(problem, reml=reml)
     lower = criterion.lower
     upper = np.where(np.isfinite(lower), LARGEST_SD, LARGEST_SD)
@@ -208,8 +215,9 @@ def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
         nobs=criterion.n,
         converged=search.converged and checks.ok,
         singular=bool(np.any(on_bound)),
-        checks=checks.messages,
+        checks=((dropped_message(dropped),) if dropped else ()) + checks.messages,
         message=search.message,
         evaluations=criterion.state.evaluations,
         criterion=criterion,
+        dropped=dropped,
     )

@@ -16,16 +16,19 @@ from scipy import stats
 from statsmodels.miscmodels.ordinal_model import OrderedModel
 
 from analysis.mixed.common import (
+    codes,
     coefficient,
     condition_effects,
     contrasts,
     covariance_note,
     fit_notes,
     intercepts,
+    separation_note,
     standard_error,
     variance_components,
     wald_test,
 )
+from analysis.mixed.degenerate import check_response
 from analysis.mixed.families import CumulativeLogit
 from analysis.mixed.laplace import BOUNDARY_SD, MixedProblem, fit_laplace
 from analysis.mixed.results import (
@@ -114,6 +117,13 @@ def ordinal_mixed(
             f"question {question!r}: an ordinal model needs ratings of two or more "
             "conditions on two or more scale points."
         )
+    check_response(
+        f"question {question!r}",
+        data["rating"].to_numpy(),
+        codes(data["condition"])[0],
+        data["condition"].to_numpy(),
+        "rating",
+    )
     problem = ordinal_problem(data, order)
     fit = fit_laplace(problem)
     p = problem.X.shape[1]
@@ -140,6 +150,7 @@ def ordinal_mixed(
         "the model.",
     ]
     notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
+    notes += separation_note(effects)
     notes += covariance_note(fit.cov)
     formula = f"{question} ~ condition + (1 | participant)" + (
         " + (1 | item)" if len(problem.components) > 1 else ""

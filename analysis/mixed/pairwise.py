@@ -22,6 +22,7 @@ from analysis.mixed.common import (
     covariance_note,
     fit_notes,
     intercepts,
+    separation_note,
     standard_error,
     variance_components,
     wald_test,
@@ -131,6 +132,12 @@ def mixed_bradley_terry(
         random_strengths = strengths_identifiable(data, order)
     problem = pairwise_problem(data, order, ties=ties, random_strengths=random_strengths)
     fit = fit_laplace(problem)
+    if fit.dropped:
+        raise TidyFormatError(
+            f"conditions {', '.join(fit.dropped)} cannot be estimated: no judgement tells "
+            "them apart from the others (a condition never shown, or shown only with "
+            "another); leave them out of the condition order."
+        )
     p = problem.X.shape[1]
     estimates, cov = fit.params[1:p], fit.cov[1:p, 1:p]
     effects, full, full_cov = condition_effects(order, estimates, cov)
@@ -147,6 +154,7 @@ def mixed_bradley_terry(
     if ties == "davidson":
         notes.append(f"{ties_seen} “cannot see a difference” answers were modelled as ties.")
     notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
+    notes += separation_note([position, *effects])
     notes += covariance_note(fit.cov[:p, :p])
     n_params = len(fit.params) + len(fit.sd)
     formula = "chose clip 1 ~ position + strengths + (1 | participant)" + (

@@ -104,3 +104,5 @@ class LaplaceFit:
     # convergence checks found wrong (analysis.mixed.convergence), if anything.
     singular: bool = False
     checks: tuple[str, ...] = ()
+    # Fixed-effect columns dropped because they repeat others (analysis.mixed.degenerate).
+    dropped: tuple[str, ...] = ()

@@ -10,9 +10,19 @@ def binomial_power(trials: int, p: float, alpha: float = 0.05) -> float:
 
     Rejection region: every count whose two-sided binomial p-value (scipy's) is < alpha.
     """
+    _check_binomial(p, alpha)
+    if int(trials) != trials or trials < 1:
+        raise ValueError(f"the number of trials must be a whole number ≥ 1, not {trials!r}")
     counts = np.arange(trials + 1)
     pvalues = np.array([stats.binomtest(int(k), trials, 0.5).pvalue for k in counts])
     return float(stats.binom.pmf(counts[pvalues < alpha], trials, p).sum())
+
+
+def _check_binomial(p: float, alpha: float) -> None:
+    if not 0 <= p <= 1:
+        raise ValueError(f"p is a probability of choosing one clip, between 0 and 1, not {p!r}")
+    if not 0 < alpha < 1:
+        raise ValueError(f"alpha must lie between 0 and 1, not {alpha!r}")
 
 
 def binomial_n(p: float, power: float = 0.8, alpha: float = 0.05, largest: int = 5000) -> int:
@@ -20,6 +30,7 @@ def binomial_n(p: float, power: float = 0.8, alpha: float = 0.05, largest: int =
 
     The exact test's power is not monotone in n (it saws); this is the first n reached.
     """
+    _check_binomial(p, alpha)
     for trials in range(2, largest + 1):
         if binomial_power(trials, p, alpha) >= power:
             return trials

@@ -148,6 +148,10 @@ def _pvalues_mixed(design, effects, data) -> dict[str, float]:
 
 
 def _mixed_tests(order, fit, offset, width) -> dict[str, float]:
+    if fit.dropped:
+        # A simulated study whose draw cannot tell conditions apart: every test fails.
+        pairs = [f"mixed: {order[j]} vs {order[i]}" for i, j in combinations(range(len(order)), 2)]
+        return dict.fromkeys(["mixed: conditions", *pairs], float("nan"))
     estimates = fit.params[offset : offset + width]
     cov = fit.cov[offset : offset + width, offset : offset + width]
     found = {"mixed: conditions": wald_test(estimates, cov)[2]}
@@ -251,6 +255,11 @@ def power_curve(
     unknown = set(tests) - set(TESTS[design.kind])
     if unknown:
         raise ValueError(f"unknown test(s) {sorted(unknown)} for a {design.kind} design")
+    if design.kind == "rating" and not effects.thresholds:
+        raise ValueError(
+            "a rating design needs the scale's thresholds to simulate ratings from "
+            "(Effects(thresholds=…), or effects from a pilot's ordinal model)"
+        )
     sizes = sorted({int(n) for n in participants})
     if not sizes or sizes[0] < 2:
         raise ValueError("plan for two or more participants")

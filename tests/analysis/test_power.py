@@ -175,7 +175,7 @@ def test_a_degenerate_fit_counts_as_a_failure_not_a_hit():
 
     from analysis.power.simulation import _mixed_tests
 
-    fit = SimpleNamespace(params=np.array([0.0, 0.5]), cov=np.zeros((2, 2)))
+    fit = SimpleNamespace(params=np.array([0.0, 0.5]), cov=np.zeros((2, 2)), dropped=())
     found = _mixed_tests(["a", "b", "c"], fit, 0, 2)
     assert np.isnan(found["mixed: b vs a"]) and np.isnan(found["mixed: c vs b"])
 
