@@ -4,7 +4,8 @@ Pairwise: 4 conditions, 8 words, every unordered pair of every word once (48 tri
 fitted with participant and item intercepts (the report's default), and with
 participants' own strengths on the first 200 participants (opt-in: 4 more random-effect
 columns per participant). Ratings: 3 conditions × 16 sentences rated 1–5
-(48 trials), the cumulative-link and the linear mixed model. Data are simulated.
+(48 trials), the cumulative-link and the linear mixed model (REML and ML, and with
+participants' own condition effects). Data are simulated.
 Prints each fit's time and its estimates next to the truth; asserts nothing.
 
     .venv/bin/python bench/bench_mixed.py
@@ -135,8 +136,33 @@ def main() -> None:
         {c.name: round(c.sd, 3) for c in clmm.random},
         "truth 1.0, 0.4",
     )
-    lmm = timed("Linear mixed model (REML)", linear_mixed, rated, "natural", list(RATING_EFFECT))
+    lmm = timed(
+        "Linear mixed model (REML, Satterthwaite df, LR test, profile CIs of the SDs)",
+        linear_mixed,
+        rated,
+        "natural",
+        list(RATING_EFFECT),
+    )
     print("  effects", {e.name: round(e.estimate, 3) for e in lmm.effects})
+    print("  SDs", {c.name: (round(c.sd, 3), tuple(round(v, 3) for v in c.ci)) for c in lmm.random})
+    ml = timed(
+        "Linear mixed model (ML)", linear_mixed, rated, "natural", list(RATING_EFFECT), reml=False
+    )
+    print("  effects", {e.name: round(e.estimate, 3) for e in ml.effects})
+    slopes = timed(
+        "Linear mixed model + (condition | participant), REML",
+        linear_mixed,
+        rated,
+        "natural",
+        list(RATING_EFFECT),
+        slopes=True,
+    )
+    print(
+        "  SDs",
+        {f"{c.name} {c.column}": round(c.sd, 3) for c in slopes.random},
+        "truth participant 1.0 (on the latent scale), no slopes; singular:",
+        slopes.singular,
+    )
 
 
 if __name__ == "__main__":

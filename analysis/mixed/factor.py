@@ -13,9 +13,11 @@ DENSE_UP_TO = 1500
 
 @dataclasses.dataclass(frozen=True)
 class Blocks:
-    """The symmetric matrix [[diag(pivots), coupling], [couplingᵀ, rest]], kept in blocks.
+    """The symmetric matrix [[P, coupling], [couplingᵀ, rest]], kept in blocks.
 
-    One grouping factor's intercepts give such a diagonal block; building the blocks
+    P is diag(pivots) for pivots of shape (k,), or block diagonal with L dense c × c
+    blocks for pivots of shape (L, c, c). One grouping factor's intercepts give the
+    diagonal, its correlated intercepts and slopes the blocks; building the blocks
     alone spares forming (and scaling) a dense q × q matrix at every Newton step.
     """
 
@@ -53,6 +55,9 @@ class Factor:
 
     def _eliminate(self, pivots: np.ndarray, coupling: np.ndarray, rest: np.ndarray) -> None:
         """Factor [[diag(pivots), coupling], [couplingᵀ, rest]] by its Schur complement."""
+        if pivots.ndim == 3:
+            self._eliminate_blocks(pivots, coupling, rest)
+            return
         k = len(pivots)
         if rest.size == 0:
             self.logdet = float(np.log(pivots).sum())
@@ -68,5 +73,31 @@ class Factor:
             head = rhs[:k] / divisor
             tail = linalg.cho_solve(factor, rhs[k:] - coupling.T @ head, check_finite=False)
             return np.concatenate([head - coupling @ tail / divisor, tail])
+
+        self.solve = solve
+
+    def _eliminate_blocks(self, pivots: np.ndarray, coupling: np.ndarray, rest: np.ndarray):
+        """Factor [[P, coupling], [couplingᵀ, rest]] with P block diagonal (L, c, c)."""
+        levels, c, _ = pivots.shape
+        k = levels * c
+        cholesky = np.linalg.cholesky(pivots)
+        logdet = float(2 * np.log(np.diagonal(cholesky, axis1=1, axis2=2)).sum())
+
+        def head_solve(rhs: np.ndarray) -> np.ndarray:
+            shaped = rhs.reshape(levels, c, -1)
+            return np.linalg.solve(pivots, shaped).reshape(rhs.shape)
+
+        if rest.size == 0:
+            self.logdet, self.solve = logdet, head_solve
+            return
+        solved_coupling = head_solve(coupling)
+        factor = linalg.cho_factor(rest - coupling.T @ solved_coupling, lower=True)
+        self.logdet = logdet + float(2 * np.log(np.diag(factor[0])).sum())
+
+        def solve(rhs: np.ndarray) -> np.ndarray:
+            rhs = np.asarray(rhs, dtype=float)
+            head = head_solve(rhs[:k])
+            tail = linalg.cho_solve(factor, rhs[k:] - coupling.T @ head, check_finite=False)
+            return np.concatenate([head - solved_coupling @ tail, tail])
 
         self.solve = solve

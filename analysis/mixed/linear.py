@@ -179,12 +179,15 @@ def linear_mixed(
     ]
     if reason:
         notes.append(f"Intercepts only: {reason}.")
-    at_zero = [False] * len(random)
-    if fit.singular:
-        at_zero = [sd < 1e-4 * fit.sigma for sd in fit.sd]
-        if not any(at_zero):
-            at_zero = [c.column != "(Intercept)" for c in random]
+    correlated = {c.name for c in problem.components if c.correlated}
+    at_zero = [c.name in fit.singular_components and c.name not in correlated for c in random]
     notes += fit_notes(fit, random, at_zero)
+    for name in sorted(correlated & set(fit.singular_components)):
+        notes.append(
+            f"Singular (boundary) fit: the covariance of the {name} random effects "
+            "(intercept and condition effects) is singular — a variance at zero or a "
+            f"correlation at ±1 — so the data cannot support {SLOPES}; fit intercepts only."
+        )
     formula = f"{question} ~ condition + " + " + ".join(
         f"(1 + condition | {c.name})" if c.correlated else f"(1 | {c.name})"
         for c in problem.components

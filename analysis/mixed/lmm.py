@@ -21,9 +21,11 @@ eliminated first.
 import dataclasses
 
 import numpy as np
+from scipy import sparse
 
 from analysis.mixed import convergence, optimize
 from analysis.mixed.degenerate import dropped_message, full_rank
+from analysis.mixed.factor import DENSE_UP_TO, Blocks, Factor
 from analysis.mixed.modes import ConditionalModes
 from analysis.mixed.problem import LARGEST_SD, MixedProblem
 
@@ -54,6 +56,8 @@ class LinearFit:
     evaluations: int
     criterion: "LinearCriterion"
     dropped: tuple[str, ...] = ()
+    # The components with a variance parameter on its bound (the fit is singular).
+    singular_components: tuple[str, ...] = ()
 
 
 def _lower_triangle(c: int) -> tuple[np.ndarray, np.ndarray]:
@@ -78,7 +82,6 @@ class LinearCriterion:
     def __init__(self, problem: MixedProblem, *, reml: bool = True):
         self.problem, self.reml = problem, reml
         self.state = ConditionalModes(problem)
-        self.base = self.state.vals.copy()
         self.y, self.X = self.state.y, self.state.X
         self.n, self.p = self.X.shape
         self.xx, self.xy = self.X.T @ self.X, self.X.T @ self.y
@@ -94,6 +97,21 @@ class LinearCriterion:
                 lower.append(0.0)
             offset += c
         self.lower = np.array(lower)
+        # Without correlated components Λ = diag(θ per column): ZᵀZ, Zᵀ X and Zᵀ y are
+        # formed once and scaled, so an evaluation never touches the n rows again.
+        self.scaled = not any(c.correlated for c in problem.components)
+        self.q = self.state.q
+        self.zx, self.zy = self.state.z_t_dot(self.X), self.state.z_t_dot(self.y)
+        self.yy = float(self.y @ self.y)
+        if self.scaled:
+            self.cross = self.state.scaled_cross(np.ones(self.n))
+        else:
+            rows = np.repeat(np.arange(self.n), self.state.cols.shape[1])
+            z = sparse.csr_array(
+                (self.state.vals.ravel(), (rows, self.state.cols.ravel())), shape=(self.n, self.q)
+            )
+            self.crossprod = (z.T @ z).tocsc()
+            self._prepare_blocks()
 
     def start(self, scale: float) -> np.ndarray:
         """Return θ with every SD *scale* times σ and no correlation."""
@@ -115,19 +133,93 @@ class LinearCriterion:
 
     def solve(self, theta: np.ndarray) -> _Solution:
         """Solve the penalised least squares problem at θ."""
-        state = self.state
-        vals = self.base.copy()
-        for (first, last, _, _), block in zip(self.spans, self.factors(theta), strict=True):
-            vals[:, first:last] = self.base[:, first:last] @ block
-        state.set_values(vals)
-        factor = state.factor(np.ones(self.n), np.ones(state.q))
-        zx, zy = state.z_t_dot(self.X), state.z_t_dot(self.y)
+        if self.scaled:
+            return self._solve_scaled(np.asarray(theta, float)[self.state.owner])
+        theta = np.asarray(theta, float)
+        if self.blocks is not None:
+            return self._solve_blocks(theta)
+        lam = self._lambda(theta)
+        crossed = (lam.T @ self.crossprod @ lam + sparse.eye_array(self.q)).tocsc()
+        factor = Factor(crossed.toarray() if self.q <= DENSE_UP_TO else crossed)
+        zx, zy = lam.T @ self.zx, lam.T @ self.zy
+        return self._finish(factor, zx, zy)
+
+    def _solve_scaled(self, scale: np.ndarray) -> _Solution:
+        factor = self.cross.factor(scale)
+        return self._finish(factor, scale[:, None] * self.zx, scale * self.zy)
+
+    def _finish(self, factor: Factor, zx: np.ndarray, zy: np.ndarray) -> _Solution:
+        """Solve for β and u given A's factor, ΛᵀZᵀX and ΛᵀZᵀy."""
         a_zx, a_zy = factor.solve(zx), factor.solve(zy)
         reduced = self.xx - zx.T @ a_zx
         beta = np.linalg.solve(reduced, self.xy - zx.T @ a_zy)
         u = a_zy - a_zx @ beta
-        residual = self.y - self.X @ beta - state.z_dot(u)
-        return _Solution(factor.logdet, reduced, beta, u, float(residual @ residual + u @ u))
+        # At the solution the penalised residual sum of squares is yᵀy − b̂ᵀWᵀy,
+        # W = [X, ZΛ]: no pass over the n rows.
+        r2 = self.yy - float(beta @ self.xy) - float(u @ zy)
+        return _Solution(factor.logdet, reduced, beta, u, r2)
+
+    def _prepare_blocks(self) -> None:
+        """Keep ZᵀZ in blocks when the first component's levels can be eliminated first.
+
+        Each observation has one level of the first grouping factor, so its part of ZᵀZ
+        is block diagonal (one c × c block per level, c its columns); the rest must be
+        small enough to factor dense.
+        """
+        first = self.problem.components[0]
+        c, levels = len(first.columns), len(first.levels)
+        k = c * levels
+        self.blocks = None
+        if self.q - k > DENSE_UP_TO:
+            return
+        values = first.values
+        head = np.zeros((levels, c, c))
+        np.add.at(head, first.codes, values[:, :, None] * values[:, None, :])
+        self.blocks = (
+            head,
+            self.crossprod[:k, k:].toarray().reshape(levels, c, self.q - k),
+            self.crossprod[k:, k:].toarray(),
+        )
+
+    def _solve_blocks(self, theta: np.ndarray) -> _Solution:
+        head, coupling, rest = self.blocks
+        levels, c, r = coupling.shape
+        factors = self.factors(theta)
+        first = factors[0]
+        tail = (
+            sparse.block_diag(
+                [
+                    sparse.kron(sparse.eye_array(len(component.levels)), block)
+                    for component, block in zip(
+                        self.problem.components[1:], factors[1:], strict=True
+                    )
+                ]
+            ).toarray()
+            if r
+            else np.zeros((0, 0))
+        )
+
+        def head_t(matrix: np.ndarray) -> np.ndarray:
+            """Return (I_levels ⊗ Tᵀ) matrix for matrix (levels·c, m)."""
+            shaped = matrix.reshape(levels, c, -1)
+            return np.einsum("ba,lbm->lam", first, shaped).reshape(matrix.shape)
+
+        pivots = np.einsum("ba,lbd,de->lae", first, head, first) + np.eye(c)
+        blocked = head_t(coupling.reshape(levels * c, r)) @ tail
+        remainder = tail.T @ rest @ tail + np.eye(r)
+        factor = Factor(Blocks(pivots, blocked, remainder))
+        k = levels * c
+        zx = np.vstack([head_t(self.zx[:k]), tail.T @ self.zx[k:]])
+        zy = np.concatenate([head_t(self.zy[:k, None])[:, 0], tail.T @ self.zy[k:]])
+        return self._finish(factor, zx, zy)
+
+    def _lambda(self, theta: np.ndarray):
+        """Return Λ(θ), block diagonal: each component's T once per level (sparse q × q)."""
+        blocks = [
+            sparse.kron(sparse.eye_array(len(component.levels)), block)
+            for component, block in zip(self.problem.components, self.factors(theta), strict=True)
+        ]
+        return sparse.block_diag(blocks, format="csc")
 
     def _residual_df(self) -> int:
         return self.n - self.p if self.reml else self.n
@@ -188,6 +280,11 @@ def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
     sigma2 = found.r2 / criterion._residual_df()
     bounded = np.isfinite(lower)
     on_bound = bounded & (theta < optimize.ON_BOUND)
+    sizes = [size for _, _, size, _ in criterion.spans]
+    owners = np.repeat(np.arange(len(sizes)), sizes)
+    singular_components = tuple(
+        problem.components[k].name for k in sorted(set(owners[on_bound].tolist()))
+    )
     checks = convergence.check(criterion.profiled, theta, ~on_bound)
     sd, columns, correlations = [], [], []
     for component, block in zip(problem.components, criterion.factors(theta), strict=True):
@@ -220,4 +317,5 @@ def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
         evaluations=criterion.state.evaluations,
         criterion=criterion,
         dropped=dropped,
+        singular_components=singular_components,
     )

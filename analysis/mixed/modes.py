@@ -57,10 +57,6 @@ class ConditionalModes:
             self.coupling_index = (self.cols[:, :1] * self.rest_width + rest).ravel()
             self.rest_pairs = (rest[:, :, None] * self.rest_width + rest[:, None, :]).ravel()
 
-    def set_values(self, vals: np.ndarray) -> None:
-        """Replace Z's non-zero values (n_obs, m): a linear model's ZΛ at its current θ."""
-        self.vals = vals
-
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""
         return (self.vals * vector[self.cols]).sum(axis=1)
@@ -102,6 +98,10 @@ class ConditionalModes:
             head[:, None] * coupling * tail[None, :],
             np.eye(r) + tail[:, None] * cross * tail[None, :],
         )
+
+    def scaled_cross(self, weight: np.ndarray) -> "ScaledCross":
+        """Return ZᵀWZ kept so that I + S ZᵀWZ S factors for any S without touching Z."""
+        return ScaledCross(self, weight)
 
     def factor(self, weight: np.ndarray, scale: np.ndarray) -> Factor:
         """Factor I + S Zᵀ W Z S."""
@@ -201,6 +201,37 @@ class ConditionalModes:
             self.v = v
         logdet = self.factor(derivs.weight, scale).logdet
         return float(derivs.loglik.sum() - 0.5 * v @ v - 0.5 * logdet), beta
+
+
+class ScaledCross:
+    """ZᵀWZ of one problem for a fixed W: factor I + S ZᵀWZ S for many S (one per θ)."""
+
+    def __init__(self, modes: ConditionalModes, weight: np.ndarray):
+        ones = np.ones(modes.q)
+        self.blocked = modes.diagonal is not None
+        if self.blocked:
+            raw = modes._blocks(weight, ones)
+            self.k = len(modes.diagonal)
+            self.counts, self.coupling = raw.pivots - 1, raw.coupling
+            self.cross = raw.rest - np.eye(raw.rest.shape[0])
+        else:
+            self.matrix, self.eye = modes._weighted_cross(weight, ones), modes._eye()
+
+    def factor(self, scale: np.ndarray) -> Factor:
+        """Factor I + S ZᵀWZ S for S = diag(*scale*)."""
+        if self.blocked:
+            head, tail = scale[: self.k], scale[self.k :]
+            return Factor(
+                Blocks(
+                    1 + head**2 * self.counts,
+                    head[:, None] * self.coupling * tail[None, :],
+                    np.eye(len(tail)) + tail[:, None] * self.cross * tail[None, :],
+                )
+            )
+        if sparse.issparse(self.matrix):
+            diagonal = sparse.diags_array(scale)
+            return Factor(self.eye + diagonal @ self.matrix @ diagonal)
+        return Factor(self.eye + scale[:, None] * self.matrix * scale[None, :])
 
 
 def _newton(evaluate, newton_step, start: np.ndarray):
