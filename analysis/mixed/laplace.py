@@ -186,7 +186,7 @@ def finish_fit(
     problem, state, names, params, cov, sd, converged, stage, message, loglik
 ) -> LaplaceFit:
     """Collect a fit, with the random effects' modes (on η's scale) from ``state.v``."""
-    u = np.asarray(sd)[state.owner] * state.v
+    u = (np.asarray(sd)[state.owner] * state.v)[state.position]
     bounds = np.cumsum([0] + [c.width for c in problem.components])
     modes = [u[start:end] for start, end in itertools.pairwise(bounds)]
     return LaplaceFit(

@@ -20,42 +20,77 @@ class ConditionalModes:
         self.y = np.asarray(problem.y, dtype=float)
         self.X = np.asarray(problem.X, dtype=float)
         self.n, self.p = self.X.shape
-        widths = [c.width for c in problem.components]
+        components = problem.components
+        widths = [c.width for c in components]
         offsets = np.concatenate([[0], np.cumsum(widths)]).astype(np.int64)
-        # Each row of Z has few non-zeros: its columns (n_obs, m) and their values.
+        self.q = int(sum(widths))
+        # The components grouped by the first one's factor (its intercepts, and e.g.
+        # participants' own strengths) come first, level by level: each observation has
+        # one level, so their part of ZᵀWZ is block diagonal and Factor eliminates it
+        # first. ``position[j]`` is original column j's place in that order.
+        first = components[0] if components else None
+        grouped = [
+            k
+            for k, c in enumerate(components)
+            if not c.correlated
+            and first is not None
+            and not first.correlated
+            and len(c.levels) == len(first.levels)
+            and np.array_equal(c.codes, first.codes)
+        ]
+        order = grouped + [k for k in range(len(components)) if k not in grouped]
+        per_level = [components[k].values.shape[1] for k in grouped]
+        c = int(sum(per_level))
+        self.position = np.empty(self.q, dtype=np.int64)
+        inside = np.concatenate([[0], np.cumsum(per_level)])
+        for at, k in enumerate(grouped):
+            m = per_level[at]
+            level, column = np.divmod(np.arange(widths[k]), m)
+            self.position[offsets[k] : offsets[k + 1]] = level * c + inside[at] + column
+        after = c * (len(first.levels) if first is not None else 0)
+        for k in order[len(grouped) :]:
+            self.position[offsets[k] : offsets[k + 1]] = after + np.arange(widths[k])
+            after += widths[k]
+        # Each row of Z has few non-zeros: its columns (n_obs, m) and their values,
+        # the grouped components' entries first.
         self.cols = np.column_stack(
             [
-                offsets[k] + c.codes[:, None] * c.values.shape[1] + np.arange(c.values.shape[1])
-                for k, c in enumerate(problem.components)
+                self.position[
+                    offsets[k]
+                    + components[k].codes[:, None] * components[k].values.shape[1]
+                    + np.arange(components[k].values.shape[1])
+                ]
+                for k in order
             ]
             or [np.zeros((self.n, 0), dtype=np.int64)]
         )
         self.vals = np.column_stack(
-            [c.values for c in problem.components] or [np.zeros((self.n, 0))]
+            [components[k].values for k in order] or [np.zeros((self.n, 0))]
         )
-        self.owner = np.repeat(np.arange(len(widths)), widths)
-        self.q = int(sum(widths))
+        self.owner = np.empty(self.q, dtype=np.int64)
+        self.owner[self.position] = np.repeat(np.arange(len(widths)), widths)
         self.v = np.zeros(self.q)
         self.evaluations = 0
-        # The first component's block of ZᵀWZ is diagonal when it is one intercept per
-        # level (each observation in one level): Factor eliminates it first.
-        first = problem.components[0] if problem.components else None
-        self.diagonal = (
-            np.arange(first.width)
-            if first is not None and first.values.shape[1] == 1 and self.q <= DENSE_UP_TO
-            else None
-        )
+        self.head = c * len(first.levels) if grouped else 0
+        self.rest_width = self.q - self.head
+        # Flag of the blocked path (the name is historical: a diagonal first block).
+        self.diagonal = np.arange(self.head) if grouped and self.rest_width <= DENSE_UP_TO else None
         # Flat indices of each row's column pairs into a dense q × q: the unstructured
         # path, and the fallback when a blocked factorisation fails.
         self.pairs = None
         if self.q <= DENSE_UP_TO:
             self.pairs = (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
         if self.diagonal is not None:
-            k = first.width
-            self.rest_width = self.q - k
-            rest = self.cols[:, 1:] - k
-            self.coupling_index = (self.cols[:, :1] * self.rest_width + rest).ravel()
-            self.rest_pairs = (rest[:, :, None] * self.rest_width + rest[:, None, :]).ravel()
+            k, r, m = self.head, self.rest_width, c
+            self.level_width, self.head_entries = c, c
+            head, rest = self.cols[:, :m], self.cols[:, m:] - k
+            level = head[:, 0] // c
+            within = head - level[:, None] * c
+            self.pivot_index = (
+                level[:, None, None] * c * c + within[:, :, None] * c + within[:, None, :]
+            ).ravel()
+            self.coupling_index = (head[:, :, None] * r + rest[:, None, :]).ravel()
+            self.rest_pairs = (rest[:, :, None] * r + rest[:, None, :]).ravel()
 
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""
@@ -83,13 +118,23 @@ class ConditionalModes:
         return scale[:, None] * cross * scale[None, :]
 
     def _blocks(self, weight: np.ndarray, scale: np.ndarray) -> Blocks:
-        """Return I + S Zᵀ W Z S in blocks (needs the diagonal first component)."""
-        k, r = len(self.diagonal), self.rest_width
-        first, rest = self.vals[:, 0], self.vals[:, 1:]
+        """Return I + S Zᵀ W Z S in blocks (needs the grouped components first)."""
+        k, r, c = self.head, self.rest_width, self.level_width
+        head_values, rest = self.vals[:, :c], self.vals[:, c:]
         head, tail = scale[:k], scale[k:]
-        pivots = 1 + head**2 * np.bincount(self.cols[:, 0], weight * first**2, minlength=k)
+        weighted = weight[:, None] * head_values
+        if c == 1:
+            pivots = 1 + head**2 * np.bincount(
+                self.cols[:, 0], weighted[:, 0] * head_values[:, 0], minlength=k
+            )
+        else:
+            levels = k // c
+            products = weighted[:, :, None] * head_values[:, None, :]
+            raw = np.bincount(self.pivot_index, products.ravel(), minlength=levels * c * c)
+            shaped = head.reshape(levels, c)
+            pivots = np.eye(c) + shaped[:, :, None] * raw.reshape(levels, c, c) * shaped[:, None, :]
         coupling = np.bincount(
-            self.coupling_index, ((weight * first)[:, None] * rest).ravel(), minlength=k * r
+            self.coupling_index, (weighted[:, :, None] * rest[:, None, :]).ravel(), minlength=k * r
         ).reshape(k, r)
         products = weight[:, None, None] * rest[:, :, None] * rest[:, None, :]
         cross = np.bincount(self.rest_pairs, products.ravel(), minlength=r * r).reshape(r, r)
@@ -211,8 +256,9 @@ class ScaledCross:
         self.blocked = modes.diagonal is not None
         if self.blocked:
             raw = modes._blocks(weight, ones)
-            self.k = len(modes.diagonal)
-            self.counts, self.coupling = raw.pivots - 1, raw.coupling
+            self.k, self.c = modes.head, modes.level_width
+            self.counts = raw.pivots - (1 if self.c == 1 else np.eye(self.c))
+            self.coupling = raw.coupling
             self.cross = raw.rest - np.eye(raw.rest.shape[0])
         else:
             self.matrix, self.eye = modes._weighted_cross(weight, ones), modes._eye()
@@ -221,9 +267,14 @@ class ScaledCross:
         """Factor I + S ZᵀWZ S for S = diag(*scale*)."""
         if self.blocked:
             head, tail = scale[: self.k], scale[self.k :]
+            if self.c == 1:
+                pivots = 1 + head**2 * self.counts
+            else:
+                shaped = head.reshape(-1, self.c)
+                pivots = np.eye(self.c) + shaped[:, :, None] * self.counts * shaped[:, None, :]
             return Factor(
                 Blocks(
-                    1 + head**2 * self.counts,
+                    pivots,
                     head[:, None] * self.coupling * tail[None, :],
                     np.eye(len(tail)) + tail[:, None] * self.cross * tail[None, :],
                 )
