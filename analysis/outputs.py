@@ -70,7 +70,11 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
     """Return the mixed models' effects, random effects and contrasts as three tables."""
     effects, random, contrasts = [], [], []
     for model in _mixed_models(mixed):
-        key = {"model": model["model"], "question": model.get("question", "")}
+        key = {
+            "model": model["model"],
+            "question": model.get("question", ""),
+            "singular": bool(model.get("singular")),
+        }
         rows = ([model["position"]] if model.get("position") else []) + model["effects"]
         rows += model.get("thresholds", [])
         for c in rows:
@@ -80,17 +84,39 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
                     "effect": c["name"],
                     "estimate": c["estimate"],
                     "se": c["se"],
-                    "z": c["statistic"],
+                    "test": "z" if c.get("df") is None else "t",
+                    "statistic": c["statistic"],
+                    "df": c.get("df"),
                     "p": c["pvalue"],
                     "ci_low": c["ci"][0],
                     "ci_high": c["ci"][1],
                 }
             )
         for r in model["random"]:
-            random.append({**key, "component": r["name"], "sd": r["sd"], "levels": r["levels"]})
-        if model.get("residual_sd") is not None:
+            ci = r.get("ci") or (None, None)
             random.append(
-                {**key, "component": "residual", "sd": model["residual_sd"], "levels": None}
+                {
+                    **key,
+                    "component": r["name"],
+                    "column": r.get("column", "(Intercept)"),
+                    "sd": r["sd"],
+                    "levels": r["levels"],
+                    "ci_low": ci[0],
+                    "ci_high": ci[1],
+                }
+            )
+        if model.get("residual_sd") is not None:
+            ci = model.get("residual_sd_ci") or (None, None)
+            random.append(
+                {
+                    **key,
+                    "component": "residual",
+                    "column": "",
+                    "sd": model["residual_sd"],
+                    "levels": None,
+                    "ci_low": ci[0],
+                    "ci_high": ci[1],
+                }
             )
         for c in model["contrasts"]:
             contrasts.append(
@@ -100,7 +126,9 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
                     "b": c["b"],
                     "difference": c["estimate"],
                     "se": c["se"],
-                    "z": c["statistic"],
+                    "test": "z" if c.get("df") is None else "t",
+                    "statistic": c["statistic"],
+                    "df": c.get("df"),
                     "p": c["pvalue"],
                     "p_adjusted": c["pvalue_adjusted"],
                     "ci_low": c["ci"][0],

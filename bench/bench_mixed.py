@@ -1,11 +1,12 @@
-"""Time the mixed models on 1,000 participants × 48 trials (issues 21 and 34; target < 30 s each).
+"""Time the mixed models on 1,000 participants × 48 trials (issues 21, 34; target < 30 s each).
 
 Pairwise: 4 conditions, 8 words, every unordered pair of every word once (48 trials),
 fitted with participant and item intercepts (the report's default), and with
-participants' own strengths (opt-in: 4 more random-effect columns per participant). Ratings: 3 conditions × 16 sentences rated 1–5
-(48 trials), the cumulative-link and the linear mixed model (REML and ML, and with
-participants' own condition effects). Data are simulated.
-Prints each fit's time and its estimates next to the truth; asserts nothing.
+participants' own strengths (opt-in: 4 more random-effect columns per participant).
+Ratings: 3 conditions × 16 sentences rated 1–5 (48 trials), the cumulative-link and the
+linear mixed model (REML and ML, and with participants' own condition effects). Data
+are simulated. Prints each fit's time and its estimates next to the truth; asserts
+nothing.
 
     .venv/bin/python bench/bench_mixed.py
 """

@@ -178,6 +178,14 @@ def test_report_has_a_mixed_models_section(tmp_path):
         "Cumulative-link mixed model (proportional odds, logit)",
         "Linear mixed model",
     }
+    linear = effects[effects["model"].eq("Linear mixed model")]
+    assert set(linear["test"]) == {"t"} and linear["df"].gt(0).all()
+    assert set(effects["test"]) == {"z", "t"}
+    random = pd.read_csv(tmp_path / "mixed_random.csv")
+    profiled = random[random["model"].eq("Linear mixed model")]
+    assert (profiled["ci_low"] <= profiled["sd"]).all() and (
+        profiled["sd"] <= profiled["ci_high"]
+    ).all()
 
 
 def test_mixed_models_can_be_turned_off():
