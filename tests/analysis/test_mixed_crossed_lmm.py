@@ -156,3 +156,15 @@ def test_slopes_through_the_api_and_refused_where_not_identified():
     automatic = linear_mixed(between, "q", ["off", "on"], slopes=None)
     assert "(1 | participant)" in automatic.formula
     assert any("Intercepts only" in note for note in automatic.notes)
+
+
+def test_rounding_the_ratings_at_1e_10_does_not_move_the_fit():
+    """The issue's symptom: noise in the last digits flipped a REML fit by 15 units."""
+    for number in (1, 4, 7, 10, 13):
+        frame = crossed_data.ratings_tidy(number, "numeric")
+        exact = linear_mixed(frame, "q", ["off", "on"], sd_ci=False)
+        rounded = linear_mixed(frame.assign(rating=frame["rating"].round(10)), "q", sd_ci=False)
+        assert rounded.loglik == pytest.approx(exact.loglik, abs=1e-6)
+        assert [c.sd for c in rounded.random] == pytest.approx(
+            [c.sd for c in exact.random], abs=1e-4
+        )
