@@ -10,6 +10,7 @@ model matrix is rank deficient so dropping 1 column / coefficient").
 import dataclasses
 
 import numpy as np
+import pandas as pd
 
 from analysis.mixed.problem import MixedProblem
 from analysis.tidy import TidyFormatError
@@ -19,28 +20,21 @@ from analysis.tidy import TidyFormatError
 RANK_TOL = 1e-7
 
 
-def check_response(
-    what: str, values: np.ndarray, groups: np.ndarray, labels: np.ndarray, noun: str
-) -> None:
-    """Refuse *values* that do not vary, or that *groups* (one code per row) determine.
-
-    *labels* name each row's group (a condition) for the message; *noun* names the
-    values ("rating", "choice").
-    """
-    values = np.asarray(values, dtype=float)
+def check_ratings(question: str, data: pd.DataFrame) -> None:
+    """Refuse one question's ratings (rows with condition and rating) that do not vary,
+    or that the condition determines."""
+    values = data["rating"].to_numpy(dtype=float)
+    what = f"question {question!r}"
     if np.ptp(values) == 0:
         raise TidyFormatError(
-            f"{what}: every {noun} is {values[0]:g}, so there is no variation to model; "
+            f"{what}: every rating is {values[0]:g}, so there is no variation to model; "
             "report the value, not a test."
         )
-    within = [np.ptp(values[groups == g]) for g in np.unique(groups)]
-    if max(within) == 0:
-        shown = {}
-        for label, value in zip(labels, values, strict=True):
-            shown.setdefault(str(label), f"{value:g}")
-        listed = "; ".join(f"{label}: every {noun} {value}" for label, value in shown.items())
+    spread = data.groupby("condition", sort=False)["rating"].agg(["min", "max"])
+    if (spread["min"] == spread["max"]).all():
+        listed = "; ".join(f"{c}: every rating {row['min']:g}" for c, row in spread.iterrows())
         raise TidyFormatError(
-            f"{what}: the {noun}s are fully determined by condition ({listed}), so no "
+            f"{what}: the ratings are fully determined by condition ({listed}), so no "
             "variation is left to estimate an error from and the difference is infinite "
             "on the model's scale; report the values, not a test."
         )

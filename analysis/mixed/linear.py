@@ -21,7 +21,7 @@ from analysis.mixed.common import (
     fit_notes,
     intercepts,
 )
-from analysis.mixed.degenerate import check_response
+from analysis.mixed.degenerate import check_ratings
 from analysis.mixed.lmm import LinearFit, fit_lmm
 from analysis.mixed.ordinal import rated_conditions
 from analysis.mixed.problem import Component, MixedProblem
@@ -140,13 +140,7 @@ def linear_mixed(
             f"question {question!r}: a linear mixed model needs ratings of two or more "
             "conditions by two or more participants."
         )
-    check_response(
-        f"question {question!r}",
-        data["rating"].to_numpy(),
-        codes(data["condition"])[0],
-        data["condition"].to_numpy(),
-        "rating",
-    )
+    check_ratings(question, data)
     asked = slopes
     reason = slopes_identifiable(data, order) if asked is not False else ""
     if asked and reason:

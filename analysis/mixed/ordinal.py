@@ -16,7 +16,6 @@ from scipy import stats
 from statsmodels.miscmodels.ordinal_model import OrderedModel
 
 from analysis.mixed.common import (
-    codes,
     coefficient,
     condition_effects,
     contrasts,
@@ -28,7 +27,7 @@ from analysis.mixed.common import (
     variance_components,
     wald_test,
 )
-from analysis.mixed.degenerate import check_response
+from analysis.mixed.degenerate import check_ratings
 from analysis.mixed.families import CumulativeLogit
 from analysis.mixed.laplace import BOUNDARY_SD, MixedProblem, fit_laplace
 from analysis.mixed.results import (
@@ -117,13 +116,7 @@ def ordinal_mixed(
             f"question {question!r}: an ordinal model needs ratings of two or more "
             "conditions on two or more scale points."
         )
-    check_response(
-        f"question {question!r}",
-        data["rating"].to_numpy(),
-        codes(data["condition"])[0],
-        data["condition"].to_numpy(),
-        "rating",
-    )
+    check_ratings(question, data)
     problem = ordinal_problem(data, order)
     fit = fit_laplace(problem)
     p = problem.X.shape[1]
