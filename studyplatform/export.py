@@ -126,7 +126,8 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             row.update(quality_cells(participant, trial,
                                      quality.get(participant.pk, {}).get(trial.pk),
                                      response.rt_ms, response.updated_at,
-                                     orders[participant.pk]))  # fmt: skip
+                                     orders[participant.pk],
+                                     response.answered_client_ms))  # fmt: skip
             answers = attributes.get(participant.pk, {})
             for key, column in attribute_pairs:
                 row[column] = answers.get(key, "")

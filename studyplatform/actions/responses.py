@@ -39,7 +39,9 @@ def do_save_response(
                 # A savepoint, so that losing a race to a concurrent insert leaves the
                 # outer transaction usable for the update below.
                 with transaction.atomic():
-                    return Response.objects.create(**key, **values, rt_ms=answer.rt_ms)
+                    return Response.objects.create(
+                        **key, **values, rt_ms=answer.rt_ms, answered_client_ms=answer.client_ms
+                    )
             except IntegrityError:
                 existing = Response.objects.select_for_update().get(**key)
         if all(getattr(existing, name) == values[name] for name in ANSWER_FIELDS):
@@ -47,6 +49,9 @@ def do_save_response(
         for name in ANSWER_FIELDS:
             setattr(existing, name, values[name])
         existing.rt_ms = answer.rt_ms
+        existing.answered_client_ms = answer.client_ms
         existing.revision += 1
-        existing.save(update_fields=[*ANSWER_FIELDS, "rt_ms", "revision", "updated_at"])
+        existing.save(
+            update_fields=[*ANSWER_FIELDS, "rt_ms", "answered_client_ms", "revision", "updated_at"]
+        )
         return existing

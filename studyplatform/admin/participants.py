@@ -127,6 +127,7 @@ class ResponseAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
         "video",
         "score",
         "rt_ms",
+        "answered_client_ms",
         "revision",
         "answered_at",
         "updated_at",

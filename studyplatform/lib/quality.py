@@ -36,6 +36,9 @@ class TrialQuality:
     """What one participant's browser logged on one trial's page."""
 
     first_shown_ms: float | None = None
+    # Each showing of the page: when it was shown and when it left the screen (None
+    # while it was the last thing logged).
+    visits: list[list] = field(default_factory=list)
     on_page_ms: float = 0.0
     plays: dict[int, int] = field(default_factory=lambda: {1: 0, 2: 0})
     first_ended_ms: dict[int, float] = field(default_factory=dict)
@@ -62,6 +65,7 @@ def participant_quality(events) -> dict[int, TrialQuality]:
     def close(until_ms: float | None) -> None:
         if visit is not None and until_ms is not None:
             by_trial[visit[0]].on_page_ms += max(0.0, until_ms - visit[1])
+            by_trial[visit[0]].visits[-1][1] = until_ms
 
     for event in sorted(events, key=lambda e: (e.client_time_ms or 0, e.pk or 0)):
         at = event.client_time_ms
@@ -73,6 +77,7 @@ def participant_quality(events) -> dict[int, TrialQuality]:
         quality = by_trial[event.trial_id]
         if event.kind == MediaEvent.Kind.PAGE_SHOWN:
             visit = (event.trial_id, at)
+            quality.visits.append([at, None])
             if quality.first_shown_ms is None:
                 quality.first_shown_ms = at
                 size = event.detail or {}
@@ -112,12 +117,15 @@ def quality_cells(
     rt_ms: int | None,
     answered_at: datetime | None,
     orders: dict[str, str],
+    client_ms: int | None = None,
 ) -> dict[str, str]:
     """Return the quality columns of one answer (empty cells where nothing was logged).
 
-    *orders* is the participant's :func:`page_orders`. The answer's time on the
-    browser's clock is the page's first showing plus the answer's response time, so a
-    revised answer given on a later visit counts from the first.
+    *orders* is the participant's :func:`page_orders`. The answer came before the end
+    when a clip of the page had not yet ended, in this showing or an earlier one, at the
+    answer's time on the browser's clock: *client_ms*, which the page sends with the
+    answer, or for answers saved without it the showing the response time fits in (the
+    last whose shown time plus *rt_ms* falls before it left the screen).
     """
     cells = dict.fromkeys(QUALITY_COLUMNS, "")
     cells.update(
@@ -138,11 +146,30 @@ def quality_cells(
     for clip in clips:
         cells[f"clip{clip}_plays"] = str(quality.plays[clip])
         cells[f"clip{clip}_ended"] = "1" if clip in quality.first_ended_ms else "0"
-    if clips and rt_ms is not None and quality.first_shown_ms is not None:
-        answered_ms = quality.first_shown_ms + rt_ms
+    answered_ms = _answered_ms(quality, rt_ms, client_ms)
+    if clips and answered_ms is not None:
         early = any(quality.first_ended_ms.get(c, float("inf")) > answered_ms for c in clips)
         cells["answered_before_end"] = "1" if early else "0"
     return cells
+
+
+# An answer is saved while its page is on screen; this much slack allows for the
+# page-hidden event being logged a moment before the last save.
+_SLACK_MS = 1000.0
+
+
+def _answered_ms(quality: TrialQuality, rt_ms: int | None, client_ms: int | None):
+    """Return when the answer was given on the browser's clock (None if unknown)."""
+    if client_ms is not None:
+        return float(client_ms)
+    if rt_ms is None or not quality.visits:
+        return None
+    fitting = [
+        shown + rt_ms
+        for shown, left in quality.visits
+        if left is None or shown + rt_ms <= left + _SLACK_MS
+    ]
+    return fitting[-1] if fitting else quality.visits[-1][0] + rt_ms
 
 
 EVENT_COLUMNS = ("participant", "trial", "clip", "kind", "media_time_s", "client_time_ms",

@@ -39,6 +39,13 @@ class Response(models.Model):
     rt_ms = models.PositiveIntegerField(
         "response time (ms)", null=True, blank=True, help_text="From page shown to answer."
     )
+    answered_client_ms = models.BigIntegerField(
+        "answered at (browser clock, ms)",
+        null=True,
+        blank=True,
+        help_text="When the answer was given on the participant's browser clock, the clock "
+        "of the media events (ms since 1970); the quality columns compare the two.",
+    )
     revision = models.PositiveIntegerField(
         default=1, help_text="How many times the participant gave this answer."
     )

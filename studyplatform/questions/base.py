@@ -25,6 +25,7 @@ class Answer:
     number: float | None = None
     text: str = ""
     rt_ms: int | None = None
+    client_ms: int | None = None  # when it was given, on the browser's clock
 
 
 MAX_TEXT_LENGTH = 10_000

@@ -169,7 +169,12 @@ def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str
         if not value:
             continue  # unanswered (a required question is caught on moving on)
         try:
-            answer = parse_answer(question, value, post.get(f"rt-{question.key}"))
+            answer = parse_answer(
+                question,
+                value,
+                post.get(f"rt-{question.key}"),
+                post.get(f"client-{question.key}"),
+            )
             do_save_response(participant, trial, question, answer)
         except AnswerRejected as error:
             errors[question.key] = error.messages[0]
@@ -259,7 +264,7 @@ def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpR
 @never_cache
 @require_POST
 def save_answer(request: HttpRequest, token: str) -> JsonResponse:
-    """Save one answer now (JSON ``{page, trial, question, value, rt_ms}``)."""
+    """Save one answer now (JSON ``{page, trial, question, value, rt_ms, client_ms}``)."""
     participant = _participant(token)
     if participant is None:
         return _invalid_link()
@@ -276,7 +281,7 @@ def save_answer(request: HttpRequest, token: str) -> JsonResponse:
         question = next((q for q in trial.questions.all() if q.key == data.get("question")), None)
         if question is None:
             raise AnswerRejected(f"“{data.get('question')}” is not asked on this page.")
-        answer = parse_answer(question, data.get("value"), data.get("rt_ms"))
+        answer = parse_answer(question, data.get("value"), data.get("rt_ms"), data.get("client_ms"))
         saved = do_save_response(participant, trial, question, answer)
     except ValidationError as error:
         return JsonResponse({"error": error.messages[0]}, status=400)

@@ -57,9 +57,15 @@ def clean_text(value: str) -> str:
     return _UNWANTED_CHARACTERS.sub("", value)
 
 
-def parse_answer(question: Question, value, rt_ms: str | int | None) -> Answer:
-    """Turn a posted value into an Answer for *question*; AnswerRejected if it is not one."""
+def parse_answer(
+    question: Question, value, rt_ms: str | int | None, client_ms: str | int | None = None
+) -> Answer:
+    """Turn a posted value into an Answer for *question*; AnswerRejected if it is not one.
+
+    *client_ms* is when the answer was given on the browser's clock (ms since the epoch).
+    """
     rt = parse_rt_ms(rt_ms)
+    given = parse_client_ms(client_ms)
     if value is None:
         value = ""
     elif isinstance(value, int | float) and not isinstance(value, bool):
@@ -71,7 +77,25 @@ def parse_answer(question: Question, value, rt_ms: str | int | None) -> Answer:
         answer = question_type(question).parse(question, value)
     except ValueError:
         raise AnswerRejected(f"“{value[:40]}” is not an answer to “{question.key}”.") from None
-    return replace(answer, rt_ms=rt)
+    return replace(answer, rt_ms=rt, client_ms=given)
+
+
+# Browser clocks from 2001 to 2286: anything else is not a time an answer was given.
+_CLIENT_MS = (1_000_000_000_000, 9_999_999_999_999)
+
+
+def parse_client_ms(client_ms) -> int | None:
+    """Return a browser timestamp in ms, None if none (or an implausible one) was sent."""
+    if client_ms is None or client_ms == "" or isinstance(client_ms, bool):
+        return None
+    if isinstance(client_ms, str):
+        if not client_ms.isascii() or not client_ms.isdigit() or len(client_ms) > 13:
+            return None
+        client_ms = int(client_ms)
+    if not isinstance(client_ms, int | float) or not math.isfinite(client_ms):
+        return None
+    value = int(client_ms)
+    return value if _CLIENT_MS[0] <= value <= _CLIENT_MS[1] else None
 
 
 def parse_rt_ms(rt_ms) -> int | None:

@@ -110,6 +110,26 @@ def test_optional_is_said_once(client, fingerspelling):
     assert shown.text.count("(optional)") == 2  # the name and the e-mail address
 
 
+def test_the_browser_time_of_an_answer_is_kept_and_implausible_ones_ignored(client, fingerspelling):
+    """Issue 35: the quality columns compare the answer's browser time with the clips'."""
+    participant = _start(client, fingerspelling)
+    page = {"page": 1, "trial": participant.schedule[0]["trial"]}
+    given = 1_764_770_000_123
+    _save(client, participant, **page, question="age", value="3", rt_ms=900, client_ms=given)
+    assert Response.objects.get().answered_client_ms == given
+    for value, kept in (
+        ("abc", None),
+        (-5, None),
+        (10**16, None),
+        (True, None),
+        ("1764770000999", 1_764_770_000_999),
+    ):
+        rating = str(3 + (Response.objects.get().revision % 2))
+        saved = _save(client, participant, **page, question="age", value=rating, client_ms=value)
+        assert saved.status_code == 200
+        assert Response.objects.get().answered_client_ms == kept
+
+
 def test_answers_save_at_once_and_idempotently(client, fingerspelling):
     participant = _start(client, fingerspelling)
     page = {"page": 1, "trial": participant.schedule[0]["trial"]}

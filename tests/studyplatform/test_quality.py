@@ -70,3 +70,46 @@ def test_cells_of_an_answer_given_before_the_second_clip_ended(fingerspelling):
 )
 def test_device_from_the_user_agent(agent, device):
     assert device_of(agent) == device
+
+
+@pytest.mark.django_db
+def test_a_page_shown_again_counts_from_the_showing_the_answer_was_given_in(fingerspelling):
+    """Issue 35: shown, reloaded 5 s later, both clips played to the end, answered."""
+    trial = Trial.objects.get(study=fingerspelling, key="cmp-01")
+    participant = Participant(study=fingerspelling, schedule=[{"trial": "cmp-01"}])
+    shown_twice = [
+        event(1, "page_shown", 1_000, trial=trial.pk),
+        event(2, "page_hidden", 6_000, trial=trial.pk),  # the reload
+        event(3, "page_shown", 6_100, trial=trial.pk),
+        event(4, "ended", 9_000, trial=trial.pk, clip=1),
+        event(5, "ended", 12_000, trial=trial.pk, clip=2),
+    ]
+    quality = participant_quality(shown_twice)[trial.pk]
+    orders = page_orders(participant)
+    # Answered at 13,000 ms: 6,900 ms after the second showing.
+    after = quality_cells(participant, trial, quality, 6_900, None, orders, client_ms=13_000)
+    assert after["answered_before_end"] == "0"
+    # Without the browser's time, the showing the response time fits in is used.
+    assert quality_cells(participant, trial, quality, 6_900, None, orders)[
+        "answered_before_end"] == "0"  # fmt: skip
+    # An answer before clip 2 ended is still early, either way.
+    early = quality_cells(participant, trial, quality, 4_900, None, orders, client_ms=11_000)
+    assert early["answered_before_end"] == "1"
+    assert quality_cells(participant, trial, quality, 4_900, None, orders)[
+        "answered_before_end"] == "1"  # fmt: skip
+
+
+@pytest.mark.django_db
+def test_a_clip_that_ended_in_an_earlier_showing_counts(fingerspelling):
+    """Both clips watched, then Back to the page and the answer changed without replaying."""
+    trial = Trial.objects.get(study=fingerspelling, key="cmp-01")
+    participant = Participant(study=fingerspelling, schedule=[{"trial": "cmp-01"}])
+    quality = participant_quality([
+        event(1, "page_shown", 1_000, trial=trial.pk),
+        event(2, "ended", 3_000, trial=trial.pk, clip=1),
+        event(3, "ended", 5_000, trial=trial.pk, clip=2),
+        event(4, "page_shown", 6_000, trial=99),
+        event(5, "page_shown", 8_000, trial=trial.pk),
+    ])[trial.pk]  # fmt: skip
+    cells = quality_cells(participant, trial, quality, 500, None, page_orders(participant), 8_500)
+    assert cells["answered_before_end"] == "0"

@@ -119,3 +119,44 @@ def test_play_counts_and_ends_match_the_browser_and_the_speeder_is_excluded(
     assert quality[str(watcher.pk)].replays == 1 and quality[str(watcher.pk)].device == "desktop"
     assert quality[str(speeder.pk)].clips_ended_share == 0.0
     assert quality[str(speeder.pk)].answered_before_end == 2
+
+
+def test_a_reloaded_page_answered_after_its_clips_is_not_flagged(browser, live_server, two_pages):
+    """Issue 35: a page shown twice (reload) counts from the showing the answer was given in.
+
+    Page 1: shown, reloaded 3 s later, both clips played to the end, answered: not early.
+    Page 2: answered at once, before either clip played: still early.
+    """
+    context = browser.new_context(viewport={"width": 1280, "height": 800}, bypass_csp=True)
+    try:
+        page = context.new_page()
+        page.goto(f"{live_server.url}/s/{two_pages.slug}/")
+        page.get_by_role("button", name="Continue (I agree to take part)").click()
+        participant = Participant.objects.filter(study=two_pages).order_by("-pk").first()
+        _wait_ready(page)
+        number, first = _current(page)
+        _wait_for_events(participant, "page_shown", 1)
+        time.sleep(3)
+        page.reload()
+        _wait_ready(page)
+        _play_to_end(page, 1)
+        _play_to_end(page, 2)
+        page.locator('input[name="q-most-natural"][value="1"]').check()
+        page.get_by_text("Answer saved.").wait_for()
+        _next(page, number)
+        _wait_ready(page)
+        number, second = _current(page)
+        page.locator('input[name="q-most-natural"][value="2"]').check()
+        page.get_by_text("Answer saved.").wait_for()
+        _next(page, number)
+        _wait_for_events(participant, "ended", 2)
+        _wait_for_events(participant, "page_shown", 3)
+    finally:
+        close_context(context)
+    frame = pd.read_csv(io.StringIO(tidy_csv(two_pages)), dtype=str, keep_default_na=False)
+    rows = frame[frame["participant"].eq(str(participant.pk))].set_index("trial")
+    assert MediaEvent.objects.filter(participant=participant, trial__key=first,
+                                     kind="page_shown").count() == 2  # fmt: skip
+    assert (rows.loc[first, "clip1_ended"], rows.loc[first, "clip2_ended"]) == ("1", "1")
+    assert rows.loc[first, "answered_before_end"] == "0"
+    assert rows.loc[second, "answered_before_end"] == "1"

@@ -175,9 +175,13 @@
     if (!match) { return; }
     const question = match[1];
     const rt = Math.round(performance.now() - shownAt);
+    const given = Date.now();  // the media events' clock: the quality columns compare them
     const rtInput = form.querySelector('[name="rt-' + question + '"]');
     if (rtInput) { rtInput.value = String(rt); }
-    pending.set(question, {page: page, trial: trial, question: question, value: input.value, rt_ms: rt});
+    const givenInput = form.querySelector('[name="client-' + question + '"]');
+    if (givenInput) { givenInput.value = String(given); }
+    pending.set(question, {page: page, trial: trial, question: question, value: input.value,
+                           rt_ms: rt, client_ms: given});
     send(question);
   }
   form.addEventListener("change", function (event) { answered(event.target); });
