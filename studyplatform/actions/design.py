@@ -200,7 +200,7 @@ def do_build_design(
         if answered:
             raise DesignRejected(
                 f"{answered} of the pages this builder made have answers (from a pilot). "
-                "Delete those participants first, or duplicate the study."
+                "Delete those participants first, or make a new version of the study."
             )
         old.delete()
         practice_block, trial_block = _builder_blocks(study, bool(spec.practice_items))

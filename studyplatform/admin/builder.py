@@ -147,7 +147,11 @@ class StudyDesignMixin:
     def design_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
         """Show the design's summary and the builder; build the pages on POST."""
         study = self._get_visible_study(request, object_id)
-        can_build = self.has_change_permission(request, study) and study.status == "draft"
+        can_build = (
+            self.has_change_permission(request, study)
+            and study.status == "draft"
+            and not study.design_locked
+        )
         form = DesignForm(study, request.POST if request.method == "POST" else None)
         if request.method == "POST" and can_build and form.is_valid():
             questions = list(form.cleaned_data["questions"])

@@ -18,6 +18,15 @@ class StudyForm(forms.ModelForm):
     def clean(self):
         cleaned = super().clean()
         study = self.instance
+        backward = cleaned.get("status") in (Study.Status.DRAFT, Study.Status.PILOT)
+        if study.pk and backward and study.real_participants:
+            taken = study.real_participants
+            self.add_error(
+                "status",
+                f"{taken} participant{'s have' if taken != 1 else ' has'} taken this study "
+                "(pilots aside), so it cannot go back to draft or pilot: their answers refer "
+                "to its design. Close it, or make a new version of the study to change it.",
+            )
         opening = cleaned.get("status") in (Study.Status.PILOT, Study.Status.OPEN)
         was_closed = study.pk is None or study.status in (Study.Status.DRAFT, Study.Status.CLOSED)
         if study.pk and opening and was_closed and not cleaned.get("allow_identical_clips"):

@@ -185,12 +185,30 @@ class Study(models.Model):
 
     @property
     def design_locked(self) -> bool:
-        """Return whether the design can no longer change: the study is open or closed.
+        """Return whether the design can no longer change: the study is open or closed,
+        or a participant who is not a pilot has taken it, whatever its status says.
 
         Participants' answers refer to its conditions, items, questions and pages; a
         change would alter what past answers mean, so it goes into a new version.
         """
-        return self.status in {self.Status.OPEN, self.Status.CLOSED}
+        return self.status in {self.Status.OPEN, self.Status.CLOSED} or self.real_participants > 0
+
+    @property
+    def lock_reason(self) -> str:
+        """Say why the design is locked ("" if it is not), for the admin's notes."""
+        if self.status in {self.Status.OPEN, self.Status.CLOSED}:
+            return f"the study is {self.get_status_display().lower()}"
+        taken = self.real_participants
+        if taken:
+            return f"{taken} participant{'s have' if taken != 1 else ' has'} taken it"
+        return ""
+
+    @property
+    def real_participants(self) -> int:
+        """Return how many participants (pilots aside) have taken the study."""
+        if self.pk is None:
+            return 0
+        return self.participants.filter(is_pilot=False).count()
 
     @property
     def is_accepting_participants(self) -> bool:
@@ -206,10 +224,19 @@ def check_unlocked(study: Study | None) -> None:
     """
     from django.core.exceptions import ValidationError
 
+    if study is None:
+        return
     locked = [Study.Status.OPEN, Study.Status.CLOSED]
-    if study is not None and Study.objects.filter(pk=study.pk, status__in=locked).exists():
+    if Study.objects.filter(pk=study.pk, status__in=locked).exists():
         raise ValidationError(
             f"“{study.title}” is {study.get_status_display().lower()}: its design is locked. "
+            "Make a new version of the study to change it."
+        )
+    taken = Study(pk=study.pk).real_participants
+    if taken:
+        raise ValidationError(
+            f"“{study.title}” has been taken by {taken} participant"
+            f"{'s' if taken != 1 else ''}: its design is locked whatever its status. "
             "Make a new version of the study to change it."
         )
 

@@ -67,6 +67,35 @@ def test_an_open_studys_design_is_locked_in_the_models_and_the_admin(opened, cli
                        {"post": "yes"}).status_code == 403  # fmt: skip
 
 
+def test_the_lock_follows_the_data_not_the_status(opened, client, alice):
+    """Issue 35: a study a participant took stays locked when its status says draft."""
+    take(opened, 1, finish=False)
+    Study.objects.filter(pk=opened.pk).update(status=Study.Status.DRAFT)
+    opened.refresh_from_db()
+    assert opened.design_locked and opened.lock_reason == "1 participant has taken it"
+    condition = opened.conditions.get(key="variable")
+    with pytest.raises(ValidationError, match="taken by 1 participant: its design is locked"):
+        condition.full_clean()
+    client.force_login(alice)
+    url = reverse("admin:studyplatform_condition_change", args=[condition.pk])
+    assert client.post(url, {"key": "changed"}).status_code == 403
+    change = reverse("admin:studyplatform_study_change", args=[opened.pk])
+    assert 'id="design-locked-note"' in client.get(change).text
+
+
+def test_pilot_participants_do_not_lock_a_draft(fresh, client, alice):  # noqa: F811
+    do_build_design(fresh, DesignSpec(Design.BALANCED_PAIRS, ("constant", "variable"), WORDS))
+    fresh.refresh_from_db()
+    fresh.status = Study.Status.PILOT
+    fresh.save()
+    pilot = take(fresh, 1, finish=False)
+    assert pilot.is_pilot
+    fresh.status = Study.Status.DRAFT
+    fresh.save()
+    assert not fresh.design_locked
+    fresh.conditions.get(key="variable").full_clean()
+
+
 def test_a_draft_stays_editable(fresh, client, alice):  # noqa: F811
     fresh.conditions.get(key="variable").full_clean()
     client.force_login(alice)
