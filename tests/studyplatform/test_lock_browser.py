@@ -61,3 +61,27 @@ def test_status_back_to_draft_does_not_unlock_an_answered_study(browser, live_se
         expect(page.get_by_role("button", name="Build the pages")).to_have_count(0)
     finally:
         close_context(context)
+
+
+@pytest.mark.parametrize("width", [1024, 1280, 1366, 1920])
+def test_make_a_new_version_can_be_clicked_at_every_desktop_width(
+    browser, live_server, answered, width
+):
+    """Issue 35, point 4: at 1024–1366 px a click on the button landed on "Export…"."""
+    context = browser.new_context(viewport={"width": width, "height": 900})
+    try:
+        page = context.new_page()
+        _sign_in(page, live_server.url)
+        page.goto(f"{live_server.url}/admin/studyplatform/study/{answered.pk}/change/")
+        button = page.get_by_role("button", name="Make a new version")
+        box = button.bounding_box()
+        on_top = page.evaluate(
+            "([x, y]) => document.elementFromPoint(x, y)?.value || ''",
+            [box["x"] + box["width"] / 2, box["y"] + box["height"] / 2],
+        )
+        assert on_top == "Make a new version"
+        button.click()
+        page.wait_for_load_state("load")
+        assert Study.objects.count() == 2  # the new version, a draft copy
+    finally:
+        close_context(context)
