@@ -46,7 +46,10 @@ QUALITY_COLUMNS = (
     "viewport",
     "device",
 )
-OPTIONAL_COLUMNS = ("target", "condition_simulated", *QUALITY_COLUMNS)
+# A signed (webcam) answer's file: its SHA-256 (the name it has in the "everything" zip,
+# signed_answers/<sha256>.<ext>) and where its researchers download it.
+SIGNED_COLUMNS = ("video_sha256", "video_url")
+OPTIONAL_COLUMNS = ("target", "condition_simulated", *QUALITY_COLUMNS, *SIGNED_COLUMNS)
 # How a simulated condition is named in every result: a reader must never take a
 # simulated stand-in (e.g. for motion capture) for the real thing.
 SIMULATED_SUFFIX = " (simulated)"

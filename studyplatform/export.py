@@ -16,8 +16,10 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
+from analysis.tidy import OPTIONAL_COLUMNS, SIGNED_COLUMNS
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.lib.quality import QUALITY_COLUMNS, page_orders, quality_cells, study_quality
+from studyplatform.lib.signed import signed_cells
 from studyplatform.models import Block, Participant, Question, Response, Study, Trial
 from studyplatform.questions import QUESTION_TYPES
 
@@ -73,11 +75,11 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
         if response.trial.is_attention_check and _failed_attention(response, response.trial):
             failed.add(response.participant_id)
     attribute_columns = [q.key for q in demographic_questions]
-    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, "target"}
+    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS}
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
     columns = [*REQUIRED_COLUMNS, "target", "condition_simulated", *QUALITY_COLUMNS,
-               *attribute_columns]  # fmt: skip
+               *SIGNED_COLUMNS, *attribute_columns]  # fmt: skip
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
@@ -128,6 +130,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                                      response.rt_ms, response.updated_at,
                                      orders[participant.pk],
                                      response.answered_client_ms))  # fmt: skip
+            row.update(signed_cells(response))
             answers = attributes.get(participant.pk, {})
             for key, column in attribute_pairs:
                 row[column] = answers.get(key, "")

@@ -26,6 +26,7 @@ from studyplatform.lib.quality import (
     media_event_rows,
     participant_rows,
 )
+from studyplatform.lib.signed import signed_videos
 from studyplatform.models import Study
 
 
@@ -65,9 +66,12 @@ def figure_images(results: StudyResults) -> dict[str, str]:
     return images
 
 
-def report_archive(study: Study, results: StudyResults, *, everything: bool) -> bytes:
+def report_archive(
+    study: Study, results: StudyResults, *, everything: bool, videos: bool = True
+) -> bytes:
     """Zip the report files; with *everything*, add the data, the media events, each
-    participant's seed and schedule, and the study definition."""
+    participant's seed and schedule, the study definition and, with *videos*, the
+    signed answers (signed_answers/<sha256>.<ext>, named so in the CSV)."""
     buffer = io.BytesIO()
     with (
         tempfile.TemporaryDirectory() as folder,
@@ -86,4 +90,8 @@ def report_archive(study: Study, results: StudyResults, *, everything: bool) -> 
                 f"{study.slug}.study.json",
                 json.dumps(export_study(study), indent=2, ensure_ascii=False) + "\n",
             )
+            if videos:
+                for video in signed_videos(study):
+                    # Videos are compressed already: stored, not deflated again.
+                    archive.write(video.path, video.archive_name, zipfile.ZIP_STORED)
     return buffer.getvalue()

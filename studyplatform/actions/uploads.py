@@ -158,7 +158,9 @@ def do_append_signed_answer_chunk(
     # on SQLite's single writer. A final chunk sent again after a failure here finds the
     # whole part stored (409 with its length) and sends an empty final chunk.
     suffix = _check_take(path, final)
-    return stored, _save_recording(participant, trial, question, take, path, stored, suffix)
+    saved = _save_recording(participant, trial, question, take, path, stored, suffix,
+                            final.sha256)  # fmt: skip
+    return stored, saved
 
 
 def _check_take(path: Path, final: FinalChunk) -> str:
@@ -213,7 +215,7 @@ def parse_final(sha256: object, duration_ms: object) -> FinalChunk:
 
 
 def _save_recording(participant: Participant, trial: Trial, question: Question, take: str,
-                    path: Path, length: int, suffix: str) -> Response:  # fmt: skip
+                    path: Path, length: int, suffix: str, sha256: str) -> Response:  # fmt: skip
     """Save the checked part at *path* as the answer's video (replacing an older one)."""
     with transaction.atomic():
         Participant.objects.select_for_update().get(pk=participant.pk)
@@ -228,6 +230,7 @@ def _save_recording(participant: Participant, trial: Trial, question: Question, 
         name = f"{participant.pk}-{trial.key}-{question.key}-{secrets.token_hex(16)}{suffix}"
         with open(path, "rb") as part:
             response.video.save(name, File(part), save=False)
+        response.video_sha256 = sha256
         if response.pk:
             response.revision += 1
         response.save()

@@ -6,8 +6,17 @@ from django.urls import path
 
 from analysis import TidyFormatError, results_json
 from studyplatform.admin.forms import ResultsForm
+from studyplatform.lib.signed import signed_videos
 from studyplatform.models import Block, Question, Study
 from studyplatform.results import StudyResults, analyse_study, figure_images, report_archive
+
+
+def _signed_summary(study: Study) -> dict[str, float] | None:
+    """Return how many signed answers the "everything" zip carries, and their MB."""
+    found = list(signed_videos(study))
+    if not found:
+        return None
+    return {"count": len(found), "mb": sum(v.size for v in found) / 1e6}
 
 
 class StudyResultsMixin:
@@ -74,6 +83,7 @@ class StudyResultsMixin:
             "report": None if results is None else results.report,
             "figures": {} if results is None else figure_images(results),
             "query": request.GET.urlencode(),
+            "signed": _signed_summary(study),
             "refresh": request.GET.get("refresh") == "1",
         }
         return TemplateResponse(request, "admin/studyplatform/study/results.html", context)
@@ -92,8 +102,10 @@ class StudyResultsMixin:
         study = self._get_visible_study(request, object_id)
         _, results = self._results(request, study)
         name = f"{study.slug}-{'everything' if everything else 'report'}.zip"
+        videos = request.GET.get("videos") != "0"
         response = HttpResponse(
-            report_archive(study, results, everything=everything), content_type="application/zip"
+            report_archive(study, results, everything=everything, videos=videos),
+            content_type="application/zip",
         )
         response["Content-Disposition"] = f'attachment; filename="{name}"'
         return response

@@ -33,6 +33,12 @@ class Response(models.Model):
         blank=True,
         help_text="A signed answer (private: only the study's researchers can open it).",
     )
+    video_sha256 = models.CharField(
+        "signed answer's SHA-256",
+        max_length=64,
+        blank=True,
+        help_text="Of the signed answer's file, as checked on upload; names it in exports.",
+    )
     score = models.FloatField(
         null=True, blank=True, help_text="Intelligibility: word-level accuracy in [0, 1]."
     )
