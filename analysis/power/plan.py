@@ -8,6 +8,7 @@ import pandas as pd
 
 from analysis.mixed.ordinal import ordinal_mixed
 from analysis.mixed.pairwise import mixed_bradley_terry
+from analysis.mixed.section import MIN_PARTICIPANTS
 from analysis.power.design import PlannedDesign
 from analysis.power.results import PowerCurve
 from analysis.power.simulation import Effects, effects_from_pilot
@@ -41,6 +42,15 @@ def effects_for(
         return Effects(**values, source="stated")
     if pilot is None:
         raise TidyFormatError("plan from a pilot's responses or from stated effects.")
+    participants = pilot["participant"].nunique()
+    if participants < MIN_PARTICIPANTS:
+        raise TidyFormatError(
+            f"the pilot has {participants} participant{'s' if participants != 1 else ''}; "
+            f"planning from a pilot needs at least {MIN_PARTICIPANTS}, because its mixed "
+            "model must estimate how much participants differ (the report fits no mixed "
+            "model below that either). Take more pilot participants, or state the effects "
+            "(from the literature) instead."
+        )
     if design.kind == "pairwise":
         fit = mixed_bradley_terry(pilot, design.conditions)
     else:

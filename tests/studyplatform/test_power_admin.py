@@ -33,6 +33,19 @@ def test_plan_page_simulates_power_from_the_pilot(bob_client, spine):
     assert "mixed: conditions" in table[0] and "binomial: spine-on vs spine-off" in table[0]
     assert page.context["curve"].effects["source"].startswith(f"{spine.slug} pilot")
     assert "data:image/png;base64," in page.text
+    assert "<td>6</td>" in page.text and "<td>6.00</td>" not in page.text  # N is a count
+
+
+def test_plan_page_refuses_a_pilot_too_small_to_estimate_participants(bob_client, spine):
+    """Issue 35: a 1-participant pilot gave "N = 20 gives power 0.88" without a word."""
+    spine.status = Study.Status.PILOT
+    spine.save()
+    take_spine_study(spine, participants=1)
+    url = reverse("admin:studyplatform_study_plan", args=[spine.pk])
+    options = {"kind": "pairwise", "smallest": 10, "largest": 20, "step": 10}
+    page = bob_client.get(url, {**options, "simulations": 10, "seed": 1})
+    assert page.context["curve"] is None
+    assert "the pilot has 1 participant; planning from a pilot needs at least 5" in page.text
 
 
 def test_plan_page_needs_a_pilot_and_names_bad_options(bob_client, spine):
