@@ -20,7 +20,15 @@ from pathlib import Path
 from synthesis.identity import engine_digest
 from synthesis.techniques import ClipError, ClipRequest, render_request
 
-__all__ = ["ClipError", "ClipSpec", "RenderedClip", "engine_digest", "file_sha256", "render"]
+__all__ = [
+    "ClipError",
+    "ClipSpec",
+    "RenderedClip",
+    "engine_digest",
+    "file_sha256",
+    "render",
+    "rendered",
+]
 
 
 @dataclass(frozen=True)
@@ -88,17 +96,86 @@ def file_sha256(path: Path) -> str:
 
 
 def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
-    """Render *spec* into *directory* as ``<hash>.mp4`` and ``<hash>.png``.
+    """Render *spec* into *directory* as ``<hash>.mp4``, ``<hash>.png`` and ``<hash>.json``.
 
-    The video is written under a temporary name and moved into place (synthesis.render),
-    so a crash leaves no file that looks finished.
+    A clip already rendered there (by any study, version or database) is returned as it
+    is, never rendered again or overwritten (:func:`rendered`). The video is written
+    under a temporary name and moved into place (synthesis.render), so a crash leaves no
+    file that looks finished; the facts file is written last.
     """
     directory = Path(directory)
+    found = rendered(spec, directory)
+    if found is not None:
+        return found
     directory.mkdir(parents=True, exist_ok=True)
     name = spec.content_hash()
     video, poster = directory / f"{name}.mp4", directory / f"{name}.png"
     info = render_request(spec, video, poster=poster, progress=progress)
-    return RenderedClip(
+    clip = RenderedClip(
         video, poster, round(info.duration_s * 1000), info.n_frames, info.width, info.height,
         video.stat().st_size, file_sha256(video),
     )  # fmt: skip
+    _write_facts(clip, directory / f"{name}.json", name)
+    return clip
+
+
+def rendered(spec: ClipSpec, directory: Path) -> RenderedClip | None:
+    """Return the clip of *spec* already in *directory*, or None if it must be rendered.
+
+    The files are named by the content hash, so they are the clip whoever rendered them.
+    Its facts come from ``<hash>.json``; a clip rendered before facts were kept has its
+    video measured once (ffmpeg) and the facts written. A video whose size or SHA-256
+    is not the recorded one is not reused.
+    """
+    directory = Path(directory)
+    name = spec.content_hash()
+    video, poster, facts = (directory / f"{name}{ext}" for ext in (".mp4", ".png", ".json"))
+    if not (video.is_file() and poster.is_file()):
+        return None
+    if facts.is_file():
+        try:
+            data = json.loads(facts.read_text())
+            clip = RenderedClip(
+                video, poster, int(data["duration_ms"]), int(data["frame_count"]),
+                int(data["width"]), int(data["height"]), int(data["size_bytes"]),
+                str(data["sha256"]),
+            )  # fmt: skip
+        except (ValueError, KeyError, TypeError):
+            return None
+        if data.get("content_hash") != name or video.stat().st_size != clip.size_bytes:
+            return None
+        return clip if file_sha256(video) == clip.sha256 else None
+    clip = _measure(video, poster)
+    _write_facts(clip, facts, name)
+    return clip
+
+
+def _measure(video: Path, poster: Path) -> RenderedClip:
+    import imageio_ffmpeg
+
+    frames = imageio_ffmpeg.read_frames(str(video))
+    meta = next(frames)
+    frames.close()
+    n_frames, _ = imageio_ffmpeg.count_frames_and_secs(str(video))
+    width, height = meta["size"]
+    duration_ms = round(n_frames / meta["fps"] * 1000)
+    return RenderedClip(
+        video, poster, duration_ms, n_frames, width, height, video.stat().st_size,
+        file_sha256(video),
+    )  # fmt: skip
+
+
+def _write_facts(clip: RenderedClip, path: Path, name: str) -> None:
+    """Write a clip's facts next to it, atomically (a temporary file, then rename)."""
+    facts = {
+        "content_hash": name,
+        "duration_ms": clip.duration_ms,
+        "frame_count": clip.frame_count,
+        "width": clip.width,
+        "height": clip.height,
+        "size_bytes": clip.size_bytes,
+        "sha256": clip.sha256,
+    }
+    temporary = path.with_suffix(".json.part")
+    temporary.write_text(json.dumps(facts, indent=2) + "\n")
+    temporary.replace(path)

@@ -11,9 +11,8 @@ from celery import shared_task
 from django.conf import settings
 
 from stimuli.clips import ClipSpec, render
+from studyplatform.lib.stimuli import SUBDIRECTORY, clips_folder
 from studyplatform.models import Stimulus
-
-SUBDIRECTORY = "stimuli"
 
 
 def render_now(stimulus_id: int) -> str:
@@ -32,7 +31,7 @@ def render_now(stimulus_id: int) -> str:
     do_start_rendering(stimulus)
     try:
         spec = ClipSpec.from_dict(stimulus.parameters)
-        clip = render(spec, Path(settings.MEDIA_ROOT) / SUBDIRECTORY)
+        clip = render(spec, clips_folder())
     except Exception as error:  # any failure is recorded on the clip, for the admin
         return do_fail_stimulus(stimulus, error)
     return do_record_rendered_stimulus(stimulus, spec, clip, SUBDIRECTORY)

@@ -4,7 +4,9 @@
 content hash and sends a Celery job per clip that is not rendered yet, once the
 transaction commits. A clip whose hash is unchanged and whose file exists is left
 alone, so running it again renders nothing; changing one condition's parameters
-re-renders exactly that condition's clips.
+re-renders exactly that condition's clips. A clip whose content-addressed files are in
+the clips folder already (rendered for another study, version, import or database) is
+recorded ready from them, never rendered again.
 """
 
 from dataclasses import dataclass
@@ -13,9 +15,12 @@ from django.db import transaction
 from django.utils import timezone
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
+from stimuli.clips import rendered as already_rendered
 from studyplatform.background import dispatch_renders
 from studyplatform.lib.stimuli import (
+    SUBDIRECTORY,
     clip_spec,
+    clips_folder,
     describe_identical,
     files_exist,
     group_identical,
@@ -91,8 +96,8 @@ def do_generate_stimuli(
             content_hash = spec.content_hash()
             hashed.append((condition, item, content_hash))
             stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
-            rendered = stimulus is not None and stimulus.status == Stimulus.Status.READY
-            if rendered and stimulus.content_hash != content_hash:
+            was_ready = stimulus is not None and stimulus.status == Stimulus.Status.READY
+            if was_ready and stimulus.content_hash != content_hash:
                 changed.append((stimulus, spec))
                 if refuse_changes:
                     continue
@@ -100,7 +105,12 @@ def do_generate_stimuli(
                 stimulus = Stimulus(condition=condition, item=item)
             unchanged = stimulus.pk and stimulus.content_hash == content_hash
             done = unchanged and stimulus.status == Stimulus.Status.READY and files_exist(stimulus)
+            existing = None if done or force else already_rendered(spec, clips_folder())
             if done and not force:
+                ready += 1
+            elif existing is not None:
+                # Rendered already (another study, version, import or database): reuse it.
+                _record_ready(stimulus, spec, existing)
                 ready += 1
             else:
                 stimulus.content_hash = content_hash
@@ -156,15 +166,25 @@ def do_record_rendered_stimulus(
         stimulus = Stimulus.objects.select_for_update().get(pk=stimulus.pk)
         if stimulus.content_hash != spec.content_hash():
             return "superseded"
-        stimulus.video.name = f"{subdirectory}/{clip.video.name}"
-        stimulus.poster.name = f"{subdirectory}/{clip.poster.name}"
-        stimulus.duration_ms = clip.duration_ms
-        stimulus.frame_count = clip.frame_count
-        stimulus.width, stimulus.height = clip.width, clip.height
-        stimulus.size_bytes = clip.size_bytes
-        stimulus.sha256 = clip.sha256
-        stimulus.status = Stimulus.Status.READY
-        stimulus.error = ""
-        stimulus.rendered_at = timezone.now()
-        stimulus.save()
+        _record_ready(stimulus, spec, clip, subdirectory)
     return stimulus.status
+
+
+def _record_ready(
+    stimulus: Stimulus, spec: ClipSpec, clip: RenderedClip, subdirectory: str = SUBDIRECTORY
+) -> None:
+    """Save *stimulus* as ready with *clip*'s files and facts."""
+    stimulus.content_hash = spec.content_hash()
+    stimulus.parameters = spec.to_dict()
+    stimulus.engine_version = spec.engine
+    stimulus.video.name = f"{subdirectory}/{clip.video.name}"
+    stimulus.poster.name = f"{subdirectory}/{clip.poster.name}"
+    stimulus.duration_ms = clip.duration_ms
+    stimulus.frame_count = clip.frame_count
+    stimulus.width, stimulus.height = clip.width, clip.height
+    stimulus.size_bytes = clip.size_bytes
+    stimulus.sha256 = clip.sha256
+    stimulus.status = Stimulus.Status.READY
+    stimulus.error = ""
+    stimulus.rendered_at = timezone.now()
+    stimulus.save()

@@ -9,6 +9,17 @@ from studyplatform.lib.recordings import with_item_recording
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
 from synthesis.techniques import ClipRequest
 
+# Rendered clips live in MEDIA_ROOT/stimuli, named by their content hash: one file per
+# clip, whichever studies, versions or databases use it.
+SUBDIRECTORY = "stimuli"
+
+
+def clips_folder() -> Path:
+    """Return the folder of rendered clips."""
+    from django.conf import settings
+
+    return Path(settings.MEDIA_ROOT) / SUBDIRECTORY
+
 
 def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     """Return the clip specification of *condition* applied to *item*.

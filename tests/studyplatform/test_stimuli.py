@@ -1,6 +1,7 @@
 """Test generating a study's stimuli: caching by content hash, re-rendering, failures."""
 
 import json
+import os
 import time
 
 import pytest
@@ -232,3 +233,35 @@ def test_conditions_of_an_item_open_and_close_on_the_same_frame(fingerspelling, 
             # differ by the encoder's rate control, which plans a frame's quantiser from
             # the frames around it (measured: up to 1.7 levels at 64×48).
             assert np.abs(other[ends].astype(int) - reference).mean() < 2.5
+
+
+def test_a_fresh_database_and_a_new_version_reuse_the_rendered_files(
+    small_study, django_capture_on_commit_callbacks, alice
+):
+    """Issue 35: the cache was keyed by rows; a version or a fresh database rendered again."""
+    from studyplatform.actions.versions import do_create_study_version
+
+    first = _generate(small_study, django_capture_on_commit_callbacks)
+    files = {s.video.path: (s.video.size, s.sha256) for s in Stimulus.objects.all()}
+    stamps = {path: os.stat(path).st_mtime_ns for path in files}
+    # A new version of the study: the same clips, recorded ready from the files.
+    version = do_create_study_version(small_study, owner=alice)
+    made = _generate(version, django_capture_on_commit_callbacks)
+    assert (made.total, made.queued, made.ready) == (2, 0, 2)
+    # A fresh database with the media folder filled: no rows, the same files.
+    Stimulus.objects.all().delete()
+    again = _generate(small_study, django_capture_on_commit_callbacks)
+    assert (again.queued, again.ready) == (0, first.total)
+    for stimulus in Stimulus.objects.filter(pk__in=again.stimulus_ids):
+        assert stimulus.status == Stimulus.Status.READY
+        assert (stimulus.video.size, stimulus.sha256) == files[stimulus.video.path]
+    # Clips rendered before facts were kept are measured once, never rendered again.
+    for path in files:
+        os.remove(path.replace(".mp4", ".json"))
+    Stimulus.objects.all().delete()
+    measured = _generate(small_study, django_capture_on_commit_callbacks)
+    assert measured.queued == 0
+    for stimulus in Stimulus.objects.filter(pk__in=measured.stimulus_ids):
+        assert stimulus.frame_count == count_frames(stimulus.video.path)
+        assert os.path.exists(stimulus.video.path.replace(".mp4", ".json"))
+    assert {path: os.stat(path).st_mtime_ns for path in files} == stamps  # never overwritten

@@ -9,9 +9,8 @@ from django.core.management.base import BaseCommand, CommandError
 from stimuli.clips import ClipError
 from stimuli.manifest import generate, read_manifest, write_manifest
 from studyplatform.actions.stimuli import do_generate_stimuli
-from studyplatform.lib.stimuli import study_manifest
+from studyplatform.lib.stimuli import SUBDIRECTORY, study_manifest
 from studyplatform.models import Stimulus, Study
-from studyplatform.tasks import SUBDIRECTORY
 
 
 class Command(BaseCommand):
