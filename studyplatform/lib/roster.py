@@ -48,13 +48,15 @@ def roster(study: Study, rules: ExclusionRules) -> tuple[list[RosterRow], str]:
         start = participant.consented_at or participant.started_at
         duration = participant.finished_at - start if participant.finished_at else None
         params = participant.recruitment_params or {}
+        total = len(participant.schedule or [])
         rows.append(
             RosterRow(
                 participant=participant,
                 status=_status(participant),
                 duration=duration,
                 device=device_of(participant.user_agent),
-                pages=f"{participant.reached} of {len(participant.schedule or [])}",
+                # reached is the next page to show: past the last one once finished.
+                pages=f"{min(participant.reached, total)} of {total}",
                 recruitment_id=next(iter(params.values()), "") if params else "",
                 reasons=tuple(reasons.get(str(participant.pk), ())),
             )

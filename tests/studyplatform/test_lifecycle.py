@@ -165,6 +165,9 @@ def test_a_rejected_participant_is_flagged_excluded_and_listed_with_the_reason(
     row = row[: row.index("</tr>")]
     assert "Rejected" in row and "excluded" in row
     assert 'id="roster-summary">2 participants; <strong>1</strong>' in page
+    # Issue 35: a finished participant reached every page, not one more ("16 of 15").
+    total = len(first.schedule)
+    assert first.reached > total and f"<td>{total} of {total}</td>" in row
 
 
 def test_another_researcher_cannot_review_or_version(opened, client, bob):
