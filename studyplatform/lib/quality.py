@@ -176,7 +176,7 @@ EVENT_COLUMNS = ("participant", "trial", "clip", "kind", "media_time_s", "client
                  "received_at", "detail")  # fmt: skip
 PARTICIPANT_COLUMNS = ("participant", "is_pilot", "review", "language", "seed", "enrollment",
                        "started_at", "consented_at", "finished_at", "device", "user_agent",
-                       "completion_code", "schedule")  # fmt: skip
+                       "completion_code", "recruitment", "schedule")  # fmt: skip
 
 
 def media_event_rows(study: Study):
@@ -200,7 +200,9 @@ def participant_rows(study: Study):
     """Yield each participant of *study* with their seed and schedule (PARTICIPANT_COLUMNS).
 
     The schedule is the exact sequence of pages (trial, sides swapped, rotated
-    conditions) the seed and enrollment number drew; personal data is not included.
+    conditions) the seed and enrollment number drew. Personal answers are not included;
+    the recruitment parameters are (``recruitment``, e.g. ``{"PROLIFIC_PID": …}``), since
+    approving and paying participants needs them.
     """
     participants = study.participants.order_by("started_at", "pk")
     for enrollment, participant in enumerate(participants):
@@ -217,5 +219,6 @@ def participant_rows(study: Study):
             "device": device_of(participant.user_agent),
             "user_agent": participant.user_agent,
             "completion_code": participant.completion_code,
+            "recruitment": json.dumps(participant.recruitment_params or {}, ensure_ascii=False),
             "schedule": json.dumps(participant.schedule, ensure_ascii=False),
         }

@@ -219,3 +219,5 @@ def test_everything_holds_media_events_seeds_and_schedules(bob_client, spine):
         row = by_id[str(participant.pk)]
         assert int(row["seed"]) == participant.seed
         assert json.loads(row["schedule"]) == participant.schedule
+        # Issue 35: the Prolific id, for approving and paying, was in no export.
+        assert json.loads(row["recruitment"]) == participant.recruitment_params
