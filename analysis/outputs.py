@@ -194,7 +194,8 @@ def render_html(report: Report, data: dict, table_files: dict, figure_files: lis
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     environment = Environment(
-        loader=PackageLoader("analysis", "templates"), autoescape=select_autoescape(["html"])
+        loader=PackageLoader("analysis", "templates"),
+        autoescape=select_autoescape(["html", "html.j2"]),
     )
     environment.filters["p"] = format_p
     environment.filters["pct"] = lambda value: "–" if value is None else f"{100 * value:.2f} %"

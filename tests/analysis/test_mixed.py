@@ -170,6 +170,8 @@ def test_report_has_a_mixed_models_section(tmp_path):
     assert {"mixed_effects.tex", "mixed_random.csv", "mixed_contrasts.md"} <= set(written)
     html = (tmp_path / "report.html").read_text()
     assert "<h2>Mixed models</h2>" in html and "Proportional-odds check" in html
+    # Issue 35: the template (report.html.j2) was not escaped: a raw "<" in "p < .001".
+    assert "p &lt; .001" in html and "p < .001" not in html
     assert "\n8 items;" in html and "<td>4|5</td>" in html
     assert "\\toprule" in (tmp_path / "mixed_effects.tex").read_text()
     effects = pd.read_csv(tmp_path / "mixed_effects.csv")
