@@ -189,6 +189,14 @@ def write_report(
     return written
 
 
+def _number(value: float | None, digits: int = 3) -> str:
+    """Format a number for the report: "–" for none, and never "-0.00"."""
+    if value is None:
+        return "–"
+    text = f"{value:.{digits}f}"
+    return text.lstrip("-") if float(text) == 0 else text
+
+
 def render_html(report: Report, data: dict, table_files: dict, figure_files: list[str]) -> str:
     """Render the one-page HTML report from the results (nothing is recomputed here)."""
     from jinja2 import Environment, PackageLoader, select_autoescape
@@ -199,9 +207,7 @@ def render_html(report: Report, data: dict, table_files: dict, figure_files: lis
     )
     environment.filters["p"] = format_p
     environment.filters["pct"] = lambda value: "–" if value is None else f"{100 * value:.2f} %"
-    environment.filters["num"] = lambda value, digits=3: (
-        "–" if value is None else f"{value:.{digits}f}"
-    )
+    environment.filters["num"] = _number
     template = environment.get_template("report.html.j2")
     return template.render(
         report=report,

@@ -218,3 +218,10 @@ def test_factor_solves_and_takes_the_log_determinant(dense):
     assert factor.logdet == pytest.approx(expected_logdet)
     assert factor.solve(rhs) == pytest.approx(np.linalg.solve(matrix, rhs))
     assert factor.solve(rhs[:, 0]) == pytest.approx(np.linalg.solve(matrix, rhs[:, 0]))
+
+
+def test_the_report_never_prints_negative_zero():
+    """Issue 35: a strength printed as "-0.00" in the HTML report."""
+    from analysis.outputs import _number
+
+    assert (_number(-0.001, 2), _number(-0.5, 2), _number(None)) == ("0.00", "-0.50", "–")
