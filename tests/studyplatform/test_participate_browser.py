@@ -326,20 +326,26 @@ def test_every_page_type_passes_an_accessibility_scan(
     assert {name: v for name, v in found.items() if v} == {}
 
 
+def open_trial_page(page, live_server, study, trial_key: str):
+    """Enroll a participant who reached every page; open *trial_key*'s page; return them."""
+    from studyplatform.actions import do_enroll_participant
+
+    participant = do_enroll_participant(study, consented=True)
+    participant.reached = len(participant.schedule)
+    participant.save()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == trial_key)
+    page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
+    _wait_ready(page)
+    return participant
+
+
 def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     page, live_server, spine, clips_dir, one_clip
 ):
     """The webcam (Chromium's synthetic camera) records an answer; it survives going offline."""
-    from studyplatform.actions import do_enroll_participant
-
     _with_clips(spine, one_clip, clips_dir)
     page.allowed_errors = [r"ERR_INTERNET_DISCONNECTED", r"Failed to fetch"]
-    participant = do_enroll_participant(spine, consented=True)
-    participant.reached = len(participant.schedule)
-    participant.save()
-    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "comments")
-    page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
-    _wait_ready(page)
+    participant = open_trial_page(page, live_server, spine, "comments")
     # Issue 20: .button's display overrode [hidden], showing both before any recording.
     expect(page.get_by_role("button", name="Stop recording")).to_be_hidden()
     expect(page.get_by_role("button", name="Send this recording")).to_be_hidden()

@@ -12,9 +12,8 @@ import zipfile
 import pytest
 from playwright.sync_api import expect
 
-from studyplatform.actions import do_enroll_participant
 from studyplatform.models import Response
-from tests.studyplatform.test_participate_browser import _wait_ready, _with_clips
+from tests.studyplatform.test_participate_browser import _with_clips, open_trial_page
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
@@ -23,12 +22,7 @@ def test_a_signed_answer_is_in_the_csv_and_the_everything_zip(
     page, live_server, spine, clips_dir, one_clip
 ):
     _with_clips(spine, one_clip, clips_dir)
-    participant = do_enroll_participant(spine, consented=True)
-    participant.reached = len(participant.schedule)
-    participant.save()
-    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "comments")
-    page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
-    _wait_ready(page)
+    participant = open_trial_page(page, live_server, spine, "comments")
     page.get_by_role("button", name="Record a signed answer").click()
     page.get_by_text("Recording…").wait_for()
     page.wait_for_timeout(1500)
