@@ -130,6 +130,15 @@ def test_the_browser_time_of_an_answer_is_kept_and_implausible_ones_ignored(clie
         assert Response.objects.get().answered_client_ms == kept
 
 
+def test_every_page_shows_the_participants_own_link_to_come_back(client, fingerspelling):
+    """Issue 35: participants were never shown their personal resume link."""
+    participant = _start(client, fingerspelling)
+    shown = client.get(reverse("participant_page", args=[participant.token, 1])).text
+    link = reverse("participant_resume", args=[participant.token])
+    assert f'<a href="{link}">http://testserver{link}</a>' in shown
+    assert client.get(link).status_code == 302  # it takes them back to where they were
+
+
 def test_answers_save_at_once_and_idempotently(client, fingerspelling):
     participant = _start(client, fingerspelling)
     page = {"page": 1, "trial": participant.schedule[0]["trial"]}
