@@ -78,7 +78,7 @@ def _answer_with_mouse(page, trial: Trial, clicked: dict) -> None:
             page.locator(f'input[name="{name}"]').fill("7")
             clicked[(trial.key, question.key)] = 7.0
         elif not question.is_personal:
-            page.locator(f'textarea[name="{name}"]').fill(f"answer to {question.key}")
+            page.locator(f'[name="{name}"]').fill(f"answer to {question.key}")
             clicked[(trial.key, question.key)] = f"answer to {question.key}"
 
 

@@ -43,6 +43,8 @@ def _answer(slug: str):
             return None
         if page.locator('[name="q-saying"]').count():
             item = Trial.objects.get(study__slug=slug, key=key).item.key
+            # Issue 35: what the signer said is one line, not a four-row box.
+            assert page.locator('input[type="text"][name="q-saying"]').count() == 1
             page.locator('[name="q-saying"]').fill(TYPED[item])
             page.locator('[name="q-saying"]').press("Tab")
             return TYPED[item]
