@@ -321,11 +321,24 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
         form = StudyImportForm(request.POST or None, request.FILES or None)
         if request.method == "POST" and form.is_valid():
             definition, files = form.cleaned_data["definition"]
+            original = (
+                (definition.get("study") or {}).get("title")
+                if isinstance(definition, dict)
+                else None
+            )
+            # A definition carries no participants: it arrives as a draft to pilot and
+            # open, and named apart from a study of the same title the researcher has.
+            title = None
+            mine = Study.objects.filter(owner=request.user, title=original)
+            if isinstance(original, str) and mine.exists():
+                title = f"{original} (imported)"[:200]
             try:
                 result = do_import_study(
                     definition,
                     owner=request.user,
                     slug=form.cleaned_data["slug"] or None,
+                    title=title,
+                    status=Study.Status.DRAFT,
                     files=files,
                 )
             except StudyImportError as error:

@@ -118,6 +118,9 @@ def test_import_through_the_admin(alice_client, fingerspelling):
     assert response.status_code == 302
     assert response["Location"] == reverse("admin:studyplatform_study_change", args=[study.pk])
     assert study.trials.count() == fingerspelling.trials.count()
+    # Issue 35: it came "closed" and locked with 0 participants, under the same title.
+    assert study.status == Study.Status.DRAFT and not study.design_locked
+    assert study.title == f"{fingerspelling.title} (imported)"
 
 
 @pytest.mark.parametrize(
