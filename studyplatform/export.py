@@ -16,7 +16,7 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
-from analysis.tidy import OPTIONAL_COLUMNS, SIGNED_COLUMNS
+from analysis.tidy import SIGNED_COLUMNS
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.lib.quality import QUALITY_COLUMNS, page_orders, quality_cells, study_quality
 from studyplatform.lib.signed import signed_cells
@@ -75,7 +75,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
         if response.trial.is_attention_check and _failed_attention(response, response.trial):
             failed.add(response.participant_id)
     attribute_columns = [q.key for q in demographic_questions]
-    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS}
+    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, "target", *SIGNED_COLUMNS}
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
     columns = [*REQUIRED_COLUMNS, "target", "condition_simulated", *QUALITY_COLUMNS,

@@ -10,6 +10,7 @@ from stimuli.clips import ClipError
 from stimuli.manifest import manifest_dict
 from studyplatform.actions.stimuli import IdenticalClips, do_generate_stimuli
 from studyplatform.lib.stimuli import (
+    clips_on_disk,
     identical_clips,
     needed_pairs,
     stimuli_progress,
@@ -63,7 +64,8 @@ class StudyGenerateMixin:
         title = f"Generate the stimuli of “{study.title}”"
         return self._page(request, "generate.html", title, study=study, allowed=allowed,
                           identical=identical_clips(study), clips=len(needed_pairs(study)),
-                          progress=stimuli_progress(study))  # fmt: skip
+                          progress=stimuli_progress(study),
+                          on_disk=clips_on_disk(study))  # fmt: skip
 
     def stimuli_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
         """Show the study's clips being rendered: a live progress bar and the failures."""

@@ -58,6 +58,20 @@ def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
     return sorted(pairs, key=lambda p: (p[1].position, p[0].position))
 
 
+def clips_on_disk(study: Study) -> int:
+    """Return how many of the study's clips are rendered already: their content-addressed
+    files are in the clips folder, whichever study, version or database rendered them."""
+    from stimuli.clips import rendered
+
+    folder, found = clips_folder(), 0
+    for condition, item in needed_pairs(study):
+        try:
+            found += rendered(clip_spec(condition, item), folder) is not None
+        except ClipError:
+            continue
+    return found
+
+
 def files_exist(stimulus: Stimulus) -> bool:
     """Return whether the stimulus's video file is in storage."""
     return bool(stimulus.video) and stimulus.video.storage.exists(stimulus.video.name)

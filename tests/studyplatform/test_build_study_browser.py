@@ -9,6 +9,7 @@ edited anywhere.
 
 import csv
 import io
+import os
 import zipfile
 from pathlib import Path
 
@@ -16,7 +17,7 @@ import pytest
 from playwright.sync_api import expect
 
 from studyplatform.lib import presented_conditions
-from studyplatform.models import Condition, Participant, Study, Trial
+from studyplatform.models import Condition, Participant, Stimulus, Study, Trial
 from tests.studyplatform.taking import take_study
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
@@ -140,3 +141,18 @@ def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_report
         wins[presented_conditions(participant, trial)[position - 1].key] += 1
     assert {pairs["a"]: int(pairs["a_wins"]), pairs["b"]: int(pairs["b_wins"])} == wins
     assert int(pairs["n"]) == 2
+
+    # Issue 35 (5): a new version renders none of the clips it shares with this one
+    # (before, it said "0 are rendered" and rendered all of them again, overwriting).
+    files = {s.video.path: os.stat(s.video.path).st_mtime_ns for s in Stimulus.objects.all()}
+    page.goto(f"{url}/admin/studyplatform/study/{study.pk}/change/")
+    page.get_by_role("button", name="Make a new version").click()
+    page.wait_for_load_state("load")
+    version = Study.objects.exclude(pk=study.pk).get()
+    page.goto(f"{url}/admin/studyplatform/study/{version.pk}/stimuli/generate/")
+    clips = page.locator("#generate-clips").inner_text()
+    expect(page.locator("#generate-on-disk")).to_have_text(f"{clips} are rendered")
+    page.get_by_role("button", name="Generate stimuli").click()
+    expect(page.locator("#stimuli-percent")).to_have_text("100")
+    expect(page.locator("#stimuli-done")).to_be_visible()
+    assert {p: os.stat(p).st_mtime_ns for p in files} == files

@@ -27,8 +27,11 @@ def test_a_signed_answer_is_in_the_csv_and_the_everything_zip(
     page.get_by_text("Recording…").wait_for()
     page.wait_for_timeout(1500)
     page.get_by_role("button", name="Stop recording").click()
+    page.get_by_text("Watch your recording").wait_for()
     page.get_by_role("button", name="Send this recording").click()
-    expect(page.locator(".signed-status")).to_have_text("Your signed answer is saved.")
+    expect(page.locator(".signed-status")).to_have_text(
+        "Your signed answer is saved.", timeout=20000
+    )
     response = Response.objects.get(participant=participant, question__key="comments")
     stored = response.video.open("rb").read()
     digest = hashlib.sha256(stored).hexdigest()
