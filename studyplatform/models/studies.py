@@ -3,6 +3,8 @@
 Source: spec 06 "What a researcher configures".
 """
 
+from functools import cached_property
+
 from django.conf import settings
 from django.contrib.contenttypes.fields import GenericRelation
 from django.core.validators import MinValueValidator
@@ -203,9 +205,13 @@ class Study(models.Model):
             return f"{taken} participant{'s have' if taken != 1 else ' has'} taken it"
         return ""
 
-    @property
+    @cached_property
     def real_participants(self) -> int:
-        """Return how many participants (pilots aside) have taken the study."""
+        """Return how many participants (pilots aside) have taken the study.
+
+        Read once per instance: the admin asks for every inline row's permissions, and a
+        page is one instance's view (check_unlocked reads the database afresh).
+        """
         if self.pk is None:
             return 0
         return self.participants.filter(is_pilot=False).count()

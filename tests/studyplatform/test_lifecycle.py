@@ -177,3 +177,15 @@ def test_another_researcher_cannot_review_or_version(opened, client, bob):
     new_version = reverse("admin:studyplatform_study_new_version", args=[opened.pk])
     assert client.post(new_version).status_code == 404
     assert not Study.objects.filter(previous_version=opened).exists()
+
+
+def test_the_lock_reads_the_participants_once_per_page(fresh, client, alice):  # noqa: F811
+    """Every inline row asks whether the design is locked: one count, not one per row."""
+    from django.db import connection
+    from django.test.utils import CaptureQueriesContext
+
+    client.force_login(alice)
+    with CaptureQueriesContext(connection) as queries:
+        client.get(reverse("admin:studyplatform_study_change", args=[fresh.pk]))
+    counts = [q for q in queries.captured_queries if "is_pilot" in q["sql"] and "COUNT" in q["sql"]]
+    assert len(counts) == 1
