@@ -24,6 +24,7 @@ __all__ = [
     "ClipError",
     "ClipSpec",
     "RenderedClip",
+    "clip_files",
     "engine_digest",
     "file_sha256",
     "render",
@@ -104,32 +105,40 @@ def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
     file that looks finished; the facts file is written last.
     """
     directory = Path(directory)
-    found = rendered(spec, directory)
+    name = spec.content_hash()
+    found = rendered(spec, directory, name)
     if found is not None:
         return found
     directory.mkdir(parents=True, exist_ok=True)
-    name = spec.content_hash()
-    video, poster = directory / f"{name}.mp4", directory / f"{name}.png"
+    video, poster, facts = clip_files(directory, name)
     info = render_request(spec, video, poster=poster, progress=progress)
     clip = RenderedClip(
         video, poster, round(info.duration_s * 1000), info.n_frames, info.width, info.height,
         video.stat().st_size, file_sha256(video),
     )  # fmt: skip
-    _write_facts(clip, directory / f"{name}.json", name)
+    _write_facts(clip, facts, name)
     return clip
 
 
-def rendered(spec: ClipSpec, directory: Path) -> RenderedClip | None:
+def clip_files(directory: Path, content_hash: str) -> tuple[Path, Path, Path]:
+    """Return the video, poster and facts files of the clip named *content_hash*."""
+    directory = Path(directory)
+    return tuple(directory / f"{content_hash}{ext}" for ext in (".mp4", ".png", ".json"))
+
+
+def rendered(
+    spec: ClipSpec, directory: Path, content_hash: str | None = None
+) -> RenderedClip | None:
     """Return the clip of *spec* already in *directory*, or None if it must be rendered.
 
     The files are named by the content hash, so they are the clip whoever rendered them.
     Its facts come from ``<hash>.json``; a clip rendered before facts were kept has its
     video measured once (ffmpeg) and the facts written. A video whose size or SHA-256
-    is not the recorded one is not reused.
+    is not the recorded one is not reused. *content_hash* is the spec's, where the caller
+    has it already (it reads the files the spec names).
     """
-    directory = Path(directory)
-    name = spec.content_hash()
-    video, poster, facts = (directory / f"{name}{ext}" for ext in (".mp4", ".png", ".json"))
+    name = content_hash or spec.content_hash()
+    video, poster, facts = clip_files(directory, name)
     if not (video.is_file() and poster.is_file()):
         return None
     if facts.is_file():

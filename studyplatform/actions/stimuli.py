@@ -105,7 +105,9 @@ def do_generate_stimuli(
                 stimulus = Stimulus(condition=condition, item=item)
             unchanged = stimulus.pk and stimulus.content_hash == content_hash
             done = unchanged and stimulus.status == Stimulus.Status.READY and files_exist(stimulus)
-            existing = None if done or force else already_rendered(spec, clips_folder())
+            existing = (
+                None if done or force else already_rendered(spec, clips_folder(), content_hash)
+            )
             if done and not force:
                 ready += 1
             elif existing is not None:

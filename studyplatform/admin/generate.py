@@ -11,7 +11,8 @@ from stimuli.manifest import manifest_dict
 from studyplatform.actions.stimuli import IdenticalClips, do_generate_stimuli
 from studyplatform.lib.stimuli import (
     clips_on_disk,
-    identical_clips,
+    group_identical,
+    hashed_pairs,
     needed_pairs,
     stimuli_progress,
     study_manifest,
@@ -62,10 +63,12 @@ class StudyGenerateMixin:
             if refusal is None:
                 return redirect(reverse("admin:studyplatform_study_generate", args=[study.pk]))
         title = f"Generate the stimuli of “{study.title}”"
+        pairs = needed_pairs(study)
+        hashed = hashed_pairs(pairs)  # the page's two counts share the hashing
         return self._page(request, "generate.html", title, study=study, allowed=allowed,
-                          identical=identical_clips(study), clips=len(needed_pairs(study)),
+                          identical=group_identical(hashed), clips=len(pairs),
                           progress=stimuli_progress(study),
-                          on_disk=clips_on_disk(study))  # fmt: skip
+                          on_disk=clips_on_disk(hashed))  # fmt: skip
 
     def stimuli_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
         """Show the study's clips being rendered: a live progress bar and the failures."""

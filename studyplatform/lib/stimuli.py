@@ -58,18 +58,16 @@ def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
     return sorted(pairs, key=lambda p: (p[1].position, p[0].position))
 
 
-def clips_on_disk(study: Study) -> int:
-    """Return how many of the study's clips are rendered already: their content-addressed
-    files are in the clips folder, whichever study, version or database rendered them."""
-    from stimuli.clips import rendered
+def clips_on_disk(hashed: list[tuple[Condition, Item, str]]) -> int:
+    """Return how many of the :func:`hashed_pairs` clips have their files in the clips
+    folder, whichever study, version or database rendered them."""
+    from stimuli.clips import clip_files
 
-    folder, found = clips_folder(), 0
-    for condition, item in needed_pairs(study):
-        try:
-            found += rendered(clip_spec(condition, item), folder) is not None
-        except ClipError:
-            continue
-    return found
+    folder = clips_folder()
+    return sum(
+        all(path.is_file() for path in clip_files(folder, content_hash)[:2])
+        for _, _, content_hash in hashed
+    )
 
 
 def files_exist(stimulus: Stimulus) -> bool:
@@ -137,20 +135,27 @@ def group_identical(clips) -> list[tuple[Item, list[Condition]]]:
     ]
 
 
-def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
-    """Return each item whose clips are identical in two or more conditions, with those.
+def hashed_pairs(pairs: list[tuple[Condition, Item]]) -> list[tuple[Condition, Item, str]]:
+    """Return each (condition, item) of *pairs* with its clip's content hash.
 
-    Two conditions render the same pixels when their clip specifications hash alike
-    (e.g. two conditions whose settings differ only in a name). A specification that
-    cannot be made is left to generation, which names its error.
+    A specification that cannot be made is left out: generation names its error.
     """
     clips = []
-    for condition, item in needed_pairs(study):
+    for condition, item in pairs:
         try:
             clips.append((condition, item, clip_spec(condition, item).content_hash()))
         except ClipError:
             continue
-    return group_identical(clips)
+    return clips
+
+
+def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
+    """Return each item whose clips are identical in two or more conditions, with those.
+
+    Two conditions render the same pixels when their clip specifications hash alike
+    (e.g. two conditions whose settings differ only in a name).
+    """
+    return group_identical(hashed_pairs(needed_pairs(study)))
 
 
 def describe_identical(pairs: list[tuple[Item, list[Condition]]]) -> str:
