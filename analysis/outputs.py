@@ -66,6 +66,29 @@ def _mixed_models(mixed: dict | None) -> list[dict]:
     return ([mixed["pairwise"]] if mixed["pairwise"] else []) + mixed["ordinal"] + mixed["linear"]
 
 
+def _test_cells(c: dict) -> dict:
+    """Return a coefficient's or contrast's SE, test (z, or t with its df), p (and a
+    contrast's corrected p) and CI."""
+    adjusted = {"p_adjusted": c["pvalue_adjusted"]} if "pvalue_adjusted" in c else {}
+    return {
+        "se": c["se"],
+        "test": "z" if c.get("df") is None else "t",
+        "statistic": c["statistic"],
+        "df": c.get("df"),
+        "p": c["pvalue"],
+        **adjusted,
+        "ci_low": c["ci"][0],
+        "ci_high": c["ci"][1],
+    }
+
+
+def _sd_cells(component: str, column: str, sd: float, levels, ci) -> dict:
+    """Return one random-effect SD's row cells, with its profile CI where there is one."""
+    low, high = ci or (None, None)
+    return {"component": component, "column": column, "sd": sd, "levels": levels,
+            "ci_low": low, "ci_high": high}  # fmt: skip
+
+
 def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
     """Return the mixed models' effects, random effects and contrasts as three tables."""
     effects, random, contrasts = [], [], []
@@ -83,41 +106,19 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
                     **key,
                     "effect": c["name"],
                     "estimate": c["estimate"],
-                    "se": c["se"],
-                    "test": "z" if c.get("df") is None else "t",
-                    "statistic": c["statistic"],
-                    "df": c.get("df"),
-                    "p": c["pvalue"],
-                    "ci_low": c["ci"][0],
-                    "ci_high": c["ci"][1],
+                    **_test_cells(c),
                 }
             )
         for r in model["random"]:
-            ci = r.get("ci") or (None, None)
             random.append(
-                {
-                    **key,
-                    "component": r["name"],
-                    "column": r.get("column", "(Intercept)"),
-                    "sd": r["sd"],
-                    "levels": r["levels"],
-                    "ci_low": ci[0],
-                    "ci_high": ci[1],
-                }
-            )
+                {**key, **_sd_cells(r["name"], r.get("column", "(Intercept)"), r["sd"],
+                                    r["levels"], r.get("ci"))}
+            )  # fmt: skip
         if model.get("residual_sd") is not None:
-            ci = model.get("residual_sd_ci") or (None, None)
             random.append(
-                {
-                    **key,
-                    "component": "residual",
-                    "column": "",
-                    "sd": model["residual_sd"],
-                    "levels": None,
-                    "ci_low": ci[0],
-                    "ci_high": ci[1],
-                }
-            )
+                {**key, **_sd_cells("residual", "", model["residual_sd"], None,
+                                    model.get("residual_sd_ci"))}
+            )  # fmt: skip
         for c in model["contrasts"]:
             contrasts.append(
                 {
@@ -125,14 +126,7 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
                     "a": c["a"],
                     "b": c["b"],
                     "difference": c["estimate"],
-                    "se": c["se"],
-                    "test": "z" if c.get("df") is None else "t",
-                    "statistic": c["statistic"],
-                    "df": c.get("df"),
-                    "p": c["pvalue"],
-                    "p_adjusted": c["pvalue_adjusted"],
-                    "ci_low": c["ci"][0],
-                    "ci_high": c["ci"][1],
+                    **_test_cells(c),
                 }
             )
     found = {}

@@ -12,8 +12,6 @@ from analysis.mixed.problem import Component, LaplaceFit
 from analysis.mixed.results import Coefficient, Contrast, VarianceComponent
 from analysis.within import adjust
 
-Z95 = float(stats.norm.ppf(0.975))
-
 
 def standard_error(variance: float) -> float:
     """Return √variance, or NaN where a covariance that is not positive definite gave < 0."""

@@ -100,9 +100,15 @@ def _random(problem: MixedProblem, fit: LinearFit, intervals) -> tuple[VarianceC
     )
 
 
-def likelihood_ratio(data, order, *, slopes: bool) -> LikelihoodRatioTest:
-    """Test that the conditions are alike by ML fits with and without them (R's anova)."""
-    full = fit_lmm(_problem(data, order, with_conditions=True, slopes=slopes), reml=False)
+def likelihood_ratio(
+    data, order, *, slopes: bool, full: LinearFit | None = None
+) -> LikelihoodRatioTest:
+    """Test that the conditions are alike by ML fits with and without them (R's anova).
+
+    *full* is the ML fit with the conditions, where the caller has it.
+    """
+    if full is None:
+        full = fit_lmm(_problem(data, order, with_conditions=True, slopes=slopes), reml=False)
     reduced = fit_lmm(_problem(data, order, with_conditions=False, slopes=slopes), reml=False)
     statistic = max(2 * (full.loglik - reduced.loglik), 0.0)
     df = len(order) - 1
@@ -164,7 +170,9 @@ def linear_mixed(
     estimates, cov = fit.beta[1 : 1 + width], fit.cov[1 : 1 + width, 1 : 1 + width]
     effects, full, full_cov = condition_effects(order, estimates, cov, df_of)
     statistic, df, den_df, pvalue = satterthwaite.f_test(np.eye(len(fit.beta))[1:], fit.beta)
-    intervals = sd_intervals(fit) if sd_ci else [None] * (len(fit.sd) + 1)
+    # The ML fit serves the profile CIs (lme4 profiles the ML deviance) and the LR test.
+    ml = fit if not reml else fit_lmm(problem, reml=False)
+    intervals = sd_intervals(ml) if sd_ci else [None] * (len(fit.sd) + 1)
     random = _random(problem, fit, intervals[:-1])
     notes = [
         f"Effects are differences of mean rating from {order[0]}; ratings are treated "
@@ -214,6 +222,6 @@ def linear_mixed(
         residual_sd_ci=intervals[-1],
         reml=reml,
         den_df=den_df,
-        likelihood_ratio=likelihood_ratio(data, order, slopes=slopes),
+        likelihood_ratio=likelihood_ratio(data, order, slopes=slopes, full=ml),
         correlations=tuple(Correlation(g, a, b, r) for g, a, b, r in fit.correlations),
     )

@@ -67,6 +67,15 @@ def _lower_triangle(c: int) -> tuple[np.ndarray, np.ndarray]:
     return rows[order], cols[order]
 
 
+def _lambda(components, factors) -> sparse.csc_array:
+    """Return Λ, block diagonal: each component's factor T once per level (sparse)."""
+    blocks = [
+        sparse.kron(sparse.eye_array(len(component.levels)), block)
+        for component, block in zip(components, factors, strict=True)
+    ]
+    return sparse.block_diag(blocks, format="csc")
+
+
 @dataclasses.dataclass(frozen=True)
 class _Solution:
     logdet_a: float
@@ -138,7 +147,7 @@ class LinearCriterion:
         theta = np.asarray(theta, float)
         if self.blocks is not None:
             return self._solve_blocks(theta)
-        lam = self._lambda(theta)
+        lam = _lambda(self.problem.components, self.factors(theta))
         crossed = (lam.T @ self.crossprod @ lam + sparse.eye_array(self.q)).tocsc()
         factor = Factor(crossed.toarray() if self.q <= DENSE_UP_TO else crossed)
         zx, zy = lam.T @ self.zx, lam.T @ self.zy
@@ -187,16 +196,7 @@ class LinearCriterion:
         factors = self.factors(theta)
         first = factors[0]
         tail = (
-            sparse.block_diag(
-                [
-                    sparse.kron(sparse.eye_array(len(component.levels)), block)
-                    for component, block in zip(
-                        self.problem.components[1:], factors[1:], strict=True
-                    )
-                ]
-            ).toarray()
-            if r
-            else np.zeros((0, 0))
+            _lambda(self.problem.components[1:], factors[1:]).toarray() if r else np.zeros((0, 0))
         )
 
         def head_t(matrix: np.ndarray) -> np.ndarray:
@@ -212,14 +212,6 @@ class LinearCriterion:
         zx = np.vstack([head_t(self.zx[:k]), tail.T @ self.zx[k:]])
         zy = np.concatenate([head_t(self.zy[:k, None])[:, 0], tail.T @ self.zy[k:]])
         return self._finish(factor, zx, zy)
-
-    def _lambda(self, theta: np.ndarray):
-        """Return Λ(θ), block diagonal: each component's T once per level (sparse q × q)."""
-        blocks = [
-            sparse.kron(sparse.eye_array(len(component.levels)), block)
-            for component, block in zip(self.problem.components, self.factors(theta), strict=True)
-        ]
-        return sparse.block_diag(blocks, format="csc")
 
     def _residual_df(self) -> int:
         return self.n - self.p if self.reml else self.n
@@ -266,7 +258,7 @@ def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
     problem, dropped = full_rank(problem)
     criterion = LinearCriterion(problem, reml=reml)
     lower = criterion.lower
-    upper = np.where(np.isfinite(lower), LARGEST_SD, LARGEST_SD)
+    upper = np.full(len(lower), LARGEST_SD)
     search = optimize.minimize(
         criterion.profiled,
         [criterion.start(1.0), criterion.start(0.3)],
@@ -311,7 +303,7 @@ def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
         reml=reml,
         nobs=criterion.n,
         converged=search.converged and checks.ok,
-        singular=bool(np.any(on_bound)),
+        singular=bool(singular_components),
         checks=((dropped_message(dropped),) if dropped else ()) + checks.messages,
         message=search.message,
         evaluations=criterion.state.evaluations,

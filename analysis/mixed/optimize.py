@@ -19,8 +19,10 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from analysis.mixed.problem import BOUNDARY_SD
+
 # A bounded parameter this close to its bound is on it (lme4's isSingular tolerance).
-ON_BOUND = 1e-4
+ON_BOUND = BOUNDARY_SD
 # The short profile's trial values, as multiples of the parameter's initial step.
 PROFILE = (1e-3, 1e-2, 0.1, 0.3, 1.0, 3.0)
 RESTARTS = 5
@@ -31,14 +33,12 @@ INFEASIBLE = 1e100
 
 @dataclasses.dataclass(frozen=True)
 class Optimum:
-    """The minimum found: ``x``, ``fun`` = criterion(x), what it took, and from where."""
+    """The minimum found: ``x``, ``fun`` = criterion(x), and how BOBYQA ended."""
 
     x: np.ndarray
     fun: float
-    evaluations: int
     converged: bool
     message: str
-    restarts: int
 
 
 def _bobyqa(criterion, start, lower, upper, step, xtol, maxeval):
@@ -86,33 +86,25 @@ def minimize(
     lower, upper = np.asarray(lower, float), np.asarray(upper, float)
     step = np.asarray(step, float)
     bounded = np.flatnonzero(np.isfinite(lower))
-    calls = [0]
-
-    def counted(x):
-        calls[0] += 1
-        return criterion(x)
-
     best = None
     for start in starts:
-        found = _bobyqa(counted, np.asarray(start, float), lower, upper, step, xtol, maxeval)
+        found = _bobyqa(criterion, np.asarray(start, float), lower, upper, step, xtol, maxeval)
         if found is not None and (best is None or found[1] < best[1]):
             best = found
     if best is None:
         raise ArithmeticError("the optimiser could not evaluate the criterion at any start")
     x, fun, converged, message = best
-    restarts = 0
-    while restarts < RESTARTS:
-        better = _off_the_bound(counted, x, fun, lower, upper, step, bounded)
+    for _ in range(RESTARTS):
+        better = _off_the_bound(criterion, x, fun, lower, upper, step, bounded)
         if better is None:
             break
-        restarts += 1
-        found = _bobyqa(counted, better, lower, upper, step, xtol, maxeval)
-        if found is None or found[1] >= fun:
-            x, fun = better, counted(better)
+        found = _bobyqa(criterion, better[0], lower, upper, step, xtol, maxeval)
+        if found is None or found[1] >= better[1]:
+            x, fun = better
             continue
         x, fun, converged, message = found
-    x, fun = _onto_the_bound(counted, x, fun, lower, bounded)
-    return Optimum(x, fun, calls[0], converged, message, restarts)
+    x, fun = _onto_the_bound(criterion, x, fun, lower, bounded)
+    return Optimum(x, fun, converged, message)
 
 
 def _onto_the_bound(criterion, x, fun, lower, bounded):
@@ -133,7 +125,8 @@ def _onto_the_bound(criterion, x, fun, lower, bounded):
 
 
 def _off_the_bound(criterion, x, fun, lower, upper, step, bounded):
-    """Return a point with a bounded parameter moved off its bound that lowers *fun*, if any."""
+    """Return (point, value) with a bounded parameter moved off its bound that lowers
+    *fun*, or None."""
     best, best_value = None, fun - 1e-10 * max(1.0, abs(fun))
     for j in bounded:
         if x[j] - lower[j] > ON_BOUND:
@@ -144,4 +137,4 @@ def _off_the_bound(criterion, x, fun, lower, upper, step, bounded):
             value = criterion(trial)
             if value < best_value:
                 best, best_value = trial, value
-    return best
+    return None if best is None else (best, best_value)

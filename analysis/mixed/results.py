@@ -145,9 +145,13 @@ class _ModelResult(Result):
     singular: bool = False
 
     def apa(self) -> str:
-        return f"Wald χ²({self.df}) = {self.statistic:.2f}, {format_p(self.pvalue)}" + (
+        return self._test() + (
             " (singular fit: a random-effect SD estimated at zero)" if self.singular else ""
         )
+
+    def _test(self) -> str:
+        """Return the test that the conditions are alike, APA style."""
+        return f"Wald χ²({self.df}) = {self.statistic:.2f}, {format_p(self.pvalue)}"
 
     def _lines(self) -> list[str]:
         lines = [
@@ -241,11 +245,8 @@ class LinearMixedResult(_ModelResult):
     likelihood_ratio: LikelihoodRatioTest | None = None
     correlations: tuple[Correlation, ...] = ()
 
-    def apa(self) -> str:
-        return f"F({self.df}, {self.den_df:.1f}) = {self.statistic:.2f}, " + (
-            f"{format_p(self.pvalue)}"
-            + (" (singular fit: a random-effect SD estimated at zero)" if self.singular else "")
-        )
+    def _test(self) -> str:
+        return f"F({self.df}, {self.den_df:.1f}) = {self.statistic:.2f}, {format_p(self.pvalue)}"
 
     def _lines(self) -> list[str]:
         lines = super()._lines()

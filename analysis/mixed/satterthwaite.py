@@ -51,14 +51,6 @@ class Satterthwaite:
         spread = gradient @ self.a @ gradient
         return float(2 * variance**2 / spread) if spread > 0 else float("inf")
 
-    def t_test(self, contrast: np.ndarray, beta: np.ndarray) -> tuple[float, float, float]:
-        """Return (t, ν, p) for lβ = 0."""
-        contrast = np.asarray(contrast, float)
-        se = float(np.sqrt(contrast @ self.cov @ contrast))
-        t = float(contrast @ beta) / se if se > 0 else np.nan
-        nu = self.df(contrast)
-        return t, nu, float(2 * stats.t.sf(abs(t), nu)) if np.isfinite(t) else np.nan
-
     def f_test(self, rows: np.ndarray, beta: np.ndarray) -> tuple[float, int, float, float]:
         """Return (F, q, ν, p) for Lβ = 0 (lmerTest's ``contestMD``)."""
         rows = np.atleast_2d(np.asarray(rows, float))
