@@ -73,17 +73,17 @@ class ConditionalModes:
         self.evaluations = 0
         self.head = c * len(first.levels) if grouped else 0
         self.rest_width = self.q - self.head
-        # Flag of the blocked path (the name is historical: a diagonal first block).
-        self.diagonal = np.arange(self.head) if grouped and self.rest_width <= DENSE_UP_TO else None
+        self.level_width = c
+        # I + S ZᵀWZ S is factored in blocks, the grouped levels eliminated first.
+        self.blocked = bool(grouped) and self.rest_width <= DENSE_UP_TO
         # Flat indices of each row's column pairs into a dense q × q: the unstructured
         # path, and the fallback when a blocked factorisation fails.
         self.pairs = None
         if self.q <= DENSE_UP_TO:
             self.pairs = (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
-        if self.diagonal is not None:
-            k, r, m = self.head, self.rest_width, c
-            self.level_width, self.head_entries = c, c
-            head, rest = self.cols[:, :m], self.cols[:, m:] - k
+        if self.blocked:
+            k, r = self.head, self.rest_width
+            head, rest = self.cols[:, :c], self.cols[:, c:] - k
             level = head[:, 0] // c
             within = head - level[:, None] * c
             self.pivot_index = (
@@ -104,45 +104,57 @@ class ConditionalModes:
             )
         return np.column_stack([self.z_t_dot(weights[:, j]) for j in range(weights.shape[1])])
 
-    def _weighted_cross(self, weight: np.ndarray, scale: np.ndarray):
-        """Return S Zᵀ W Z S, shape (q, q): dense, or sparse above DENSE_UP_TO columns."""
+    def _cross(self, weight: np.ndarray):
+        """Return Zᵀ W Z, shape (q, q): dense, or sparse above DENSE_UP_TO columns."""
         products = weight[:, None, None] * self.vals[:, :, None] * self.vals[:, None, :]
         if self.q > DENSE_UP_TO:
             rows = np.repeat(self.cols, self.cols.shape[1], axis=1).ravel()
             cols = np.tile(self.cols, (1, self.cols.shape[1])).ravel()
-            cross = sparse.csc_array((products.ravel(), (rows, cols)), shape=(self.q, self.q))
-            diagonal = sparse.diags_array(scale)
-            return diagonal @ cross @ diagonal
+            return sparse.csc_array((products.ravel(), (rows, cols)), shape=(self.q, self.q))
         cross = np.bincount(self.pairs, products.ravel(), minlength=self.q * self.q)
-        cross = cross.reshape(self.q, self.q)
-        return scale[:, None] * cross * scale[None, :]
+        return cross.reshape(self.q, self.q)
 
-    def _blocks(self, weight: np.ndarray, scale: np.ndarray) -> Blocks:
-        """Return I + S Zᵀ W Z S in blocks (needs the grouped components first)."""
+    def _weighted_cross(self, weight: np.ndarray, scale: np.ndarray):
+        """Return S Zᵀ W Z S, shape (q, q): dense, or sparse above DENSE_UP_TO columns."""
+        return _scaled(self._cross(weight), scale)
+
+    def _raw_blocks(self, weight: np.ndarray) -> Blocks:
+        """Return Zᵀ W Z in blocks, unscaled and without I (needs the grouped components
+        first): the grouped levels' part is (k,) when one column each, else (L, c, c)."""
         k, r, c = self.head, self.rest_width, self.level_width
         head_values, rest = self.vals[:, :c], self.vals[:, c:]
-        head, tail = scale[:k], scale[k:]
         weighted = weight[:, None] * head_values
         if c == 1:
-            pivots = 1 + head**2 * np.bincount(
-                self.cols[:, 0], weighted[:, 0] * head_values[:, 0], minlength=k
-            )
+            pivots = np.bincount(self.cols[:, 0], weighted[:, 0] * head_values[:, 0], minlength=k)
         else:
-            levels = k // c
             products = weighted[:, :, None] * head_values[:, None, :]
-            raw = np.bincount(self.pivot_index, products.ravel(), minlength=levels * c * c)
-            shaped = head.reshape(levels, c)
-            pivots = np.eye(c) + shaped[:, :, None] * raw.reshape(levels, c, c) * shaped[:, None, :]
+            pivots = np.bincount(self.pivot_index, products.ravel(), minlength=k * c)
+            pivots = pivots.reshape(k // c, c, c)
         coupling = np.bincount(
             self.coupling_index, (weighted[:, :, None] * rest[:, None, :]).ravel(), minlength=k * r
         ).reshape(k, r)
         products = weight[:, None, None] * rest[:, :, None] * rest[:, None, :]
         cross = np.bincount(self.rest_pairs, products.ravel(), minlength=r * r).reshape(r, r)
+        return Blocks(pivots, coupling, cross)
+
+    def _scale_blocks(self, raw: Blocks, scale: np.ndarray) -> Blocks:
+        """Return I + S (raw) S in blocks, raw from :meth:`_raw_blocks`."""
+        k, c = self.head, self.level_width
+        head, tail = scale[:k], scale[k:]
+        if c == 1:
+            pivots = 1 + head**2 * raw.pivots
+        else:
+            shaped = head.reshape(-1, c)
+            pivots = np.eye(c) + shaped[:, :, None] * raw.pivots * shaped[:, None, :]
         return Blocks(
             pivots,
-            head[:, None] * coupling * tail[None, :],
-            np.eye(r) + tail[:, None] * cross * tail[None, :],
+            head[:, None] * raw.coupling * tail[None, :],
+            np.eye(len(tail)) + tail[:, None] * raw.rest * tail[None, :],
         )
+
+    def _blocks(self, weight: np.ndarray, scale: np.ndarray) -> Blocks:
+        """Return I + S Zᵀ W Z S in blocks (needs the grouped components first)."""
+        return self._scale_blocks(self._raw_blocks(weight), scale)
 
     def scaled_cross(self, weight: np.ndarray) -> "ScaledCross":
         """Return ZᵀWZ kept so that I + S ZᵀWZ S factors for any S without touching Z."""
@@ -150,7 +162,7 @@ class ConditionalModes:
 
     def factor(self, weight: np.ndarray, scale: np.ndarray) -> Factor:
         """Factor I + S Zᵀ W Z S."""
-        if self.diagonal is not None:
+        if self.blocked:
             return Factor(self._blocks(weight, scale))
         return Factor(self._eye() + self._weighted_cross(weight, scale))
 
@@ -209,9 +221,9 @@ class ConditionalModes:
 
     def _joint_solver(self, scale: np.ndarray, weight: np.ndarray):
         """Return a solver of the joint Hessian over (β, v), in that order."""
-        if self.diagonal is None:
+        if not self.blocked:
             return Factor(self._joint_hessian(scale, weight)).solve
-        X, p, k = self.X, self.p, len(self.diagonal)
+        X, p, k = self.X, self.p, self.head
         weighted = X * weight[:, None]
         side = scale[:, None] * self.z_t_dot(weighted)
         blocks = self._blocks(weight, scale)
@@ -252,37 +264,22 @@ class ScaledCross:
     """ZᵀWZ of one problem for a fixed W: factor I + S ZᵀWZ S for many S (one per θ)."""
 
     def __init__(self, modes: ConditionalModes, weight: np.ndarray):
-        ones = np.ones(modes.q)
-        self.blocked = modes.diagonal is not None
-        if self.blocked:
-            raw = modes._blocks(weight, ones)
-            self.k, self.c = modes.head, modes.level_width
-            self.counts = raw.pivots - (1 if self.c == 1 else np.eye(self.c))
-            self.coupling = raw.coupling
-            self.cross = raw.rest - np.eye(raw.rest.shape[0])
-        else:
-            self.matrix, self.eye = modes._weighted_cross(weight, ones), modes._eye()
+        self.modes = modes
+        self.raw = modes._raw_blocks(weight) if modes.blocked else modes._cross(weight)
 
     def factor(self, scale: np.ndarray) -> Factor:
         """Factor I + S ZᵀWZ S for S = diag(*scale*)."""
-        if self.blocked:
-            head, tail = scale[: self.k], scale[self.k :]
-            if self.c == 1:
-                pivots = 1 + head**2 * self.counts
-            else:
-                shaped = head.reshape(-1, self.c)
-                pivots = np.eye(self.c) + shaped[:, :, None] * self.counts * shaped[:, None, :]
-            return Factor(
-                Blocks(
-                    pivots,
-                    head[:, None] * self.coupling * tail[None, :],
-                    np.eye(len(tail)) + tail[:, None] * self.cross * tail[None, :],
-                )
-            )
-        if sparse.issparse(self.matrix):
-            diagonal = sparse.diags_array(scale)
-            return Factor(self.eye + diagonal @ self.matrix @ diagonal)
-        return Factor(self.eye + scale[:, None] * self.matrix * scale[None, :])
+        if self.modes.blocked:
+            return Factor(self.modes._scale_blocks(self.raw, scale))
+        return Factor(self.modes._eye() + _scaled(self.raw, scale))
+
+
+def _scaled(cross, scale: np.ndarray):
+    """Return S cross S for S = diag(*scale*), cross dense or sparse."""
+    if sparse.issparse(cross):
+        diagonal = sparse.diags_array(scale)
+        return diagonal @ cross @ diagonal
+    return scale[:, None] * cross * scale[None, :]
 
 
 def _newton(evaluate, newton_step, start: np.ndarray):
