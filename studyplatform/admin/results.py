@@ -6,17 +6,15 @@ from django.urls import path
 
 from analysis import TidyFormatError, results_json
 from studyplatform.admin.forms import ResultsForm
-from studyplatform.lib.signed import signed_videos
+from studyplatform.lib.signed import signed_summary
 from studyplatform.models import Block, Question, Study
 from studyplatform.results import StudyResults, analyse_study, figure_images, report_archive
 
 
 def _signed_summary(study: Study) -> dict[str, float] | None:
     """Return how many signed answers the "everything" zip carries, and their MB."""
-    found = list(signed_videos(study))
-    if not found:
-        return None
-    return {"count": len(found), "mb": sum(v.size for v in found) / 1e6}
+    count, size = signed_summary(study)
+    return {"count": count, "mb": size / 1e6} if count else None
 
 
 class StudyResultsMixin:

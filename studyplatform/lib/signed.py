@@ -47,19 +47,31 @@ class SignedVideo:
     size: int
 
 
-def signed_videos(study: Study) -> Iterator[SignedVideo]:
-    """Yield every signed answer of *study*'s participants that is on disk (once per file)."""
-    seen = set()
+def _on_disk(study: Study) -> Iterator[tuple[Response, str, int]]:
+    """Yield each signed answer of *study* whose file is on disk: response, path, size."""
     responses = Response.objects.filter(participant__study=study).exclude(video="")
     for response in responses.order_by("pk").iterator():
         try:
             path = response.video.path
-            size = os.path.getsize(path)
+            yield response, path, os.path.getsize(path)
         except (FileNotFoundError, NotImplementedError):
             continue
+
+
+def signed_videos(study: Study) -> Iterator[SignedVideo]:
+    """Yield every signed answer of *study*'s participants that is on disk (once per file)."""
+    seen = set()
+    for response, path, size in _on_disk(study):
         digest = video_digest(response)
         if digest in seen:
             continue
         seen.add(digest)
         extension = os.path.splitext(response.video.name)[1]
         yield SignedVideo(path, f"{ZIP_FOLDER}/{digest}{extension}", size)
+
+
+def signed_summary(study: Study) -> tuple[int, int]:
+    """Return how many signed answers the study has on disk and their bytes, without
+    reading the files (the zip leaves out a file identical to another, if any)."""
+    found = [size for _, _, size in _on_disk(study)]
+    return len(found), sum(found)

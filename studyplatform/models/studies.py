@@ -212,6 +212,10 @@ class Study(models.Model):
         Read once per instance: the admin asks for every inline row's permissions, and a
         page is one instance's view (check_unlocked reads the database afresh).
         """
+        return self.count_real_participants()
+
+    def count_real_participants(self) -> int:
+        """Count the participants (pilots aside) in the database now."""
         if self.pk is None:
             return 0
         return self.participants.filter(is_pilot=False).count()
@@ -238,7 +242,7 @@ def check_unlocked(study: Study | None) -> None:
             f"“{study.title}” is {study.get_status_display().lower()}: its design is locked. "
             "Make a new version of the study to change it."
         )
-    taken = Study(pk=study.pk).real_participants
+    taken = study.count_real_participants()
     if taken:
         raise ValidationError(
             f"“{study.title}” has been taken by {taken} participant"
