@@ -6,6 +6,7 @@ from django.core.exceptions import ValidationError
 from studyplatform.lib import strict_json
 from studyplatform.lib.bundle import BundleRejected, read_bundle
 from studyplatform.models import Study, Trial
+from studyplatform.models.studies import participants_have
 
 
 class StudyForm(forms.ModelForm):
@@ -19,11 +20,10 @@ class StudyForm(forms.ModelForm):
         cleaned = super().clean()
         study = self.instance
         backward = cleaned.get("status") in (Study.Status.DRAFT, Study.Status.PILOT)
-        if study.pk and backward and study.real_participants:
-            taken = study.real_participants
+        if backward and study.real_participants:
             self.add_error(
                 "status",
-                f"{taken} participant{'s have' if taken != 1 else ' has'} taken this study "
+                f"{participants_have(study.real_participants)} taken this study "
                 "(pilots aside), so it cannot go back to draft or pilot: their answers refer "
                 "to its design. Close it, or make a new version of the study to change it.",
             )

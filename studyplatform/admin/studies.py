@@ -328,9 +328,9 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
             )
             # A definition carries no participants: it arrives as a draft to pilot and
             # open, and named apart from a study of the same title the researcher has.
-            title = None
             mine = Study.objects.filter(owner=request.user, title=original)
-            if isinstance(original, str) and mine.exists():
+            title = None
+            if isinstance(original, str) and mine.exists():  # the query runs only here
                 title = f"{original} (imported)"[:200]
             try:
                 result = do_import_study(

@@ -201,9 +201,7 @@ class Study(models.Model):
         if self.status in {self.Status.OPEN, self.Status.CLOSED}:
             return f"the study is {self.get_status_display().lower()}"
         taken = self.real_participants
-        if taken:
-            return f"{taken} participant{'s have' if taken != 1 else ' has'} taken it"
-        return ""
+        return f"{participants_have(taken)} taken it" if taken else ""
 
     @cached_property
     def real_participants(self) -> int:
@@ -224,6 +222,11 @@ class Study(models.Model):
     def is_accepting_participants(self) -> bool:
         """Return whether the participant link works (pilot or open)."""
         return self.status in {self.Status.PILOT, self.Status.OPEN}
+
+
+def participants_have(count: int) -> str:
+    """Return "1 participant has" or "N participants have"."""
+    return f"{count} participant{'s have' if count != 1 else ' has'}"
 
 
 def check_unlocked(study: Study | None) -> None:
