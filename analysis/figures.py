@@ -1,5 +1,6 @@
 """Draw the report's figures with matplotlib (no display needed)."""
 
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -28,27 +29,49 @@ def _save(figure, out_dir: Path, name: str, formats: tuple[str, ...]) -> list[st
     return written
 
 
-def condition_rates_figure(report: Report, out_dir: Path, formats=("png", "pdf")) -> list[str]:
-    """Bar chart of per-participant win rates, mean ± SEM (seed 000 Fig. 5.4)."""
-    if report.pairwise is None:
-        return []
+def _wrapped(name: str, width: int = 14) -> str:
+    """Break a long condition or item name onto lines, so tick labels keep apart."""
+    return textwrap.fill(name, width, break_long_words=False) or name
+
+
+def _tick_labels(axes, names: list[str], width_in: float) -> None:
+    """Label the x ticks: wrapped side by side where they fit, else upright on one line."""
+    wrapped = [_wrapped(name) for name in names]
+    longest = max((max(len(line) for line in n.split("\n")) for n in wrapped), default=0)
+    # About 0.09 in a character at 9 pt; a row of labels gets 80 % of the width.
+    if longest * 0.09 * len(names) <= 0.8 * width_in:
+        axes.set_xticks(range(len(names)), wrapped, fontsize=9)
+    else:
+        axes.set_xticks(range(len(names)), names, rotation=90, fontsize=9)
+
+
+def condition_rates_plot(report: Report):
+    """Draw the bar chart of per-participant win rates, mean ± SEM (seed 000 Fig. 5.4)."""
     plt = _pyplot()
     conditions = report.pairwise.conditions
-    figure, axes = plt.subplots(figsize=(5.5, 3.6))
+    width = max(5.5, 1.3 * len(conditions) + 1.5)
+    figure, axes = plt.subplots(figsize=(width, 3.8))
     means = [100 * c.mean_participant_rate for c in conditions]
     errors = [100 * c.sem if np.isfinite(c.sem) else 0 for c in conditions]
-    axes.bar([c.condition for c in conditions], means, yerr=errors, capsize=4, color="#4a7ab5")
+    axes.bar(range(len(conditions)), means, yerr=errors, capsize=4, color="#4a7ab5")
+    _tick_labels(axes, [c.condition for c in conditions], width)
     axes.set_ylabel("Win rate: chosen / shown (%)")
     axes.set_title("Win rate per condition, mean ± SEM over participants", fontsize=10)
     axes.axhline(50, color="grey", linewidth=0.8, linestyle="--")
     axes.set_ylim(0, 100)
-    return _save(figure, out_dir, "condition_rates", formats)
+    figure.tight_layout()
+    return figure
 
 
-def pairwise_matrix_figure(report: Report, out_dir: Path, formats=("png", "pdf")) -> list[str]:
-    """Heat map: row condition's share of decisive judgements against column condition."""
+def condition_rates_figure(report: Report, out_dir: Path, formats=("png", "pdf")) -> list[str]:
+    """Save :func:`condition_rates_plot` as condition_rates.<format>."""
     if report.pairwise is None:
         return []
+    return _save(condition_rates_plot(report), out_dir, "condition_rates", formats)
+
+
+def pairwise_matrix_plot(report: Report):
+    """Draw the heat map: row condition's share of decisive judgements against column."""
     plt = _pyplot()
     names = [c.condition for c in report.pairwise.conditions]
     index = {name: i for i, name in enumerate(names)}
@@ -57,41 +80,74 @@ def pairwise_matrix_figure(report: Report, out_dir: Path, formats=("png", "pdf")
         if pair.nobs:
             matrix[index[pair.a], index[pair.b]] = 100 * pair.a_wins / pair.nobs
             matrix[index[pair.b], index[pair.a]] = 100 * pair.b_wins / pair.nobs
-    figure, axes = plt.subplots(figsize=(1.2 * len(names) + 2, 1.0 * len(names) + 1.5))
+    figure, axes = plt.subplots(figsize=(1.2 * len(names) + 3, 1.0 * len(names) + 2))
     image = axes.imshow(matrix, cmap="RdBu", vmin=0, vmax=100)
-    axes.set_xticks(range(len(names)), names, rotation=30, ha="right")
-    axes.set_yticks(range(len(names)), names)
+    # Labels stay on one line (wrapped, a row's would run into the next), columns' upright.
+    axes.set_xticks(range(len(names)), names, rotation=90, fontsize=9)
+    axes.set_yticks(range(len(names)), names, fontsize=9)
     for (row, column), value in np.ndenumerate(matrix):
         if np.isfinite(value):
             axes.text(column, row, f"{value:.0f} %", ha="center", va="center", fontsize=9)
     axes.set_xlabel("against")
     axes.set_ylabel("chosen")
     figure.colorbar(image, ax=axes, label="% of decisive judgements")
-    return _save(figure, out_dir, "pairwise_matrix", formats)
+    return figure
 
 
-def ratings_figure(report: Report, frame, out_dir: Path, formats=("png", "pdf")) -> list[str]:
-    """Tukey box plots of ratings per item, one panel per question (seed 003 Fig. 17)."""
+def pairwise_matrix_figure(report: Report, out_dir: Path, formats=("png", "pdf")) -> list[str]:
+    """Save :func:`pairwise_matrix_plot` as pairwise_matrix.<format>."""
+    if report.pairwise is None:
+        return []
+    return _save(pairwise_matrix_plot(report), out_dir, "pairwise_matrix", formats)
+
+
+def ratings_plot(frame):
+    """Draw Tukey box plots of ratings per item, one panel per question (seed 003 Fig. 17);
+    each item's conditions side by side in their own colour, named in the legend."""
     from analysis.ratings import rating_rows
 
     rows = rating_rows(frame)
     if rows.empty:
-        return []
+        return None
     plt = _pyplot()
     questions = sorted(rows["question"].unique())
+    conditions = sorted(rows["condition_a"].unique())
+    items = sorted(rows["item"].unique())
+    panel = max(3.2, 0.35 * len(items) * len(conditions) + 1)
     figure, axes = plt.subplots(
-        1, len(questions), figsize=(3.2 * len(questions) + 1, 3.4), squeeze=False
-    )
+        1, len(questions), figsize=(panel * len(questions) + 1, 3.8), squeeze=False,
+        layout="constrained",
+    )  # fmt: skip
+    colours = plt.get_cmap("tab10").colors
+    step = 0.8 / len(conditions)
     for axis, question in zip(axes[0], questions, strict=True):
         subset = rows[rows["question"] == question]
-        groups = sorted(subset.groupby(["item", "condition_a"]).groups)
-        data = [
-            subset[(subset["item"] == i) & (subset["condition_a"] == c)]["rating"].to_numpy()
-            for i, c in groups
-        ]
-        labels = [i if subset["condition_a"].nunique() == 1 else f"{i}\n{c}" for i, c in groups]
-        axis.boxplot(data, whis=1.5, tick_labels=labels)  # Tukey: whiskers at 1.5 IQR
+        for k, condition in enumerate(conditions):
+            mine = subset[subset["condition_a"] == condition]
+            present = [i for i, item in enumerate(items) if (mine["item"] == item).any()]
+            if not present:
+                continue
+            data = [mine[mine["item"] == items[i]]["rating"].to_numpy() for i in present]
+            offset = (k - (len(conditions) - 1) / 2) * step
+            # Tukey box plots: whiskers at 1.5 IQR.
+            parts = axis.boxplot(
+                data, positions=[i + offset for i in present], widths=0.9 * step,
+                whis=1.5, patch_artist=True, manage_ticks=False,
+            )  # fmt: skip
+            for box in parts["boxes"]:
+                box.set(facecolor=colours[k % len(colours)], alpha=0.6)
+            parts["boxes"][0].set_label(condition)
+        _tick_labels(axis, list(items), panel)
         axis.set_title(question, fontsize=10)
-        axis.tick_params(axis="x", labelsize=8)
     axes[0][0].set_ylabel("Rating")
+    if len(conditions) > 1:
+        figure.legend(loc="outside lower center", ncols=min(len(conditions), 4), fontsize=9)
+    return figure
+
+
+def ratings_figure(report: Report, frame, out_dir: Path, formats=("png", "pdf")) -> list[str]:
+    """Save :func:`ratings_plot` as ratings_boxplots.<format>."""
+    figure = ratings_plot(frame)
+    if figure is None:
+        return []
     return _save(figure, out_dir, "ratings_boxplots", formats)

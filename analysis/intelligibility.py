@@ -6,6 +6,7 @@ import re
 import numpy as np
 import pandas as pd
 
+from analysis.conditions import SCORE_COLUMNS
 from analysis.results import IntelligibilityScore
 from analysis.tidy import analysed
 
@@ -44,27 +45,39 @@ def word_accuracy(answer: str, target: str, fuzzy: bool = True) -> float:
     return found / len(wanted)
 
 
-def score_intelligibility(
-    frame: pd.DataFrame, fuzzy: bool = True
-) -> tuple[IntelligibilityScore, ...]:
-    """Score text rows that have a target and average per condition × item.
+def accuracy_scores(frame: pd.DataFrame, fuzzy: bool = True) -> pd.DataFrame:
+    """Return each scored answer's accuracy as a long score table (measure "accuracy").
 
-    The target is the ``target`` column when the table has one, else nothing: open
-    answers without a target are not scored.
+    Text rows with a ``target`` are scored; open answers without one are not.
     """
+    columns = list(SCORE_COLUMNS)
     if "target" not in frame.columns:
-        return ()
+        return pd.DataFrame(columns=columns)
     rows = frame[frame["kind"].eq("text") & frame["target"].ne("") & analysed(frame)]
-    if rows.empty:
-        return ()
     accuracy = [
         word_accuracy(answer, target, fuzzy)
         for answer, target in zip(rows["text"], rows["target"], strict=True)
     ]
-    scored = rows.assign(accuracy=accuracy)
+    return pd.DataFrame(
+        {
+            "measure": "accuracy",
+            "participant": rows["participant"].to_numpy(),
+            "item": rows["item"].to_numpy(),
+            "condition": rows["condition_a"].to_numpy(),
+            "score": np.asarray(accuracy, float),
+        },
+        columns=columns,
+    )
+
+
+def score_intelligibility(
+    frame: pd.DataFrame, fuzzy: bool = True
+) -> tuple[IntelligibilityScore, ...]:
+    """Average the answers' accuracy (:func:`accuracy_scores`) per condition × item."""
+    scored = accuracy_scores(frame, fuzzy)
     result = []
-    for (condition, item), group in scored.groupby(["condition_a", "item"], sort=True):
-        values = group["accuracy"].dropna()
+    for (condition, item), group in scored.groupby(["condition", "item"], sort=True):
+        values = group["score"].dropna()
         n = len(values)
         result.append(
             IntelligibilityScore(

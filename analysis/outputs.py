@@ -10,6 +10,25 @@ from analysis.report import Report, results_json
 from analysis.results import format_p
 
 
+def _split_ci(rows: list[dict]) -> pd.DataFrame:
+    """Return *rows* as a table whose ``ci`` pair becomes ``ci_low`` and ``ci_high``."""
+    split = []
+    for row in rows:
+        cells = {}
+        for key, value in row.items():
+            if key == "ci":
+                cells["ci_low"], cells["ci_high"] = value
+            else:
+                cells[key] = value
+        split.append(cells)
+    return pd.DataFrame(split)
+
+
+def _summaries(rows: list[dict]) -> pd.DataFrame:
+    """Return per-condition summaries across items, participants named as such."""
+    return _split_ci(rows).rename(columns={"n": "answers", "nobs": "participants"})
+
+
 def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
     """Return the report's tables as data frames, by file name stem.
 
@@ -23,11 +42,24 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
         found["items"] = pd.DataFrame(pairwise["items"])
         found["conditions"] = pd.DataFrame(pairwise["conditions"])
         if pairwise["posthoc"]:
-            found["posthoc"] = pd.DataFrame(pairwise["posthoc"]).drop(columns=["ci", "apa"])
-    if data["ratings"]:
-        found["ratings"] = pd.DataFrame(data["ratings"])
-    if data["rating_comparisons"]:
-        found["rating_comparisons"] = pd.DataFrame(data["rating_comparisons"])
+            found["posthoc"] = _split_ci(pairwise["posthoc"])
+        if pairwise["wilcoxon"]:
+            found["wilcoxon"] = pd.DataFrame(pairwise["wilcoxon"]).rename(
+                columns={"statistic": "W", "pvalue": "p", "pvalue_adjusted": "p_adjusted",
+                         "nobs": "n"}
+            )  # fmt: skip
+    lists = (
+        ("ratings", pd.DataFrame),
+        ("rating_conditions", _summaries),
+        ("rating_comparisons", _split_ci),
+        ("rating_condition_comparisons", _split_ci),
+        ("intelligibility", pd.DataFrame),
+        ("intelligibility_conditions", _summaries),
+        ("intelligibility_comparisons", _split_ci),
+    )
+    for name, build in lists:
+        if data.get(name):
+            found[name] = build(data[name])
     if data.get("comparative"):
         found["comparative"] = pd.DataFrame(
             [
@@ -43,12 +75,11 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
                     "rank_biserial": c["rank_biserial"],
                     "participants": c["nobs"],
                     "judgements": c["judgements"],
+                    "apa": c["apa"],
                 }
                 for c in data["comparative"]
             ]
         )
-    if data["intelligibility"]:
-        found["intelligibility"] = pd.DataFrame(data["intelligibility"])
     found.update(mixed_tables(data.get("mixed_models")))
     if data.get("quality"):
         found["quality"] = pd.DataFrame(data["quality"])
@@ -57,7 +88,20 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
         found["excluded"] = pd.DataFrame(
             [{"participant": who, "reasons": "; ".join(why)} for who, why in excluded.items()]
         )
-    return found
+    return {name: _numbers(frame) for name, frame in found.items()}
+
+
+def _numbers(frame: pd.DataFrame) -> pd.DataFrame:
+    """Return *frame* with its number columns typed as numbers: a statistic that was not
+    computed (None in results.json) is missing, printed "–", never "None"."""
+    typed = {}
+    for column in frame.columns:
+        values = frame[column].dropna()
+        if frame[column].dtype == object and all(
+            isinstance(v, int | float) and not isinstance(v, bool) for v in values
+        ):
+            typed[column] = pd.to_numeric(frame[column], errors="coerce").astype(float)
+    return frame.assign(**typed) if typed else frame
 
 
 def _mixed_models(mixed: dict | None) -> list[dict]:
@@ -142,9 +186,16 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
 
 def _latex(frame: pd.DataFrame, name: str) -> str:
     """Return a booktabs table (pandas writes \\toprule, \\midrule and \\bottomrule)."""
+    # An APA sentence is set as a paragraph column, so the table keeps to the page.
+    column_format = "".join(
+        "p{6cm}" if c == "apa" else "r" if pd.api.types.is_numeric_dtype(frame[c]) else "l"
+        for c in frame.columns
+    )
     latex = frame.to_latex(
         index=False,
+        column_format=column_format,
         float_format=lambda value: f"{value:.4g}",
+        na_rep="--",
         caption=name.replace("_", " ").capitalize(),
         label=f"tab:{name}",
         escape=True,
@@ -169,7 +220,10 @@ def write_report(
     for name, table in tables(report, data).items():
         table.to_csv(out / f"{name}.csv", index=False)
         (out / f"{name}.tex").write_text(_latex(table, name))
-        (out / f"{name}.md").write_text(table.to_markdown(index=False, floatfmt=".4g") + "\n")
+        # tabulate writes its missing value for None only, never for NaN.
+        cells = table.astype(object).where(table.notna(), None)
+        markdown = cells.to_markdown(index=False, floatfmt=".4g", missingval="–")
+        (out / f"{name}.md").write_text(markdown + "\n")
         table_files[name] = table
         written += [f"{name}.csv", f"{name}.tex", f"{name}.md"]
     figure_files = []
@@ -206,8 +260,9 @@ def render_html(report: Report, data: dict, table_files: dict, figure_files: lis
     return template.render(
         report=report,
         data=data,
+        # APA sentences are listed under their table, not squeezed into a column.
         tables={
-            name: frame.to_html(
+            name: frame.drop(columns=["apa"], errors="ignore").to_html(
                 index=False, border=0, float_format=lambda v: f"{v:.4g}", na_rep="–"
             )
             for name, frame in table_files.items()

@@ -6,6 +6,7 @@ from itertools import combinations
 import numpy as np
 import pandas as pd
 
+from analysis.conditions import SCORE_COLUMNS
 from analysis.results import RatingComparison, RatingSummary
 from analysis.tidy import analysed
 from analysis.within import adjust, paired_ttest, wilcoxon_test
@@ -16,6 +17,21 @@ GROUP = ["item", "condition_a", "question"]
 def rating_rows(frame: pd.DataFrame) -> pd.DataFrame:
     """Return the rating rows that enter the analysis (no practice or attention checks)."""
     return frame[frame["kind"].eq("rating") & analysed(frame)]
+
+
+def rating_scores(frame: pd.DataFrame) -> pd.DataFrame:
+    """Return the analysed ratings as a long score table (measure: the question's key)."""
+    rows = rating_rows(frame)
+    return pd.DataFrame(
+        {
+            "measure": rows["question"].to_numpy(),
+            "participant": rows["participant"].to_numpy(),
+            "item": rows["item"].to_numpy(),
+            "condition": rows["condition_a"].to_numpy(),
+            "score": rows["rating"].to_numpy(float),
+        },
+        columns=list(SCORE_COLUMNS),
+    )
 
 
 def summarize_ratings(frame: pd.DataFrame) -> tuple[RatingSummary, ...]:

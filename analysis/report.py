@@ -9,15 +9,18 @@ from typing import Any
 import pandas as pd
 
 from analysis.comparative import compare_preferences
+from analysis.conditions import compare_conditions, summarize_conditions
 from analysis.exclusions import ExclusionRules, apply_exclusions
-from analysis.intelligibility import score_intelligibility
+from analysis.intelligibility import accuracy_scores, score_intelligibility
 from analysis.mixed.results import MixedModels
 from analysis.mixed.section import fit_mixed_models
 from analysis.pairwise import analyze_pairwise
 from analysis.quality import ParticipantQuality, summarize_quality
-from analysis.ratings import compare_ratings, summarize_ratings
+from analysis.ratings import compare_ratings, rating_scores, summarize_ratings
 from analysis.results import (
     ComparativePreference,
+    ConditionComparison,
+    ConditionSummary,
     ExclusionReport,
     IntelligibilityScore,
     PairwiseAnalysis,
@@ -27,7 +30,10 @@ from analysis.results import (
     plain,
 )
 from analysis.tidy import (
+    analysed,
     check_conditions,
+    condition_keys,
+    label_conditions,
     label_simulated,
     simulated_conditions,
     with_simulated_labels,
@@ -69,6 +75,11 @@ class Report(Result):
     quality: tuple[ParticipantQuality, ...] = ()
     # Comparative-scale preferences per pair of conditions (signed-rank tests).
     comparative: tuple[ComparativePreference, ...] = ()
+    # Each condition across items, on participants' means, and paired tests between them.
+    rating_conditions: tuple[ConditionSummary, ...] = ()
+    rating_condition_comparisons: tuple[ConditionComparison, ...] = ()
+    intelligibility_conditions: tuple[ConditionSummary, ...] = ()
+    intelligibility_comparisons: tuple[ConditionComparison, ...] = ()
 
 
 def software_versions() -> dict[str, str]:
@@ -81,12 +92,16 @@ def software_versions() -> dict[str, str]:
 
 def _design(frame: pd.DataFrame) -> dict[str, Any]:
     conditions = sorted((set(frame["condition_a"]) | set(frame["condition_b"])) - {""})
+    tested = frame[analysed(frame)]
     return {
         "participants": int(frame["participant"].nunique()),
         "rows": len(frame),
         "rows_by_kind": {k: int(v) for k, v in frame["kind"].value_counts().sort_index().items()},
         "conditions": conditions,
-        "items": sorted(set(frame["item"]) - {""}),
+        "condition_keys": condition_keys(frame),
+        # Practice and attention-check pages are not the study's items.
+        "items": sorted(set(tested["item"]) - {""}),
+        "practice_items": sorted(set(frame["item"]) - set(tested["item"]) - {""}),
         "questions": sorted(set(frame.loc[frame["kind"] == "rating", "question"]) - {""}),
         "simulated_conditions": simulated_conditions(frame),
     }
@@ -97,10 +112,11 @@ def build_report(
 ) -> Report:
     """Apply the exclusions, then run the pairwise, rating and intelligibility analyses.
 
-    Simulated conditions are named ``"<key> (simulated)"`` throughout (the table from
+    Conditions are named by their labels where the table has them, and simulated ones
+    ``"<name> (simulated)"``, throughout (the table from
     :func:`~analysis.tidy.check_responses` names them so); *options* may list their keys.
     """
-    frame = label_simulated(frame)
+    frame = label_simulated(label_conditions(frame))
     if options.conditions:
         options = dataclasses.replace(
             options, conditions=with_simulated_labels(options.conditions, frame)
@@ -108,6 +124,7 @@ def build_report(
         check_conditions(frame, options.conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
     pairwise = ratings = comparisons = scores = mixed = preferences = None
+    across: dict[str, tuple] = {}
     if not kept.empty:
         pairwise = analyze_pairwise(
             kept,
@@ -119,6 +136,14 @@ def build_report(
         ratings = summarize_ratings(kept)
         comparisons = compare_ratings(kept, options.correction)
         scores = score_intelligibility(kept, options.fuzzy_scoring)
+        for name, long in (
+            ("rating", rating_scores(kept)),
+            ("intelligibility", accuracy_scores(kept, options.fuzzy_scoring)),
+        ):
+            across[name] = (
+                summarize_conditions(long),
+                compare_conditions(long, options.correction),
+            )
         preferences = compare_preferences(
             kept, options.conditions, options.comparative_points, options.correction
         )
@@ -144,6 +169,10 @@ def build_report(
         mixed=mixed,
         quality=summarize_quality(frame),
         comparative=preferences or (),
+        rating_conditions=across.get("rating", ((), ()))[0],
+        rating_condition_comparisons=across.get("rating", ((), ()))[1],
+        intelligibility_conditions=across.get("intelligibility", ((), ()))[0],
+        intelligibility_comparisons=across.get("intelligibility", ((), ()))[1],
     )
 
 
@@ -178,23 +207,16 @@ def results_json(report: Report) -> dict[str, Any]:
         "pairwise": None,
         "ratings": [r.to_dict() for r in report.ratings],
         "rating_comparisons": [
-            {
-                "item": c.item,
-                "question": c.question,
-                "a": c.a,
-                "b": c.b,
-                "n": c.nobs,
-                "wilcoxon_W": c.wilcoxon.statistic,
-                "wilcoxon_p": c.wilcoxon.pvalue,
-                "wilcoxon_p_adjusted": c.wilcoxon.pvalue_adjusted,
-                "rank_biserial": c.wilcoxon.rank_biserial,
-                "t": c.ttest.statistic,
-                "df": c.ttest.df,
-                "t_p": c.ttest.pvalue,
-                "t_p_adjusted": c.ttest.pvalue_adjusted,
-                "dz": c.ttest.dz,
-            }
+            {"item": c.item, "question": c.question, **_paired_json(c)}
             for c in report.rating_comparisons
+        ],
+        "rating_conditions": [s.to_dict() for s in report.rating_conditions],
+        "rating_condition_comparisons": [
+            {"measure": c.measure, **_paired_json(c)} for c in report.rating_condition_comparisons
+        ],
+        "intelligibility_conditions": [s.to_dict() for s in report.intelligibility_conditions],
+        "intelligibility_comparisons": [
+            {"measure": c.measure, **_paired_json(c)} for c in report.intelligibility_comparisons
         ],
         "intelligibility": [s.to_dict() for s in report.intelligibility],
         "comparative": [{**c.to_dict(), "apa": c.apa()} for c in report.comparative],
@@ -247,7 +269,6 @@ def results_json(report: Report) -> dict[str, Any]:
                     "t": t.statistic,
                     "df": t.df,
                     "p": t.pvalue,
-                    f"p_{correction}": t.pvalue_adjusted,
                     "p_adjusted": t.pvalue_adjusted,
                     "dz": t.dz,
                     "mean_difference": t.mean_difference,
@@ -257,7 +278,7 @@ def results_json(report: Report) -> dict[str, Any]:
                 for t in pairwise.posthoc
             ],
             "friedman": None if pairwise.friedman is None else pairwise.friedman.to_dict(),
-            "wilcoxon": [w.to_dict() for w in pairwise.wilcoxon],
+            "wilcoxon": [{**w.to_dict(), "apa": w.apa()} for w in pairwise.wilcoxon],
             "bradley_terry": None
             if pairwise.bradley_terry is None
             else pairwise.bradley_terry.to_dict(),
@@ -266,6 +287,27 @@ def results_json(report: Report) -> dict[str, Any]:
             else {**pairwise.position_bias.to_dict(), "apa": pairwise.position_bias.apa()},
         }
     return plain(data)
+
+
+def _paired_json(c: RatingComparison | ConditionComparison) -> dict[str, Any]:
+    """Render two conditions' paired t and Wilcoxon tests (rating_comparisons' columns)."""
+    return {
+        "a": c.a,
+        "b": c.b,
+        "n": c.nobs,
+        "mean_difference": c.ttest.mean_difference,
+        "ci": list(c.ttest.ci),
+        "t": c.ttest.statistic,
+        "df": c.ttest.df,
+        "t_p": c.ttest.pvalue,
+        "t_p_adjusted": c.ttest.pvalue_adjusted,
+        "dz": c.ttest.dz,
+        "wilcoxon_W": c.wilcoxon.statistic,
+        "wilcoxon_p": c.wilcoxon.pvalue,
+        "wilcoxon_p_adjusted": c.wilcoxon.pvalue_adjusted,
+        "rank_biserial": c.wilcoxon.rank_biserial,
+        "apa": c.apa(),
+    }
 
 
 def _model_json(result) -> dict[str, Any]:

@@ -49,6 +49,18 @@ def _two(value: float) -> str:
     return f"{value:.2f}".replace("-0.00", "0.00")
 
 
+def _finite(*values: float | None) -> bool:
+    return all(v is not None and math.isfinite(v) for v in values)
+
+
+def ci_text(ci: tuple[float, float], digits: int = 2) -> str:
+    """Format a 95 % CI as "95 % CI a to b", or say it was not computed (n < 2)."""
+    if not _finite(*ci):
+        return "95 % CI not computed"
+    low, high = (f"{v:.{digits}f}".replace(f"-{0:.{digits}f}", f"{0:.{digits}f}") for v in ci)
+    return f"95 % CI {low} to {high}"
+
+
 def _df(value: float) -> str:
     return f"{value:g}" if float(value).is_integer() else f"{value:.2f}"
 
@@ -145,8 +157,11 @@ class PairedTTest(Result):
     nobs: int
 
     def apa(self) -> str:
+        if not _finite(self.statistic):
+            return f"{self.a} vs {self.b}: t not computed (n = {self.nobs}, or no variation)"
         return (
-            f"{self.a} vs {self.b}: t({self.df}) = {self.statistic:.2f}, "
+            f"{self.a} vs {self.b}: M_diff = {_two(self.mean_difference)} ({ci_text(self.ci)}), "
+            f"t({self.df}) = {self.statistic:.2f}, "
             f"{format_p(self.pvalue)} ({format_p(self.pvalue_adjusted).replace('p', 'p_adj', 1)}),"
             f" d_z = {_two(self.dz)}"
         )
@@ -182,9 +197,12 @@ class WilcoxonTest(Result):
     nobs: int
 
     def apa(self) -> str:
+        if not _finite(self.statistic):
+            return f"{self.a} vs {self.b}: W not computed (n = {self.nobs}; needs 2 or more)"
         return (
-            f"{self.a} vs {self.b}: W = {self.statistic:g}, {format_p(self.pvalue)}, "
-            f"r = {_two(self.rank_biserial)}"
+            f"{self.a} vs {self.b}: W = {self.statistic:g}, {format_p(self.pvalue)} "
+            f"({format_p(self.pvalue_adjusted).replace('p', 'p_adj', 1)}), "
+            f"r = {_two(self.rank_biserial)}, n = {self.nobs}"
         )
 
 
@@ -277,6 +295,47 @@ class RatingComparison(Result):
     wilcoxon: WilcoxonTest
     ttest: PairedTTest
 
+    def apa(self) -> str:
+        return f"{self.item}, {self.question}: {self.ttest.apa()}; {self.wilcoxon.apa()}"
+
+
+@dataclasses.dataclass(frozen=True)
+class ConditionSummary(Result):
+    """One condition on one measure across items: participants' means, then their mean.
+
+    *measure* is a rating question's key or ``"accuracy"`` (intelligibility); *n* the
+    answers, *nobs* the participants; *sd*, *sem* and the t-based *ci* are over the
+    participants' means, the median and quartiles over the answers.
+    """
+
+    measure: str
+    condition: str
+    n: int
+    nobs: int
+    items: int
+    mean: float
+    sd: float
+    sem: float
+    ci: tuple[float, float]
+    median: float
+    q1: float
+    q3: float
+
+
+@dataclasses.dataclass(frozen=True)
+class ConditionComparison(Result):
+    """Two conditions compared on participants' means across items (paired tests)."""
+
+    measure: str
+    a: str
+    b: str
+    nobs: int
+    wilcoxon: WilcoxonTest
+    ttest: PairedTTest
+
+    def apa(self) -> str:
+        return f"{self.measure}: {self.ttest.apa()}; {self.wilcoxon.apa()}"
+
 
 @dataclasses.dataclass(frozen=True)
 class ComparativePreference(Result):
@@ -303,10 +362,15 @@ class ComparativePreference(Result):
         return dataclasses.replace(self, pvalue_adjusted=float(pvalue))
 
     def apa(self) -> str:
-        return (
-            f"{self.a} vs {self.b}: M = {self.mean_preference:.2f} points toward {self.a} "
-            f"(95 % CI {self.ci[0]:.2f} to {self.ci[1]:.2f}), W = {self.statistic:g}, "
-            f"{format_p(self.pvalue)}, r = {_two(self.rank_biserial)}, n = {self.nobs}"
+        text = (
+            f"{self.a} vs {self.b}: M = {_two(self.mean_preference)} points toward {self.a} "
+            f"({ci_text(self.ci)}), "
+        )
+        if not _finite(self.statistic):
+            return text + f"W not computed (n = {self.nobs}; needs 2 or more)"
+        return text + (
+            f"W = {self.statistic:g}, {format_p(self.pvalue)}, "
+            f"r = {_two(self.rank_biserial)}, n = {self.nobs}"
         )
 
 

@@ -49,7 +49,18 @@ QUALITY_COLUMNS = (
 # A signed (webcam) answer's file: its SHA-256 (the name it has in the "everything" zip,
 # signed_answers/<sha256>.<ext>) and where its researchers download it.
 SIGNED_COLUMNS = ("video_sha256", "video_url")
-OPTIONAL_COLUMNS = ("target", "condition_simulated", *QUALITY_COLUMNS, *SIGNED_COLUMNS)
+# The name a researcher gave each clip's condition (SignStudy's condition label); the
+# analysis names conditions by them, and keeps the keys in *_key columns.
+LABEL_COLUMNS = {"condition_a": "condition_a_label", "condition_b": "condition_b_label"}
+KEY_COLUMNS = {"condition_a": "condition_a_key", "condition_b": "condition_b_key"}
+OPTIONAL_COLUMNS = (
+    "target",
+    "condition_simulated",
+    *LABEL_COLUMNS.values(),
+    *KEY_COLUMNS.values(),
+    *QUALITY_COLUMNS,
+    *SIGNED_COLUMNS,
+)
 # How a simulated condition is named in every result: a reader must never take a
 # simulated stand-in (e.g. for motion capture) for the real thing.
 SIMULATED_SUFFIX = " (simulated)"
@@ -130,7 +141,7 @@ def check_responses(frame: pd.DataFrame, source: str = "responses") -> pd.DataFr
     _check_flags(frame, source)
     _check_pairwise(frame, source)
     _check_ratings(frame, source)
-    return label_simulated(frame)
+    return label_simulated(label_conditions(frame))
 
 
 def simulated_conditions(frame: pd.DataFrame) -> list[str]:
@@ -138,6 +149,64 @@ def simulated_conditions(frame: pd.DataFrame) -> list[str]:
     if "condition_simulated" not in frame.columns:
         return []
     return sorted({c for cell in frame["condition_simulated"] for c in split_flags(cell)})
+
+
+def condition_labels(frame: pd.DataFrame) -> dict[str, str]:
+    """Return condition key → label from the label columns, where the label can name it.
+
+    A key keeps its name where it has no label, or where its label is another
+    condition's label or key (names must stay one-to-one), or ``none``.
+    """
+    found: dict[str, str] = {}
+    for column, label_column in LABEL_COLUMNS.items():
+        if label_column in frame.columns:
+            for key, label in zip(frame[column], frame[label_column], strict=True):
+                if key and label:
+                    found.setdefault(key, label)
+    keys = set(frame["condition_a"]) | set(frame["condition_b"])
+    names = [found.get(key, key) for key in keys]
+    return {
+        key: label
+        for key, label in found.items()
+        if label != key and label != NO_DIFFERENCE and label not in keys and names.count(label) == 1
+    }
+
+
+def _rename(frame: pd.DataFrame, rename: dict[str, str]) -> pd.DataFrame:
+    """Return *frame* with conditions renamed in the clip, choice and simulated columns."""
+    frame = frame.copy()
+    for column in ("condition_a", "condition_b", "chosen"):
+        frame[column] = frame[column].replace(rename)
+    if "condition_simulated" in frame.columns:
+        frame["condition_simulated"] = frame["condition_simulated"].map(
+            lambda cell: ";".join(rename.get(c, c) for c in split_flags(cell))
+        )
+    return frame
+
+
+def label_conditions(frame: pd.DataFrame) -> pd.DataFrame:
+    """Return *frame* with each condition named by its label (condition_labels), the keys
+    kept in ``condition_a_key`` / ``condition_b_key`` and the label columns dropped.
+
+    The help text of a SignStudy condition's label promises it is the name reports use.
+    """
+    present = [column for column in LABEL_COLUMNS.values() if column in frame.columns]
+    if not present:
+        return frame
+    labels = condition_labels(frame)
+    keys = {KEY_COLUMNS[column]: frame[column] for column in LABEL_COLUMNS}
+    return _rename(frame, labels).drop(columns=present).assign(**keys)
+
+
+def condition_keys(frame: pd.DataFrame) -> dict[str, str]:
+    """Return each condition's name in *frame* → its key, where the two differ."""
+    found = {}
+    for column, key_column in KEY_COLUMNS.items():
+        if key_column in frame.columns:
+            for name, key in zip(frame[column], frame[key_column], strict=True):
+                if name and key and name.removesuffix(SIMULATED_SUFFIX) != key:
+                    found.setdefault(name, key)
+    return dict(sorted(found.items()))
 
 
 def label_simulated(frame: pd.DataFrame) -> pd.DataFrame:
@@ -149,22 +218,16 @@ def label_simulated(frame: pd.DataFrame) -> pd.DataFrame:
     simulated = [c for c in simulated_conditions(frame) if not c.endswith(SIMULATED_SUFFIX)]
     if not simulated:
         return frame
-    rename = {key: key + SIMULATED_SUFFIX for key in simulated}
-    frame = frame.copy()
-    for column in ("condition_a", "condition_b", "chosen"):
-        frame[column] = frame[column].replace(rename)
-    frame["condition_simulated"] = frame["condition_simulated"].map(
-        lambda cell: ";".join(rename.get(c, c) for c in split_flags(cell))
-    )
-    return frame
+    return _rename(frame, {key: key + SIMULATED_SUFFIX for key in simulated})
 
 
 def with_simulated_labels(conditions: Iterable[str], frame: pd.DataFrame) -> tuple[str, ...]:
-    """Return *conditions* (keys) named as the frame names them, simulated ones labelled."""
+    """Return *conditions* (keys or labels) named as the frame names them: by label where
+    the condition has one, simulated ones marked so."""
+    names = {key: name for name, key in condition_keys(frame).items()}
     labelled = set(simulated_conditions(frame))
-    return tuple(
-        c + SIMULATED_SUFFIX if c + SIMULATED_SUFFIX in labelled else c for c in conditions
-    )
+    named = [names.get(c, c) for c in conditions]
+    return tuple(c + SIMULATED_SUFFIX if c + SIMULATED_SUFFIX in labelled else c for c in named)
 
 
 def _check_flags(frame: pd.DataFrame, source: str) -> None:

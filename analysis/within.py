@@ -45,8 +45,13 @@ def paired_ttest(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> Paired
 
 def wilcoxon_test(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> WilcoxonTest:
     """Wilcoxon signed-rank test of a − b; r = (W⁺ − W⁻) / (W⁺ + W⁻) (Kerby 2014)."""
-    difference = np.asarray(a, float) - np.asarray(b, float)
+    # Means of fractions (1/3 + 2/3 …) differ in their last bits: equal values must tie.
+    difference = np.round(np.asarray(a, float) - np.asarray(b, float), 12)
     nonzero = difference[difference != 0]
+    if difference.size < 2:
+        # One participant: W = 0 and r = ±1 would read as an effect; there is no test.
+        nan = float("nan")
+        return WilcoxonTest(names[0], names[1], nan, nan, nan, nan, int(difference.size))
     if nonzero.size == 0:
         return WilcoxonTest(names[0], names[1], 0.0, 1.0, 1.0, 0.0, int(difference.size))
     result = stats.wilcoxon(difference, zero_method="wilcox")

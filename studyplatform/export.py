@@ -4,9 +4,10 @@ One row per participant × trial × question (docs/tidy-format.md). Demographic 
 (choice, number and short-text questions, on whatever page they are asked) become
 participant columns; identifying answers (name, e-mail) are never exported. The
 ``condition_simulated`` column names the row's conditions that are simulated stand-ins,
-so an analysis of the CSV alone labels them too. The quality columns
-(:mod:`studyplatform.lib.quality`) say how each page was taken: its order, times, plays
-and ends of each clip, errors, viewport and device.
+so an analysis of the CSV alone labels them too; ``condition_a_label`` and
+``condition_b_label`` carry the researcher's labels, which reports name conditions by.
+The quality columns (:mod:`studyplatform.lib.quality`) say how each page was taken:
+its order, times, plays and ends of each clip, errors, viewport and device.
 """
 
 import csv
@@ -16,7 +17,7 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
-from analysis.tidy import SIGNED_COLUMNS
+from analysis.tidy import LABEL_COLUMNS, OPTIONAL_COLUMNS, SIGNED_COLUMNS
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.lib.quality import QUALITY_COLUMNS, page_orders, quality_cells, study_quality
 from studyplatform.lib.signed import signed_cells
@@ -75,11 +76,11 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
         if response.trial.is_attention_check and _failed_attention(response, response.trial):
             failed.add(response.participant_id)
     attribute_columns = [q.key for q in demographic_questions]
-    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, "target", *SIGNED_COLUMNS}
+    clash = set(attribute_columns) & {*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS}
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
-    columns = [*REQUIRED_COLUMNS, "target", "condition_simulated", *QUALITY_COLUMNS,
-               *SIGNED_COLUMNS, *attribute_columns]  # fmt: skip
+    columns = [*REQUIRED_COLUMNS, "target", *LABEL_COLUMNS.values(), "condition_simulated",
+               *QUALITY_COLUMNS, *SIGNED_COLUMNS, *attribute_columns]  # fmt: skip
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
@@ -96,11 +97,11 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             if kind is None:
                 continue  # demographic answers are participant columns
             flags = _flags(participant, trial, participant.pk in failed)
-            clip1 = clip2 = ""
+            clip1 = clip2 = label1 = label2 = ""
             if trial.condition_a is not None:
                 first, second = presented_conditions(participant, trial, conditions)
-                clip1 = first.key if first is not None else ""
-                clip2 = second.key if second is not None else ""
+                clip1, label1 = (first.key, first.label) if first is not None else ("", "")
+                clip2, label2 = (second.key, second.label) if second is not None else ("", "")
             row = {
                 "participant": str(participant.pk),
                 "study": study.slug,
@@ -119,6 +120,8 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
                 "target": trial.item.scoring_target
                 if question.type.is_scored and trial.item
                 else "",
+                "condition_a_label": label1,
+                "condition_b_label": label2,
                 "condition_simulated": ";".join(
                     key for key in dict.fromkeys((clip1, clip2)) if key in simulated
                 ),

@@ -48,7 +48,9 @@ def test_report_writes_every_output(tmp_path):
         data["pairwise"]["conditions"][0]
     )
     assert {"F", "df_num", "df_den", "p", "p_gg", "eta_p2"} <= set(data["pairwise"]["rm_anova"])
-    assert {"a", "b", "t", "df", "p", "p_holm", "dz"} <= set(data["pairwise"]["posthoc"][0])
+    posthoc = data["pairwise"]["posthoc"][0]
+    assert {"a", "b", "t", "df", "p", "p_adjusted", "dz", "ci", "apa"} <= set(posthoc)
+    assert "p_holm" not in posthoc  # the correction is named once, in pairwise.correction
     assert len(data["pairwise"]["items"]) == 48
     assert "\\toprule" in (out / "pairs.tex").read_text()
     html = (out / "report.html").read_text()
@@ -77,7 +79,7 @@ def test_condition_order_and_split_ties(tmp_path):
         "spine",
         "split",
     )
-    assert "p_bonferroni" in data["pairwise"]["posthoc"][0]
+    assert data["pairwise"]["correction"] == "bonferroni"
     assert not (tmp_path / "o" / "condition_rates.png").exists()
 
 

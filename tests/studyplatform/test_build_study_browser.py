@@ -135,10 +135,11 @@ def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_report
         page.get_by_role("link", name="report (zip)").click()
     archive = zipfile.ZipFile(io.BytesIO(Path(download.value.path()).read_bytes()))
     (pairs,) = list(csv.DictReader(io.StringIO(archive.read("report/pairs.csv").decode())))
-    wins = {"constant": 0, "variable": 0}
+    # The report names conditions by their labels.
+    wins = {c.label: 0 for c in study.conditions.all()}
     for key, position in clicked.items():
         trial = Trial.objects.get(study=study, key=key)
-        wins[presented_conditions(participant, trial)[position - 1].key] += 1
+        wins[presented_conditions(participant, trial)[position - 1].label] += 1
     assert {pairs["a"]: int(pairs["a_wins"]), pairs["b"]: int(pairs["b_wins"])} == wins
     assert int(pairs["n"]) == 2
 

@@ -71,7 +71,7 @@ def test_reduced_and_reconstructed_hands_render_from_the_admin_and_are_taken(
     wins: dict[tuple[str, str], dict[str, int]] = {}
     for key, position in clicked.items():
         trial = Trial.objects.get(study=study, key=key)
-        shown = [c.key for c in presented_conditions(participant, trial)]
+        shown = [c.label for c in presented_conditions(participant, trial)]  # as reported
         pair = tuple(sorted(shown))
         wins.setdefault(pair, dict.fromkeys(pair, 0))[shown[position - 1]] += 1
     pairs = list(csv.DictReader(io.StringIO(archive.read("report/pairs.csv").decode())))
@@ -86,5 +86,5 @@ def test_reduced_and_reconstructed_hands_render_from_the_admin_and_are_taken(
     for key, text in typed.items():
         trial = Trial.objects.get(study=study, key=key)
         row = next(r for r in scores if r["item"] == trial.item.key)
-        assert row["condition"] == presented_conditions(participant, trial)[0].key
+        assert row["condition"] == presented_conditions(participant, trial)[0].label
         assert float(row["mean_accuracy"]) == pytest.approx(word_accuracy(text, trial.item.text))

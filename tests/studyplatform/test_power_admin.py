@@ -30,7 +30,9 @@ def test_plan_page_simulates_power_from_the_pilot(bob_client, spine):
     assert "Simulated power" in page.text and "simulated" in page.text
     table = page.context["table"]
     assert [row["participants"] for row in table] == [6, 12]
-    assert "mixed: conditions" in table[0] and "binomial: spine-on vs spine-off" in table[0]
+    # Conditions are named by their labels, as in the report.
+    assert "mixed: conditions" in table[0]
+    assert "binomial: Spine on vs Spine off (control)" in table[0]
     assert page.context["curve"].effects["source"].startswith(f"{spine.slug} pilot")
     assert "data:image/png;base64," in page.text
     assert "<td>6</td>" in page.text and "<td>6.00</td>" not in page.text  # N is a count

@@ -2,6 +2,7 @@
 
 import io
 import json
+import re
 import zipfile
 
 import pandas as pd
@@ -24,8 +25,12 @@ def _answer(participant, trial_key, question_key, answer):
     do_save_response(participant, trial, trial.questions.get(key=question_key), answer)
 
 
-def take_spine_study(study, participants=6):
-    """Have *participants* complete the spine demo: pre-test, ratings, preferences."""
+def take_spine_study(study, participants=6, rate_off=False):
+    """Have *participants* complete the spine demo: pre-test, ratings, preferences.
+
+    The spine-on sentences are rated; with *rate_off* the spine-off ones too, a point
+    lower (as Part 1 of the demo asks).
+    """
     taken = []
     for number in range(participants):
         participant = do_enroll_participant(
@@ -42,6 +47,9 @@ def take_spine_study(study, participants=6):
                     question,
                     Answer(rating=1 + (number + sentence) % 5),
                 )
+                if rate_off:
+                    rating = max(1, (number + sentence) % 5 + (number % 2))
+                    _answer(participant, f"rate-s{sentence}-off", question, Answer(rating=rating))
             trial = study.trials.get(key=f"prefer-s{sentence}")
             spine_first = trial.condition_a.key == "spine-on"
             swapped = any(
@@ -67,8 +75,11 @@ def test_export_is_valid_tidy_data(spine):
     assert len(table) == 6 * (5 * 4 + 5)  # demographics become columns, not rows
     assert {"hearing-status", "years-asl"} <= set(table.columns)
     assert set(table["hearing-status"]) == {"Deaf", "Hard of hearing", "Hearing"}
+    # The CSV names conditions by key and label; the analysis by label, keys kept.
+    assert set(frame["condition_a_label"]) >= {"Spine on", "Spine off (control)"}
+    assert set(frame["condition_a"]) >= {"spine-on", "spine-off"}
     preferences = table[table["kind"] == "pairwise"]
-    spine_wins = preferences.groupby("item")["chosen"].apply(lambda c: (c == "spine-on").sum())
+    spine_wins = preferences.groupby("item")["chosen"].apply(lambda c: (c == "Spine on").sum())
     assert spine_wins.to_dict() == PREFERS_SPINE
     # The swapped schedule shows Clip 1/Clip 2 as the participant saw them.
     swapped = preferences[
@@ -76,10 +87,11 @@ def test_export_is_valid_tidy_data(spine):
         & (preferences["participant"] == str(spine.participants.order_by("pk")[1].pk))
     ].iloc[0]
     trial = spine.trials.get(key="prefer-s2")
-    assert (swapped["condition_a"], swapped["condition_b"]) == (
+    assert (swapped["condition_a_key"], swapped["condition_b_key"]) == (
         trial.condition_b.key,
         trial.condition_a.key,
     )
+    assert swapped["condition_a"] == trial.condition_b.label
     assert set(table["flags"]) == {""}
 
 
@@ -129,6 +141,31 @@ def test_results_page_shows_the_analysis(bob_client, spine):
     assert "Only participants whose hearing-status is" in page.text
     assert 'id="mixed-models"' in page.text and "Mixed-effects Bradley–Terry" in page.text
     assert "Conditions alike:" in page.text
+
+
+def test_results_page_shows_every_test_with_its_interval_and_apa(bob_client, spine):
+    """Issue 35, point 8: the post-hoc CIs, APA lines and Wilcoxon tests, and each
+    condition across items with paired tests, are on the page (not only in the JSON)."""
+    take_spine_study(spine, rate_off=True)
+    page = bob_client.get(reverse("admin:studyplatform_study_results", args=[spine.pk]))
+    text = page.text
+    data = page.context["results"]
+    assert data["pairwise"]["posthoc"] and data["pairwise"]["wilcoxon"]
+    for test in data["pairwise"]["posthoc"] + data["pairwise"]["wilcoxon"]:
+        assert test["apa"].replace("<", "&lt;") in text
+    assert 'id="posthoc"' in text and "mean a − b" in text and 'id="wilcoxon"' in text
+    assert "By condition, across items" in text and "Conditions compared across items" in text
+    summaries = data["rating_conditions"]
+    assert {s["condition"] for s in summaries} == {"Spine on", "Spine off (control)"}
+    assert {s["measure"] for s in summaries} == {
+        "clarity", "grammaticality", "understandability", "naturalness",
+    }  # fmt: skip
+    comparisons = data["rating_condition_comparisons"]
+    assert len(comparisons) == 4 and all(c["n"] == 6 for c in comparisons)
+    for comparison in comparisons:
+        assert comparison["apa"].replace("<", "&lt;") in text
+    # A statistic that was not computed prints "–" in a cell, never "None".
+    assert not re.search(r"<td>None</td>|>None<", text)
 
 
 def test_results_page_applies_exclusions_and_filters(bob_client, spine):

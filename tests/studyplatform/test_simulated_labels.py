@@ -13,7 +13,9 @@ from studyplatform.actions import Answer, do_enroll_participant, do_save_respons
 from studyplatform.export import tidy_csv
 
 pytestmark = pytest.mark.django_db
-LABEL = "mocap (simulated)"
+# The condition's label, as reports name it (its key, mocap, stays in the CSV).
+NAME = "Motion capture"
+LABEL = f"{NAME} (simulated)"
 
 
 @pytest.fixture
@@ -42,7 +44,7 @@ def test_the_csv_names_the_simulated_condition_on_each_row_that_shows_it(answere
 def test_the_results_page_and_every_report_file_say_simulated(answered, client, alice):
     client.force_login(alice)
     page = client.get(reverse("admin:studyplatform_study_results", args=[answered.pk])).text
-    assert 'id="simulated-note"' in page and page.count("mocap") == page.count(LABEL)
+    assert 'id="simulated-note"' in page and page.count(NAME) == page.count(LABEL)
     for name in ("results_report", "results_everything"):
         download = client.get(reverse(f"admin:studyplatform_study_{name}", args=[answered.pk]))
         archive = zipfile.ZipFile(io.BytesIO(download.content))
@@ -51,9 +53,9 @@ def test_the_results_page_and_every_report_file_say_simulated(answered, client, 
             if member.startswith("report/") and member.endswith((".json", ".html", ".csv",
                                                                  ".tex", ".md")):  # fmt: skip
                 text = archive.read(member).decode()
-                if "mocap" in text:
+                if NAME in text:
                     checked.append(member)
-                    assert text.count("mocap") == text.count(LABEL), member
+                    assert text.count(NAME) == text.count(LABEL), member
         assert {"report/report.html", "report/pairs.tex", "report/conditions.csv"} <= set(checked)
         if name == "results_everything":
             assert "condition_simulated" in archive.read("responses.csv").decode()

@@ -78,9 +78,9 @@ def test_the_transition_study_renders_from_the_admin_is_taken_and_reported(
     expect(page.get_by_role("heading", name="Intelligibility")).to_be_visible()
 
     # What the participant did, by pair of models: preference in points for the first.
-    # The report names conditions by key, simulated ones so labelled, in alphabetical order.
+    # The report names conditions by label, simulated ones so marked, in alphabetical order.
     labels = {
-        c.key: c.key + (" (simulated)" if c.is_simulated else "") for c in study.conditions.all()
+        c.key: c.label + (" (simulated)" if c.is_simulated else "") for c in study.conditions.all()
     }
     order = sorted(labels.values())
     expected: dict[tuple[str, str], list[float]] = {}
