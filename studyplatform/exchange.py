@@ -71,7 +71,7 @@ TRIAL_FIELDS = (
 )
 # Foreign keys of a trial, exported as the key of the object they point to.
 TRIAL_REFERENCES = ("block", "item", "condition_a", "condition_b")
-ASL_VIDEO_FIELDS = ("field_name", "transcript")
+ASL_VIDEO_FIELDS = ("field_name", "transcript", "credit")
 RECORDING_FIELDS = ("mirrored", "one_hand", "quality", "sha256")
 RECORDING_FILES = ("upload", "motion", "sheet")
 

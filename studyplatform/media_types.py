@@ -11,10 +11,12 @@ Nothing here touches the database: the storages (:mod:`studyplatform.storage`) a
 models' validators use it while the app registry is still loading.
 """
 
+import hashlib
 import shutil
 import struct
 import subprocess
 import tempfile
+from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
@@ -115,6 +117,47 @@ def decodes_as_video(path: Path) -> bool:
     """Return whether ffmpeg reads the file and decodes a first video frame from it."""
     done = _ffmpeg(path, "-frames:v", "1")
     return done is not None and done.returncode == 0
+
+
+def remux_webm(source: Path, target: Path) -> bool:
+    """Copy a WebM's frames into *target* with a duration and a seek index; return whether
+    ffmpeg wrote it.
+
+    A browser's MediaRecorder writes WebM as a live stream, without its length or cues,
+    so a player shows 0:00 and cannot seek; remuxing (streams copied, nothing
+    re-encoded, bit-exact headers) writes both.
+    """
+    import imageio_ffmpeg
+
+    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-v", "error", "-y",
+               "-i", str(source), "-map", "0", "-c", "copy", "-fflags", "+bitexact",
+               "-f", "webm", str(target)]  # fmt: skip
+    try:
+        done = subprocess.run(command, capture_output=True, timeout=DECODE_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return False
+    return done.returncode == 0 and target.is_file() and target.stat().st_size > 0
+
+
+@contextmanager
+def stored_video(upload, kind: MediaKind):
+    """Yield (file, sha256) of an uploaded video as it is to be stored: a WebM remuxed
+    (:func:`remux_webm`), any other video as it came; callers name it by the hash."""
+    with tempfile.TemporaryDirectory() as folder, ExitStack() as opened:
+        handle = upload
+        if kind.suffix == ".webm":
+            source, target = Path(folder) / "upload.webm", Path(folder) / "stored.webm"
+            upload.seek(0)
+            with open(source, "wb") as copy:
+                shutil.copyfileobj(upload, copy)
+            if remux_webm(source, target):
+                handle = opened.enter_context(open(target, "rb"))
+        digest = hashlib.sha256()
+        handle.seek(0)
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+        handle.seek(0)
+        yield handle, digest.hexdigest()
 
 
 def decoded_duration_s(path: Path) -> float | None:

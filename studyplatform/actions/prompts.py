@@ -2,10 +2,11 @@
 
 from django.contrib.contenttypes.models import ContentType
 from django.core.exceptions import ValidationError
+from django.core.files import File
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.media_types import check_upload
+from studyplatform.media_types import check_upload, stored_video
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, STUDY_PATHS, AslVideo, Study
 
 MAX_ASL_VIDEO_BYTES = 300 * 1024 * 1024
@@ -28,15 +29,16 @@ def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, fiel
     name = getattr(upload, "name", "") or "video"
     if upload.size > MAX_ASL_VIDEO_BYTES:
         raise ValidationError("The video is larger than 300 MB.")
-    # By content, not by name: MP4 (also .mov, .m4v) or WebM that decodes; stored as such.
-    check_upload(upload, ("video",), f"“{name}”")
-    with transaction.atomic():
+    # By content, not by name: MP4 (also .mov, .m4v) or WebM that decodes; stored as such,
+    # a camera's WebM with its duration and seek index, named by its content.
+    kind = check_upload(upload, ("video",), f"“{name}”")
+    with stored_video(upload, kind) as (stored, sha256), transaction.atomic():
         video, _ = AslVideo.objects.select_for_update().get_or_create(
             content_type_id=content_type_id, object_id=object_id, field_name=field_name,
             defaults={"video": ""},
         )  # fmt: skip
         old = video.video.name if video.video else ""
-        video.video.save(name, upload, save=True)
+        video.video.save(f"{sha256}{kind.suffix}", File(stored), save=True)
         if old != video.video.name:
             # A duplicated or imported study's video may be this same file.
             delete_unused_files_on_commit(video.video.storage, [old])

@@ -9,12 +9,13 @@ item's older recording (or the simulated stand-in) stays in use.
 import hashlib
 
 from django.core.exceptions import ValidationError
+from django.core.files import File
 from django.core.files.base import ContentFile
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
-from studyplatform.media_types import POSE, MediaKind, MediaRejected, check_upload
+from studyplatform.media_types import POSE, MediaKind, MediaRejected, check_upload, stored_video
 from studyplatform.models import Item, Recording, Study
 
 MAX_RECORDING_BYTES = 300 * 1024 * 1024
@@ -51,8 +52,6 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
     video that does not decode, or a .pose or BVH file that does not parse; nothing is
     stored then.
     """
-    from studyplatform.tasks import prepare_recording
-
     name = getattr(upload, "name", "") or ""
     if item.kind != Item.Kind.WORD:
         raise RecordingRejected(
@@ -68,16 +67,26 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
             f"“{name}” is not a recording: upload a video (MP4, WebM, MOV), a .pose file "
             "or a BVH file (judged by its content)."
         ) from None
-    digest = hashlib.sha256()
-    for chunk in upload.chunks():  # a video may be large: never all in memory
-        digest.update(chunk)
     if kind.family == "motion":
         upload.seek(0)
         check_motion_file(name, upload.read(), kind)
-    upload.seek(0)
+        digest = hashlib.sha256()
+        for chunk in upload.chunks():
+            digest.update(chunk)
+        upload.seek(0)
+        return _save_recording(item, upload, name, digest.hexdigest(), mirrored, one_hand)
+    # A camera's WebM is stored with its duration and seek index, named by its content.
+    with stored_video(upload, kind) as (stored, sha256):
+        return _save_recording(item, File(stored), f"{sha256}{kind.suffix}", sha256,
+                               mirrored, one_hand)  # fmt: skip
+
+
+def _save_recording(item: Item, upload, name: str, sha256: str, mirrored: bool,
+                    one_hand: bool) -> Recording:  # fmt: skip
+    from studyplatform.tasks import prepare_recording
+
     with transaction.atomic():
-        recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand,
-                              sha256=digest.hexdigest())  # fmt: skip
+        recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand, sha256=sha256)
         recording.upload.save(name, upload, save=False)
         recording.save()
         transaction.on_commit(lambda: prepare_recording.delay(recording.pk))

@@ -21,6 +21,7 @@ import hashlib
 import math
 import os
 import secrets
+import tempfile
 import time
 import uuid
 from dataclasses import dataclass
@@ -31,8 +32,9 @@ from django.core.exceptions import ValidationError
 from django.core.files import File
 from django.db import transaction
 
+from stimuli.clips import file_sha256
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.media_types import decoded_duration_s, sniff
+from studyplatform.media_types import decoded_duration_s, remux_webm, sniff
 from studyplatform.models import Participant, Question, Response, Trial
 
 MAX_SIGNED_ANSWER_BYTES = 200 * 1024 * 1024
@@ -158,8 +160,11 @@ def do_append_signed_answer_chunk(
     # on SQLite's single writer. A final chunk sent again after a failure here finds the
     # whole part stored (409 with its length) and sends an empty final chunk.
     suffix = _check_take(path, final)
-    saved = _save_recording(participant, trial, question, take, path, stored, suffix,
-                            final.sha256)  # fmt: skip
+    with tempfile.TemporaryDirectory() as folder:
+        # A browser's WebM has no duration or seek index until it is remuxed.
+        remuxed = Path(folder) / f"answer{suffix}"
+        video = remuxed if suffix == ".webm" and remux_webm(path, remuxed) else path
+        saved = _save_recording(participant, trial, question, take, video, stored, suffix)
     return stored, saved
 
 
@@ -215,8 +220,9 @@ def parse_final(sha256: object, duration_ms: object) -> FinalChunk:
 
 
 def _save_recording(participant: Participant, trial: Trial, question: Question, take: str,
-                    path: Path, length: int, suffix: str, sha256: str) -> Response:  # fmt: skip
-    """Save the checked part at *path* as the answer's video (replacing an older one)."""
+                    video: Path, length: int, suffix: str) -> Response:  # fmt: skip
+    """Save *video*, the checked take as stored (remuxed), as the answer's video
+    (replacing an older one); its SHA-256 is the stored file's."""
     with transaction.atomic():
         Participant.objects.select_for_update().get(pk=participant.pk)
         stored = upload_offset(participant, trial, question, take)
@@ -228,9 +234,9 @@ def _save_recording(participant: Participant, trial: Trial, question: Question, 
         old = response.video.name if response.video else ""
         # 128 random bits: the name alone never lets anyone guess another answer's file.
         name = f"{participant.pk}-{trial.key}-{question.key}-{secrets.token_hex(16)}{suffix}"
-        with open(path, "rb") as part:
+        with open(video, "rb") as part:
             response.video.save(name, File(part), save=False)
-        response.video_sha256 = sha256
+        response.video_sha256 = file_sha256(video)
         if response.pk:
             response.revision += 1
         response.save()

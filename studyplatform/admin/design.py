@@ -5,6 +5,7 @@ from django.http import HttpRequest
 
 from studyplatform.admin.forms import TrialForm
 from studyplatform.admin.permissions import DesignLockMixin, StudyScopedMixin
+from studyplatform.admin.positions import PositionedFormSet
 from studyplatform.admin.prompts import AslVideoInline
 from studyplatform.models import AnswerOption, Block, Question, Trial
 
@@ -27,6 +28,7 @@ class AnswerOptionInline(DesignLockMixin, admin.TabularInline):
     extra = 0
     fields = ("position", "value", "label")
     show_change_link = True
+    formset = PositionedFormSet
 
 
 @admin.register(Question)

@@ -9,6 +9,7 @@ from django.contrib import admin
 from django.db.models import Model, QuerySet
 from django.http import HttpRequest
 
+from studyplatform.admin.positions import PositionedFormSet
 from studyplatform.models import STUDY_PATHS, Study
 
 # The attribute of the request on which an inline finds the study being edited; admin
@@ -99,10 +100,12 @@ class StudyScopedMixin:
 
 
 class StudyInline(StudyScopedMixin, admin.TabularInline):
-    """A tabular inline on the study page whose choices come from that study only."""
+    """A tabular inline on the study page whose choices come from that study only; new
+    rows are numbered after the others (PositionedFormSet)."""
 
     extra = 0
     show_change_link = True
+    formset = PositionedFormSet
 
     def _study_of(self, obj: Model) -> Study | None:
         # An inline's permission checks receive the parent study itself.

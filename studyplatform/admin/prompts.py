@@ -19,7 +19,7 @@ class AslVideoInline(GenericTabularInline):
 
     model = AslVideo
     extra = 0
-    fields = ("field_name", "video", "poster", "transcript")
+    fields = ("field_name", "video", "poster", "transcript", "credit")
     verbose_name = "ASL video"
     verbose_name_plural = "ASL videos of these texts"
 

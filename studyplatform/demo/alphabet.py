@@ -9,7 +9,7 @@ are, the question behind seed 000 ch. 3's hand-fidelity work.
 
 from typing import Any
 
-from studyplatform.demo.common import definition, numbered, scale
+from studyplatform.demo.common import asl_fluency, definition, numbered
 
 SLUG = "alphabet-legibility"
 # Letters of distinct families: fist (A, S), flat (B), curved (C, O), pointing (D, L),
@@ -39,19 +39,7 @@ def alphabet_legibility_study() -> dict[str, Any]:
     """Return the definition of the 2 sources × 9 letters identification study."""
     questions = numbered(
         [
-            {
-                "key": "asl-fluency",
-                "kind": "choice",
-                "text": "How fluent are you in ASL?",
-                "options": scale(
-                    [
-                        "Completely fluent (native or primary language)",
-                        "Somewhat fluent (studied ASL)",
-                        "Know some ASL, but not fluent",
-                        "Do not know ASL",
-                    ]
-                ),
-            },
+            asl_fluency(),
             {
                 "key": "which-letter",
                 "kind": "intelligibility",

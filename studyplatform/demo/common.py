@@ -35,13 +35,24 @@ def likert5(low: str, high: str) -> list[dict[str, Any]]:
     return scale([low, "", "", "", high])
 
 
+# Seed 000 §5.2's ASL skill levels (spec 02 "Before"): every demo asks this one scale, so
+# their data can be pooled and filtered alike.
+ASL_FLUENCY = (
+    "Completely fluent (native or primary language)",
+    "Completely fluent (ASL expert)",
+    "Somewhat fluent (studied ASL)",
+    "Know some ASL, but not fluent",
+    "Do not know ASL",
+)
+
+
 def asl_fluency() -> dict[str, Any]:
-    """Return the demographic question on ASL fluency the newer demos ask first."""
+    """Return the demographic question on ASL fluency (seed 000 §5.2's five levels)."""
     return {
         "key": "asl-fluency",
         "kind": "choice",
         "text": "How fluent are you in ASL?",
-        "options": scale(["Native or primary language", "Fluent", "Somewhat fluent", "Not fluent"]),
+        "options": scale(list(ASL_FLUENCY)),
     }
 
 

@@ -3,7 +3,7 @@
 from typing import Any
 
 from stimuli import attention_checks, balanced_pair_assignment
-from studyplatform.demo.common import definition, numbered, scale
+from studyplatform.demo.common import asl_fluency, definition, numbered, scale
 
 WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
 # A word the signer also recorded (seed 000 App. B, objective 4) for the example clip.
@@ -76,20 +76,7 @@ def fingerspelling_timing_study() -> dict[str, Any]:
                 "text": "What is your age?",
                 "options": scale(["18–25", "26–35", "36–45", "46–55", "56–65", "66+"]),
             },
-            {
-                "key": "asl-fluency",
-                "kind": "choice",
-                "text": "How fluent are you in ASL?",
-                "options": scale(
-                    [
-                        "Completely fluent (native or primary language)",
-                        "Completely fluent (ASL expert)",
-                        "Somewhat fluent (studied ASL)",
-                        "Know some ASL, but not fluent",
-                        "Do not know ASL",
-                    ]
-                ),
-            },
+            asl_fluency(),
             {
                 "key": "name",
                 "kind": "short_text",

@@ -23,7 +23,11 @@ RATINGS = (
 
 
 def spine_study() -> dict[str, Any]:
-    """Return the definition of the 5 sentences × spine on/off study (ratings + preference)."""
+    """Return the definition of the 5 sentences × spine on/off study (ratings + preference).
+
+    Its prompts' ASL videos are signed by the avatar when the demo is rendered
+    (:mod:`studyplatform.demo.signed`).
+    """
     questions = [
         {
             "key": "hearing-status",
@@ -67,7 +71,14 @@ def spine_study() -> dict[str, Any]:
     blocks = numbered(
         [
             {"key": "pretest", "kind": "demographics", "title": "About you"},
-            {"key": "ratings", "kind": "trials", "title": "Part 1: rate each sentence"},
+            {
+                "key": "ratings",
+                "kind": "trials",
+                "title": "Part 1: rate each sentence",
+                "intro_text": "Each sentence is shown twice, in different versions. Watch "
+                "it, then answer the four questions about it.",
+                "randomize_order": True,
+            },
             {
                 "key": "preference",
                 "kind": "trials",
@@ -85,17 +96,20 @@ def spine_study() -> dict[str, Any]:
             "questions": ["hearing-status", "preferred-language", "years-asl", "born-deaf"],
         }
     ]
+    # Seed 003 rated the spine-on sentences only; rated in both conditions (in random
+    # order), the ratings can compare them, which is the question the demo asks.
     for number in range(1, len(SENTENCES) + 1):
-        trials.append(
-            {
-                "key": f"rate-s{number}",
-                "block": "ratings",
-                "kind": "rating",
-                "item": f"S{number}",
-                "condition_a": "spine-on",
-                "questions": [key for key, *_ in RATINGS],
-            }
-        )
+        for condition, suffix in (("spine-on", ""), ("spine-off", "-off")):
+            trials.append(
+                {
+                    "key": f"rate-s{number}{suffix}",
+                    "block": "ratings",
+                    "kind": "rating",
+                    "item": f"S{number}",
+                    "condition_a": condition,
+                    "questions": [key for key, *_ in RATINGS],
+                }
+            )
     for number in range(1, len(SENTENCES) + 1):
         # Alternate sides in the design; participants' positions are randomized on top.
         first, second = ("spine-off", "spine-on") if number % 2 else ("spine-on", "spine-off")
@@ -119,7 +133,10 @@ def spine_study() -> dict[str, Any]:
             "title": "Automated spine motion in ASL sentences (demo)",
             "description": (
                 "A five-sentence story signed with and without automated spine and shoulder "
-                "motion (after McDonald et al., SignQUOTE study)."
+                "motion (after McDonald et al., SignQUOTE study). Part 1 rates both "
+                "versions (the paper rated the spine-on version only); Part 2 compares "
+                "them side by side. The prompts' ASL videos are avatar-signed demo "
+                "material."
             ),
             "status": "open",
             "asl_first": True,

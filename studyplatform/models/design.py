@@ -12,7 +12,7 @@ from django.contrib.contenttypes.fields import GenericRelation
 from django.core.exceptions import ValidationError
 from django.db import models
 
-from studyplatform.models.studies import Condition, Item, Study, check_unlocked
+from studyplatform.models.studies import Condition, Item, Study, check_unlocked, position_field
 
 
 class Question(models.Model):
@@ -54,7 +54,7 @@ class Question(models.Model):
     )
     min_value = models.FloatField(null=True, blank=True, help_text="Number questions: minimum.")
     max_value = models.FloatField(null=True, blank=True, help_text="Number questions: maximum.")
-    position = models.PositiveSmallIntegerField(default=0)
+    position = position_field()
 
     asl_videos = GenericRelation("studyplatform.AslVideo")
 
@@ -101,7 +101,7 @@ class AnswerOption(models.Model):
     question = models.ForeignKey(Question, on_delete=models.CASCADE, related_name="options")
     value = models.SmallIntegerField(help_text="Stored and analysed value, e.g. 1–5.")
     label = models.CharField(max_length=200, blank=True)
-    position = models.PositiveSmallIntegerField(default=0)
+    position = position_field()
 
     asl_videos = GenericRelation("studyplatform.AslVideo")
 
@@ -138,7 +138,7 @@ class Block(models.Model):
     randomize_order = models.BooleanField(
         default=False, help_text="Shuffle the block's pages per participant (seeded)."
     )
-    position = models.PositiveSmallIntegerField(default=0)
+    position = position_field()
 
     asl_videos = GenericRelation("studyplatform.AslVideo")
 
@@ -214,7 +214,7 @@ class Trial(models.Model):
         blank=True,
         help_text="Attention checks: the correct answer (a condition key, 'none', or a value).",
     )
-    position = models.PositiveSmallIntegerField(default=0)
+    position = position_field()
 
     asl_videos = GenericRelation("studyplatform.AslVideo")
 

@@ -51,6 +51,12 @@ class AslVideo(models.Model):
     transcript = models.TextField(
         blank=True, help_text="English gloss or caption of the video, if it differs from the text."
     )
+    credit = models.CharField(
+        max_length=200,
+        blank=True,
+        help_text="Who or what signs the video, shown under it in every language setting "
+        "(e.g. “Signed by …”, or “Avatar-signed demo material”).",
+    )
     created_at = models.DateTimeField(auto_now_add=True)
 
     class Meta:

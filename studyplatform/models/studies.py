@@ -11,6 +11,16 @@ from django.core.validators import MinValueValidator
 from django.db import models
 
 
+def position_field() -> models.SmallIntegerField:
+    """Return the field that orders a study's rows (conditions, items, blocks …)."""
+    # Signed: a row can go before the others without renumbering them.
+    return models.SmallIntegerField(
+        default=0,
+        help_text="Order: lower comes first; a negative number puts it before the others. "
+        "New rows left at 0 are numbered after the existing ones.",
+    )
+
+
 class Study(models.Model):
     """A perceptual study: its settings, what participants see first and last."""
 
@@ -278,7 +288,7 @@ class Condition(models.Model):
             "to take its default."
         ),
     )
-    position = models.PositiveSmallIntegerField(default=0)
+    position = position_field()
 
     class Meta:
         ordering = ["study", "position", "pk"]
@@ -323,7 +333,7 @@ class Item(models.Model):
             "them. Checked against the technique registry on save."
         ),
     )
-    position = models.PositiveSmallIntegerField(default=0)
+    position = position_field()
 
     class Meta:
         ordering = ["study", "position", "pk"]

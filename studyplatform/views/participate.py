@@ -363,7 +363,11 @@ def set_language(request: HttpRequest, token: str) -> HttpResponse:
         do_set_participant_language(participant, request.POST.get("language", ""))
     except ValidationError as error:
         return _problem(request, error.messages[0])
-    return redirect(_page_url(participant, max(participant.position, 1)))
+    # Back to the page the switch was made on (reached by Back or a link, it need not be
+    # the participant's position), if it is one they may see.
+    page = request.POST.get("page", "")
+    shown = int(page) if page.isdigit() and 1 <= int(page) <= participant.reached else 0
+    return redirect(_page_url(participant, shown or max(participant.position, 1)))
 
 
 REDIRECT_AFTER_S = 8

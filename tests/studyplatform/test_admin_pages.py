@@ -196,3 +196,40 @@ def test_trial_form_rejects_questions_of_the_wrong_kind(alice_client, fingerspel
     assert page.status_code == 200
     assert "A pairwise forced choice trial cannot ask age." in page.text
     assert list(trial.questions.values_list("key", flat=True)) == ["most-natural"]
+
+
+def test_new_inline_rows_come_after_the_others_unless_a_position_is_typed(spine):
+    """Issue 35, point 9: every new inline row got position 0; a position can be negative."""
+    from django.forms.models import inlineformset_factory
+
+    from studyplatform.admin.design import AnswerOptionInline
+    from studyplatform.admin.positions import PositionedFormSet
+    from studyplatform.admin.studies import BlockInline, ConditionInline, ItemInline, TrialInline
+    from studyplatform.models import AnswerOption, Question
+
+    for inline in (AnswerOptionInline, BlockInline, ConditionInline, ItemInline, TrialInline):
+        assert issubclass(inline.formset, PositionedFormSet), inline
+    as_draft(spine)
+    question = spine.questions.get(key="preferred-language")
+    existing = list(question.options.order_by("position"))
+    formset_class = inlineformset_factory(
+        Question, AnswerOption, formset=PositionedFormSet, fields=("position", "value", "label")
+    )
+    data = {"options-TOTAL_FORMS": str(len(existing) + 3),
+            "options-INITIAL_FORMS": str(len(existing))}  # fmt: skip
+    for index, option in enumerate(existing):
+        data |= {f"options-{index}-id": str(option.pk), f"options-{index}-position":
+                 str(option.position), f"options-{index}-value": str(option.value),
+                 f"options-{index}-label": option.label}  # fmt: skip
+    new = [("0", "7", "Added first"), ("0", "8", "Added second"), ("-1", "9", "Put first")]
+    for index, (position, value, label) in enumerate(new, len(existing)):
+        data |= {f"options-{index}-position": position, f"options-{index}-value": value,
+                 f"options-{index}-label": label}  # fmt: skip
+    formset = formset_class(data, instance=question)
+    assert formset.is_valid(), formset.errors
+    formset.save()
+    last = max(option.position for option in existing)
+    positions = dict(question.options.values_list("label", "position"))
+    assert positions["Added first"] == last + 1 and positions["Added second"] == last + 2
+    assert positions["Put first"] == -1
+    assert question.options.order_by("position").first().label == "Put first"

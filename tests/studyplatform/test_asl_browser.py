@@ -22,11 +22,12 @@ from tests.studyplatform.test_participate_browser import (
 pytestmark = pytest.mark.django_db(transaction=True)
 
 # Every English text with a signed version must come right after an ASL video, in
-# document order: its figure, or (for a caption) the figure it sits in.
+# document order: its figure (or the caption in it), or (for a caption) the figure it
+# sits in.
 UNPRECEDED = """() => {
   const seen = Array.from(document.querySelectorAll("figure.asl-prompt, .english"));
   return seen.filter((el, i) => el.matches(".english.signed") &&
-    !(i > 0 && (seen[i - 1].matches("figure.asl-prompt") || el.closest("figure.asl-prompt"))))
+    !(i > 0 && (seen[i - 1].closest("figure.asl-prompt") || el.closest("figure.asl-prompt"))))
     .map(el => el.textContent.trim());
 }"""
 # Signed English still taking up room on screen (visually hidden text is 1 px).

@@ -76,7 +76,10 @@ def test_alphabet_demo_shows_each_letter_from_both_sources(seeded):
 def test_spine_demo_is_the_spec_03_design(seeded):
     study = Study.objects.get(slug="spine-motion")
     assert study.asl_first
-    assert study.trials.filter(kind="rating").count() == 5
+    # Part 1 rates every sentence in both conditions, so its ratings compare them.
+    ratings = study.trials.filter(kind="rating")
+    assert Counter(t.condition_a.key for t in ratings) == {"spine-on": 5, "spine-off": 5}
+    assert study.blocks.get(key="ratings").randomize_order
     assert study.trials.filter(kind="pairwise").count() == 5
     naturalness = study.questions.get(key="naturalness")
     labels = list(naturalness.options.values_list("label", flat=True))
@@ -114,3 +117,17 @@ def test_demo_serves_home_and_admin_over_http(live_server, settings, tmp_path, c
     letter = human.study.items.get(key="B")
     assert letter.recordings.get().status == Recording.Status.READY
     assert clip_spec(human, letter).parameters["recording"].endswith(".pose")
+
+
+def test_every_demo_asks_one_asl_fluency_scale():
+    """Issue 35: three demos asked ASL fluency on three different scales."""
+    from studyplatform.demo import DEMO_STUDIES
+    from studyplatform.demo.common import ASL_FLUENCY
+
+    scales = {}
+    for build in DEMO_STUDIES:
+        data = build()
+        for question in data["questions"]:
+            if question["key"] == "asl-fluency":
+                scales[data["study"]["slug"]] = tuple(o["label"] for o in question["options"])
+    assert len(scales) >= 4 and set(scales.values()) == {ASL_FLUENCY}, scales

@@ -139,6 +139,17 @@ def test_every_page_shows_the_participants_own_link_to_come_back(client, fingers
     assert client.get(link).status_code == 302  # it takes them back to where they were
 
 
+def test_a_blocks_first_page_names_the_block_once(client, fingerspelling):
+    """Issue 35: "Practice" was both the block's heading and the page's."""
+    participant = _start(client, fingerspelling)
+    participant.reached = len(participant.schedule)
+    participant.save()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "practice-1")
+    shown = client.get(reverse("participant_page", args=[participant.token, number])).text
+    assert re.findall(r"<h[12][^>]*>([^<]*)</h[12]>", shown).count("Practice") == 1
+    assert '<h1 id="block-title">Practice</h1>' in shown
+
+
 def test_answers_save_at_once_and_idempotently(client, fingerspelling):
     participant = _start(client, fingerspelling)
     page = {"page": 1, "trial": participant.schedule[0]["trial"]}
@@ -418,6 +429,14 @@ def test_language_switch(client, spine):
     participant.refresh_from_db()
     assert participant.language == "en"
     assert client.post(url, {"language": "fr"}).status_code == 400
+    # The switch returns to the page it was made on, not to the participant's position
+    # (a page reached by Back); a page not reached yet is refused that way.
+    participant.reached = 3
+    participant.save()
+    switched = client.post(url, {"language": "asl_en", "page": "2"})
+    assert switched.url == reverse("participant_page", args=[participant.token, 2])
+    ahead = client.post(url, {"language": "asl_en", "page": "9"})
+    assert ahead.url == reverse("participant_page", args=[participant.token, 1])
 
 
 def test_schedules_are_reproducible_from_the_seed(fingerspelling):

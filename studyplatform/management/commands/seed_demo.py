@@ -8,7 +8,7 @@ from django.core.management import call_command
 from django.core.management.base import BaseCommand
 
 from studyplatform.actions import do_import_study
-from studyplatform.demo import DEMO_SETUP, DEMO_STUDIES
+from studyplatform.demo import DEMO_SETUP, DEMO_SIGNED, DEMO_STUDIES
 from studyplatform.models import Study
 from synthesis.capture.lexicon import LexiconMissing
 
@@ -41,6 +41,8 @@ class Command(BaseCommand):
                 self.stdout.write(self.style.SUCCESS(f"Loaded demo study '{study.title}'."))
             if self._set_up(study):
                 ready.append(slug)
+        if render:
+            self._sign_prompts()
         if render and ready:
             self.stdout.write(
                 f"Rendering the stimuli of {', '.join(repr(slug) for slug in ready)} "
@@ -73,6 +75,19 @@ class Command(BaseCommand):
         if attached:
             self.stdout.write(f"Attached {attached} recording(s) to '{study.slug}'.")
         return True
+
+    def _sign_prompts(self) -> None:
+        """Render and attach the avatar-signed prompts of the ASL-first demos."""
+        for slug, sign in DEMO_SIGNED.items():
+            study = Study.objects.filter(slug=slug).first()
+            if study is None:
+                continue
+            attached = sign(study)
+            if attached:
+                self.stdout.write(
+                    f"Signed {attached} prompt(s) of '{slug}' with the avatar (labelled as "
+                    "avatar-signed demo material)."
+                )
 
     def _ensure_admin(self):
         """Return the demo superuser, creating it (or resetting a lost password)."""
