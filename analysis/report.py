@@ -23,6 +23,7 @@ from analysis.results import (
     ConditionSummary,
     ExclusionReport,
     IntelligibilityScore,
+    PairedComparison,
     PairwiseAnalysis,
     RatingComparison,
     RatingSummary,
@@ -289,7 +290,7 @@ def results_json(report: Report) -> dict[str, Any]:
     return plain(data)
 
 
-def _paired_json(c: RatingComparison | ConditionComparison) -> dict[str, Any]:
+def _paired_json(c: PairedComparison) -> dict[str, Any]:
     """Render two conditions' paired t and Wilcoxon tests (rating_comparisons' columns)."""
     return {
         "a": c.a,

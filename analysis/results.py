@@ -284,11 +284,9 @@ class RatingSummary(Result):
 
 
 @dataclasses.dataclass(frozen=True)
-class RatingComparison(Result):
-    """Paired comparison of two conditions' ratings of one item on one question."""
+class PairedComparison(Result):
+    """Two conditions compared by a paired t-test and a Wilcoxon signed-rank test."""
 
-    item: str
-    question: str
     a: str
     b: str
     nobs: int
@@ -296,7 +294,18 @@ class RatingComparison(Result):
     ttest: PairedTTest
 
     def apa(self) -> str:
-        return f"{self.item}, {self.question}: {self.ttest.apa()}; {self.wilcoxon.apa()}"
+        return f"{self.ttest.apa()}; {self.wilcoxon.apa()}"
+
+
+@dataclasses.dataclass(frozen=True)
+class RatingComparison(PairedComparison):
+    """Paired comparison of two conditions' ratings of one item on one question."""
+
+    item: str = ""
+    question: str = ""
+
+    def apa(self) -> str:
+        return f"{self.item}, {self.question}: {super().apa()}"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -323,18 +332,13 @@ class ConditionSummary(Result):
 
 
 @dataclasses.dataclass(frozen=True)
-class ConditionComparison(Result):
+class ConditionComparison(PairedComparison):
     """Two conditions compared on participants' means across items (paired tests)."""
 
-    measure: str
-    a: str
-    b: str
-    nobs: int
-    wilcoxon: WilcoxonTest
-    ttest: PairedTTest
+    measure: str = ""
 
     def apa(self) -> str:
-        return f"{self.measure}: {self.ttest.apa()}; {self.wilcoxon.apa()}"
+        return f"{self.measure}: {super().apa()}"
 
 
 @dataclasses.dataclass(frozen=True)

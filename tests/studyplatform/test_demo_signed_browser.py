@@ -10,11 +10,15 @@ import json
 
 import pytest
 
-from studyplatform.actions import do_enroll_participant
 from studyplatform.demo.signed import CREDIT, SPINE_PROMPTS, sign_prompts, transcript
 from studyplatform.models import AslVideo
 from tests.studyplatform.test_asl_browser import STILL_SHOWN, UNPRECEDED
-from tests.studyplatform.test_participate_browser import SCREENSHOTS, _wait_ready, _with_clips
+from tests.studyplatform.test_participate_browser import (
+    SCREENSHOTS,
+    _wait_ready,
+    _with_clips,
+    open_trial_page,
+)
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
@@ -50,12 +54,7 @@ def test_the_asl_first_demo_signs_its_prompts_and_hides_only_signed_english(
     assert all(d > 1 for d in page.evaluate(DURATIONS))
     assert CREDIT in page.locator("figure.asl-prompt .asl-credit").inner_text()
 
-    participant = do_enroll_participant(spine, consented=True)
-    participant.reached = len(participant.schedule)
-    participant.save()
-    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "rate-s1")
-    page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
-    _wait_ready(page)
+    open_trial_page(page, live_server, spine, "rate-s1")
     assert page.evaluate(UNPRECEDED) == []
     assert page.evaluate(SIGNED_QUESTIONS) == ["clarity", "naturalness"]
     durations = page.evaluate(DURATIONS)

@@ -341,6 +341,15 @@ def open_trial_page(page, live_server, study, trial_key: str):
     return participant
 
 
+def record_signed_answer(page, seconds: float = 1.5) -> None:
+    """Record an answer with Chromium's synthetic camera, up to "Watch your recording"."""
+    page.get_by_role("button", name="Record a signed answer").click()
+    page.get_by_text("Recording…").wait_for()
+    page.wait_for_timeout(1000 * seconds)
+    page.get_by_role("button", name="Stop recording").click()
+    page.get_by_text("Watch your recording").wait_for()
+
+
 def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     page, live_server, spine, clips_dir, one_clip
 ):
@@ -351,11 +360,7 @@ def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     # Issue 20: .button's display overrode [hidden], showing both before any recording.
     expect(page.get_by_role("button", name="Stop recording")).to_be_hidden()
     expect(page.get_by_role("button", name="Send this recording")).to_be_hidden()
-    page.get_by_role("button", name="Record a signed answer").click()
-    page.get_by_text("Recording…").wait_for()
-    page.wait_for_timeout(1500)
-    page.get_by_role("button", name="Stop recording").click()
-    page.get_by_text("Watch your recording").wait_for()
+    record_signed_answer(page)
     page.context.set_offline(True)
     page.get_by_role("button", name="Send this recording").click()
     page.get_by_text("Connection lost").wait_for()

@@ -13,7 +13,12 @@ import pytest
 from playwright.sync_api import expect
 
 from studyplatform.models import Response
-from tests.studyplatform.test_participate_browser import _with_clips, open_trial_page
+from tests.studyplatform.test_camera_webm_browser import CUES, playable
+from tests.studyplatform.test_participate_browser import (
+    _with_clips,
+    open_trial_page,
+    record_signed_answer,
+)
 
 pytestmark = pytest.mark.django_db(transaction=True)
 
@@ -23,11 +28,7 @@ def test_a_signed_answer_is_in_the_csv_and_the_everything_zip(
 ):
     _with_clips(spine, one_clip, clips_dir)
     participant = open_trial_page(page, live_server, spine, "comments")
-    page.get_by_role("button", name="Record a signed answer").click()
-    page.get_by_text("Recording…").wait_for()
-    page.wait_for_timeout(1500)
-    page.get_by_role("button", name="Stop recording").click()
-    page.get_by_text("Watch your recording").wait_for()
+    record_signed_answer(page)
     page.get_by_role("button", name="Send this recording").click()
     expect(page.locator(".signed-status")).to_have_text(
         "Your signed answer is saved.", timeout=20000
@@ -36,6 +37,12 @@ def test_a_signed_answer_is_in_the_csv_and_the_everything_zip(
     stored = response.video.open("rb").read()
     digest = hashlib.sha256(stored).hexdigest()
     assert response.video_sha256 == digest
+    # Stored remuxed (issue 35, 9): its length and seek index, so the participant's
+    # preview on coming back has a length (Infinity, shown 0:00, as recorded).
+    assert CUES in stored and response.video.name.endswith(".webm")
+    page.reload()
+    page.wait_for_selector("#page-form.ready")
+    playable(page, page.locator(".signed-preview").get_attribute("src"))
 
     # The owner downloads the CSV and the zip from the results page.
     page.goto(f"{live_server.url}/admin/login/?next=/admin/studyplatform/study/{spine.pk}/results/")
