@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from analysis.results import ConditionComparison, ConditionSummary
+from analysis.summaries import ConditionComparison, ConditionSummary
 from analysis.within import adjust, paired_ttest, wilcoxon_test
 
 # The columns of a long table of scores: one row per answer.

@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from analysis.conditions import SCORE_COLUMNS
-from analysis.results import IntelligibilityScore
+from analysis.summaries import IntelligibilityScore
 from analysis.tidy import analysed
 
 # Fingerspelled words are glossed letter by letter (T-O-Y); both spellings mean one word.

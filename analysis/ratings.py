@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from analysis.conditions import SCORE_COLUMNS
-from analysis.results import RatingComparison, RatingSummary
+from analysis.summaries import RatingComparison, RatingSummary
 from analysis.tidy import analysed
 from analysis.within import adjust, paired_ttest, wilcoxon_test
 

@@ -19,16 +19,18 @@ from analysis.quality import ParticipantQuality, summarize_quality
 from analysis.ratings import compare_ratings, rating_scores, summarize_ratings
 from analysis.results import (
     ComparativePreference,
-    ConditionComparison,
-    ConditionSummary,
     ExclusionReport,
-    IntelligibilityScore,
-    PairedComparison,
     PairwiseAnalysis,
-    RatingComparison,
-    RatingSummary,
     Result,
     plain,
+)
+from analysis.summaries import (
+    ConditionComparison,
+    ConditionSummary,
+    IntelligibilityScore,
+    PairedComparison,
+    RatingComparison,
+    RatingSummary,
 )
 from analysis.tidy import (
     analysed,

@@ -267,81 +267,6 @@ class PairwiseAnalysis(Result):
 
 
 @dataclasses.dataclass(frozen=True)
-class RatingSummary(Result):
-    """Descriptive statistics of one question's ratings of one item in one condition."""
-
-    item: str
-    condition: str
-    question: str
-    n: int
-    median: float
-    q1: float
-    q3: float
-    mean: float
-    sd: float
-    pct_ge3: float
-    pct_ge4: float
-
-
-@dataclasses.dataclass(frozen=True)
-class PairedComparison(Result):
-    """Two conditions compared by a paired t-test and a Wilcoxon signed-rank test."""
-
-    a: str
-    b: str
-    nobs: int
-    wilcoxon: WilcoxonTest
-    ttest: PairedTTest
-
-    def apa(self) -> str:
-        return f"{self.ttest.apa()}; {self.wilcoxon.apa()}"
-
-
-@dataclasses.dataclass(frozen=True)
-class RatingComparison(PairedComparison):
-    """Paired comparison of two conditions' ratings of one item on one question."""
-
-    item: str = ""
-    question: str = ""
-
-    def apa(self) -> str:
-        return f"{self.item}, {self.question}: {super().apa()}"
-
-
-@dataclasses.dataclass(frozen=True)
-class ConditionSummary(Result):
-    """One condition on one measure across items: participants' means, then their mean.
-
-    *measure* is a rating question's key or ``"accuracy"`` (intelligibility); *n* the
-    answers, *nobs* the participants; *sd*, *sem* and the t-based *ci* are over the
-    participants' means, the median and quartiles over the answers.
-    """
-
-    measure: str
-    condition: str
-    n: int
-    nobs: int
-    items: int
-    mean: float
-    sd: float
-    sem: float
-    ci: tuple[float, float]
-    median: float
-    q1: float
-    q3: float
-
-
-@dataclasses.dataclass(frozen=True)
-class ConditionComparison(PairedComparison):
-    """Two conditions compared on participants' means across items (paired tests)."""
-
-    measure: str = ""
-
-    def apa(self) -> str:
-        return f"{self.measure}: {super().apa()}"
-
-
-@dataclasses.dataclass(frozen=True)
 class ComparativePreference(Result):
     """Mean comparative-scale preference for *a* over *b* (scale points), signed-rank tested.
 
@@ -376,17 +301,6 @@ class ComparativePreference(Result):
             f"W = {self.statistic:g}, {format_p(self.pvalue)}, "
             f"r = {_two(self.rank_biserial)}, n = {self.nobs}"
         )
-
-
-@dataclasses.dataclass(frozen=True)
-class IntelligibilityScore(Result):
-    """Mean word-level accuracy of typed answers for one condition and item."""
-
-    condition: str
-    item: str
-    n: int
-    mean_accuracy: float
-    sem: float
 
 
 @dataclasses.dataclass(frozen=True)

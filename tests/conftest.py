@@ -4,6 +4,7 @@ import functools
 import os
 import re
 import subprocess
+import tempfile
 import time
 
 import pytest
@@ -24,6 +25,18 @@ def tiny_webm() -> bytes:
                "-i", "testsrc=size=160x120:rate=15", "-t", "1", "-c:v", "libvpx",
                "-b:v", "200k", "-f", "webm", "pipe:1"]  # fmt: skip
     return subprocess.run(command, capture_output=True, check=True).stdout
+
+
+def video_frames(video: bytes) -> list[bytes]:
+    """Decode *video* (ffmpeg) and return its frames' pixels, to compare recordings."""
+    import imageio_ffmpeg
+
+    with tempfile.NamedTemporaryFile(suffix=".video") as handle:
+        handle.write(video)
+        handle.flush()
+        frames = imageio_ffmpeg.read_frames(handle.name)
+        next(frames)  # the metadata
+        return list(frames)
 
 
 @pytest.fixture(autouse=True, scope="session")

@@ -8,7 +8,15 @@ from urllib.parse import quote
 from django.core.exceptions import ValidationError
 from django.utils import timezone
 
-from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Question, Response, Trial
+from studyplatform.models import (
+    MediaEvent,
+    Participant,
+    PersonalAnswer,
+    Question,
+    Response,
+    Study,
+    Trial,
+)
 
 # Longest recruitment parameter kept, in characters: ids from recruitment services are
 # short; anything longer is not an id and is not stored.
@@ -51,6 +59,19 @@ def time_left(participant: Participant, now=None) -> timedelta | None:
         return None
     deadline = participant.consented_at + timedelta(minutes=limit)
     return max(deadline - (now or timezone.now()), timedelta(0))
+
+
+MOBILE_MARKERS = ("Mobi", "Android", "iPhone", "iPad")
+
+
+def device_problem(study: Study, user_agent: str) -> str:
+    """Return why *study* cannot be taken on the device *user_agent* names, or ""."""
+    mobile = any(marker in user_agent for marker in MOBILE_MARKERS)
+    if study.allowed_devices == Study.Devices.DESKTOP and mobile:
+        return "Please take this study on a desktop or laptop computer."
+    if study.allowed_devices == Study.Devices.MOBILE and not mobile:
+        return "Please take this study on a phone or tablet."
+    return ""
 
 
 def closed_reason(participant: Participant, now=None) -> str:

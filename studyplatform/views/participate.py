@@ -39,6 +39,7 @@ from studyplatform.lib import (
     TIME_LOW,
     closed_reason,
     completion_url,
+    device_problem,
     page_count,
     page_trial,
     time_left,
@@ -47,7 +48,13 @@ from studyplatform.lib import (
 from studyplatform.models import Participant, Study, Trial
 from studyplatform.models.participants import PARTICIPANT_SESSION_KEY
 from studyplatform.pages import participant_page, study_asl
-from studyplatform.views.posted import BodyRejected, json_body, page_number, parse_answer
+from studyplatform.views.posted import (
+    BodyRejected,
+    json_body,
+    page_number,
+    parse_answer,
+    reached_page,
+)
 
 SESSION_KEY = PARTICIPANT_SESSION_KEY
 UPLOAD_CONTENT_TYPES = ("application/octet-stream", "video/webm", "video/mp4")
@@ -57,9 +64,6 @@ NEW_PARTICIPANT_PARAM = "new"
 def _invalid_link() -> JsonResponse:
     """Answer a script that sent an unknown participant token."""
     return JsonResponse({"error": "This link is not valid."}, status=404)
-
-
-MOBILE_MARKERS = ("Mobi", "Android", "iPhone", "iPad")
 
 
 def _wants_json(request: HttpRequest) -> bool:
@@ -88,15 +92,6 @@ def _page_url(participant: Participant, number: int) -> str:
     return reverse("participant_page", args=[participant.token, number])
 
 
-def _device_problem(study: Study, user_agent: str) -> str:
-    mobile = any(marker in user_agent for marker in MOBILE_MARKERS)
-    if study.allowed_devices == Study.Devices.DESKTOP and mobile:
-        return "Please take this study on a desktop or laptop computer."
-    if study.allowed_devices == Study.Devices.MOBILE and not mobile:
-        return "Please take this study on a phone or tablet."
-    return ""
-
-
 @never_cache
 @require_http_methods(["GET", "POST"])
 def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
@@ -116,7 +111,7 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     if not study.is_accepting_participants:
         return _problem(request, "This study is not taking participants now.", status=410)
     user_agent = request.headers.get("User-Agent", "")
-    device = _device_problem(study, user_agent)
+    device = device_problem(study, user_agent)
     error = ""
     if request.method == "POST" and not device:
         agreed = request.POST.get("consent") == "yes"
@@ -363,10 +358,8 @@ def set_language(request: HttpRequest, token: str) -> HttpResponse:
         do_set_participant_language(participant, request.POST.get("language", ""))
     except ValidationError as error:
         return _problem(request, error.messages[0])
-    # Back to the page the switch was made on (reached by Back or a link, it need not be
-    # the participant's position), if it is one they may see.
-    page = request.POST.get("page", "")
-    shown = int(page) if page.isdigit() and 1 <= int(page) <= participant.reached else 0
+    # Back to the page it was made on: by Back or a link, not always their position.
+    shown = reached_page(request.POST.get("page", ""), participant.reached)
     return redirect(_page_url(participant, shown or max(participant.position, 1)))
 
 

@@ -52,6 +52,11 @@ def page_number(value) -> int | None:
     return value if isinstance(value, int) and not isinstance(value, bool) else None
 
 
+def reached_page(value: str, reached: int) -> int | None:
+    """Return the posted page number *value* if it is one of the first *reached* pages."""
+    return int(value) if value.isdigit() and 1 <= int(value) <= reached else None
+
+
 def clean_text(value: str) -> str:
     """Return *value* without control and bidirectional-override characters."""
     return _UNWANTED_CHARACTERS.sub("", value)

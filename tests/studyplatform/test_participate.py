@@ -13,7 +13,7 @@ from django.utils import timezone
 from studyplatform.actions import do_enroll_participant
 from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Response, Trial
 from studyplatform.schedule import build_schedule
-from tests.conftest import tiny_webm
+from tests.conftest import tiny_webm, video_frames
 
 pytestmark = pytest.mark.django_db
 
@@ -500,7 +500,11 @@ def test_a_signed_answer_arrives_in_chunks_that_resume(client, at_comments):
     done = _chunk(client, participant, number, rest, 4000, final=True, whole=WEBM)
     assert done.json() == {"offset": len(WEBM), "saved": True}
     response = Response.objects.get(participant=participant)
-    assert response.video.read() == WEBM and response.text == ""
+    stored = response.video.read()
+    assert response.text == "" and response.video_sha256 == hashlib.sha256(stored).hexdigest()
+    # Stored remuxed: the same frames, now with a seek index (Matroska Cues).
+    assert b"\x1c\x53\xbb\x6b" in stored and b"\x1c\x53\xbb\x6b" not in WEBM
+    assert video_frames(stored) == video_frames(WEBM)
     assert client.get(url).json() == {"offset": 0}  # nothing left half-sent
 
 
