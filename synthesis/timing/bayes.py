@@ -43,7 +43,10 @@ class LeaveOneOut:
 
 @dataclass(frozen=True, eq=False)
 class HoldClassifier:
-    """Counts per class, and per feature value and class, from training holds."""
+    """Counts per class, and per feature value and class, from training holds.
+
+    Probabilities are Laplace-smoothed with *alpha* (prior and likelihoods alike).
+    """
 
     features: tuple[str, ...]
     class_counts: np.ndarray
@@ -83,9 +86,9 @@ class HoldClassifier:
         if leave_out is not None:
             class_counts[leave_out] -= 1
         total = class_counts.sum()
-        with np.errstate(divide="ignore"):
-            log_p = np.log((class_counts + self.alpha) / (total + self.alpha * N_CLASSES))
-            log_p[class_counts <= 0] = -np.inf  # classes with no hold at all are impossible
+        # Laplace smoothing (α) in the prior as in the likelihoods: a class no training
+        # hold fell in is unlikely, not impossible (issue 38).
+        log_p = np.log((class_counts + self.alpha) / (total + self.alpha * N_CLASSES))
         for feature in self.features:
             table = self.value_counts[feature]
             counts = table.get(values[feature])

@@ -45,7 +45,7 @@ from synthesis.transitions.descriptor import (
 )
 from synthesis.transitions.evaluate import Evaluation, evaluate
 from synthesis.transitions.hermite_fit import HermiteCurve, fit_hermite, splice_points
-from synthesis.transitions.joins import join_tangent, window_tangent
+from synthesis.transitions.joins import join_bspline, join_tangent, window_tangent
 from synthesis.transitions.recording import (
     CutTransition,
     RecordingError,
@@ -101,6 +101,7 @@ __all__ = [
     "fit_hermite",
     "gap_descriptor",
     "hermite_points",
+    "join_bspline",
     "join_tangent",
     "linear_transition",
     "parse_segmentation",

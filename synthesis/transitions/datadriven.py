@@ -2,9 +2,10 @@
 
 The stored curve is stretched to the gap's length and *skewed* so it starts on the
 first sign's last value and ends on the second's first (Eq. 3.8; Hermite tangents Eq.
-3.10; B-spline coefficients at their basis peaks Eq. 3.12). The Hermite curve's end
-tangents then take the signs' own directions, averaged over W frames, shortened by
-``(π − Δθ)/π`` (Eq. 3.13–3.16). The signs are never modified.
+3.10; B-spline coefficients at their basis peaks Eq. 3.12). The ends then take the
+signs' own slopes, averaged over W frames (Eq. 3.13–3.14): a Hermite curve's end
+tangents turn and shorten by ``(π − Δθ)/π`` (Eq. 3.16), a B-spline's second and
+second-to-last coefficients move (Eq. 3.17). The signs are never modified.
 """
 
 import numpy as np
@@ -14,7 +15,7 @@ from synthesis.transitions.baselines import linear_transition, simple_hermite_tr
 from synthesis.transitions.database import StoredCurve, TransitionEntry
 from synthesis.transitions.descriptor import gap_descriptor
 from synthesis.transitions.hermite_fit import HermiteCurve
-from synthesis.transitions.joins import join_tangent, window_tangent
+from synthesis.transitions.joins import join_bspline, join_tangent, window_tangent
 from synthesis.transitions.skew import skew_bspline, skew_tangents, skew_values
 
 BASELINES = ("linear", "simple_hermite")
@@ -87,7 +88,9 @@ def fit_entry(
             hermite = joined(skewed_hermite(curve, v0, v1, duration), slope_in[c], slope_out[c])
             out[:, c] = hermite.evaluate(frames)
         elif model == "bspline":
-            out[:, c] = skewed_spline(curve, v0, v1)(frames / duration)
+            spline = join_bspline(skewed_spline(curve, v0, v1), slope_in[c], slope_out[c],
+                                  duration)  # fmt: skip
+            out[:, c] = spline(frames / duration)
         else:
             raise ValueError(f"A stored transition fits as 'hermite' or 'bspline', not {model!r}.")
     return out

@@ -1,4 +1,4 @@
-"""Describe a gap between two signs by the DCT-II of the frames around it (seed 001 §3.4).
+"""Describe a gap between two signs by the DCT-II of the frames around it (seed 001 §3.5).
 
 For each of the arm curves, the last N = 10 frames before the gap and the first N after
 it are each reduced to the coefficients k = 0, 1, 2 of the DCT-II
@@ -13,7 +13,7 @@ DESCRIPTOR_COEFFICIENTS = 3
 
 
 def dct_ii(values: np.ndarray, coefficients: int = DESCRIPTOR_COEFFICIENTS) -> np.ndarray:
-    """Return the first DCT-II coefficients of *values* along axis 0 (seed 001 Eq. 3.2).
+    """Return the first DCT-II coefficients of *values* along axis 0 (seed 001 Eq. 3.4).
 
     ``X_k = Σ_n x_n cos(π/N (n + ½) k)``: scipy's unnormalized type-2 DCT is twice that.
     *values*: (N, ...) → (coefficients, ...).

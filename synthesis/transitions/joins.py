@@ -1,11 +1,19 @@
 """Match a transition's tangents to the signs' at the joins (seed 001 §3.6.2).
 
 The signs are never modified: the transition's end tangents take the direction of the
-signs' tangents, averaged over a window of W frames (Eq. 3.13–3.14), and their length
-shrinks by ``(π − Δθ)/π`` (Eq. 3.16) so that a large turn does not overshoot.
+signs' tangents, averaged over a window of W frames (Eq. 3.13–3.14). A Hermite
+transition's end tangents shrink by ``(π − Δθ)/π`` (Eq. 3.16) so that a large turn does
+not overshoot; a B-spline's second and second-to-last coefficients move so its ends
+leave and arrive along the signs' slopes (Eq. 3.17).
 """
 
 import numpy as np
+from scipy.interpolate import BSpline
+
+# Eq. 3.16 measures angles on the animation curve as seed 001 plots it (Maya's graph
+# editor: frames across, degrees up). In radians every slope is nearly flat and the
+# shrink never acts (a factor ≥ 0.998 on the built-in database, against 0.916 in degrees).
+DEGREES_PER_UNIT = float(np.degrees(1.0))
 
 
 def window_tangent(values: np.ndarray, window: int) -> float | np.ndarray:
@@ -22,15 +30,44 @@ def window_tangent(values: np.ndarray, window: int) -> float | np.ndarray:
     return float(slope) if slope.ndim == 0 else slope
 
 
-def join_tangent(tangent: np.ndarray, sign_slope: float) -> np.ndarray:
+def join_tangent(
+    tangent: np.ndarray, sign_slope: float, degrees_per_unit: float = DEGREES_PER_UNIT
+) -> np.ndarray:
     """Return *tangent* [t_x, t_y] turned to the sign's slope and shortened (Eq. 3.16).
 
-    ``θ' = θ_sign`` and ``r' = r · (π − Δθ)/π``, Δθ the angle turned (rad): a tangent
-    turned by a quarter turn keeps half its length, one already aligned keeps all.
+    ``θ' = θ_sign`` and ``r' = r · (π − Δθ)/π``, Δθ the angle turned: a tangent turned by
+    a quarter turn keeps half its length, one already aligned keeps all. Angles and
+    lengths are taken on the curve as seed 001 plots it, frames across and degrees up:
+    *t_y* and *sign_slope* are in the curve's unit (rad, rad per frame), times
+    *degrees_per_unit* (1 measures them in that unit itself).
     """
     t_x, t_y = np.asarray(tangent, dtype=float)
-    r, theta = np.hypot(t_x, t_y), np.arctan2(t_y, t_x)
-    theta_sign = np.arctan2(sign_slope, 1.0)
+    up = t_y * degrees_per_unit
+    r, theta = np.hypot(t_x, up), np.arctan2(up, t_x)
+    theta_sign = np.arctan2(sign_slope * degrees_per_unit, 1.0)
     turned = abs(theta_sign - theta)
     length = r * (np.pi - turned) / np.pi
-    return np.array([length * np.cos(theta_sign), length * np.sin(theta_sign)])
+    return np.array([length * np.cos(theta_sign), length * np.sin(theta_sign) / degrees_per_unit])
+
+
+def join_bspline(spline: BSpline, slope_in: float, slope_out: float, duration: float) -> BSpline:
+    """Return *spline* with c₂ and c_{N−1} moved so its end tangents are the signs' (Eq. 3.17).
+
+    ``c₂' = c₁ + θ_in · t · x₂`` and ``c_{N−1}' = c_N − θ_out · t · x_{N−1}``: *slope_in*,
+    *slope_out* (θ, per frame) the signs' slopes, *duration* t the gap in frames over the
+    spline's normalized time, x the coefficient's distance from its end. The seed takes x
+    from the basis functions' derivatives; here it is the Greville spacing
+    ``(t_{k+1} − t_1)/k`` (and its mirror), with which a clamped spline's end derivative
+    is the slope exactly. A spline of fewer than four coefficients is returned as it is:
+    moving c₂ would move c_{N−1} too.
+    """
+    knots, degree = spline.t, spline.k
+    count = len(knots) - degree - 1
+    if count < 4:
+        return spline
+    c = np.array(spline.c[:count], dtype=float)
+    start = (knots[degree + 1] - knots[1]) / degree
+    end = (knots[count + degree - 1] - knots[count - 1]) / degree
+    c[1] = c[0] + slope_in * duration * start
+    c[-2] = c[-1] - slope_out * duration * end
+    return BSpline(knots, c, degree)

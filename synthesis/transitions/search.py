@@ -22,9 +22,11 @@ PCA_VARIANCE = 0.95
 class DescriptorSearch:
     """Nearest-descriptor search over a database's entries.
 
-    *weighting*: ``raw`` (the seed's distance, optionally with column *weights*),
-    ``zscore`` (each column to mean 0 and s.d. 1 over the database) or ``pca`` (z-scored,
-    then projected onto the components explaining 95 % of the variance).
+    *weighting*: ``raw`` (the seed's Euclidean distance, Eq. 3.6, with column *weights*
+    w_i), ``zscore`` (each column to mean 0 and s.d. 1 over the database) or ``pca``
+    (z-scored, then projected onto the components explaining 95 % of the variance).
+    Seed 001 does not print its w_i (it only says they normalize the DCT terms): unit
+    weights, the default here, are an assumption, not the seed's values.
     """
 
     database: TransitionDatabase

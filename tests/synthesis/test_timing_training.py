@@ -36,6 +36,9 @@ def test_train_end_to_end_reports_leave_one_out_and_fit(tmp_path, capsys):
                  "--out", str(out)]) == 0  # fmt: skip
     printed = capsys.readouterr().out
     assert "leave-one-out accuracy" in printed and "mean error" in printed
+    # Issue 38: the published leave-one-out beside ours, and what our input was.
+    assert "seed 000 §4.2, 304 recorded holds: accuracy 75.00 %, mean error 13.82 ms" in printed
+    assert f"input: {holds}, {transitions}" in printed
     model = VariableModel.read(out)
     assert model.metadata["training_holds"] >= 300
     assert model.transitions.slope_ms_per_rad == pytest.approx(200, rel=0.1)

@@ -50,6 +50,18 @@ def test_classifier_learns_a_feature_and_smooths_unseen_values():
                                                  CLASSES_MS[hold_class(200)])  # fmt: skip
 
 
+def test_a_class_without_training_holds_is_unlikely_not_impossible():
+    """Issue 38: a hold class no training hold fell in had prior 0 (log −∞); Laplace's α
+    gives it (0 + α) / (n + α·K), as it does every unseen feature value."""
+    samples = [({"letter": "A"}, 50.0)] * 5 + [({"letter": "B"}, 200.0)] * 5
+    model = HoldClassifier.fit(samples, features=("letter",))
+    log_p = model.log_posterior({"letter": "A"})
+    assert np.all(np.isfinite(log_p))
+    empty = hold_class(300.0)
+    assert log_p[empty] == pytest.approx(np.log(1 / (10 + len(CLASSES_MS))) + np.log(1 / 2))
+    assert log_p[empty] < log_p[hold_class(50.0)]
+
+
 def test_leave_one_out_matches_refitting_without_each_sample():
     rng = np.random.default_rng(1)
     samples = published_holds(rng)[:60]

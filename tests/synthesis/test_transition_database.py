@@ -27,7 +27,7 @@ from synthesis.transitions import (
     splice_points,
     write_recording,
 )
-from synthesis.transitions.hermite_fit import SMOOTHING_KERNEL, fit_segment, smooth
+from synthesis.transitions.hermite_fit import SMOOTHING_KERNEL, TANGENT_STEPS, fit_segment, smooth
 
 
 @pytest.fixture(scope="module")
@@ -127,13 +127,14 @@ def test_hermite_segment_fit_finds_the_known_tangent_lengths():
     from synthesis.transitions import hermite_points
 
     d0, d1 = np.array([1.0, 0.0]), np.array([1.0, 0.0])
-    k = np.linspace(0, 5 * 30, 24)
-    curve = hermite_points([0, 0], [30, 1], k[5] * d0, k[7] * d1, np.linspace(0, 1, 4001))
+    k = np.linspace(0, 5 * 30, TANGENT_STEPS)  # App. A.1.2's grid: 100 lengths
+    assert TANGENT_STEPS == 100
+    curve = hermite_points([0, 0], [30, 1], k[21] * d0, k[29] * d1, np.linspace(0, 1, 4001))
     x = np.arange(31.0)
     y = np.interp(x, curve[:, 0], curve[:, 1])
     t0, t1, rmse = fit_segment(x, y, d0, d1)
     assert rmse < 1e-3
-    np.testing.assert_allclose([t0[0], t1[0]], [k[5], k[7]])
+    np.testing.assert_allclose([t0[0], t1[0]], [k[21], k[29]])
 
 
 def test_hermite_fit_follows_a_noisy_curve():

@@ -22,7 +22,12 @@ from synthesis.transitions import (
 from synthesis.transitions.blending import velocity_jumps
 from synthesis.transitions.curves import arm_columns
 from synthesis.transitions.datadriven import joined, skewed_hermite, skewed_spline, slopes
-from synthesis.transitions.evaluate import PUBLISHED_BEST, summary_rows, verdict
+from synthesis.transitions.evaluate import (
+    PUBLISHED_BEST,
+    PUBLISHED_TRANSITIONS,
+    summary_rows,
+    verdict,
+)
 from synthesis.transitions.sentence import blend_sentence, retransition
 
 TEXT = "BUT SURPRISE MY BROTHER GET NEW"
@@ -159,6 +164,9 @@ def test_evaluation_like_table_5_1(database):
     assert all(m != i for m, i in zip(evaluation.matches, evaluation.ids, strict=True))
     rows = summary_rows(evaluation)
     assert [r["published_best_in"] for r in rows] == [PUBLISHED_BEST[m] for m in MODELS]
+    # Seed 001 Table 5.1: linear, simple Hermite, Hermite, B-spline best in 7 / 57 / 17 / 7.
+    assert [PUBLISHED_BEST[m] for m in MODELS] == [7, 57, 17, 7]
+    assert sum(PUBLISHED_BEST.values()) == PUBLISHED_TRANSITIONS == 88
     words = verdict(evaluation)
     assert "simulated captures" in words and "6.84" in words
     # Linear is a straight line: its RMSE is exactly that of the line against the recording.

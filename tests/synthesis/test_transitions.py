@@ -10,6 +10,7 @@ from synthesis.transitions import (
     dct_ii,
     gap_descriptor,
     hermite_points,
+    join_bspline,
     join_tangent,
     linear_transition,
     rmse_deg,
@@ -99,13 +100,40 @@ def test_basis_peaks_and_the_b_spline_skew_on_coefficients():
 
 
 def test_the_join_turns_to_the_signs_slope_and_shrinks_by_the_angle():
-    """Eq. 3.16: r' = r (π − Δθ)/π, θ' = the sign's angle."""
-    aligned = join_tangent(np.array([1.0, 1.0]), sign_slope=1.0)
+    """Eq. 3.16: r' = r (π − Δθ)/π, θ' = the sign's angle (here in the curve's own unit)."""
+    aligned = join_tangent(np.array([1.0, 1.0]), sign_slope=1.0, degrees_per_unit=1.0)
     np.testing.assert_allclose(aligned, [1.0, 1.0])
-    turned = join_tangent(np.array([2.0, 0.0]), sign_slope=np.inf)  # a quarter turn
-    np.testing.assert_allclose(turned, [0.0, 1.0], atol=1e-12)  # half of r = 2
-    back = join_tangent(np.array([0.0, 1.0]), sign_slope=0.0)
+    turned = join_tangent(np.array([2.0, 0.0]), sign_slope=np.inf, degrees_per_unit=1.0)
+    np.testing.assert_allclose(turned, [0.0, 1.0], atol=1e-12)  # a quarter turn: half r = 2
+    back = join_tangent(np.array([0.0, 1.0]), sign_slope=0.0, degrees_per_unit=1.0)
     np.testing.assert_allclose(back, [0.5, 0.0], atol=1e-12)
+
+
+def test_the_join_measures_the_turn_in_the_papers_frame_by_degree_units():
+    """Issue 38: seed 001 plots curves in frames × degrees. A tangent at −45° there (−1°
+    a frame) turned to a sign rising 1° a frame turns 90° and keeps half its length; in
+    radians the same tangents look flat and the shrink did nothing."""
+    one_degree = np.radians(1.0)
+    turned = join_tangent(np.array([1.0, -one_degree]), sign_slope=one_degree)
+    np.testing.assert_allclose(turned, [0.5, 0.5 * one_degree], rtol=1e-12)
+    in_radians = join_tangent(np.array([1.0, -one_degree]), one_degree, degrees_per_unit=1.0)
+    shrunk = np.hypot(*in_radians) / np.hypot(1.0, one_degree)
+    assert shrunk == pytest.approx(1 - 2 * np.arctan(one_degree) / np.pi)  # 1 %, not half
+
+
+def test_the_bspline_join_leaves_and_arrives_along_the_signs_slopes():
+    """Eq. 3.17: c₂ and c_{N−1} move so the ends' tangents meet the signs' directions;
+    the ends stay where the skew put them."""
+    x = np.linspace(0, 1, 40)
+    spline = make_splrep(x, 0.3 + 0.2 * np.sin(3 * x), k=3, s=1e-4)
+    duration, slope_in, slope_out = 39.0, 0.012, -0.02
+    joined = join_bspline(spline, slope_in, slope_out, duration)
+    velocity = joined.derivative()
+    assert velocity(0.0) / duration == pytest.approx(slope_in, rel=1e-9)
+    assert velocity(1.0) / duration == pytest.approx(slope_out, rel=1e-9)
+    assert joined(0.0) == pytest.approx(spline(0.0)) and joined(1.0) == pytest.approx(spline(1.0))
+    middle = slice(2, -2)
+    np.testing.assert_array_equal(joined.c[middle], spline.c[middle])  # only c₂, c_{N−1}
 
 
 def test_the_window_tangent_averages_the_last_slopes():
