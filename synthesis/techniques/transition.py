@@ -48,7 +48,12 @@ def _apply(build: Build) -> Build:
                 build.result.glosses, build.library, request.rate_hz, request.side
             )
         else:
-            dofs, _ = blend_sentence(build.request.text, build.options, build.library)
+            fixed = values["blend_overlap_ms"] or None  # 0: the shortest attack or decay
+            try:
+                dofs, _ = blend_sentence(build.request.text, build.options, build.library,
+                                         overlap_ms=fixed)  # fmt: skip
+            except ValueError as error:
+                raise ClipError(str(error)) from None
         return build.but(motion=np.asarray(dofs))
     from synthesis.transitions.sentence import retransition
 
@@ -65,6 +70,8 @@ def _summary(values) -> str:
             if values["transition_db"]
             else ", built-in database of simulated captures"
         )
+    if values["transition"] == "blended" and values["blend_overlap_ms"]:
+        words += f", overlap fixed at {values['blend_overlap_ms']:g} ms"
     return words
 
 
@@ -82,6 +89,18 @@ TECHNIQUE = Technique(
             "and overlaps them).",
             choices=TRANSITIONS,
             labels=LABELS,
+        ),
+        Parameter(
+            "blend_overlap_ms",
+            "float",
+            0.0,
+            "Blended only: how long each sign's decay overlaps the next one's attack. "
+            "0: the shortest attack or decay of the sentence's signs, so no blend reaches "
+            "a sign's keys (longer attacks then play partly unblended); 1000: seed 004's "
+            "fixed 1 s.",
+            minimum=0.0,
+            maximum=2000.0,
+            units="ms",
         ),
         Parameter(
             "transition_db",

@@ -73,14 +73,25 @@ def retransition(sentence: Sentence, model: str, search=None, noise=None) -> np.
     return sentence.body.clip(dofs)
 
 
+# Seed 004 §3.1.3.5: every sign's attack and decay last 1 s, and the overlap is that.
+SEED_OVERLAP_MS = 1000.0
+
+
 def blend_sentence(
-    text: str, options: SentenceOptions, library: SignLibrary | None = None
+    text: str,
+    options: SentenceOptions,
+    library: SignLibrary | None = None,
+    overlap_ms: float | None = None,
 ) -> tuple[np.ndarray, int]:
     """Return the sentence made sign by sign and blended (seed 004 §4.1), and the overlap.
 
-    Each gloss is synthesized alone, from rest to rest; the overlap is the shortest
-    decay (last key to the end) or attack (start to the first key), so each blend runs
-    from one sign's last key towards the next one's first.
+    Each gloss is synthesized alone, from rest to rest. By default the overlap is the
+    shortest decay (last key to the end) or attack (start to the first key), so no blend
+    reaches into a sign's keys; the frames of a longer attack or decay then play
+    unblended (in "BUT SURPRISE MY BROTHER" at 60 fps, 7 frames of each attack).
+    *overlap_ms* fixes it instead, as the seed does (its attack and decay are 1 s,
+    :data:`SEED_OVERLAP_MS`); a fixed overlap longer than a sign's attack or decay blends
+    into its keys, and one longer than half a sign is refused.
     """
     glosses = parse_glosses(text)
     signs = [
@@ -89,7 +100,10 @@ def blend_sentence(
     ]
     if len(signs) == 1:
         return signs[0].dofs_rad, 0
-    attacks = [int(s.token_frames()[0, 0]) for s in signs[1:]]
-    decays = [len(s.dofs_rad) - 1 - int(s.token_frames()[-1, 1]) for s in signs[:-1]]
-    overlap = min(attacks + decays)
+    if overlap_ms is None:
+        attacks = [int(s.token_frames()[0, 0]) for s in signs[1:]]
+        decays = [len(s.dofs_rad) - 1 - int(s.token_frames()[-1, 1]) for s in signs[:-1]]
+        overlap = min(attacks + decays)
+    else:
+        overlap = round(overlap_ms * options.rate_hz / 1000)
     return blend_signs([s.dofs_rad for s in signs], overlap), overlap

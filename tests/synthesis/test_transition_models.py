@@ -28,7 +28,7 @@ from synthesis.transitions.evaluate import (
     summary_rows,
     verdict,
 )
-from synthesis.transitions.sentence import blend_sentence, retransition
+from synthesis.transitions.sentence import SEED_OVERLAP_MS, blend_sentence, retransition
 
 TEXT = "BUT SURPRISE MY BROTHER GET NEW"
 
@@ -123,6 +123,19 @@ def test_blended_sentence_is_continuous_but_not_smooth():
     arm = arm_columns(synthesize(TEXT, options).body.dof_names, "right")
     assert np.abs(np.diff(blended[:, arm], axis=0)).max() < np.radians(20)  # no leap
     assert velocity_jumps(blended[:, arm], 60).max() > velocity_jumps(keyed[:, arm], 60).max()
+
+
+def test_blending_can_overlap_by_the_seeds_fixed_second():
+    """Issue 38: the overlap was always the shortest attack or decay; seed 004 fixes it at
+    its 1 s attack and decay, and that is an option (a shorter one here: 250 ms)."""
+    options = SentenceOptions(rate_hz=60, liveliness=None)
+    _, shortest = blend_sentence(TEXT, options)
+    blended, fixed = blend_sentence(TEXT, options, overlap_ms=250.0)
+    assert fixed == 15 != shortest
+    lengths = [len(synthesize(g, options).dofs_rad) for g in TEXT.split()]
+    assert len(blended) == sum(lengths) - (len(lengths) - 1) * fixed
+    with pytest.raises(ValueError, match="at least"):
+        blend_sentence(TEXT, options, overlap_ms=SEED_OVERLAP_MS * 5)
 
 
 def test_the_transition_technique_is_registered_and_checked():
