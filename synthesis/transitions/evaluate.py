@@ -131,8 +131,19 @@ def compare_weightings(
     return {weighting: evaluate(database, weighting, holdout) for weighting in WEIGHTINGS}
 
 
+# What the published figures were computed on, beside ours (the ``input`` columns).
+PUBLISHED_INPUT = "88 transitions captured from 4 interpreters (Vicon, 120 fps)"
+
+
+def evaluation_input(evaluation: Evaluation) -> str:
+    """Return what the evaluation's transitions came from, in the tables' words."""
+    kind = "simulated captures" if evaluation.simulated else "recordings"
+    return f"{len(evaluation.ids)} transitions from {kind}"
+
+
 def summary_rows(evaluation: Evaluation) -> list[dict]:
-    """Return Table 5.1's rows: per model, mean RMSE per curve, overall, best count, published."""
+    """Return Table 5.1's rows: per model, mean RMSE per curve, overall, best count, and the
+    published figures, each with what it was computed on."""
     by_curve = evaluation.mean_by_curve()
     best = evaluation.best_counts
     return [
@@ -142,8 +153,10 @@ def summary_rows(evaluation: Evaluation) -> list[dict]:
             "mean_rmse_deg": round(evaluation.mean_by_model[m], 2),
             "best_in": best[m],
             "transitions": len(evaluation.ids),
+            "input": evaluation_input(evaluation),
             "published_rmse_deg": PUBLISHED_RMSE_DEG[m],
             "published_best_in": PUBLISHED_BEST[m],
+            "published_input": PUBLISHED_INPUT,
         }
         for i, m in enumerate(evaluation.models)
     ]

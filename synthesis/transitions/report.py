@@ -9,8 +9,10 @@ from synthesis.transitions.curves import SEED_NAMES
 from synthesis.transitions.database import TransitionDatabase
 from synthesis.transitions.datadriven import BASELINES, MODEL_LABELS, MODELS, baseline, fit_entry
 from synthesis.transitions.evaluate import (
+    PUBLISHED_INPUT,
     PUBLISHED_RMSE_DEG,
     Evaluation,
+    evaluation_input,
     summary_rows,
     verdict,
 )
@@ -34,8 +36,8 @@ def latex_table(evaluation: Evaluation) -> str:
         "\\begin{table}",
         "\\centering",
         f"\\caption{{Transition RMSE in degrees by model and curve{label}; "
-        f"{len(evaluation.ids)} transitions, leave-one-out, search {evaluation.weighting}. "
-        "Published: seed 001 Table 5.1.}",
+        f"ours: {evaluation_input(evaluation)}, leave-one-out, search "
+        f"{evaluation.weighting}. Published: seed 001 Table 5.1, {PUBLISHED_INPUT}.}}",
         "\\begin{tabular}{l" + "r" * (len(SEED_NAMES) + 4) + "}",
         "\\hline",
         "Model & " + " & ".join(SEED_NAMES) + " & Mean & Best in & Published & Pub. best \\\\",

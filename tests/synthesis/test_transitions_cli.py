@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 from synthesis.transitions.cli import main
+from synthesis.transitions.evaluate import PUBLISHED_INPUT
 
 
 def test_simulate_build_evaluate_end_to_end(tmp_path, capsys):
@@ -39,6 +40,13 @@ def test_simulate_build_evaluate_end_to_end(tmp_path, capsys):
         "B-spline (data-driven)",
     ]
     assert "simulated captures" in (tmp_path / "eval" / "table.tex").read_text()
+    # Issue 38: our figures and the published ones, each saying what it was computed on.
+    assert {r["input"] for r in rows} == {
+        f"{rows[0]['transitions']} transitions from simulated captures"
+    }
+    assert [r["published_best_in"] for r in rows] == ["7", "57", "17", "7"]
+    assert {r["published_input"] for r in rows} == {PUBLISHED_INPUT}
+    assert PUBLISHED_INPUT in (tmp_path / "eval" / "table.tex").read_text()
 
 
 def test_bad_input_exits_2_with_the_reason(tmp_path, capsys):
