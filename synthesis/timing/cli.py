@@ -5,6 +5,7 @@
     python -m synthesis.timing predict ELEPHANT [--model model.json]
     python -m synthesis.timing compare HEAVEN.bvh GUITAR.bvh … [--model model.json]
     python -m synthesis.timing plot HEAVEN --out heaven.png [--trajectory heaven-angles.pdf]
+    python -m synthesis.timing evaluate    # the default model's leave-one-out, seed 000's beside
 
 A recording's word is its file name's letters unless --words gives them in order.
 """
@@ -20,6 +21,7 @@ from synthesis.timing.defaults import published_model
 from synthesis.timing.training import (
     HOLD_COLUMNS,
     TRANSITION_COLUMNS,
+    TrainingReport,
     read_annotations,
     train,
 )
@@ -78,6 +80,21 @@ def _plot(args: argparse.Namespace) -> int:
     return 0
 
 
+def _evaluate(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from synthesis.timing.bayes import HoldClassifier
+    from synthesis.timing.defaults import SEED, published_holds, published_transitions
+
+    samples = published_holds(np.random.default_rng(SEED))
+    holds = HoldClassifier.fit(samples).leave_one_out(samples)
+    source = (f"{len(samples)} holds simulated from seed 000 Table 4.1's means and spreads "
+              "(the default model's training set), not recordings")  # fmt: skip
+    for line in TrainingReport(holds, published_transitions(), source).lines():
+        print(line)
+    return 0
+
+
 def _predict(args: argparse.Namespace) -> int:
     model = VariableModel.read(args.model) if args.model else published_model()
     print(json.dumps(model.timing(args.word).to_dict(), indent=2))
@@ -122,6 +139,10 @@ def parser() -> argparse.ArgumentParser:
     plot.add_argument("--trajectory", type=Path, help="also the average joint-angle figure")
     plot.add_argument("--model", type=Path)
     plot.set_defaults(run=_plot)
+    evaluate = commands.add_parser(
+        "evaluate", help="the default model's leave-one-out, beside seed 000 §4.2's"
+    )
+    evaluate.set_defaults(run=_evaluate)
     predict = commands.add_parser("predict", help="print a word's Variable timing as JSON")
     predict.add_argument("word")
     predict.add_argument("--model", type=Path)

@@ -112,3 +112,12 @@ def test_plot_draws_the_timeline_and_the_trajectory(tmp_path, capsys):
     assert pdf.read_bytes() == first  # byte-stable
     assert main(["plot", "he7", "--out", str(png)]) == 2
     assert "'7' is not a letter" in capsys.readouterr().err
+
+
+def test_evaluate_prints_the_default_models_leave_one_out_beside_the_papers(capsys):
+    """Issue 38: the default model's 19 % against seed 000's 75.00 % / 13.82 ms, said so."""
+    assert main(["evaluate"]) == 0
+    printed = capsys.readouterr().out.splitlines()
+    ours = next(line for line in printed if line.startswith("holds: "))
+    assert "leave-one-out accuracy 19.27 %" in ours and "simulated from seed 000" in ours
+    assert "304 recorded holds: accuracy 75.00 %, mean error 13.82 ms per hold" in printed[1]
