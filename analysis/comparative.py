@@ -14,11 +14,10 @@ from itertools import combinations
 
 import numpy as np
 import pandas as pd
-from scipy import stats
 
 from analysis.results import ComparativePreference
 from analysis.tidy import analysed
-from analysis.within import adjust, wilcoxon_test
+from analysis.within import adjust, mean_ci, wilcoxon_test
 
 
 def preferences(frame: pd.DataFrame, points: int = 5) -> pd.DataFrame:
@@ -70,11 +69,8 @@ def compare_preferences(
         values = per_participant.to_numpy()
         n = len(values)
         mean = float(values.mean())
-        if n > 1 and values.std(ddof=1) > 0:
-            half = stats.t.ppf(0.975, n - 1) * values.std(ddof=1) / np.sqrt(n)
-            ci = (mean - half, mean + half)
-        else:
-            ci = (float("nan"), float("nan"))
+        # No spread, no interval: all participants' preferences alike.
+        ci = mean_ci(values) if n > 1 and values.std(ddof=1) > 0 else (np.nan, np.nan)
         test = wilcoxon_test(values, np.zeros(n), (a, b))
         results.append(
             ComparativePreference(

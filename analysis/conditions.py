@@ -8,27 +8,14 @@ Wilcoxon signed-rank test on the participants who saw both, corrected across the
 of one measure (spec 07 "Ratings", "Intelligibility").
 """
 
-import dataclasses
-from itertools import combinations
-
 import numpy as np
 import pandas as pd
-from scipy import stats
 
 from analysis.summaries import ConditionComparison, ConditionSummary
-from analysis.within import adjust, paired_ttest, wilcoxon_test
+from analysis.within import adjust_comparisons, mean_ci, paired_comparisons
 
 # The columns of a long table of scores: one row per answer.
 SCORE_COLUMNS = ("measure", "participant", "item", "condition", "score")
-
-
-def _ci(values: np.ndarray) -> tuple[float, float]:
-    n = values.size
-    if n < 2:
-        return (float("nan"), float("nan"))
-    mean, sem = values.mean(), values.std(ddof=1) / np.sqrt(n)
-    half = stats.t.ppf(0.975, n - 1) * sem
-    return (float(mean - half), float(mean + half))
 
 
 def _summary(measure: str, condition: str, answers: pd.DataFrame) -> ConditionSummary:
@@ -45,7 +32,7 @@ def _summary(measure: str, condition: str, answers: pd.DataFrame) -> ConditionSu
         mean=float(means.mean()),
         sd=sd,
         sem=sd / np.sqrt(n) if n > 1 else float("nan"),
-        ci=_ci(means),
+        ci=mean_ci(means),
         median=float(np.median(scores)),
         q1=float(np.percentile(scores, 25)),
         q3=float(np.percentile(scores, 75)),
@@ -66,31 +53,12 @@ def compare_conditions(
 ) -> tuple[ConditionComparison, ...]:
     """Compare every two conditions of each measure on participants' means (paired)."""
     scores = scores.dropna(subset=["score"])
-    found = []
+    found: list[ConditionComparison] = []
     for measure, rows in scores.groupby("measure", sort=True):
         wide = rows.pivot_table(
             index="participant", columns="condition", values="score", aggfunc="mean"
         )
-        tests = []
-        for a, b in combinations(sorted(wide.columns), 2):
-            paired = wide[[a, b]].dropna()
-            if len(paired) < 2:
-                continue
-            x, y = paired[a].to_numpy(), paired[b].to_numpy()
-            tests.append(
-                (a, b, len(paired), wilcoxon_test(x, y, (a, b)), paired_ttest(x, y, (a, b)))
-            )
-        wilcoxon_adjusted = adjust([t[3].pvalue for t in tests], correction)
-        ttest_adjusted = adjust([t[4].pvalue for t in tests], correction)
-        for (a, b, n, w, t), pw, pt in zip(tests, wilcoxon_adjusted, ttest_adjusted, strict=True):
-            found.append(
-                ConditionComparison(
-                    measure=measure,
-                    a=a,
-                    b=b,
-                    nobs=n,
-                    wilcoxon=dataclasses.replace(w, pvalue_adjusted=float(pw)),
-                    ttest=dataclasses.replace(t, pvalue_adjusted=float(pt)),
-                )
-            )
+        found += adjust_comparisons(
+            paired_comparisons(wide, ConditionComparison, measure=measure), correction
+        )
     return tuple(found)

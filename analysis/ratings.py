@@ -1,15 +1,12 @@
 """Summarize Likert ratings and compare conditions on them (spec 07 "Ratings")."""
 
-import dataclasses
-from itertools import combinations
-
 import numpy as np
 import pandas as pd
 
 from analysis.conditions import SCORE_COLUMNS
 from analysis.summaries import RatingComparison, RatingSummary
 from analysis.tidy import analysed
-from analysis.within import adjust, paired_ttest, wilcoxon_test
+from analysis.within import adjust_comparisons, paired_comparisons
 
 GROUP = ["item", "condition_a", "question"]
 
@@ -85,31 +82,5 @@ def compare_ratings(frame: pd.DataFrame, correction: str = "holm") -> tuple[Rati
         wide = group.pivot_table(
             index="participant", columns="condition_a", values="rating", aggfunc="mean"
         )
-        for a, b in combinations(sorted(wide.columns), 2):
-            paired = wide[[a, b]].dropna()
-            if len(paired) < 2:
-                continue
-            x, y = paired[a].to_numpy(), paired[b].to_numpy()
-            comparisons.append(
-                RatingComparison(
-                    item=item,
-                    question=question,
-                    a=a,
-                    b=b,
-                    nobs=len(paired),
-                    wilcoxon=wilcoxon_test(x, y, (a, b)),
-                    ttest=paired_ttest(x, y, (a, b)),
-                )
-            )
-    if not comparisons:
-        return ()
-    wilcoxon_adjusted = adjust([c.wilcoxon.pvalue for c in comparisons], correction)
-    ttest_adjusted = adjust([c.ttest.pvalue for c in comparisons], correction)
-    return tuple(
-        dataclasses.replace(
-            c,
-            wilcoxon=dataclasses.replace(c.wilcoxon, pvalue_adjusted=float(pw)),
-            ttest=dataclasses.replace(c.ttest, pvalue_adjusted=float(pt)),
-        )
-        for c, pw, pt in zip(comparisons, wilcoxon_adjusted, ttest_adjusted, strict=True)
-    )
+        comparisons += paired_comparisons(wide, RatingComparison, item=item, question=question)
+    return adjust_comparisons(comparisons, correction)

@@ -9,6 +9,7 @@ from scipy import stats
 from statsmodels.stats.multitest import multipletests
 
 from analysis.results import FriedmanResult, PairedTTest, WilcoxonTest
+from analysis.summaries import PairedComparison
 
 CORRECTIONS = {"holm": "holm", "bonferroni": "bonferroni", "fdr_bh": "fdr_bh", "none": None}
 
@@ -65,6 +66,45 @@ def wilcoxon_test(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> Wilco
         pvalue_adjusted=float(result.pvalue),
         rank_biserial=float((positive - negative) / (positive + negative)),
         nobs=int(difference.size),
+    )
+
+
+def mean_ci(values: np.ndarray) -> tuple[float, float]:
+    """Return the t-based 95 % CI of the mean of *values* (NaN for fewer than two)."""
+    values = np.asarray(values, dtype=float)
+    n = values.size
+    if n < 2:
+        return (float("nan"), float("nan"))
+    half = stats.t.ppf(0.975, n - 1) * values.std(ddof=1) / np.sqrt(n)
+    return (float(values.mean() - half), float(values.mean() + half))
+
+
+def paired_comparisons(wide: pd.DataFrame, result: type[PairedComparison], **fields) -> list:
+    """Return a *result* (paired t and Wilcoxon tests) for every two columns of *wide*
+    (participants × conditions) that two or more participants have both; *fields* are
+    the result's other fields (item, question, measure)."""
+    found = []
+    for a, b in combinations(sorted(wide.columns), 2):
+        paired = wide[[a, b]].dropna()
+        if len(paired) < 2:
+            continue
+        x, y = paired[a].to_numpy(), paired[b].to_numpy()
+        found.append(result(a=a, b=b, nobs=len(paired), wilcoxon=wilcoxon_test(x, y, (a, b)),
+                            ttest=paired_ttest(x, y, (a, b)), **fields))  # fmt: skip
+    return found
+
+
+def adjust_comparisons(comparisons: list, correction: str) -> tuple:
+    """Return *comparisons* with each test's p-values corrected across them."""
+    wilcoxon = adjust([c.wilcoxon.pvalue for c in comparisons], correction)
+    ttest = adjust([c.ttest.pvalue for c in comparisons], correction)
+    return tuple(
+        dataclasses.replace(
+            c,
+            wilcoxon=dataclasses.replace(c.wilcoxon, pvalue_adjusted=float(pw)),
+            ttest=dataclasses.replace(c.ttest, pvalue_adjusted=float(pt)),
+        )
+        for c, pw, pt in zip(comparisons, wilcoxon, ttest, strict=True)
     )
 
 
