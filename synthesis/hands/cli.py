@@ -6,6 +6,7 @@
     python -m synthesis.hands reconstruct --spell HEAVEN --markers 3 --method lwr \
         --out rebuilt.bvh --report dir/
     python -m synthesis.hands markers --out dir/   # Table 3.1 and Alg. 1 vs Alg. 2
+    python -m synthesis.hands markers --configuration paper --out dir/   # seed 000's setup
     python -m synthesis.hands database [RECORDINGS…] --words CAT DOG --simulated 2 --out poses.npz
 
 A motion is a BVH of the engine's hand or body, or a captured .pose file; --spell uses
@@ -50,6 +51,14 @@ def _reduce(args: argparse.Namespace) -> int:
             f"  {relation.dependent} ← {relation.controller} "
             f"({relation.metric} = {relation.rmsd:.2f})"
         )
+    from synthesis.hands.report import PUBLISHED_REDUCTION_INPUT, step_rows
+
+    print(f"seed 002's steps on {source} (published: {PUBLISHED_REDUCTION_INPUT}):")
+    for row in step_rows(motion.analysis_curves_deg(), motion.names, source):
+        print(
+            f"  {row['step']}: {row['dofs']} of {row['of']} DOFs, mean error "
+            f"{row['mean_error_deg']:.2f}°; published {row['published_dofs_of_50']} of 50"
+        )
     if args.out:
         write_bvh(reduced.as_bvh_motion(), args.out)
         print(f"wrote {args.out}")
@@ -69,7 +78,13 @@ def _reconstruct(args: argparse.Namespace) -> int:
 
     database = str(args.database or "")
     rebuilt = reconstruct_motion(
-        motion.rig, motion.dofs_rad, motion.rate_hz, args.markers, args.method, database
+        motion.rig,
+        motion.dofs_rad,
+        motion.rate_hz,
+        args.markers,
+        args.method,
+        database,
+        args.lwr_variance,
     )
     if args.out:
         write_bvh(motion.rig.as_motion(rebuilt, motion.rate_hz), args.out)
@@ -80,40 +95,129 @@ def _reconstruct(args: argparse.Namespace) -> int:
     return 0
 
 
-def _markers(args: argparse.Namespace) -> int:
+TABLE_3_1_COLUMNS = {
+    "configuration": "configuration",
+    "input": "input",
+    "poses": "p",
+    "markers": "m",
+    "set": "markers",
+    "error_cm": "error (cm)",
+    "sd_cm": "s.d.",
+    "published_cm": "published (cm)",
+    "published_sd_cm": "pub. s.d.",
+}
+
+
+def _print_table(rows: list[dict]) -> None:
+    for row in rows:
+        published = (
+            f"published {row['published_cm']} cm (s.d. {row['published_sd_cm']})"
+            if row["published_cm"] is not None
+            else "not published"
+        )
+        print(
+            f"p = {row['poses']:4d}, m = {row['markers']:2d}: {row['error_cm']:.2f} cm "
+            f"(s.d. {row['sd_cm']:.2f}); {published} [{row['set']}]"
+        )
+
+
+def _engine_table(args: argparse.Namespace, hand) -> list[dict]:
     import numpy as np
 
     from synthesis.fingerspelling.spelling import spell
-    from synthesis.hands.evaluation import compare_marker_choices, table_3_1
+    from synthesis.hands.evaluation import ENGINE_CONFIGURATION, table_3_1
     from synthesis.hands.handover import builtin_pose_database
-    from synthesis.hands.report import write_csv
+
+    test = np.vstack([spell(word, args.side, 120.0) for word in args.words])
+    database = builtin_pose_database(args.side)
+    source = f"the engine's spelling of {', '.join(args.words)} from {database.source}"
+    print(f"{ENGINE_CONFIGURATION}\n  input: {source}")
+    rows = table_3_1(
+        database, hand, test, 120.0, np.random.default_rng(args.seed), source,
+        tuple(args.poses), tuple(args.sizes),
+    )  # fmt: skip
+    _print_table(rows)
+    return rows
+
+
+def _paper_tables(args: argparse.Namespace, hand) -> list[dict]:
+    import numpy as np
+
+    from synthesis.hands.evaluation import PAPER_CONFIGURATION, PUBLISHED_INPUT, paper_table_3_1
+    from synthesis.hands.heldout import human_letters, simulated_gestures
+
+    rows = []
+    for name in args.paper_input:
+        if name == "gestures":
+            rng = np.random.default_rng(args.seed)
+            seconds = args.gesture_seconds
+            held_out = simulated_gestures(args.side, rng, seconds, seconds / 9, seconds / 4.5)
+        else:
+            held_out = human_letters(args.side)
+        print(f"{PAPER_CONFIGURATION}\n  input: {held_out.input}\n  published: {PUBLISHED_INPUT}")
+        table = paper_table_3_1(
+            held_out, hand, 120.0, np.random.default_rng(args.seed), tuple(args.poses),
+            tuple(args.sizes), args.select_on,
+        )  # fmt: skip
+        _print_table(table)
+        rows += table
+    return rows
+
+
+def _markers(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from synthesis.hands.evaluation import compare_marker_choices
+    from synthesis.hands.handover import builtin_pose_database
+    from synthesis.hands.report import write_csv, write_latex
     from synthesis.rigs.hand import HandModel
 
     hand = HandModel(args.side)
-    test = np.vstack([spell(word, args.side, 120.0) for word in args.words])
-    database = builtin_pose_database(args.side)
-    print(f"database: {database.source}; test: the engine's spelling of {', '.join(args.words)}")
-    rows = table_3_1(database, hand, test, 120.0, np.random.default_rng(args.seed))
-    for row in rows:
-        print(
-            f"p = {row['poses']:4d}, m = {row['markers']:2d}: {row['error_cm']:.2f} cm "
-            f"(s.d. {row['sd_cm']:.2f}); published {row['published_cm']} cm"
-        )
-    choices = compare_marker_choices(database, hand, test, np.random.default_rng(args.seed))
-    for row in choices:
-        print(f"m = {row['markers']}, {row['method']}: {row['set']} — {row['error_cm']:.2f} cm")
+    rows = []
+    if args.configuration in ("engine", "both"):
+        rows += _engine_table(args, hand)
+    if args.configuration in ("paper", "both"):
+        rows += _paper_tables(args, hand)
     args.out.mkdir(parents=True, exist_ok=True)
     print(f"wrote {write_csv(args.out / 'table-3-1.csv', rows)}")
-    print(f"wrote {write_csv(args.out / 'marker-sets.csv', choices)}")
+    caption = (
+        "Mean marker error (cm) of the nearest-pose reconstruction by database size p and "
+        "marker count m, beside seed 000 Table 3.1 (published)"
+    )
+    print(f"wrote {write_latex(args.out / 'table-3-1.tex', rows, TABLE_3_1_COLUMNS, caption)}")
+    if args.configuration in ("engine", "both") and args.compare:
+        from synthesis.fingerspelling.spelling import spell
+
+        test = np.vstack([spell(word, args.side, 120.0) for word in args.words])
+        database = builtin_pose_database(args.side)
+        choices = compare_marker_choices(database, hand, test, np.random.default_rng(args.seed))
+        for row in choices:
+            print(f"m = {row['markers']}, {row['method']}: {row['set']} — {row['error_cm']:.2f} cm")
+        print(f"wrote {write_csv(args.out / 'marker-sets.csv', choices)}")
     return 0
 
 
 def _database(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from synthesis.hands.posedb import combined, engine_pose_database, recorded_pose_database
 
-    parts = [engine_pose_database(args.side, tuple(args.speeds), tuple(args.words), args.simulated)]
+    parts = [
+        engine_pose_database(
+            args.side, tuple(args.speeds), tuple(args.words), args.simulated, args.root
+        )
+    ]
     if args.recordings:
-        parts.append(recorded_pose_database(args.recordings, args.side))
+        parts.append(recorded_pose_database(args.recordings, args.side, args.root))
+    if args.human_letters:
+        from synthesis.hands.posedb import human_letter_dofs, pose_database_of
+        from synthesis.rigs.hand import HandModel
+
+        fitted = human_letter_dofs(args.side)
+        letters = "".join(x for x in args.human_letters.upper() if x in fitted)
+        source = f"human letters {letters} (spoken-to-signed)"
+        poses = np.vstack([fitted[x] for x in letters])
+        parts.append(pose_database_of(HandModel(args.side), poses, source, args.root))
     database = combined(*parts) if len(parts) > 1 else parts[0]
     database.write(args.out)
     print(f"wrote {args.out}: {database.source}")
@@ -158,6 +262,13 @@ def parser() -> argparse.ArgumentParser:
         help="how many markers are kept (1–13; seed 000: 3 and 6)",
     )
     rebuild.add_argument("--method", choices=("lwr", "nearest"), default="lwr")
+    rebuild.add_argument(
+        "--lwr-variance",
+        type=float,
+        default=1.0,
+        help="share of the joint angles' variance LWR's principal components keep "
+        "(1: all of them, seed 000 §3.2.4; then LWR equals direct regression)",
+    )
     rebuild.add_argument("--out", type=Path, help="the rebuilt motion (BVH)")
     rebuild.add_argument(
         "--report", type=Path, help="a directory for the marker ranking and errors by marker count"
@@ -170,7 +281,43 @@ def parser() -> argparse.ArgumentParser:
     rebuild.set_defaults(run=_reconstruct)
     markers = commands.add_parser("markers", help="Table 3.1 and the marker-set choices")
     markers.add_argument("--out", type=Path, required=True)
-    markers.add_argument("--words", nargs="+", default=["GIRL", "WALK", "HELLO"])
+    markers.add_argument(
+        "--configuration",
+        choices=("engine", "paper", "both"),
+        default="engine",
+        help="engine: PCA-ranked markers at the wrist on spelled words; paper: seed 000 "
+        "§3.1's Alg. 1 markers at the forearm on held-out motion",
+    )
+    markers.add_argument(
+        "--words", nargs="+", default=["GIRL", "WALK", "HELLO"], help="the engine's test words"
+    )
+    markers.add_argument(
+        "--paper-input",
+        nargs="+",
+        choices=("gestures", "letters"),
+        default=["gestures", "letters"],
+        help="the paper configuration's inputs: simulated gestures, the human letters",
+    )
+    markers.add_argument(
+        "--gesture-seconds",
+        type=float,
+        default=90.0,
+        help="seconds of simulated gestures in the database (selection and test: 1/9, 2/9)",
+    )
+    markers.add_argument(
+        "--select-on",
+        choices=("selection", "test"),
+        default="selection",
+        help="choose Alg. 1's markers on a withheld selection sequence, or on the test one",
+    )
+    markers.add_argument("--poses", nargs="+", type=int, default=[50, 100, 500, 1000])
+    markers.add_argument("--sizes", nargs="+", type=int, default=[2, 4, 6])
+    markers.add_argument(
+        "--no-compare",
+        dest="compare",
+        action="store_false",
+        help="skip the engine's PCA against exhaustive-search comparison",
+    )
     markers.add_argument("--side", choices=("right", "left"), default="right")
     markers.add_argument("--seed", type=int, default=0)
     markers.set_defaults(run=_markers)
@@ -191,6 +338,19 @@ def parser() -> argparse.ArgumentParser:
     )
     database.add_argument(
         "--simulated", type=int, default=0, help="simulated captures of each word to add"
+    )
+    database.add_argument(
+        "--human-letters",
+        metavar="LETTERS",
+        default="",
+        help="add these of spoken-to-signed's human letters (e.g. ABCDEFGHIJKLMNOPQRSTUVWXYZ)",
+    )
+    database.add_argument(
+        "--root",
+        choices=("wrist", "forearm"),
+        default="wrist",
+        help="the markers' root link: wrist (digits only, the engine's) or forearm (seed "
+        "000's, the wrist rebuilt too)",
     )
     database.add_argument("--side", choices=("right", "left"), default="right")
     database.add_argument("--out", type=Path, required=True)

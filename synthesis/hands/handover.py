@@ -3,7 +3,8 @@
 The clip's hand motion is reduced to its sparse markers (the best m by PCA influence,
 Alg. 2) and the digits are reconstructed from them by LWR or the nearest k-means pose,
 from a pose database: the engine's alphabet (built once, kept on disk) unless another
-is given. The forearm and wrist keep their angles.
+is given. The forearm and wrist keep their angles, unless the database's markers are
+rooted at the forearm (seed 000's configuration): then the wrist is rebuilt too.
 """
 
 from functools import cache
@@ -13,9 +14,9 @@ import numpy as np
 
 from synthesis.diskcache import cached
 from synthesis.hands.markers import rank_markers, virtual_markers
-from synthesis.hands.motion import digit_columns
-from synthesis.hands.posedb import engine_pose_database
+from synthesis.hands.posedb import engine_pose_database, reconstructed_columns
 from synthesis.hands.reconstruct import (
+    LWR_VARIANCE,
     LwrModel,
     PoseDatabase,
     reconstruct_lwr,
@@ -39,7 +40,7 @@ def builtin_pose_database(side: str) -> PoseDatabase:
         }
 
     def decode(arrays: dict[str, np.ndarray]) -> PoseDatabase:
-        return PoseDatabase(arrays["dofs"], arrays["markers"], str(arrays["source"]))
+        return PoseDatabase(arrays["dofs"], arrays["markers"], str(arrays["source"]), "wrist")
 
     return cached(
         f"hand-poses-{side}", ("numpy", "scipy"), lambda: engine_pose_database(side), encode, decode
@@ -53,12 +54,14 @@ def pose_database(side: str, path: str = "") -> PoseDatabase:
 
 
 @cache
-def _prepared(side: str, markers: int, method: str, path: str = "", version: int = 0):
+def _prepared(
+    side: str, markers: int, method: str, path: str = "", version: int = 0, variance: float = 1.0
+):
     database = pose_database(side, path)
     chosen = tuple(int(i) for i in rank_markers(database.markers)[0][:markers])
     if method == "lwr":
-        return chosen, LwrModel.fit(database, chosen)
-    return chosen, database.clustered(NEAREST_POSES, np.random.default_rng(0))
+        return chosen, database.root, LwrModel.fit(database, chosen, variance)
+    return chosen, database.root, database.clustered(NEAREST_POSES, np.random.default_rng(0))
 
 
 def _version(path: str) -> int:
@@ -76,19 +79,21 @@ def reconstruct_hand(
     markers: int = 3,
     method: str = "lwr",
     database: str = "",
+    variance: float = LWR_VARIANCE,
 ) -> np.ndarray:
-    """Return hand-model DOFs (n, 30) with the digits rebuilt from *markers* of their markers."""
+    """Return hand-model DOFs (n, 30) with the digits (and, from a forearm-rooted database,
+    the wrist) rebuilt from *markers* of their markers."""
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}.")
     hand = HandModel(side)
     dofs = np.asarray(hand_dofs_rad, dtype=float)
-    chosen, model = _prepared(side, markers, method, database, _version(database))
-    sparse = virtual_markers(hand, dofs)[:, list(chosen)]
+    chosen, root, model = _prepared(side, markers, method, database, _version(database), variance)
+    sparse = virtual_markers(hand, dofs, root)[:, list(chosen)]
     if method == "lwr":
         rebuilt = reconstruct_lwr(sparse, model, rate_hz)
     else:
         rebuilt = reconstruct_nearest(sparse, chosen, model, rate_hz)
-    columns, _ = digit_columns(hand)
+    columns = reconstructed_columns(hand, root)
     out = dofs.copy()
     out[:, columns] = rebuilt[:, columns]
     return hand.clip(out)
@@ -101,10 +106,11 @@ def reconstruct_motion(
     markers: int = 3,
     method: str = "lwr",
     database: str = "",
+    variance: float = LWR_VARIANCE,
 ) -> np.ndarray:
     """Return a hand's or the body's DOFs with every hand's digits reconstructed."""
     if isinstance(rig, HandModel):
-        return reconstruct_hand(dofs_rad, rig.side, rate_hz, markers, method, database)
+        return reconstruct_hand(dofs_rad, rig.side, rate_hz, markers, method, database, variance)
     if not isinstance(rig, BodyModel):
         raise ValueError("Reconstruction needs the engine's hand or body.")
     out = np.asarray(dofs_rad, dtype=float)
@@ -112,6 +118,6 @@ def reconstruct_motion(
         where = rig.hand_dofs(side)
         hand = np.tile(HandModel(side).neutral(), (len(out), 1))
         hand[:, where >= 0] = out[:, where[where >= 0]]
-        rebuilt = reconstruct_hand(hand, side, rate_hz, markers, method, database)
+        rebuilt = reconstruct_hand(hand, side, rate_hz, markers, method, database, variance)
         out = rig.with_hand(out, side, rebuilt)
     return out

@@ -4,8 +4,15 @@ Seed 000 captured 13 markers on the hand with the lower forearm as the root link
 marker position is expressed in the root's frame, so the arm's gross motion drops out.
 Here the 13 markers sit on the hand model's joints: the thumb's MCP, IP and tip; the
 index's MCP, PIP and tip; the middle and ring fingers' PIP and tip; the little
-finger's MCP, PIP and tip. The root is the wrist: the wrist's own angles come with the
-arm's motion here, so only the digits are reconstructed from the markers.
+finger's MCP, PIP and tip. Two roots (``ROOTS``):
+
+- ``"wrist"`` (the engine's hand technique): the wrist's own angles come with the arm's
+  motion, so the markers carry the digits only and only the digits are reconstructed.
+  The index and little-finger MCP markers sit on the wrist's rigid palm, so they never
+  move in this frame: 2 of the 13 carry no information.
+- ``"forearm"`` (seed 000 App. A, the paper's configuration): the lower forearm is the
+  root link, so wrist flexion and deviation move every marker, the MCP markers on the
+  back of the palm included, and the wrist is reconstructed with the digits.
 
 Two ways to choose a sparse set of m markers: the PCA influence ranking (Alg. 2), whose
 sets are nested (the best 6 hold the best 3), and the exhaustive search (Alg. 1) of
@@ -24,13 +31,16 @@ MARKERS = (
     "pinky_mcp", "pinky_pip", "pinky_tip",
 )  # fmt: skip
 ROOT = "wrist"
+ROOTS = ("wrist", "forearm")
 
 
-def virtual_markers(hand, dofs_rad: np.ndarray) -> np.ndarray:
+def virtual_markers(hand, dofs_rad: np.ndarray, root: str = ROOT) -> np.ndarray:
     """Return the 13 markers (n_frames, 13, 3) in metres, in the root link's frame."""
+    if root not in ROOTS:
+        raise ValueError(f"The markers' root is one of {', '.join(ROOTS)}, not {root!r}.")
     pose = hand.pose(np.atleast_2d(dofs_rad))
     skeleton = hand.skeleton
-    root = skeleton.index(ROOT)
+    root = skeleton.index(root)
     index = [skeleton.index(name) for name in MARKERS]
     rotation = pose.rotations[:, root]  # (n, 3, 3)
     offsets = pose.positions_m[:, index] - pose.positions_m[:, root, None]

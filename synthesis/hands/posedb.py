@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.hands.markers import virtual_markers
+from synthesis.hands.markers import ROOTS, virtual_markers
 from synthesis.hands.motion import digit_columns, read_hand_motion
 from synthesis.hands.reconstruct import PoseDatabase
 from synthesis.rigs.hand import HandModel
@@ -23,12 +23,31 @@ ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 RATE_HZ = 120.0
 
 
-def _digits_only(hand: HandModel, dofs_rad: np.ndarray) -> np.ndarray:
-    """Return the DOFs with the forearm and wrist at rest: the database holds handshapes."""
+def reconstructed_columns(hand: HandModel, root: str = "wrist") -> np.ndarray:
+    """Return the DOFs the markers carry from *root*: the digits, and the wrist from the forearm."""
+    if root not in ROOTS:
+        raise ValueError(f"The markers' root is one of {', '.join(ROOTS)}, not {root!r}.")
     columns, _ = digit_columns(hand)
+    if root == "wrist":
+        return columns
+    wrist = [hand.dof_names.index(name) for name in ("wrist_deviation", "wrist_flexion")]
+    return np.concatenate([wrist, columns])
+
+
+def handshapes(hand: HandModel, dofs_rad: np.ndarray, root: str = "wrist") -> np.ndarray:
+    """Return the DOFs with what lies above *root* at rest: the database holds handshapes."""
+    columns = reconstructed_columns(hand, root)
     out = np.tile(hand.neutral(), (len(dofs_rad), 1))
     out[:, columns] = np.asarray(dofs_rad)[:, columns]
     return out
+
+
+def pose_database_of(
+    hand: HandModel, dofs_rad: np.ndarray, source: str, root: str = "wrist"
+) -> PoseDatabase:
+    """Return the poses of *dofs_rad* (hand DOFs at 120 Hz) with their markers from *root*."""
+    dofs = handshapes(hand, dofs_rad, root)
+    return PoseDatabase(dofs, virtual_markers(hand, dofs, root), source, root)
 
 
 def engine_pose_database(
@@ -36,6 +55,7 @@ def engine_pose_database(
     runs: Iterable[float] = (1.0, 1.6),
     words: Iterable[str] = (),
     simulated: int = 0,
+    root: str = "wrist",
 ) -> PoseDatabase:
     """Return the engine's poses: the alphabet and *words* spelled once per speed factor in
     *runs* (1 = the engine's own pace), plus *simulated* simulated captures of each word
@@ -67,15 +87,14 @@ def engine_pose_database(
                 capture = Recording.simulate(word, seed, side=side, rate_hz=RATE_HZ)
                 frames.append(hand.dofs_from_motion(capture.motion))
         parts.append(f"{simulated} simulated captures of each word")
-    dofs = _digits_only(hand, np.vstack(frames))
-    return PoseDatabase(
-        dofs,
-        virtual_markers(hand, dofs),
-        f"the engine's {' and '.join(parts)}, {len(dofs)} poses at 120 Hz",
-    )
+    frames = np.vstack(frames)
+    source = f"the engine's {' and '.join(parts)}, {len(frames)} poses at 120 Hz"
+    return pose_database_of(hand, frames, source, root)
 
 
-def recorded_pose_database(paths: Iterable[str | Path], side: str = "right") -> PoseDatabase:
+def recorded_pose_database(
+    paths: Iterable[str | Path], side: str = "right", root: str = "wrist"
+) -> PoseDatabase:
     """Return the poses of hand recordings (engine hand BVH or .pose), resampled to 120 Hz."""
     hand = HandModel(side)
     parts, names = [], []
@@ -85,14 +104,44 @@ def recorded_pose_database(paths: Iterable[str | Path], side: str = "right") -> 
             raise ValueError(f"{path}: a pose database takes hand recordings.")
         parts.append(resample_curves(motion.dofs_rad, motion.rate_hz, RATE_HZ))
         names.append(Path(path).name)
-    dofs = _digits_only(hand, np.vstack(parts))
-    return PoseDatabase(dofs, virtual_markers(hand, dofs), f"recordings {', '.join(names)}")
+    return pose_database_of(hand, np.vstack(parts), f"recordings {', '.join(names)}", root)
 
 
 def combined(*databases: PoseDatabase) -> PoseDatabase:
     """Return the poses of several databases together, their sources joined."""
+    roots = {d.root for d in databases}
+    if len(roots) > 1:
+        raise ValueError(f"Pose databases with different marker roots do not mix: {sorted(roots)}.")
     return PoseDatabase(
         np.vstack([d.dofs_rad for d in databases]),
         np.vstack([d.markers for d in databases]),
         "; ".join(d.source for d in databases),
+        roots.pop(),
     )
+
+
+def human_letter_dofs(side: str = "right", letters: str = "") -> dict[str, np.ndarray]:
+    """Return each human letter's hand DOFs at 120 Hz (``spoken-to-signed``'s lexicon):
+    *letters*, or A–Z when empty.
+
+    The hand model is fitted to each ``.pose`` file (about a second a letter) once and
+    kept in the engine's disk cache. Raise LexiconMissing without the package and
+    ValueError for a letter it has no recording of.
+    """
+    from synthesis.capture.lexicon import human_letter_files
+    from synthesis.diskcache import cached
+
+    files = human_letter_files()
+    wanted = "".join(sorted(set(letters.upper()))) or "".join(files)
+    missing = sorted(set(wanted) - set(files))
+    if missing:
+        raise ValueError(f"No human recording of {', '.join(missing)}.")
+
+    def compute() -> dict[str, np.ndarray]:
+        fitted = {}
+        for letter in wanted:
+            motion = read_hand_motion(files[letter], side)
+            fitted[letter] = resample_curves(motion.dofs_rad, motion.rate_hz, RATE_HZ)
+        return fitted
+
+    return cached(f"human-letters-{side}-{wanted}", ("numpy", "scipy"), compute, dict, dict)

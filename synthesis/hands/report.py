@@ -15,11 +15,53 @@ from synthesis.hands.reduction import (
 
 # Seed 002 Table 5: free DOFs of two hands (50 curves) after each step.
 PUBLISHED_STEPS = (39, 27, 31, 15)
+PUBLISHED_REDUCTION_INPUT = "seed 002: one 27 s motion capture of two hands (50 curves)"
+STEP_COLUMNS = {
+    "step": "step",
+    "input": "input",
+    "dofs": "DOFs",
+    "of": "of",
+    "mean_error_deg": "mean error (deg)",
+    "published_dofs_of_50": "published DOFs of 50",
+}
 
 
 def write_csv(path: Path, rows: list[dict], columns: list[str] | None = None) -> Path:
     """Write *rows* to *path* as CSV (columns: the first row's keys by default)."""
     return _write_csv(path, rows, columns or list(rows[0]))
+
+
+def _latex_cell(value) -> str:
+    if value is None or (isinstance(value, float) and value != value):
+        return "--"
+    if isinstance(value, float):
+        return f"{value:.2f}"
+    text = str(value).replace("\\", "/")
+    for char in "&%$#_{}":
+        text = text.replace(char, "\\" + char)
+    return text.replace("<", "$<$").replace(">", "$>$")
+
+
+def write_latex(path: Path, rows: list[dict], columns: dict[str, str], caption: str) -> Path:
+    """Write *rows* to *path* as a LaTeX table: *columns* maps row keys to headings; a
+    missing figure prints as ``--``."""
+    headings = " & ".join(_latex_cell(heading) for heading in columns.values())
+    lines = [
+        "\\begin{table}",
+        "\\centering",
+        f"\\caption{{{_latex_cell(caption)}}}",
+        "\\begin{tabular}{" + "l" * len(columns) + "}",
+        "\\hline",
+        f"{headings} \\\\",
+        "\\hline",
+        *(" & ".join(_latex_cell(row.get(key)) for key in columns) + " \\\\" for row in rows),
+        "\\hline",
+        "\\end{tabular}",
+        "\\end{table}",
+        "",
+    ]
+    path.write_text("\n".join(lines), "utf-8")
+    return path
 
 
 def _write_csv(path: Path, rows: list[dict], columns: list[str]) -> Path:
@@ -30,8 +72,9 @@ def _write_csv(path: Path, rows: list[dict], columns: list[str]) -> Path:
     return path
 
 
-def step_rows(curves_deg: np.ndarray, names) -> list[dict]:
-    """Return Table 5's rows for these curves: DOFs and mean error after each seed step."""
+def step_rows(curves_deg: np.ndarray, names, source: str = "") -> list[dict]:
+    """Return Table 5's rows for these curves: DOFs and mean error after each seed step,
+    beside the published counts; *source* says what the curves are."""
     rows = []
     for (range_deg, rmsd), published in zip(SEED_STEPS, PUBLISHED_STEPS, strict=True):
         reduction = find_reduction(curves_deg, names, range_deg, rmsd)
@@ -40,11 +83,13 @@ def step_rows(curves_deg: np.ndarray, names) -> list[dict]:
         rows.append(
             {
                 "step": step,
+                "input": source,
                 "dofs": reduction.dof_count,
                 "of": len(names),
                 "mean_error_deg": round(float(errors.mean()), 3),
                 "max_error_deg": round(float(errors.max()), 3),
                 "published_dofs_of_50": published,
+                "published_input": PUBLISHED_REDUCTION_INPUT,
             }
         )
     return rows
@@ -106,8 +151,10 @@ def write_reduction_report(
             ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"],
         ),
     ]
-    steps = step_rows(curves_deg, names)
+    steps = step_rows(curves_deg, names, source)
     written.append(_write_csv(directory / "steps.csv", steps, list(steps[0])))
+    caption = f"Free DOFs after seed 002's steps: {source}; published: {PUBLISHED_REDUCTION_INPUT}"
+    written.append(write_latex(directory / "steps.tex", steps, STEP_COLUMNS, caption))
     summary = directory / "report.md"
     lines = [
         f"# DOF reduction (seed 002): range < {reduction.range_deg:g}°"
@@ -177,6 +224,7 @@ def write_reconstruction_report(
 ) -> list[Path]:
     """Write the marker ranking and the error by marker count (1–13) of reconstructing
     *motion*'s hands, and a figure of marker count against error."""
+    from synthesis.hands.evaluation import PUBLISHED_INPUT, PUBLISHED_TABLE_3_1
     from synthesis.hands.handover import pose_database, reconstruct_hand
     from synthesis.hands.markers import MARKERS, rank_markers, virtual_markers
     from synthesis.hands.reconstruct import marker_error_cm
@@ -194,24 +242,44 @@ def write_reconstruction_report(
         for k, i in enumerate(order)
     ]
     hand = HandModel(side)
-    truth = virtual_markers(hand, motion.dofs_rad)
+    truth = virtual_markers(hand, motion.dofs_rad, database.root)
+    # Table 3.1's p = 1000 row is the nearest-pose method's; LWR's errors were only plotted.
+    published = PUBLISHED_TABLE_3_1[1000] if method == "nearest" else {}
     rows = []
     for count in range(1, len(MARKERS) + 1):
         rebuilt = reconstruct_hand(
             motion.dofs_rad, side, motion.rate_hz, count, method, database_path
         )
-        error, spread = marker_error_cm(truth, virtual_markers(hand, rebuilt))
+        error, spread = marker_error_cm(truth, virtual_markers(hand, rebuilt, database.root))
+        paper = published.get(count, (None, None))
         rows.append(
             {
                 "markers": count,
                 "method": method,
+                "input": source,
+                "database": database.source,
                 "error_cm": round(error, 3),
                 "sd_cm": round(spread, 3),
+                "published_cm": paper[0],
+                "published_sd_cm": paper[1],
+                "published_input": PUBLISHED_INPUT if paper[0] is not None else "",
             }
         )
+    caption = (
+        f"Mean marker error (cm) by markers kept ({method}): {source}; database: "
+        f"{database.source}; published: seed 000 Table 3.1, p = 1000 (nearest pose only)"
+    )
+    columns = {
+        "markers": "m",
+        "error_cm": "error (cm)",
+        "sd_cm": "s.d.",
+        "published_cm": "published (cm)",
+        "published_sd_cm": "pub. s.d.",
+    }
     written = [
         _write_csv(directory / "marker-ranking.csv", ranking, ["rank", "marker", "influence"]),
         _write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
+        write_latex(directory / "errors-by-markers.tex", rows, columns, caption),
     ]
     import matplotlib
 

@@ -11,6 +11,7 @@ import math
 import numpy as np
 import pytest
 
+from synthesis.hands.evaluation import ENGINE_CONFIGURATION
 from synthesis.hands.handover import builtin_pose_database, reconstruct_hand
 from synthesis.hands.markers import (
     MARKERS,
@@ -122,9 +123,13 @@ def test_table_3_1_and_the_marker_choices_command(tmp_path, capsys):
 
     assert main(["markers", "--out", str(tmp_path), "--words", "CAB"]) == 0
     out = capsys.readouterr().out
-    assert "database: the engine's alphabet" in out and "published 0.62 cm" in out
+    assert "input: the engine's spelling of CAB from the engine's alphabet" in out
+    assert "published 0.62 cm" in out
     with (tmp_path / "table-3-1.csv").open() as handle:
         rows = list(csv.DictReader(handle))
+    assert {r["configuration"] for r in rows} == {ENGINE_CONFIGURATION}
+    assert rows[-1]["published_cm"] == "0.62" and "CAB" in rows[-1]["input"]
+    assert "published (cm)" in (tmp_path / "table-3-1.tex").read_text()
     assert [(int(r["poses"]), int(r["markers"])) for r in rows][:4] == [
         (50, 2),
         (50, 4),
