@@ -8,12 +8,19 @@ from synthesis.timing.defaults import published_model
 from synthesis.timing.extraction import Extraction, ExtractionError, extract
 from synthesis.timing.features import DEFAULT_FEATURES, FEATURES, letter_features
 from synthesis.timing.simulate import CaptureNoise, sample_timing, simulate_recording
-from synthesis.timing.transitions import TransitionModel, letter_distance, pose_distance
+from synthesis.timing.transitions import (
+    SPACES,
+    TransitionModel,
+    joint_differences,
+    letter_distance,
+    pose_distance,
+)
 from synthesis.timing.variable import VariableModel
 
 __all__ = [
     "DEFAULT_FEATURES",
     "FEATURES",
+    "SPACES",
     "CaptureNoise",
     "Extraction",
     "ExtractionError",
@@ -25,6 +32,7 @@ __all__ = [
     "WordTiming",
     "constant_timing",
     "extract",
+    "joint_differences",
     "letter_distance",
     "letter_features",
     "normalized_constant_timing",

@@ -41,12 +41,12 @@ def _train(args: argparse.Namespace) -> int:
     if args.recordings:
         from synthesis.timing.recordings import train_on_recordings
 
-        model, report = train_on_recordings(_recordings(args), args.metric)
+        model, report = train_on_recordings(_recordings(args), args.metric, args.space)
     elif args.holds and args.transitions:
         holds = read_annotations(args.holds, HOLD_COLUMNS)
         transitions = read_annotations(args.transitions, TRANSITION_COLUMNS)
         source = f"{args.holds}, {args.transitions}"
-        model, report = train(holds, transitions, args.metric, source=source)
+        model, report = train(holds, transitions, args.metric, source=source, space=args.space)
     else:
         raise TimingError("Give recordings (BVH files) or both --holds and --transitions.")
     for line in report.lines():
@@ -122,6 +122,12 @@ def parser() -> argparse.ArgumentParser:
     fit.add_argument("--holds", type=Path, help="CSV: word, index, hold_ms")
     fit.add_argument("--transitions", type=Path, help="CSV: word, index, transition_ms")
     fit.add_argument("--metric", choices=("rmsd", "manhattan", "chebyshev"), default="rmsd")
+    fit.add_argument(
+        "--space",
+        choices=("joints", "dofs"),
+        default="joints",
+        help="measure pose distance over the hand's 17 joints (seed 000: 18) or its 30 DOFs",
+    )
     fit.add_argument("--out", type=Path, required=True)
     fit.set_defaults(run=_train)
     compare = commands.add_parser(

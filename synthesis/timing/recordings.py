@@ -148,11 +148,12 @@ def annotations(recordings: list[Recording]) -> tuple[list[Annotation], list[Ann
     return holds, transitions
 
 
-def train_on_recordings(recordings: list[Recording], metric: str = "rmsd"):
+def train_on_recordings(recordings: list[Recording], metric: str = "rmsd", space: str = "joints"):
     """Train a Variable model on the holds and transitions found in recordings."""
     holds, transitions = annotations(recordings)
     words = ", ".join(sorted({r.word for r in recordings}))
-    return train(holds, transitions, metric, source=f"{len(recordings)} recordings: {words}")
+    source = f"{len(recordings)} recordings: {words}"
+    return train(holds, transitions, metric, source=source, space=space)
 
 
 def duration_table(recordings: list[Recording], model: VariableModel) -> list[dict]:

@@ -1,18 +1,34 @@
 """Transition times from pose distance: ``t = a + b · d(from, to)`` (seed 000 §4.2.2).
 
-The distance is taken over the hand model's joint angles (radians) between the two
-letters' poses: RMSD (seed 000's choice: r = 0.44), Manhattan (r = 0.42) or Chebyshev
-(r = 0.38). All three are symmetric, so A→B and B→A take the same time.
+The distance between two letters' poses is RMSD (seed 000's choice: r = 0.44),
+Manhattan (r = 0.42) or Chebyshev (r = 0.38) over one difference per component, in
+radians. Two spaces of components (``SPACES``):
+
+- ``"joints"`` (the default, the paper's): one value per joint, a = (a₁ … aₙ) "with
+  n = 18 joints" in seed 000's hand model; here the hand model's 17 articulated joints
+  (forearm, wrist and 15 digit joints), each joint's difference the angle of the
+  rotation between its two local rotations, so that a joint that bends about two axes
+  counts once, by how far it turns;
+- ``"dofs"``: one value per DOF of the hand model (30, five of them forearm and wrist
+  placement), as the engine measured before; models saved without a space used it.
+
+All are symmetric, so A→B and B→A take the same time. Over joints, the letters range
+from 0 to 1.37 rad and E–Z is 0.63 rad (seed 000: 0 to 1.10, E–Z 0.51; the same share
+of the range, 46 %).
 """
 
 from dataclasses import dataclass
+from functools import cache
 
 import numpy as np
 from scipy import stats
 
 from synthesis.fingerspelling.alphabet import letter_pose
+from synthesis.skeleton.rotations import quat_multiply
 
 METRICS = ("rmsd", "manhattan", "chebyshev")
+SPACES = ("joints", "dofs")
+DEFAULT_SPACE = "joints"
 
 
 def pose_distance(a_rad: np.ndarray, b_rad: np.ndarray, metric: str = "rmsd") -> np.ndarray:
@@ -27,17 +43,46 @@ def pose_distance(a_rad: np.ndarray, b_rad: np.ndarray, metric: str = "rmsd") ->
     raise ValueError(f"Unknown distance {metric!r}; use one of {', '.join(METRICS)}.")
 
 
-def letter_distance(first: str, second: str, metric: str = "rmsd") -> float:
-    """Return the distance between two letters' poses (radians).
+@cache
+def _hand():
+    from synthesis.rigs.hand import HandModel
+
+    hand = HandModel("right")
+    moved = {dof.joint for dof in hand.dofs}
+    joints = [i for i, joint in enumerate(hand.skeleton.joints) if joint.name in moved]
+    return hand, np.array(joints)
+
+
+def joint_differences(a_rad: np.ndarray, b_rad: np.ndarray) -> np.ndarray:
+    """Return, per articulated joint of the hand model, the angle (rad) between the joint's
+    local rotations in two DOF vectors (..., 30) → (..., 17)."""
+    hand, joints = _hand()
+    qa = hand.local_quaternions(np.asarray(a_rad, dtype=float))[..., joints, :]
+    qb = hand.local_quaternions(np.asarray(b_rad, dtype=float))[..., joints, :]
+    relative = quat_multiply(qa * np.array([-1.0, -1.0, -1.0, 1.0]), qb)  # (x, y, z, w)
+    # atan2 of the halves stays exact near zero, where arccos of a dot product does not.
+    return 2.0 * np.arctan2(np.linalg.norm(relative[..., :3], axis=-1), np.abs(relative[..., 3]))
+
+
+def letter_distance(
+    first: str, second: str, metric: str = "rmsd", space: str = DEFAULT_SPACE
+) -> float:
+    """Return the distance between two letters' poses (radians) over joints or DOFs.
 
     Right-hand poses (a mirror image changes no distance); J and Z by their base poses.
     """
-    return float(pose_distance(letter_pose(first), letter_pose(second), metric))
+    a, b = letter_pose(first), letter_pose(second)
+    if space == "dofs":
+        return float(pose_distance(a, b, metric))
+    if space != "joints":
+        raise ValueError(f"Unknown distance space {space!r}; use one of {', '.join(SPACES)}.")
+    return float(pose_distance(joint_differences(a, b), 0.0, metric))
 
 
 @dataclass(frozen=True)
 class TransitionModel:
-    """A fitted line: intercept (ms), slope (ms per radian), its metric and fit statistics."""
+    """A fitted line: intercept (ms), slope (ms per radian), its metric, the space the
+    distance is measured in (``SPACES``) and fit statistics."""
 
     intercept_ms: float
     slope_ms_per_rad: float
@@ -46,10 +91,15 @@ class TransitionModel:
     mean_abs_error_ms: float = float("nan")
     nobs: int = 0
     minimum_ms: float = 1000.0 / 120.0
+    space: str = DEFAULT_SPACE
 
     @classmethod
     def fit(
-        cls, distances_rad: np.ndarray, times_ms: np.ndarray, metric: str = "rmsd"
+        cls,
+        distances_rad: np.ndarray,
+        times_ms: np.ndarray,
+        metric: str = "rmsd",
+        space: str = DEFAULT_SPACE,
     ) -> "TransitionModel":
         """Fit by least squares (scipy.stats.linregress) to measured transitions."""
         distances = np.asarray(distances_rad, dtype=float)
@@ -65,11 +115,12 @@ class TransitionModel:
             float(fit.rvalue),
             float(np.abs(predicted - times).mean()),
             int(distances.size),
+            space=space,
         )
 
     def predict_ms(self, first: str, second: str) -> float:
         """Return the transition time (ms) from one letter to the next, at least one frame."""
-        distance = letter_distance(first, second, self.metric)
+        distance = letter_distance(first, second, self.metric, self.space)
         return max(self.intercept_ms + self.slope_ms_per_rad * distance, self.minimum_ms)
 
     def to_dict(self) -> dict:
@@ -81,10 +132,15 @@ class TransitionModel:
             "mean_abs_error_ms": self.mean_abs_error_ms,
             "nobs": self.nobs,
             "minimum_ms": self.minimum_ms,
+            "space": self.space,
         }
 
     @classmethod
     def from_dict(cls, data: dict) -> "TransitionModel":
+        """Return the model saved by ``to_dict``; one saved without a space measured DOFs."""
         if data.get("metric", "rmsd") not in METRICS:
             raise ValueError(f"Unknown distance {data.get('metric')!r} in a transition model.")
-        return cls(**{k: data[k] for k in data if k in cls.__dataclass_fields__})
+        if data.get("space", "dofs") not in SPACES:
+            raise ValueError(f"Unknown distance space {data.get('space')!r} in a transition model.")
+        fields = {k: data[k] for k in data if k in cls.__dataclass_fields__}
+        return cls(**{"space": "dofs", **fields})
