@@ -22,10 +22,27 @@ from synthesis.hands.motion import HandMotionError, from_dofs, read_hand_motion,
 
 def _motion(args: argparse.Namespace, rate_hz: float):
     """Return the motion the command works on and what it is, in words."""
-    if bool(args.motion) == bool(args.spell):
-        raise HandMotionError("Give a motion file or --spell WORD (one of them).")
+    letters = getattr(args, "human_letters", "")
+    if sum(map(bool, (args.motion, args.spell, letters))) != 1:
+        raise HandMotionError(
+            "Give a motion file, --spell WORD or --human-letters LETTERS (one of them)."
+        )
     if args.motion:
         return read_hand_motion(args.motion, args.side), str(args.motion)
+    if letters:
+        import numpy as np
+
+        from synthesis.hands.posedb import RATE_HZ, human_letter_dofs
+        from synthesis.rigs.hand import HandModel
+        from synthesis.skeleton.retime import resample_curves
+
+        fitted = human_letter_dofs(args.side, letters)
+        letters = "".join(dict.fromkeys(letters.upper()))
+        dofs = resample_curves(np.vstack([fitted[x] for x in letters]), RATE_HZ, rate_hz)
+        return (
+            from_dofs(HandModel(args.side), dofs, rate_hz),
+            f"human letters {letters} (spoken-to-signed), one after another at {rate_hz:g} Hz",
+        )
     from synthesis.fingerspelling.spelling import spell
     from synthesis.rigs.hand import HandModel
 
@@ -147,8 +164,11 @@ def _paper_tables(args: argparse.Namespace, hand) -> list[dict]:
     from synthesis.hands.heldout import human_letters, simulated_gestures
 
     rows = []
-    for name in args.paper_input:
-        if name == "gestures":
+    inputs = ["own"] if args.database else args.paper_input
+    for name in inputs:
+        if name == "own":
+            held_out = _own_held_out(args)
+        elif name == "gestures":
             rng = np.random.default_rng(args.seed)
             seconds = args.gesture_seconds
             held_out = simulated_gestures(args.side, rng, seconds, seconds / 9, seconds / 4.5)
@@ -162,6 +182,35 @@ def _paper_tables(args: argparse.Namespace, hand) -> list[dict]:
         _print_table(table)
         rows += table
     return rows
+
+
+def _own_held_out(args: argparse.Namespace):
+    """Return the researcher's own database with their selection and test motions."""
+    from synthesis.hands.heldout import HeldOut
+    from synthesis.hands.posedb import RATE_HZ
+    from synthesis.hands.reconstruct import PoseDatabase
+    from synthesis.skeleton.retime import resample_curves
+
+    if not (args.selection and args.test):
+        raise ValueError("--database needs --selection and --test motions withheld from it.")
+
+    def dofs(paths):
+        import numpy as np
+
+        motions = [read_hand_motion(path, args.side) for path in paths]
+        return np.vstack([resample_curves(m.dofs_rad, m.rate_hz, RATE_HZ) for m in motions])
+
+    def names(paths) -> str:
+        return ", ".join(Path(path).name for path in paths)
+
+    database = PoseDatabase.read(args.database)
+    return HeldOut(
+        database,
+        dofs(args.selection),
+        dofs(args.test),
+        f"{database.source}; markers chosen on {names(args.selection)}, tested on "
+        f"{names(args.test)}",
+    )
 
 
 def _markers(args: argparse.Namespace) -> int:
@@ -202,11 +251,13 @@ def _database(args: argparse.Namespace) -> int:
 
     from synthesis.hands.posedb import combined, engine_pose_database, recorded_pose_database
 
-    parts = [
-        engine_pose_database(
-            args.side, tuple(args.speeds), tuple(args.words), args.simulated, args.root
+    parts = []
+    if args.speeds:
+        parts.append(
+            engine_pose_database(
+                args.side, tuple(args.speeds), tuple(args.words), args.simulated, args.root
+            )
         )
-    ]
     if args.recordings:
         parts.append(recorded_pose_database(args.recordings, args.side, args.root))
     if args.human_letters:
@@ -218,6 +269,10 @@ def _database(args: argparse.Namespace) -> int:
         source = f"human letters {letters} (spoken-to-signed)"
         poses = np.vstack([fitted[x] for x in letters])
         parts.append(pose_database_of(HandModel(args.side), poses, source, args.root))
+    if not parts:
+        raise ValueError(
+            "Nothing to put in the database: give recordings, --human-letters or --speeds."
+        )
     database = combined(*parts) if len(parts) > 1 else parts[0]
     database.write(args.out)
     print(f"wrote {args.out}: {database.source}")
@@ -233,6 +288,12 @@ def parser() -> argparse.ArgumentParser:
     reduce = commands.add_parser("reduce", help="seed 002's DOF reduction of a hand motion")
     reduce.add_argument("motion", nargs="?", type=Path)
     reduce.add_argument("--spell", metavar="WORD", help="reduce the engine's spelling of WORD")
+    reduce.add_argument(
+        "--human-letters",
+        metavar="LETTERS",
+        default="",
+        help="reduce spoken-to-signed's human recordings of these letters, one after another",
+    )
     reduce.add_argument("--side", choices=("right", "left"), default="right")
     reduce.add_argument(
         "--range-deg",
@@ -299,6 +360,16 @@ def parser() -> argparse.ArgumentParser:
         help="the paper configuration's inputs: simulated gestures, the human letters",
     )
     markers.add_argument(
+        "--database",
+        type=Path,
+        help="the paper configuration on your own pose database (python -m synthesis.hands "
+        "database --root forearm) instead of the built-in inputs",
+    )
+    markers.add_argument(
+        "--selection", nargs="+", type=Path, help="motions withheld to choose markers on"
+    )
+    markers.add_argument("--test", nargs="+", type=Path, help="motions withheld to test on")
+    markers.add_argument(
         "--gesture-seconds",
         type=float,
         default=90.0,
@@ -331,10 +402,11 @@ def parser() -> argparse.ArgumentParser:
     database.add_argument("--words", nargs="*", default=[], help="words the engine spells too")
     database.add_argument(
         "--speeds",
-        nargs="+",
+        nargs="*",
         type=float,
         default=[1.0, 1.6],
-        help="speed factors of the engine's spelling (1 = its own pace)",
+        help="speed factors of the engine's spelling (1 = its own pace); none: leave the "
+        "engine's letters out",
     )
     database.add_argument(
         "--simulated", type=int, default=0, help="simulated captures of each word to add"

@@ -40,6 +40,30 @@ def database(recordings):
     return build_database(recordings)
 
 
+def test_simulated_signers_share_some_sentences_and_move_each_their_own_way():
+    """Seed 001 §5.1: 63.6 % of best matches came from the query's own interpreter; a
+    style that only scales one shape made the search find another signer's copy."""
+    from synthesis.transitions.simulate import human_transition, signer_styles
+
+    captures = simulated_captures(signers=2, sentences=4, seed=3, shared=0.5)
+    texts = {}
+    for c in captures:
+        texts.setdefault(c.signer, []).append(
+            tuple(s.label for s in c.segmentation.segments if s.kind == "sign")
+        )
+    first, second = texts.values()
+    assert first[:2] == second[:2] and first[2:] != second[2:]
+    styles = signer_styles(3, np.random.default_rng(0))
+    assert len({s.lag for s in styles}) == 3 and all(any(s.wave) and any(s.stance) for s in styles)
+    v0, v1 = np.zeros(7), np.array([0.6, 0.3, 0.2, 0.8, 0.1, 0.1, 0.0])
+    curves = [human_transition(v0, v1, 60, s, np.random.default_rng(1)) for s in styles]
+    # Each style's elbow path differs in shape, not only in size: normalized, they differ.
+    elbow = [(c[:, 3] - c[:, 3].min()) / np.ptp(c[:, 3]) for c in curves]
+    assert np.abs(elbow[0] - elbow[1]).max() > 0.05 and np.abs(elbow[0] - elbow[2]).max() > 0.05
+    with pytest.raises(ValueError, match="shared"):
+        simulated_captures(signers=1, sentences=1, shared=2.0)
+
+
 def test_simulated_captures_are_segmented_and_labelled(recordings):
     recording = recordings[0]
     assert recording.simulated and recording.rate_hz == 120

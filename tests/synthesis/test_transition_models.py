@@ -182,6 +182,14 @@ def test_evaluation_like_table_5_1(database):
     assert sum(PUBLISHED_BEST.values()) == PUBLISHED_TRANSITIONS == 88
     words = verdict(evaluation)
     assert "simulated captures" in words and "6.84" in words
+    assert "(seed 001: 63.6 %)" in words and "(seed 001: 12.5 %)" in words
+    entries = {e.id: e for e in database.entries}
+    repeats = [
+        (entries[m].labels, entries[m].side) == (entries[q].labels, entries[q].side)
+        and entries[m].signer != entries[q].signer
+        for q, m in zip(evaluation.ids, evaluation.matches, strict=True)
+    ]
+    assert evaluation.same_transition_share == pytest.approx(np.mean(repeats))
     # Linear is a straight line: its RMSE is exactly that of the line against the recording.
     entry = database.entries[0]
     line = entry.before[-1] + np.outer(
