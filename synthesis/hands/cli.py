@@ -107,7 +107,18 @@ def _reconstruct(args: argparse.Namespace) -> int:
         write_bvh(motion.rig.as_motion(rebuilt, motion.rate_hz), args.out)
         print(f"wrote {args.out}")
     if args.report:
-        for path in write_reconstruction_report(motion, args.method, args.report, source, database):
+        written = write_reconstruction_report(motion, args.method, args.report, source, database)
+        import csv
+
+        with open(written[1], encoding="utf-8") as handle:
+            for row in csv.DictReader(handle):
+                published = (
+                    f"published {row['published_cm']} cm (seed 000 Table 3.1, p = 1000)"
+                    if row["published_cm"]
+                    else "not published"
+                )
+                print(f"m = {row['markers']:>2}: {float(row['error_cm']):.2f} cm; {published}")
+        for path in written:
             print(f"wrote {path}")
     return 0
 
