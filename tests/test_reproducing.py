@@ -43,6 +43,7 @@ SMALL = {
     "synthesis.timing train --holds": ([], [], "model.json"),
     "synthesis.timing train take-david.bvh": ([], [], "model.json"),
     "synthesis.timing compare": ([], [], None),
+    "synthesis.timing metrics": ([], [], None),
     "synthesis.timing evaluate": ([], [], None),
     "synthesis.transitions build sentences": ([], [], "db.json"),
     "synthesis.transitions evaluate db.json": ([], [], "table-5-1/table.tex"),

@@ -95,6 +95,30 @@ def _evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _metrics(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from synthesis.timing.transitions import (
+        METRICS,
+        PUBLISHED_TRANSITION_R,
+        TransitionModel,
+        letter_distance,
+    )
+
+    transitions = read_annotations(args.transitions, TRANSITION_COLUMNS)
+    times = np.array([t.duration_ms for t in transitions])
+    print(f"{len(transitions)} transitions from {args.transitions} (seed 000 Fig. 4.7)")
+    for metric in METRICS:
+        pairs = [(t.word[t.index], t.word[t.index + 1]) for t in transitions]
+        distances = np.array([letter_distance(a, b, metric, args.space) for a, b in pairs])
+        line = TransitionModel.fit(distances, times, metric, args.space)
+        print(
+            f"{metric}: r = {line.r:.2f}, mean error {line.mean_abs_error_ms:.2f} ms; "
+            f"published r = {PUBLISHED_TRANSITION_R[metric]:.2f}"
+        )
+    return 0
+
+
 def _predict(args: argparse.Namespace) -> int:
     model = VariableModel.read(args.model) if args.model else published_model()
     print(json.dumps(model.timing(args.word).to_dict(), indent=2))
@@ -121,7 +145,12 @@ def parser() -> argparse.ArgumentParser:
     fit.add_argument("--words", help="the recordings' words, comma-separated, in order")
     fit.add_argument("--holds", type=Path, help="CSV: word, index, hold_ms")
     fit.add_argument("--transitions", type=Path, help="CSV: word, index, transition_ms")
-    fit.add_argument("--metric", choices=("rmsd", "manhattan", "chebyshev"), default="rmsd")
+    fit.add_argument(
+        "--metric",
+        choices=("rmsd", "manhattan", "chebyshev", "gplvm"),
+        default="rmsd",
+        help="the pose distance transitions are regressed on (seed 000 §4.2.2)",
+    )
     fit.add_argument(
         "--space",
         choices=("joints", "dofs"),
@@ -149,6 +178,12 @@ def parser() -> argparse.ArgumentParser:
         "evaluate", help="the default model's leave-one-out, beside seed 000 §4.2's"
     )
     evaluate.set_defaults(run=_evaluate)
+    metrics = commands.add_parser(
+        "metrics", help="each pose distance's regression on annotated transitions (Fig. 4.7)"
+    )
+    metrics.add_argument("--transitions", type=Path, required=True)
+    metrics.add_argument("--space", choices=("joints", "dofs"), default="joints")
+    metrics.set_defaults(run=_metrics)
     predict = commands.add_parser("predict", help="print a word's Variable timing as JSON")
     predict.add_argument("word")
     predict.add_argument("--model", type=Path)

@@ -177,3 +177,31 @@ def test_leave_one_out_reports_on_every_hold():
     assert 0 < result.mean_abs_error_ms < 60
     assert set(result.to_dict()) == {"accuracy", "mean_abs_error_ms", "mean_signed_error_ms",
                                      "nobs"}  # fmt: skip
+
+
+def test_the_gplvm_distance_runs_from_0_to_1_between_letters():
+    """Seed 000 §4.2.2: GPLVMD = Σ (c_a − d_b)² / x, normalised to 0–1 (r = 0.22)."""
+    from synthesis.timing.gplvm import ALPHABET, gplvm_distance
+
+    distances = {
+        (a, b): letter_distance(a, b, "gplvm") for a, b in itertools.combinations(ALPHABET, 2)
+    }
+    assert max(distances.values()) == pytest.approx(1.0)
+    assert min(distances.values()) >= 0.0 and letter_distance("A", "A", "gplvm") == 0.0
+    assert gplvm_distance("E", "Z") == gplvm_distance("z", "e")
+    with pytest.raises(ValueError, match="between letters"):
+        pose_distance(np.zeros(3), np.ones(3), "gplvm")
+
+
+def test_the_gplvm_keeps_the_order_of_points_on_a_curve_and_needs_gpy(monkeypatch):
+    import sys
+
+    from synthesis.timing.gplvm import GplvmMissing, embed
+
+    t = np.linspace(0.0, 1.0, 12)
+    curve = np.column_stack([t, t**2, np.sin(2 * t), 0.5 * t, np.zeros_like(t)])
+    latent = embed(curve, latent_dims=1)[:, 0]
+    assert abs(np.corrcoef(latent, t)[0, 1]) > 0.9
+    monkeypatch.setitem(sys.modules, "GPy", None)
+    with pytest.raises(GplvmMissing, match="make install"):
+        embed(curve)
