@@ -43,8 +43,8 @@ SMALL = {
     "synthesis.timing train --holds": ([], [], "model.json"),
     "synthesis.timing train take-david.bvh": ([], [], "model.json"),
     "synthesis.timing compare": ([], [], None),
-    "synthesis.timing metrics": ([], [], None),
-    "synthesis.timing evaluate": ([], [], None),
+    "synthesis.timing metrics": ([], [], "fig-4-7/metrics.tex"),
+    "synthesis.timing evaluate": ([], [], "leave-one-out/leave-one-out.csv"),
     "synthesis.transitions build sentences": ([], [], "db.json"),
     "synthesis.transitions evaluate db.json": ([], [], "table-5-1/table.tex"),
     "synthesis.transitions simulate": (

@@ -229,8 +229,8 @@ def _markers(args: argparse.Namespace) -> int:
 
     from synthesis.hands.evaluation import compare_marker_choices
     from synthesis.hands.handover import builtin_pose_database
-    from synthesis.hands.report import write_csv, write_latex
     from synthesis.rigs.hand import HandModel
+    from synthesis.tables import write_csv, write_latex
 
     hand = HandModel(args.side)
     rows = []

@@ -1,6 +1,5 @@
 """Write a DOF reduction's report: seed 002 Tables 1–5, errors per DOF, a figure."""
 
-import csv
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +11,7 @@ from synthesis.hands.reduction import (
     find_reduction,
     reconstruction_error_deg,
 )
+from synthesis.tables import write_csv, write_latex
 
 # Seed 002 Table 5: free DOFs of two hands (50 curves) after each step.
 PUBLISHED_STEPS = (39, 27, 31, 15)
@@ -24,52 +24,6 @@ STEP_COLUMNS = {
     "mean_error_deg": "mean error (deg)",
     "published_dofs_of_50": "published DOFs of 50",
 }
-
-
-def write_csv(path: Path, rows: list[dict], columns: list[str] | None = None) -> Path:
-    """Write *rows* to *path* as CSV (columns: the first row's keys by default)."""
-    return _write_csv(path, rows, columns or list(rows[0]))
-
-
-def _latex_cell(value) -> str:
-    if value is None or (isinstance(value, float) and value != value):
-        return "--"
-    if isinstance(value, float):
-        return f"{value:.2f}"
-    text = str(value).replace("\\", "/")
-    for char in "&%$#_{}":
-        text = text.replace(char, "\\" + char)
-    return text.replace("<", "$<$").replace(">", "$>$")
-
-
-def write_latex(path: Path, rows: list[dict], columns: dict[str, str], caption: str) -> Path:
-    """Write *rows* to *path* as a LaTeX table: *columns* maps row keys to headings; a
-    missing figure prints as ``--``."""
-    headings = " & ".join(_latex_cell(heading) for heading in columns.values())
-    lines = [
-        "\\begin{table}",
-        "\\centering",
-        f"\\caption{{{_latex_cell(caption)}}}",
-        "\\begin{tabular}{" + "l" * len(columns) + "}",
-        "\\hline",
-        f"{headings} \\\\",
-        "\\hline",
-        *(" & ".join(_latex_cell(row.get(key)) for key in columns) + " \\\\" for row in rows),
-        "\\hline",
-        "\\end{tabular}",
-        "\\end{table}",
-        "",
-    ]
-    path.write_text("\n".join(lines), "utf-8")
-    return path
-
-
-def _write_csv(path: Path, rows: list[dict], columns: list[str]) -> Path:
-    with path.open("w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=columns)
-        writer.writeheader()
-        writer.writerows(rows)
-    return path
 
 
 def step_rows(curves_deg: np.ndarray, names, source: str = "") -> list[dict]:
@@ -110,7 +64,7 @@ def write_reduction_report(
     errors = reconstruction_error_deg(curves_deg, reduced)
     means = curves_deg.mean(axis=0)
     written = [
-        _write_csv(
+        write_csv(
             directory / "irrelevant.csv",
             [
                 {
@@ -122,7 +76,7 @@ def write_reduction_report(
             ],
             ["curve", "range_deg", "mean_deg"],
         ),
-        _write_csv(
+        write_csv(
             directory / "relations.csv",
             [
                 {
@@ -136,7 +90,7 @@ def write_reduction_report(
             ],
             ["dependent", "controlling", "metric", "rmsd", "pair_rmsd"],
         ),
-        _write_csv(
+        write_csv(
             directory / "errors.csv",
             [
                 {
@@ -152,7 +106,7 @@ def write_reduction_report(
         ),
     ]
     steps = step_rows(curves_deg, names, source)
-    written.append(_write_csv(directory / "steps.csv", steps, list(steps[0])))
+    written.append(write_csv(directory / "steps.csv", steps, list(steps[0])))
     caption = f"Free DOFs after seed 002's steps: {source}; published: {PUBLISHED_REDUCTION_INPUT}"
     written.append(write_latex(directory / "steps.tex", steps, STEP_COLUMNS, caption))
     summary = directory / "report.md"
@@ -277,8 +231,8 @@ def write_reconstruction_report(
         "published_sd_cm": "pub. s.d.",
     }
     written = [
-        _write_csv(directory / "marker-ranking.csv", ranking, ["rank", "marker", "influence"]),
-        _write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
+        write_csv(directory / "marker-ranking.csv", ranking, ["rank", "marker", "influence"]),
+        write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
         write_latex(directory / "errors-by-markers.tex", rows, columns, caption),
     ]
     import matplotlib

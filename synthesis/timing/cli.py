@@ -90,8 +90,19 @@ def _evaluate(args: argparse.Namespace) -> int:
     holds = HoldClassifier.fit(samples).leave_one_out(samples)
     source = (f"{len(samples)} holds simulated from seed 000 Table 4.1's means and spreads "
               "(the default model's training set), not recordings")  # fmt: skip
-    for line in TrainingReport(holds, published_transitions(), source).lines():
+    line = "the default line: r and mean error taken from seed 000 §4.2.2, not refitted"
+    report = TrainingReport(holds, published_transitions(), source, line)
+    for line in report.lines():
         print(line)
+    if args.out:
+        from synthesis.tables import write_csv, write_latex
+
+        args.out.mkdir(parents=True, exist_ok=True)
+        rows = report.rows()
+        print(f"wrote {write_csv(args.out / 'leave-one-out.csv', rows)}")
+        columns = {"measure": "measure", "ours": "ours", "published": "published"}
+        caption = "Hold leave-one-out and transition line beside seed 000 §4.2 (published)"
+        print(f"wrote {write_latex(args.out / 'leave-one-out.tex', rows, columns, caption)}")
     return 0
 
 
@@ -108,14 +119,36 @@ def _metrics(args: argparse.Namespace) -> int:
     transitions = read_annotations(args.transitions, TRANSITION_COLUMNS)
     times = np.array([t.duration_ms for t in transitions])
     print(f"{len(transitions)} transitions from {args.transitions} (seed 000 Fig. 4.7)")
+    pairs = [(t.word[t.index], t.word[t.index + 1]) for t in transitions]
+    rows = []
     for metric in METRICS:
-        pairs = [(t.word[t.index], t.word[t.index + 1]) for t in transitions]
         distances = np.array([letter_distance(a, b, metric, args.space) for a, b in pairs])
         line = TransitionModel.fit(distances, times, metric, args.space)
         print(
             f"{metric}: r = {line.r:.2f}, mean error {line.mean_abs_error_ms:.2f} ms; "
             f"published r = {PUBLISHED_TRANSITION_R[metric]:.2f}"
         )
+        rows.append(
+            {
+                "metric": metric,
+                "space": "latent" if metric == "gplvm" else args.space,
+                "r": round(line.r, 3),
+                "mean_error_ms": round(line.mean_abs_error_ms, 2),
+                "transitions": line.nobs,
+                "input": str(args.transitions),
+                "published_r": PUBLISHED_TRANSITION_R[metric],
+                "published_input": "recorded transitions (seed 000 §4.2.2, Fig. 4.7)",
+            }
+        )
+    if args.out:
+        from synthesis.tables import write_csv, write_latex
+
+        args.out.mkdir(parents=True, exist_ok=True)
+        print(f"wrote {write_csv(args.out / 'metrics.csv', rows)}")
+        columns = {"metric": "metric", "r": "r", "mean_error_ms": "mean error (ms)"}
+        columns["published_r"] = "published r"
+        caption = f"Transition time regressed on each pose distance: {args.transitions}"
+        print(f"wrote {write_latex(args.out / 'metrics.tex', rows, columns, caption)}")
     return 0
 
 
@@ -177,12 +210,18 @@ def parser() -> argparse.ArgumentParser:
     evaluate = commands.add_parser(
         "evaluate", help="the default model's leave-one-out, beside seed 000 §4.2's"
     )
+    evaluate.add_argument(
+        "--out",
+        type=Path,
+        help="a directory for leave-one-out.csv and .tex (ours beside seed 000's)",
+    )
     evaluate.set_defaults(run=_evaluate)
     metrics = commands.add_parser(
         "metrics", help="each pose distance's regression on annotated transitions (Fig. 4.7)"
     )
     metrics.add_argument("--transitions", type=Path, required=True)
     metrics.add_argument("--space", choices=("joints", "dofs"), default="joints")
+    metrics.add_argument("--out", type=Path, help="a directory for metrics.csv and .tex")
     metrics.set_defaults(run=_metrics)
     predict = commands.add_parser("predict", help="print a word's Variable timing as JSON")
     predict.add_argument("word")

@@ -86,11 +86,36 @@ PUBLISHED_HOLDS = {"holds": 304, "accuracy": 0.75, "mean_abs_error_ms": 13.82,
 @dataclass(frozen=True)
 class TrainingReport:
     """What training found: leave-one-out for holds, the transition fit; *source* names
-    the training input (annotations, recordings, simulated holds)."""
+    the training input (annotations, recordings, simulated holds), *transition_source*
+    the transitions' when it differs."""
 
     holds: LeaveOneOut
     transitions: TransitionModel
     source: str = ""
+    transition_source: str = ""
+
+    def rows(self) -> list[dict]:
+        """Return the report as table rows: each measure, ours beside seed 000 §4.2's, with
+        what each was computed on."""
+        h, t, p = self.holds, self.transitions, PUBLISHED_HOLDS
+        published_input = f"{p['holds']} recorded holds (seed 000 §4.2)"
+        transitions_input = "recorded transitions (seed 000 §4.2.2, Fig. 4.7)"
+        measures = [
+            ("hold accuracy (leave-one-out, %)", 100 * h.accuracy, 100 * p["accuracy"], False),
+            ("hold mean error (ms)", h.mean_abs_error_ms, p["mean_abs_error_ms"], False),
+            ("holds", h.nobs, p["holds"], False),
+            (f"transition r ({t.metric})", t.r, PUBLISHED_TRANSITION_R[t.metric], True),
+        ]
+        return [
+            {
+                "measure": name,
+                "ours": round(float(ours), 2),
+                "published": published,
+                "input": (self.transition_source or self.source) if transition else self.source,
+                "published_input": transitions_input if transition else published_input,
+            }
+            for name, ours, published, transition in measures
+        ]
 
     def lines(self) -> list[str]:
         """Return the report as lines of text, in seed 000 §4.2's terms, the published

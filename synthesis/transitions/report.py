@@ -1,10 +1,10 @@
 """Write a transition evaluation as CSV, LaTeX and PNG (seed 001 Table 5.1, Fig. 4.4)."""
 
-import csv
 from pathlib import Path
 
 import numpy as np
 
+from synthesis.tables import write_csv
 from synthesis.transitions.curves import SEED_NAMES
 from synthesis.transitions.database import TransitionDatabase
 from synthesis.transitions.datadriven import BASELINES, MODEL_LABELS, MODELS, baseline, fit_entry
@@ -18,14 +18,6 @@ from synthesis.transitions.evaluate import (
 )
 
 SIMULATED = " (simulated captures)"
-
-
-def _write_csv(path: Path, rows: list[dict]) -> Path:
-    with path.open("w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    return path
 
 
 def latex_table(evaluation: Evaluation) -> str:
@@ -142,7 +134,7 @@ def write_evaluation(
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     main = evaluations[weighting]
-    written = [_write_csv(directory / "table.csv", summary_rows(main))]
+    written = [write_csv(directory / "table.csv", summary_rows(main))]
     rows = [
         {
             "transition": tid,
@@ -159,9 +151,9 @@ def write_evaluation(
         for i, m in enumerate(main.models)
         for c, name in enumerate(SEED_NAMES)
     ]
-    written.append(_write_csv(directory / "transitions.csv", rows))
+    written.append(write_csv(directory / "transitions.csv", rows))
     written.append(
-        _write_csv(
+        write_csv(
             directory / "weightings.csv",
             [
                 {
