@@ -25,6 +25,7 @@ from synthesis.timing.training import (
     read_annotations,
     train,
 )
+from synthesis.timing.transitions import DEFAULT_SPACE, METRICS, SPACES
 from synthesis.timing.variable import VariableModel
 
 
@@ -110,7 +111,6 @@ def _metrics(args: argparse.Namespace) -> int:
     import numpy as np
 
     from synthesis.timing.transitions import (
-        METRICS,
         PUBLISHED_TRANSITION_R,
         TransitionModel,
         letter_distance,
@@ -180,14 +180,14 @@ def parser() -> argparse.ArgumentParser:
     fit.add_argument("--transitions", type=Path, help="CSV: word, index, transition_ms")
     fit.add_argument(
         "--metric",
-        choices=("rmsd", "manhattan", "chebyshev", "gplvm"),
+        choices=METRICS,
         default="rmsd",
         help="the pose distance transitions are regressed on (seed 000 §4.2.2)",
     )
     fit.add_argument(
         "--space",
-        choices=("joints", "dofs"),
-        default="joints",
+        choices=SPACES,
+        default=DEFAULT_SPACE,
         help="measure pose distance over the hand's 17 joints (seed 000: 18) or its 30 DOFs",
     )
     fit.add_argument("--out", type=Path, required=True)
@@ -220,7 +220,7 @@ def parser() -> argparse.ArgumentParser:
         "metrics", help="each pose distance's regression on annotated transitions (Fig. 4.7)"
     )
     metrics.add_argument("--transitions", type=Path, required=True)
-    metrics.add_argument("--space", choices=("joints", "dofs"), default="joints")
+    metrics.add_argument("--space", choices=SPACES, default=DEFAULT_SPACE)
     metrics.add_argument("--out", type=Path, help="a directory for metrics.csv and .tex")
     metrics.set_defaults(run=_metrics)
     predict = commands.add_parser("predict", help="print a word's Variable timing as JSON")

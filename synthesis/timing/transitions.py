@@ -58,12 +58,23 @@ def _hand():
     return hand, np.array(joints)
 
 
+def _joint_rotations(dofs_rad: np.ndarray) -> np.ndarray:
+    hand, joints = _hand()
+    return hand.local_quaternions(np.asarray(dofs_rad, dtype=float))[..., joints, :]
+
+
+@cache
+def _letter_rotations(letter: str) -> np.ndarray:
+    return _joint_rotations(letter_pose(letter))
+
+
 def joint_differences(a_rad: np.ndarray, b_rad: np.ndarray) -> np.ndarray:
     """Return, per articulated joint of the hand model, the angle (rad) between the joint's
     local rotations in two DOF vectors (..., 30) → (..., 17)."""
-    hand, joints = _hand()
-    qa = hand.local_quaternions(np.asarray(a_rad, dtype=float))[..., joints, :]
-    qb = hand.local_quaternions(np.asarray(b_rad, dtype=float))[..., joints, :]
+    return _rotation_angles(_joint_rotations(a_rad), _joint_rotations(b_rad))
+
+
+def _rotation_angles(qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
     relative = quat_multiply(qa * np.array([-1.0, -1.0, -1.0, 1.0]), qb)  # (x, y, z, w)
     # atan2 of the halves stays exact near zero, where arccos of a dot product does not.
     return 2.0 * np.arctan2(np.linalg.norm(relative[..., :3], axis=-1), np.abs(relative[..., 3]))
@@ -82,10 +93,10 @@ def letter_distance(
         from synthesis.timing.gplvm import gplvm_distance
 
         return gplvm_distance(first, second)
-    a, b = letter_pose(first), letter_pose(second)
     if space == "dofs":
-        return float(pose_distance(a, b, metric))
-    return float(pose_distance(joint_differences(a, b), 0.0, metric))
+        return float(pose_distance(letter_pose(first), letter_pose(second), metric))
+    angles = _rotation_angles(_letter_rotations(first), _letter_rotations(second))
+    return float(pose_distance(angles, 0.0, metric))
 
 
 @dataclass(frozen=True)
