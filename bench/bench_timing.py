@@ -16,7 +16,13 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from synthesis.fingerspelling.spelling import spell
-from synthesis.timing import HoldClassifier, extract, published_model, simulate_recording
+from synthesis.timing import (
+    HoldClassifier,
+    extract,
+    letter_distance,
+    published_model,
+    simulate_recording,
+)
 from synthesis.timing.defaults import published_holds
 
 WORD = "PSYCHIATRY"
@@ -47,6 +53,20 @@ def main() -> None:
     print(
         f"extraction from a simulated {motion.n_frames}-frame capture of {WORD}: "
         f"{extract_ms:.0f} ms (no target)"
+    )
+    pairs = [("E", "Z"), ("A", "T"), ("W", "P")]
+    for space in ("joints", "dofs"):
+        each_ms = _median_ms(
+            lambda sp=space: [letter_distance(a, b, space=sp) for a, b in pairs], 200
+        )
+        print(f"letter distance over {space}: {1000 * each_ms / len(pairs):.1f} µs a pair")
+    from synthesis.fingerspelling.alphabet import letter_pose
+    from synthesis.timing.gplvm import embed
+
+    poses = np.array([letter_pose(x) for x in "ABCDEFGHIJKLMNOPQRSTUVWXYZ"])
+    gplvm_ms = _median_ms(lambda: embed(poses), 1)
+    print(
+        f"GPLVM of the 26 letters (GPy, 2 latent dimensions): {gplvm_ms:.0f} ms, once (disk cache)"
     )
 
 
