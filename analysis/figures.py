@@ -5,16 +5,8 @@ from pathlib import Path
 
 import numpy as np
 
+from analysis.plotting import pyplot
 from analysis.report import Report
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _save(figure, out_dir: Path, name: str, formats: tuple[str, ...]) -> list[str]:
@@ -25,7 +17,7 @@ def _save(figure, out_dir: Path, name: str, formats: tuple[str, ...]) -> list[st
         metadata = {"CreationDate": None} if extension == "pdf" else {}
         figure.savefig(path, dpi=150, bbox_inches="tight", metadata=metadata)
         written.append(path.name)
-    _pyplot().close(figure)
+    pyplot().close(figure)
     return written
 
 
@@ -47,7 +39,7 @@ def _tick_labels(axes, names: list[str], width_in: float) -> None:
 
 def condition_rates_plot(report: Report):
     """Draw the bar chart of per-participant win rates, mean ± SEM (seed 000 Fig. 5.4)."""
-    plt = _pyplot()
+    plt = pyplot()
     conditions = report.pairwise.conditions
     width = max(5.5, 1.3 * len(conditions) + 1.5)
     figure, axes = plt.subplots(figsize=(width, 3.8))
@@ -72,7 +64,7 @@ def condition_rates_figure(report: Report, out_dir: Path, formats=("png", "pdf")
 
 def pairwise_matrix_plot(report: Report):
     """Draw the heat map: row condition's share of decisive judgements against column."""
-    plt = _pyplot()
+    plt = pyplot()
     names = [c.condition for c in report.pairwise.conditions]
     index = {name: i for i, name in enumerate(names)}
     matrix = np.full((len(names), len(names)), np.nan)
@@ -109,7 +101,7 @@ def ratings_plot(frame):
     rows = rating_rows(frame)
     if rows.empty:
         return None
-    plt = _pyplot()
+    plt = pyplot()
     questions = sorted(rows["question"].unique())
     conditions = sorted(rows["condition_a"].unique())
     items = sorted(rows["item"].unique())

@@ -1,4 +1,9 @@
-"""Fixtures shared by the whole suite: researchers, studies, the database in use."""
+"""Fixtures shared by the whole suite: researchers, studies, browsers, rendering.
+
+Nothing here imports Django or the platform at import time, and nothing asks for a
+database unless a test does: the engine's and the analysis's tests run without one
+(tests/studyplatform/conftest.py checks which database the platform's tests use).
+"""
 
 import functools
 import os
@@ -8,12 +13,6 @@ import tempfile
 import time
 
 import pytest
-from django.contrib.auth.models import Group
-from django.db import connection
-
-from studyplatform.actions import do_import_study
-from studyplatform.demo import fingerspelling_timing_study, spine_study
-from studyplatform.signals import RESEARCHERS_GROUP
 
 
 @functools.cache
@@ -39,16 +38,12 @@ def video_frames(video: bytes) -> list[bytes]:
         return list(frames)
 
 
-@pytest.fixture(autouse=True, scope="session")
-def _expected_database(django_db_setup, django_db_blocker):
-    """Fail at once when the PostgreSQL run has silently fallen back to SQLite."""
-    if os.environ.get("SIGNSTUDY_EXPECT_POSTGRES") and connection.vendor != "postgresql":
-        pytest.exit(f"Expected PostgreSQL, but the suite runs on {connection.vendor}.", 1)
-
-
 @pytest.fixture
 def make_researcher(django_user_model):
     """Return a factory of staff users in the Researchers group."""
+    from django.contrib.auth.models import Group
+
+    from studyplatform.signals import RESEARCHERS_GROUP
 
     def make(username: str):
         user = django_user_model.objects.create_user(username, password="pw-" + username)
@@ -73,12 +68,18 @@ def bob(make_researcher):
 @pytest.fixture
 def fingerspelling(alice):
     """The demo fingerspelling study, owned by alice."""
+    from studyplatform.actions import do_import_study
+    from studyplatform.demo import fingerspelling_timing_study
+
     return do_import_study(fingerspelling_timing_study(), owner=alice).study
 
 
 @pytest.fixture
 def spine(bob):
     """The demo spine study, owned by bob."""
+    from studyplatform.actions import do_import_study
+    from studyplatform.demo import spine_study
+
     return do_import_study(spine_study(), owner=bob).study
 
 

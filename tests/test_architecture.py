@@ -85,6 +85,78 @@ def _synthesis_edges() -> dict[str, set[str]]:
     return edges
 
 
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _type_checking_nodes(tree: ast.AST) -> set[int]:
+    """Return the ids of nodes inside ``if TYPE_CHECKING:`` blocks (never run)."""
+    inside = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            inside |= {id(child) for child in ast.walk(node)}
+    return inside
+
+
+def _imported(node: ast.AST, module: str, is_package: bool) -> list[str]:
+    """Return the modules an import statement may load (a name may be a submodule)."""
+    if isinstance(node, ast.Import):
+        return [alias.name for alias in node.names]
+    if not isinstance(node, ast.ImportFrom):
+        return []
+    base = node.module or ""
+    if node.level:
+        bits = module.split(".") if is_package else module.split(".")[:-1]
+        bits = bits[: len(bits) - node.level + 1]
+        base = ".".join([*bits, base] if base else bits)
+    return [base, *(f"{base}.{alias.name}" for alias in node.names)]
+
+
+def module_edges(package: str) -> dict[str, set[str]]:
+    """Return, per module of *package*, the package's modules it imports, at the top or
+    inside a function (both run), but not under ``TYPE_CHECKING``. Imports of a module's
+    own enclosing packages are left out: a package's ``__init__`` re-exports its modules."""
+    paths = {
+        _module_name(path): path
+        for path in (ROOT / package).rglob("*.py")
+        if "migrations" not in path.parts
+    }
+    edges: dict[str, set[str]] = {name: set() for name in paths}
+    for name, path in paths.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        skipped = _type_checking_nodes(tree)
+        for node in ast.walk(tree):
+            if id(node) in skipped:
+                continue
+            for target in _imported(node, name, path.name == "__init__.py"):
+                if target in paths and target != name and not name.startswith(target + "."):
+                    edges[name].add(target)
+    return edges
+
+
+@pytest.mark.parametrize("package", ["synthesis", "stimuli", "analysis"])
+def test_no_two_modules_import_each_other_round_a_circle(package):
+    """Issue 39: a circle held open only by imports inside functions is still a circle.
+    (studyplatform has its own to open first: issue 39.)"""
+    cycle = find_cycle(module_edges(package))
+    assert not cycle, f"import circle in {package}: " + " → ".join(cycle)
+
+
+def test_the_module_check_sees_a_planted_circle(tmp_path, monkeypatch):
+    planted = tmp_path / "planted"
+    planted.mkdir()
+    (planted / "__init__.py").write_text("")
+    (planted / "a.py").write_text("def f():\n    from planted import b\n")
+    (planted / "b.py").write_text("from planted.a import f\n")
+    (planted / "c.py").write_text(
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from planted import a\n"
+    )
+    monkeypatch.setattr(sys.modules[__name__], "ROOT", tmp_path)
+    assert find_cycle(module_edges("planted")) == ["planted.a", "planted.b", "planted.a"]
+    assert module_edges("planted")["planted.c"] == set()
+
+
 def find_cycle(edges: dict[str, set[str]]) -> list[str]:
     """Return one cycle of the graph *edges* as a path (first node repeated), or []."""
     state: dict[str, int] = {}

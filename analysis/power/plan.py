@@ -60,10 +60,9 @@ def effects_for(
 
 def power_figure(curve: PowerCurve, path: Path) -> None:
     """Draw power against N, one line per test, with the 80 % line."""
-    import matplotlib
+    from analysis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     figure, axes = plt.subplots(figsize=(7, 4.2))
     table = curve.table()

@@ -14,7 +14,8 @@ from synthesis.capture.posefile import (
     read_pose,
     write_pose,
 )
-from synthesis.capture.recording import CapturedHand, captured_hand, write_report
+from synthesis.capture.recording import CapturedHand, captured_hand
+from synthesis.capture.report import write_report
 
 __all__ = [
     "HAND_COMPONENTS",

@@ -1,8 +1,6 @@
-"""Turn captured landmarks into the engine's motions, and report a capture's quality."""
+"""Turn captured landmarks into the engine's motions, and measure a capture's quality."""
 
-import json
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
@@ -50,34 +48,3 @@ def captured_hand(recording: PoseRecording, side: str = "right") -> CapturedHand
     fit = fit_hand(model, points, confidence, scale=None, rate_hz=recording.fps)
     motion = model.as_motion(fit.dofs_rad, recording.fps)
     return CapturedHand(motion, fit, side)
-
-
-def write_report(hand: CapturedHand, recording: PoseRecording, directory: str | Path,
-                 video: str | Path | None = None) -> Path:  # fmt: skip
-    """Write quality.json and quality.png (residual and hand found, per frame) into
-    *directory*, and with the *video* captured, contact.png (synthesis.capture.contact)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
-    report = hand.quality(recording)
-    (directory / "quality.json").write_text(json.dumps(report, indent=2) + "\n", "utf-8")
-    seconds = np.arange(recording.n_frames) / recording.fps
-    figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 4.5), sharex=True)
-    top.plot(seconds, np.median(hand.fit.residual_mm, axis=1), color="#345")
-    top.set_ylabel("fit residual (mm)\nmedian of 21 points")
-    bottom.step(seconds, hand.fit.found.astype(int), where="mid", color="#a33")
-    bottom.set_ylabel(f"{hand.side} hand\nfound")
-    bottom.set_yticks([0, 1], ["no", "yes"])
-    bottom.set_xlabel("time (s)")
-    figure.tight_layout()
-    figure.savefig(directory / "quality.png", dpi=110)
-    plt.close(figure)
-    if video is not None:
-        from synthesis.capture.contact import write_contact_sheet
-
-        write_contact_sheet(hand, video, directory / "contact.png")
-    return directory

@@ -147,10 +147,9 @@ def _role(reduction: Reduction, name: str) -> str:
 
 
 def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
-    import matplotlib
+    from synthesis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     figure, axes = plt.subplots(figsize=(5.6, 3.6))
     dofs = [r["dofs"] for r in steps]
@@ -235,10 +234,9 @@ def write_reconstruction_report(
         write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
         write_latex(directory / "errors-by-markers.tex", rows, columns, caption),
     ]
-    import matplotlib
+    from synthesis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     figure, axes = plt.subplots(figsize=(5.6, 3.6))
     axes.plot([r["markers"] for r in rows], [r["error_cm"] for r in rows], "o-")

@@ -25,10 +25,9 @@ def torso_angles(sentence: Sentence) -> dict[str, np.ndarray]:
 
 def torso_angles_figure(on: Sentence, off: Sentence, title: str = ""):
     """Return a matplotlib figure: torso bend and twist over time, spine on vs off."""
-    import matplotlib
+    from synthesis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     figure, axes = plt.subplots(len(ANGLES), 1, figsize=(8, 6), sharex=True)
     for sentence, label, colour in ((on, "spine on", "#1f77b4"), (off, "spine off", "#d62728")):

@@ -5,6 +5,7 @@ under a condition; :func:`build_motion` and :func:`render_request` make its moti
 its clip. See docs/architecture.md, "The technique registry".
 """
 
+from synthesis.techniques.default import default_registry
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import (
     MOTION,
@@ -12,7 +13,6 @@ from synthesis.techniques.registry import (
     ItemKind,
     Registry,
     Technique,
-    default_registry,
 )
 from synthesis.techniques.request import (
     FIELDS,

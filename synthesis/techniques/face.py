@@ -1,11 +1,16 @@
 """The face on, neutral or off: non-manual signals as a technique (issue 16; seed 003 §4)."""
 
+from __future__ import annotations
+
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import Parameter
 from synthesis.techniques.registry import Technique
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 
 def _apply(build: Build) -> Build:

@@ -8,10 +8,16 @@ nearest k-means pose, from a pose database (the engine's alphabet unless another
 given). The forearm and wrist are left as they are.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import MOTION, Technique
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 HANDS = ("full", "reduced", "reconstructed")
 LABELS = {

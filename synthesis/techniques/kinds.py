@@ -4,11 +4,17 @@ Each kind starts a clip's build from its request and, once the prepare-stage tec
 have chosen a performance, a timing or synthesis options, makes the motion.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from synthesis.techniques.parameters import ClipError
 from synthesis.techniques.registry import ItemKind
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 
 def _check_word(text: str) -> None:

@@ -1,11 +1,16 @@
 """Liveliness: coherent band-limited noise on every joint, so a still signer breathes."""
 
+from __future__ import annotations
+
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import Parameter
 from synthesis.techniques.registry import Technique
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 
 def _apply(build: Build) -> Build:

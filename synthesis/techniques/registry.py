@@ -9,7 +9,8 @@ parameters — validation, the command line, the admin form, the study schema, t
 hash — reads them from :data:`REGISTRY`.
 
 Add a technique: write its module (a ``TECHNIQUE = Technique(...)``) and name it in
-:func:`default_registry`. Tests add one for a while with :meth:`Registry.registered`.
+:func:`synthesis.techniques.default.default_registry`. Tests add one for a while with
+:meth:`Registry.registered`.
 """
 
 from collections.abc import Callable, Iterator, Mapping
@@ -176,32 +177,3 @@ class Registry:
             yield technique
         finally:
             self.techniques.remove(technique)
-
-
-def default_registry() -> Registry:
-    """Return the engine's item kinds and techniques, in pipeline order."""
-    from synthesis.techniques import (
-        face,
-        hand,
-        kinds,
-        liveliness,
-        signs,
-        source,
-        spine,
-        timing,
-        transition,
-    )
-
-    return Registry(
-        kinds={kind.name: kind for kind in (kinds.WORD, kinds.SENTENCE, kinds.SIGN_PAIR)},
-        techniques=[
-            source.TECHNIQUE,
-            timing.TECHNIQUE,
-            signs.TECHNIQUE,
-            spine.TECHNIQUE,
-            face.TECHNIQUE,
-            liveliness.TECHNIQUE,
-            transition.TECHNIQUE,
-            hand.TECHNIQUE,
-        ],
-    )

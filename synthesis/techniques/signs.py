@@ -1,9 +1,15 @@
 """The sign library a sentence is built from (the story's signs by default)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 
 def _check(values) -> None:

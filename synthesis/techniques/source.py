@@ -2,9 +2,15 @@
 capture, or a recording (seed 000 §4.3: conditions retime one performance).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 SOURCES = ("alphabet", "simulated", "recording")
 

@@ -6,13 +6,18 @@ Variable model's length), ``variable`` (naïve Bayes holds, pose-distance transi
 ``mocap`` (the performance as performed).
 """
 
+from __future__ import annotations
+
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
-from synthesis.techniques.request import Build
 from synthesis.timing.constant import HOLD_MS, LAST_HOLD_MS, TRANSITION_MS
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 TIMINGS = ("mocap", "variable", "constant", "normalized", "simple")
 LABELS = {

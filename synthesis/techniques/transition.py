@@ -5,10 +5,16 @@ linear blending (spec 04). ``keyed`` is the engine's own interpolation of the ke
 (monotone cubics), what every sentence had before.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 from synthesis.techniques.kinds import SIGNED
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import MOTION, Technique
-from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:
+    from synthesis.techniques.request import Build
 
 TRANSITIONS = ("keyed", "linear", "simple_hermite", "hermite", "bspline", "blended")
 LABELS = {

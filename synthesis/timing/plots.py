@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from synthesis.fingerspelling.word_timing import WordTiming
+from synthesis.plotting import pyplot
 
 COLOURS = {
     "mocap": "#4d4d4d",
@@ -21,18 +22,9 @@ COLOURS = {
 }
 
 
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def timeline_figure(timings: dict[str, WordTiming]):
     """Return a figure of each condition's holds (dark, lettered) and transitions (light)."""
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(figsize=(8, 0.7 + 0.55 * len(timings)))
     for row, (condition, timing) in enumerate(timings.items()):
         colour = COLOURS.get(condition, "#555555")
@@ -64,7 +56,7 @@ def trajectory_figure(motions: dict[str, np.ndarray], rate_hz: float, word: str)
     """
     from synthesis.rigs.hand import HandModel
 
-    plt = _pyplot()
+    plt = pyplot()
     names = HandModel().dof_names
     flexion = [i for i, name in enumerate(names) if name.endswith("_flexion")
                and not name.startswith("wrist")]  # fmt: skip
@@ -86,5 +78,5 @@ def write_figure(figure, path: str | Path) -> Path:
     path = Path(path)
     metadata = {"CreationDate": None} if path.suffix.lower() == ".pdf" else {}
     figure.savefig(path, dpi=150, bbox_inches="tight", metadata=metadata)
-    _pyplot().close(figure)
+    pyplot().close(figure)
     return path

@@ -49,10 +49,9 @@ def latex_table(evaluation: Evaluation) -> str:
 
 
 def _plot_means(evaluation: Evaluation, path: Path) -> Path:
-    import matplotlib
+    from synthesis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     means = evaluation.mean_by_model
     x = np.arange(len(MODELS))
@@ -81,10 +80,9 @@ def plot_transition(
 
     The data-driven models fit the stored transition *evaluation* matched to it.
     """
-    import matplotlib
+    from synthesis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     entry = database.entries[index]
     matched = next(e for e in database.entries if e.id == evaluation.matches[index])
@@ -186,10 +184,9 @@ def plot_speed(
     Seed 004's blending is C⁰ only: its speed jumps where an overlap starts and ends,
     which this plot shows beside the smooth models (with the velocity jumps' peak).
     """
-    import matplotlib
+    from synthesis.plotting import pyplot
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     from synthesis.signing.sentence import SentenceOptions, synthesize
     from synthesis.transitions.blending import velocity_jumps

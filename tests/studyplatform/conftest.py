@@ -1,8 +1,20 @@
-"""Fixtures of the participant tests: a participant at a signed answer, a rendered clip."""
+"""Fixtures of the platform's tests: the database in use, a participant at a signed
+answer, a rendered clip."""
+
+import os
 
 import pytest
 
 from tests.studyplatform.test_participate import _start
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _expected_database(django_db_setup, django_db_blocker):
+    """Fail at once when the PostgreSQL run has silently fallen back to SQLite."""
+    from django.db import connection
+
+    if os.environ.get("SIGNSTUDY_EXPECT_POSTGRES") and connection.vendor != "postgresql":
+        pytest.exit(f"Expected PostgreSQL, but the suite runs on {connection.vendor}.", 1)
 
 
 @pytest.fixture
