@@ -74,6 +74,36 @@ TRIAL_REFERENCES = ("block", "item", "condition_a", "condition_b")
 ASL_VIDEO_FIELDS = ("field_name", "transcript", "credit")
 RECORDING_FIELDS = ("mirrored", "one_hand", "quality", "sha256")
 RECORDING_FILES = ("upload", "motion", "sheet")
+# Fields a definition leaves out on purpose, with why (tests/studyplatform/
+# test_exchange.py checks that every field is exported or listed here).
+LEFT_OUT = {
+    "Study": {
+        "owner": "whoever imports the file owns the study",
+        "version": "a copy starts its own history (do_create_study_version numbers it)",
+        "previous_version": "as version; ids never leave an installation",
+        "created_at": "set when the study is made",
+        "updated_at": "set when the study is saved",
+        "signed_templates": "a researcher's own library; a copy keeps those its owner may use",
+    },
+    "Condition": {"study": "the definition is the study's"},
+    "Item": {"study": "the definition is the study's"},
+    "Question": {"study": "the definition is the study's"},
+    "AnswerOption": {"question": "options are nested in their question"},
+    "Block": {"study": "the definition is the study's"},
+    "Trial": {"study": "the definition is the study's"},
+    "AslVideo": {
+        "content_type": "exported as the prompt's target (kind and key)",
+        "object_id": "as content_type",
+        "created_at": "set when the video is attached",
+    },
+    "Recording": {
+        "item": "exported as the item's key",
+        "status": "an imported recording is ready",
+        "progress_percent": "as status",
+        "error": "only ready recordings are exported",
+        "created_at": "set when the recording is imported",
+    },
+}
 
 
 def _values(obj: Any, fields: tuple[str, ...]) -> dict[str, Any]:

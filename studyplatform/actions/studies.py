@@ -329,15 +329,25 @@ def _import_rows(data: dict, study: Study, batches: _Batches, media: ImportedMed
 
 
 def do_duplicate_study(study: Study, *, owner) -> Study:
-    """Copy *study*'s definition into a new draft study owned by *owner*."""
+    """Copy *study*'s definition into a new draft study owned by *owner*.
+
+    The copy keeps the signed templates attached to *study* that *owner* may attach
+    (their own; any, for a superuser): a definition file leaves them out, since they
+    belong to a researcher's library, not to the study.
+    """
     definition = exchange.export_study(study)
-    result = do_import_study(
-        definition,
-        owner=owner,
-        # The copy shares the original's files (deletion counts references).
-        allowed_files=definition_files(definition),
-        slug=free_slug(f"{study.slug}-copy"),
-        title=f"{study.title} (copy)"[:200],
-        status=Study.Status.DRAFT,
-    )
+    with transaction.atomic():
+        result = do_import_study(
+            definition,
+            owner=owner,
+            # The copy shares the original's files (deletion counts references).
+            allowed_files=definition_files(definition),
+            slug=free_slug(f"{study.slug}-copy"),
+            title=f"{study.title} (copy)"[:200],
+            status=Study.Status.DRAFT,
+        )
+        templates = study.signed_templates.all()
+        if not owner.is_superuser:
+            templates = templates.filter(owner=owner)
+        result.study.signed_templates.set(templates)
     return result.study

@@ -277,3 +277,54 @@ def test_an_import_commits_in_short_transactions(fingerspelling, bob):
         post_save.disconnect(saved, sender=Condition)
     per_transaction = Counter(saves_before_commit).values()
     assert len(per_transaction) >= 3 and max(per_transaction) <= BATCH_ROWS
+
+
+def test_every_model_field_is_exported_or_left_out_on_purpose():
+    """Issue 39: do_duplicate_study goes export → import, so a field left off the lists
+    would silently vanish from copies and versions."""
+    from django.apps import apps
+
+    from studyplatform import exchange
+
+    exported = {
+        "Study": exchange.STUDY_FIELDS,
+        "Condition": exchange.CONDITION_FIELDS,
+        "Item": exchange.ITEM_FIELDS,
+        "Question": exchange.QUESTION_FIELDS,
+        "AnswerOption": exchange.OPTION_FIELDS,
+        "Block": exchange.BLOCK_FIELDS,
+        "Trial": (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"),
+        "AslVideo": (*exchange.ASL_VIDEO_FIELDS, "video", "poster"),
+        "Recording": (*exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
+    }
+    assert set(exported) == set(exchange.LEFT_OUT)
+    for name, fields in exported.items():
+        model = apps.get_model("studyplatform", name)
+        present = {
+            f.name
+            for f in model._meta.get_fields()
+            if (f.concrete or f.many_to_many) and not f.auto_created
+        }
+        left_out = set(exchange.LEFT_OUT[name])
+        assert not set(fields) & left_out, f"{name}: exported and left out"
+        missing = present - set(fields) - left_out
+        assert not missing, f"{name}: {sorted(missing)} neither exported nor left out on purpose"
+        stale = (set(fields) | left_out) - present
+        assert not stale, f"{name}: {sorted(stale)} are not fields any more"
+
+
+def test_a_copy_and_a_version_keep_the_signed_templates_their_owner_may_use(
+    alice, bob, spine, settings, tmp_path
+):
+    settings.MEDIA_ROOT = tmp_path
+    from studyplatform.actions import do_create_study_version
+    from studyplatform.models import SignedTemplate
+
+    video = SimpleUploadedFile("consent.webm", tiny_webm(), "video/webm")
+    mine = SignedTemplate.objects.create(owner=bob, kind="consent", name="Lab", video=video)
+    theirs = SignedTemplate.objects.create(owner=alice, kind="next", name="Alice's", video=video)
+    spine.signed_templates.add(mine, theirs)
+    version = do_create_study_version(spine, owner=bob)
+    assert set(version.signed_templates.all()) == {mine}
+    copied = do_duplicate_study(spine, owner=alice)
+    assert set(copied.signed_templates.all()) == {theirs}
