@@ -13,6 +13,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip, file_sha256, render
+from synthesis.formats import check_header
 
 FORMAT = "signstudy.stimuli-manifest"
 FORMAT_VERSION = 1
@@ -94,10 +95,7 @@ def read_manifest(path: Path) -> list[Entry]:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, json.JSONDecodeError) as error:
         raise ClipError(f"{path}: cannot read the manifest ({error}).") from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise ClipError(f"{path}: not a stimuli manifest (format {FORMAT!r}).")
-    if data.get("version") != FORMAT_VERSION:
-        raise ClipError(f"{path}: unsupported manifest version {data.get('version')!r}.")
+    check_header(data, FORMAT, FORMAT_VERSION, "stimuli manifest", ClipError, str(path))
     entries = []
     for number, clip in enumerate(data.get("clips") or [], start=1):
         spec = ClipSpec.from_dict(clip.get("spec") or {})

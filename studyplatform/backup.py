@@ -28,6 +28,7 @@ from django.utils import timezone
 
 from stimuli.clips import file_sha256
 from studyplatform import ledger
+from synthesis.formats import check_header
 
 FORMAT = "signstudy.backup"
 VERSION = 1
@@ -133,8 +134,7 @@ def _read_manifest(archive: tarfile.TarFile) -> dict:
         manifest = json.load(archive.extractfile("manifest.json"))
     except (KeyError, ValueError) as error:
         raise BackupError(f"The archive has no readable manifest.json ({error}).") from None
-    if manifest.get("format") != FORMAT or manifest.get("version") != VERSION:
-        raise BackupError(f"Not a SignStudy backup of version {VERSION}.")
+    check_header(manifest, FORMAT, VERSION, "SignStudy backup", BackupError)
     return manifest
 
 

@@ -29,6 +29,7 @@ from studyplatform.models import (
     Study,
     Trial,
 )
+from synthesis.formats import check_header
 
 
 @dataclass(frozen=True)
@@ -165,16 +166,7 @@ def do_import_study(
     """
     if not isinstance(data, dict):
         raise StudyImportError("A study definition must be a JSON object.")
-    if data.get("format") != exchange.FORMAT:
-        raise StudyImportError(
-            f"Not a study definition: 'format' should be {exchange.FORMAT!r}, "
-            f"got {data.get('format')!r}."
-        )
-    if data.get("version") != exchange.VERSION:
-        raise StudyImportError(
-            f"Unsupported study definition version {data.get('version')!r} "
-            f"(this installation reads version {exchange.VERSION})."
-        )
+    check_header(data, exchange.FORMAT, exchange.VERSION, "study definition", StudyImportError)
     values = _pick(data.get("study"), exchange.STUDY_FIELDS, "study", Study)
     if slug:
         values["slug"] = slug

@@ -22,6 +22,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from synthesis.fingerspelling.alphabet import LETTERS, letter, rest_pose
+from synthesis.formats import check_header
 from synthesis.rigs.collisions import finger_crossings, overlap_depths_m
 from synthesis.rigs.hand import FINGERS, HandModel
 
@@ -157,8 +158,7 @@ def start_pose(character: str, side: str = "right") -> np.ndarray:
 def _table() -> dict[str, str]:
     text = resources.files("synthesis").joinpath("data/letter_routes.json").read_text("utf-8")
     data = json.loads(text)
-    if data.get("format") != FORMAT or data.get("version") != FORMAT_VERSION:
-        raise ValueError("synthesis/data/letter_routes.json is not a letter-routes file.")
+    check_header(data, FORMAT, FORMAT_VERSION, "letter-routes file", where="letter_routes.json")
     return data["routes"]
 
 

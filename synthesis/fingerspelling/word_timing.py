@@ -9,20 +9,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from synthesis.formats import check_header
+
 FORMAT = "signstudy.word-timing"
 FORMAT_VERSION = 1
 
 
 class TimingError(ValueError):
     """A timing that does not fit its word, or a malformed timing file."""
-
-
-def check_header(data, expected_format: str, version: int, what: str) -> None:
-    """Raise TimingError unless *data* is a mapping of *expected_format* at *version*."""
-    if not isinstance(data, dict) or data.get("format") != expected_format:
-        raise TimingError(f"Not a {what}: expected format {expected_format!r}.")
-    if data.get("version") != version:
-        raise TimingError(f"Unsupported {what} version {data.get('version')!r}.")
 
 
 @dataclass(frozen=True)
@@ -101,7 +95,7 @@ class WordTiming:
     @classmethod
     def from_dict(cls, data: dict) -> "WordTiming":
         """Read a timing written by :meth:`to_dict`; TimingError names what is wrong."""
-        check_header(data, FORMAT, FORMAT_VERSION, "word timing")
+        check_header(data, FORMAT, FORMAT_VERSION, "word timing", TimingError)
         try:
             return cls(
                 tuple(data["word"]),

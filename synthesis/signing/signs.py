@@ -17,6 +17,7 @@ import numpy as np
 import yaml
 
 from synthesis.fingerspelling.alphabet import AlphabetError, letter, rest_pose
+from synthesis.formats import check_header
 from synthesis.rigs.hand import HandModel
 from synthesis.signing.nonmanual import NonmanualError, parse_markers
 
@@ -146,10 +147,7 @@ def _shapes(entries: dict) -> dict[str, np.ndarray]:
 
 def parse_library(data) -> SignLibrary:
     """Return a library from parsed YAML; SignError names what is wrong."""
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise SignError(f"Not a sign library: expected format {FORMAT!r}.")
-    if data.get("version") != FORMAT_VERSION:
-        raise SignError(f"Unsupported sign library version {data.get('version')!r}.")
+    check_header(data, FORMAT, FORMAT_VERSION, "sign library", SignError)
     try:
         shapes = _shapes(data.get("handshapes"))
     except AlphabetError as error:

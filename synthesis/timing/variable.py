@@ -10,7 +10,8 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from synthesis.fingerspelling.word_timing import TimingError, WordTiming, check_header
+from synthesis.fingerspelling.word_timing import TimingError, WordTiming
+from synthesis.formats import check_header
 from synthesis.timing.bayes import HoldClassifier
 from synthesis.timing.features import word_features
 from synthesis.timing.transitions import TransitionModel
@@ -57,7 +58,7 @@ class VariableModel:
     @classmethod
     def from_dict(cls, data: dict) -> "VariableModel":
         """Read a model written by :meth:`to_dict`; TimingError names what is wrong."""
-        check_header(data, FORMAT, FORMAT_VERSION, "timing model")
+        check_header(data, FORMAT, FORMAT_VERSION, "timing model", TimingError)
         try:
             return cls(
                 HoldClassifier.from_dict(data["holds"]),

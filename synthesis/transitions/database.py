@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import BSpline, make_splrep
 
+from synthesis.formats import check_header
 from synthesis.transitions.curves import ARM_CURVES, SIDES
 from synthesis.transitions.descriptor import DESCRIPTOR_FRAMES, gap_descriptor
 from synthesis.transitions.hermite_fit import HermiteCurve, fit_hermite
@@ -232,13 +233,7 @@ class TransitionDatabase:
             data = json.loads(text)
         except json.JSONDecodeError as error:
             raise DatabaseError(f"{source}: not JSON ({error.msg}, line {error.lineno}).") from None
-        if not isinstance(data, dict) or data.get("format") != FORMAT:
-            raise DatabaseError(f"{source}: not a transition database (format {FORMAT!r}).")
-        if data.get("version") != FORMAT_VERSION:
-            raise DatabaseError(
-                f"{source}: version {data.get('version')!r}; this engine reads "
-                f"version {FORMAT_VERSION}."
-            )
+        check_header(data, FORMAT, FORMAT_VERSION, "transition database", DatabaseError, source)
         entries = []
         for number, raw in enumerate(data.get("entries") or [], 1):
             try:

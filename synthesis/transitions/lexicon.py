@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from synthesis.formats import check_header
 from synthesis.rigs.body import BodyModel
 from synthesis.signing.sentence import Sentence
 from synthesis.skeleton.retime import resample_curves
@@ -157,13 +158,9 @@ def read_lexicon(path: str | Path) -> SignLexicon:
         data = json.loads(path.read_text("utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
         raise LexiconError(f"{path}: cannot be read as JSON ({error}).") from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT:
-        raise LexiconError(f"{path}: not a sign lexicon (format {FORMAT!r}).")
-    if data.get("version") != FORMAT_VERSION or not isinstance(data.get("signs"), dict):
-        raise LexiconError(
-            f"{path}: version {data.get('version')!r} with a 'signs' table is "
-            f"needed (this engine reads version {FORMAT_VERSION})."
-        )
+    check_header(data, FORMAT, FORMAT_VERSION, "sign lexicon", LexiconError, str(path))
+    if not isinstance(data.get("signs"), dict):
+        raise LexiconError(f"{path}: a sign lexicon needs a 'signs' table.")
     signs = {}
     for gloss, entry in data["signs"].items():
         try:
