@@ -15,11 +15,12 @@ from typing import TYPE_CHECKING
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
 from synthesis.timing.constant import HOLD_MS, LAST_HOLD_MS, TRANSITION_MS
+from synthesis.timing.recordings import MODEL_TIMINGS
 
 if TYPE_CHECKING:
     from synthesis.techniques.request import Build
 
-TIMINGS = ("mocap", "variable", "constant", "normalized", "simple")
+TIMINGS = ("mocap", *MODEL_TIMINGS, "simple")
 LABELS = {
     "simple": "simple (equal holds)",
     "constant": "Constant",

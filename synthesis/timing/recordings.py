@@ -126,8 +126,14 @@ def retime(recording: Recording, timing: WordTiming) -> Motion:
     return time_warp(recording.motion, warp, kept[-1][0])
 
 
+# The timing models a word is retimed under (Table 4.3's columns), named as the timing
+# technique names them; the technique adds the recording itself and equal holds.
+MODEL_TIMINGS = ("variable", "constant", "normalized")
+
+
 def condition_timings(word: str, model: VariableModel) -> dict[str, WordTiming]:
-    """Return the Variable, Constant and Normalized constant timings of *word*."""
+    """Return the Variable, Constant and Normalized constant timings of *word*, in
+    :data:`MODEL_TIMINGS` order."""
     variable = model.timing(word)
     return {
         "variable": variable,
@@ -169,7 +175,7 @@ def duration_table(recordings: list[Recording], model: VariableModel) -> list[di
         rows.append(row)
     if rows:
         mean = {"word": "mean |error|", "mocap_ms": float(np.mean([r["mocap_ms"] for r in rows]))}
-        for name in ("variable", "constant", "normalized"):
+        for name in MODEL_TIMINGS:
             mean[f"{name}_ms"] = float(np.mean([r[f"{name}_ms"] for r in rows]))
             mean[f"{name}_error_ms"] = float(np.mean([abs(r[f"{name}_error_ms"]) for r in rows]))
         rows.append(mean)
@@ -178,7 +184,7 @@ def duration_table(recordings: list[Recording], model: VariableModel) -> list[di
 
 def format_table(rows: list[dict]) -> str:
     """Return the duration table as Markdown."""
-    names = ("variable", "constant", "normalized")
+    names = MODEL_TIMINGS
     header = "| word | mocap (ms) | " + " | ".join(f"{n} (ms) | {n} error" for n in names) + " |"
     lines = [header, "|" + "---|" * (2 + 2 * len(names))]
     for row in rows:
