@@ -149,11 +149,16 @@ def test_the_cli_lists_the_techniques(capsys):
 
 
 def test_the_timing_names_are_listed_in_one_place():
+    from synthesis.techniques.timing import TIMINGS
+    from synthesis.timing.recordings import MODEL_TIMINGS
+
     result = subprocess.run(
-        ["grep", "-rln", '"mocap", "variable"', "synthesis", "stimuli", "studyplatform"],
+        ["grep", "-rlnE", "--exclude-dir=migrations", '"(mocap|variable)", "(variable|constant)"',
+         "synthesis", "stimuli", "studyplatform"],
         cwd=ROOT, capture_output=True, text=True,
     )  # fmt: skip
-    assert result.stdout.split() == ["synthesis/techniques/timing.py"]
+    assert result.stdout.split() == ["synthesis/timing/recordings.py"]
+    assert TIMINGS[1:-1] == MODEL_TIMINGS and (TIMINGS[0], TIMINGS[-1]) == ("mocap", "simple")
 
 
 def test_changing_an_engine_source_file_changes_every_clip_hash(tmp_path):
