@@ -16,6 +16,13 @@ from synthesis.tables import write_csv, write_latex
 # Seed 002 Table 5: free DOFs of two hands (50 curves) after each step.
 PUBLISHED_STEPS = (39, 27, 31, 15)
 PUBLISHED_REDUCTION_INPUT = "seed 002: one 27 s motion capture of two hands (50 curves)"
+RECONSTRUCTION_COLUMNS = {
+    "markers": "m",
+    "error_cm": "error (cm)",
+    "sd_cm": "s.d.",
+    "published_cm": "published (cm)",
+    "published_sd_cm": "pub. s.d.",
+}
 STEP_COLUMNS = {
     "step": "step",
     "input": "input",
@@ -222,32 +229,26 @@ def write_reconstruction_report(
         f"Mean marker error (cm) by markers kept ({method}): {source}; database: "
         f"{database.source}; published: seed 000 Table 3.1, p = 1000 (nearest pose only)"
     )
-    columns = {
-        "markers": "m",
-        "error_cm": "error (cm)",
-        "sd_cm": "s.d.",
-        "published_cm": "published (cm)",
-        "published_sd_cm": "pub. s.d.",
-    }
     written = [
         write_csv(directory / "marker-ranking.csv", ranking, ["rank", "marker", "influence"]),
         write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
-        write_latex(directory / "errors-by-markers.tex", rows, columns, caption),
+        write_latex(directory / "errors-by-markers.tex", rows, RECONSTRUCTION_COLUMNS, caption),
     ]
+    title = f"Marker count vs reconstruction error ({method})\n{source}; database: "
+    written.append(_plot_markers(rows, directory / "markers-vs-error.png", title + database.source))
+    return written
+
+
+def _plot_markers(rows: list[dict], path: Path, title: str) -> Path:
     from synthesis.plotting import pyplot
 
     plt = pyplot()
-
     figure, axes = plt.subplots(figsize=(5.6, 3.6))
     axes.plot([r["markers"] for r in rows], [r["error_cm"] for r in rows], "o-")
     axes.set_xlabel("markers kept (PCA rank order)")
     axes.set_ylabel("mean marker error (cm)")
-    axes.set_title(
-        f"Marker count vs reconstruction error ({method})\n{source}; database: {database.source}",
-        fontsize=8,
-    )
+    axes.set_title(title, fontsize=8)
     figure.tight_layout()
-    figure.savefig(directory / "markers-vs-error.png", dpi=120)
+    figure.savefig(path, dpi=120)
     plt.close(figure)
-    written.append(directory / "markers-vs-error.png")
-    return written
+    return path
