@@ -18,7 +18,9 @@ import sys
 from pathlib import Path
 
 from synthesis.hands.cli_markers import add_markers_command
+from synthesis.hands.markers import ROOTS
 from synthesis.hands.motion import HandMotionError, from_dofs, read_hand_motion, reduce_motion
+from synthesis.hands.reconstruct import LWR_VARIANCE
 
 
 def _motion(args: argparse.Namespace, rate_hz: float):
@@ -31,15 +33,12 @@ def _motion(args: argparse.Namespace, rate_hz: float):
     if args.motion:
         return read_hand_motion(args.motion, args.side), str(args.motion)
     if letters:
-        import numpy as np
-
-        from synthesis.hands.posedb import RATE_HZ, human_letter_dofs
+        from synthesis.hands.posedb import RATE_HZ, human_letter_poses
         from synthesis.rigs.hand import HandModel
         from synthesis.skeleton.retime import resample_curves
 
-        fitted = human_letter_dofs(args.side, letters)
         letters = "".join(dict.fromkeys(letters.upper()))
-        dofs = resample_curves(np.vstack([fitted[x] for x in letters]), RATE_HZ, rate_hz)
+        dofs = resample_curves(human_letter_poses(args.side, letters), RATE_HZ, rate_hz)
         return (
             from_dofs(HandModel(args.side), dofs, rate_hz),
             f"human letters {letters} (spoken-to-signed), one after another at {rate_hz:g} Hz",
@@ -71,8 +70,10 @@ def _reduce(args: argparse.Namespace) -> int:
         )
     from synthesis.hands.report import PUBLISHED_REDUCTION_INPUT, step_rows
 
+    curves = motion.analysis_curves_deg()
+    steps = step_rows(curves, motion.names, source)
     print(f"seed 002's steps on {source} (published: {PUBLISHED_REDUCTION_INPUT}):")
-    for row in step_rows(motion.analysis_curves_deg(), motion.names, source):
+    for row in steps:
         print(
             f"  {row['step']}: {row['dofs']} of {row['of']} DOFs, mean error "
             f"{row['mean_error_deg']:.2f}°; published {row['published_dofs_of_50']} of 50"
@@ -81,14 +82,13 @@ def _reduce(args: argparse.Namespace) -> int:
         write_bvh(reduced.as_bvh_motion(), args.out)
         print(f"wrote {args.out}")
     if args.report:
-        curves = motion.analysis_curves_deg()
-        for path in write_reduction_report(curves, reduction, args.report, source):
+        for path in write_reduction_report(curves, reduction, args.report, source, steps):
             print(f"wrote {path}")
     return 0
 
 
 def _reconstruct(args: argparse.Namespace) -> int:
-    from synthesis.hands.report import write_reconstruction_report
+    from synthesis.hands.report import reconstruction_errors, write_reconstruction_report
     from synthesis.skeleton.bvh import write_bvh
 
     motion, source = _motion(args, 120.0)
@@ -108,25 +108,20 @@ def _reconstruct(args: argparse.Namespace) -> int:
         write_bvh(motion.rig.as_motion(rebuilt, motion.rate_hz), args.out)
         print(f"wrote {args.out}")
     if args.report:
-        written = write_reconstruction_report(motion, args.method, args.report, source, database)
-        import csv
-
-        with open(written[1], encoding="utf-8") as handle:
-            for row in csv.DictReader(handle):
-                published = (
-                    f"published {row['published_cm']} cm (seed 000 Table 3.1, p = 1000)"
-                    if row["published_cm"]
-                    else "not published"
-                )
-                print(f"m = {row['markers']:>2}: {float(row['error_cm']):.2f} cm; {published}")
-        for path in written:
+        errors = reconstruction_errors(motion, args.method, source, database, args.lwr_variance)
+        for row in errors.rows:
+            published = (
+                f"published {row['published_cm']} cm (seed 000 Table 3.1, p = 1000)"
+                if row["published_cm"] is not None
+                else "not published"
+            )
+            print(f"m = {row['markers']:>2}: {row['error_cm']:.2f} cm; {published}")
+        for path in write_reconstruction_report(errors, args.report):
             print(f"wrote {path}")
     return 0
 
 
 def _database(args: argparse.Namespace) -> int:
-    import numpy as np
-
     from synthesis.hands.posedb import combined, engine_pose_database, recorded_pose_database
 
     parts = []
@@ -139,13 +134,11 @@ def _database(args: argparse.Namespace) -> int:
     if args.recordings:
         parts.append(recorded_pose_database(args.recordings, args.side, args.root))
     if args.human_letters:
-        from synthesis.hands.posedb import human_letter_dofs, pose_database_of
+        from synthesis.hands.posedb import human_letter_poses, pose_database_of
         from synthesis.rigs.hand import HandModel
 
-        fitted = human_letter_dofs(args.side)
-        letters = "".join(x for x in args.human_letters.upper() if x in fitted)
-        source = f"human letters {letters} (spoken-to-signed)"
-        poses = np.vstack([fitted[x] for x in letters])
+        poses = human_letter_poses(args.side, args.human_letters)
+        source = f"human letters {args.human_letters.upper()} (spoken-to-signed)"
         parts.append(pose_database_of(HandModel(args.side), poses, source, args.root))
     if not parts:
         raise ValueError(
@@ -204,7 +197,7 @@ def parser() -> argparse.ArgumentParser:
     rebuild.add_argument(
         "--lwr-variance",
         type=float,
-        default=1.0,
+        default=LWR_VARIANCE,
         help="share of the joint angles' variance LWR's principal components keep "
         "(1: all of them, seed 000 §3.2.4; then LWR equals direct regression)",
     )
@@ -246,7 +239,7 @@ def parser() -> argparse.ArgumentParser:
     )
     database.add_argument(
         "--root",
-        choices=("wrist", "forearm"),
+        choices=ROOTS,
         default="wrist",
         help="the markers' root link: wrist (digits only, the engine's) or forearm (seed "
         "000's, the wrist rebuilt too)",

@@ -12,8 +12,6 @@ configuration, its input and the published figure with the published input.
 import argparse
 from pathlib import Path
 
-from synthesis.hands.motion import read_hand_motion
-
 TABLE_3_1_COLUMNS = {
     "configuration": "configuration",
     "input": "input",
@@ -40,15 +38,22 @@ def _print_table(rows: list[dict]) -> None:
         )
 
 
-def _engine_table(args: argparse.Namespace, hand) -> list[dict]:
+def _engine_inputs(args: argparse.Namespace):
+    """Return the engine configuration's test motion (the words spelled) and database."""
     import numpy as np
 
     from synthesis.fingerspelling.spelling import spell
-    from synthesis.hands.evaluation import ENGINE_CONFIGURATION, table_3_1
     from synthesis.hands.handover import builtin_pose_database
 
     test = np.vstack([spell(word, args.side, 120.0) for word in args.words])
-    database = builtin_pose_database(args.side)
+    return test, builtin_pose_database(args.side)
+
+
+def _engine_table(args: argparse.Namespace, hand, test, database) -> list[dict]:
+    import numpy as np
+
+    from synthesis.hands.evaluation import ENGINE_CONFIGURATION, table_3_1
+
     source = f"the engine's spelling of {', '.join(args.words)} from {database.source}"
     print(f"{ENGINE_CONFIGURATION}\n  input: {source}")
     rows = table_3_1(
@@ -89,18 +94,11 @@ def _paper_tables(args: argparse.Namespace, hand) -> list[dict]:
 def _own_held_out(args: argparse.Namespace):
     """Return the researcher's own database with their selection and test motions."""
     from synthesis.hands.heldout import HeldOut
-    from synthesis.hands.posedb import RATE_HZ
+    from synthesis.hands.posedb import recorded_dofs
     from synthesis.hands.reconstruct import PoseDatabase
-    from synthesis.skeleton.retime import resample_curves
 
     if not (args.selection and args.test):
         raise ValueError("--database needs --selection and --test motions withheld from it.")
-
-    def dofs(paths):
-        import numpy as np
-
-        motions = [read_hand_motion(path, args.side) for path in paths]
-        return np.vstack([resample_curves(m.dofs_rad, m.rate_hz, RATE_HZ) for m in motions])
 
     def names(paths) -> str:
         return ", ".join(Path(path).name for path in paths)
@@ -108,8 +106,8 @@ def _own_held_out(args: argparse.Namespace):
     database = PoseDatabase.read(args.database)
     return HeldOut(
         database,
-        dofs(args.selection),
-        dofs(args.test),
+        recorded_dofs(args.selection, args.side),
+        recorded_dofs(args.test, args.side),
         f"{database.source}; markers chosen on {names(args.selection)}, tested on "
         f"{names(args.test)}",
     )
@@ -119,14 +117,13 @@ def _markers(args: argparse.Namespace) -> int:
     import numpy as np
 
     from synthesis.hands.evaluation import compare_marker_choices
-    from synthesis.hands.handover import builtin_pose_database
     from synthesis.rigs.hand import HandModel
     from synthesis.tables import write_csv, write_latex
 
     hand = HandModel(args.side)
-    rows = []
-    if args.configuration in ("engine", "both"):
-        rows += _engine_table(args, hand)
+    engine = args.configuration in ("engine", "both")
+    test, database = _engine_inputs(args) if engine else (None, None)
+    rows = _engine_table(args, hand, test, database) if engine else []
     if args.configuration in ("paper", "both"):
         rows += _paper_tables(args, hand)
     args.out.mkdir(parents=True, exist_ok=True)
@@ -136,11 +133,7 @@ def _markers(args: argparse.Namespace) -> int:
         "marker count m, beside seed 000 Table 3.1 (published)"
     )
     print(f"wrote {write_latex(args.out / 'table-3-1.tex', rows, TABLE_3_1_COLUMNS, caption)}")
-    if args.configuration in ("engine", "both") and args.compare:
-        from synthesis.fingerspelling.spelling import spell
-
-        test = np.vstack([spell(word, args.side, 120.0) for word in args.words])
-        database = builtin_pose_database(args.side)
+    if engine and args.compare:
         choices = compare_marker_choices(database, hand, test, np.random.default_rng(args.seed))
         for row in choices:
             print(f"m = {row['markers']}, {row['method']}: {row['set']} — {row['error_cm']:.2f} cm")

@@ -15,6 +15,7 @@ but no two keys are the same. Different generators give held-out sequences.
 import numpy as np
 
 from synthesis.rigs.hand import FINGERS, HandModel
+from synthesis.skeleton.retime import minimum_jerk
 
 # Joint angles at full curl (deg) of a finger: MCP, PIP, DIP flexion.
 FULL_CURL_DEG = (85.0, 100.0, 70.0)
@@ -40,6 +41,8 @@ ARCHETYPES = {
     "cup": ((0.45, 0.45, 0.45, 0.45), 2.0, "opposed"),
     "beckon": ((0.6, 0.85, 0.9, 0.9), 0.0, "relaxed"),
 }
+# Each finger's share of the archetype's spread, from the thumb side (index) outwards.
+SPREAD_SHARE = {"index": 1.5, "middle": 0.5, "ring": -0.5, "pinky": -1.5}
 STROKE_S = (0.2, 0.7)
 HOLD_S = (0.05, 0.45)
 
@@ -55,20 +58,14 @@ def key_pose(hand: HandModel, archetype: str, rng: np.random.Generator) -> np.nd
         ratios = np.clip(1.0 + rng.normal(0.0, 0.12, 3), 0.6, 1.4)
         for joint, full, ratio in zip(("mcp", "pip", "dip"), FULL_CURL_DEG, ratios, strict=True):
             dofs[names.index(f"{finger}_{joint}_flexion")] = amount * full * ratio
-        fan = {"index": 1.5, "middle": 0.5, "ring": -0.5, "pinky": -1.5}[finger]
-        dofs[names.index(f"{finger}_mcp_abduction")] = fan * spread_deg + rng.normal(0.0, 2.0)
+        spread = SPREAD_SHARE[finger] * spread_deg
+        dofs[names.index(f"{finger}_mcp_abduction")] = spread + rng.normal(0.0, 2.0)
     thumb_names = ("cmc_abduction", "cmc_rotation", "cmc_flexion", "mcp_flexion", "ip_flexion")
     for name, angle in zip(thumb_names, THUMB_DEG[thumb], strict=True):
         dofs[names.index(f"thumb_{name}")] = angle + rng.normal(0.0, 6.0)
     dofs[names.index("wrist_flexion")] = rng.normal(0.0, 18.0)
     dofs[names.index("wrist_deviation")] = rng.normal(-3.0, 7.0)
     return hand.clip(np.radians(dofs))
-
-
-def minimum_jerk(fraction: np.ndarray) -> np.ndarray:
-    """Return the minimum-jerk profile 10s³ − 15s⁴ + 6s⁵ of *fraction* s in [0, 1]."""
-    s = np.clip(fraction, 0.0, 1.0)
-    return s**3 * (10 - 15 * s + 6 * s**2)
 
 
 def simulate_gestures(

@@ -55,7 +55,12 @@ def pose_database(side: str, path: str = "") -> PoseDatabase:
 
 @cache
 def _prepared(
-    side: str, markers: int, method: str, path: str = "", version: int = 0, variance: float = 1.0
+    side: str,
+    markers: int,
+    method: str,
+    path: str = "",
+    version: int = 0,
+    variance: float = LWR_VARIANCE,
 ):
     database = pose_database(side, path)
     chosen = tuple(int(i) for i in rank_markers(database.markers)[0][:markers])

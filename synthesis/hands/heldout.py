@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from synthesis.hands.gestures import simulate_gestures
-from synthesis.hands.posedb import RATE_HZ, human_letter_dofs, pose_database_of
+from synthesis.hands.posedb import ALPHABET, RATE_HZ, human_letter_poses, pose_database_of
 from synthesis.hands.reconstruct import PoseDatabase
 from synthesis.rigs.hand import HandModel
 
@@ -78,17 +78,15 @@ def human_letters(
     if set(test_letters) & set(selection_letters):
         raise ValueError("A letter is either tested or used to choose markers, not both.")
     if database_letters is None:
-        database_letters = "".join(chr(c) for c in range(65, 91) if chr(c) not in withheld)
-    kept = database_letters
-    if set(kept) & withheld:
+        database_letters = "".join(x for x in ALPHABET if x not in withheld)
+    if set(database_letters) & withheld:
         raise ValueError("The database may not hold a withheld letter.")
-    fitted = human_letter_dofs(side, kept + "".join(sorted(withheld)))
-    database = np.vstack([fitted[x] for x in kept])
-    source = f"human letters {kept} (spoken-to-signed), {len(database)} poses at 120 Hz"
+    database = human_letter_poses(side, database_letters)
+    source = f"human letters {database_letters} (spoken-to-signed), {len(database)} poses at 120 Hz"
     return HeldOut(
         pose_database_of(hand, database, source, PAPER_ROOT),
-        np.vstack([fitted[x] for x in selection_letters]),
-        np.vstack([fitted[x] for x in test_letters]),
-        f"human letters (spoken-to-signed): database {kept}, markers chosen on "
+        human_letter_poses(side, selection_letters),
+        human_letter_poses(side, test_letters),
+        f"human letters (spoken-to-signed): database {database_letters}, markers chosen on "
         f"{selection_letters}, tested on {test_letters}",
     )

@@ -34,10 +34,16 @@ ROOT = "wrist"
 ROOTS = ("wrist", "forearm")
 
 
+def check_root(root: str) -> str:
+    """Return *root*, or raise ValueError unless it is one of :data:`ROOTS`."""
+    if root not in ROOTS:
+        raise ValueError(f"The markers' root is {' or '.join(ROOTS)}, not {root!r}.")
+    return root
+
+
 def virtual_markers(hand, dofs_rad: np.ndarray, root: str = ROOT) -> np.ndarray:
     """Return the 13 markers (n_frames, 13, 3) in metres, in the root link's frame."""
-    if root not in ROOTS:
-        raise ValueError(f"The markers' root is one of {', '.join(ROOTS)}, not {root!r}.")
+    check_root(root)
     pose = hand.pose(np.atleast_2d(dofs_rad))
     skeleton = hand.skeleton
     root = skeleton.index(root)

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from synthesis.hands.markers import ROOTS, virtual_markers
+from synthesis.hands.markers import check_root, virtual_markers
 from synthesis.hands.motion import digit_columns, read_hand_motion
 from synthesis.hands.reconstruct import PoseDatabase
 from synthesis.rigs.hand import HandModel
@@ -25,10 +25,8 @@ RATE_HZ = 120.0
 
 def reconstructed_columns(hand: HandModel, root: str = "wrist") -> np.ndarray:
     """Return the DOFs the markers carry from *root*: the digits, and the wrist from the forearm."""
-    if root not in ROOTS:
-        raise ValueError(f"The markers' root is one of {', '.join(ROOTS)}, not {root!r}.")
     columns, _ = digit_columns(hand)
-    if root == "wrist":
+    if check_root(root) == "wrist":
         return columns
     wrist = [hand.dof_names.index(name) for name in ("wrist_deviation", "wrist_flexion")]
     return np.concatenate([wrist, columns])
@@ -92,19 +90,26 @@ def engine_pose_database(
     return pose_database_of(hand, frames, source, root)
 
 
-def recorded_pose_database(
-    paths: Iterable[str | Path], side: str = "right", root: str = "wrist"
-) -> PoseDatabase:
-    """Return the poses of hand recordings (engine hand BVH or .pose), resampled to 120 Hz."""
-    hand = HandModel(side)
-    parts, names = [], []
+def recorded_dofs(paths: Iterable[str | Path], side: str = "right") -> np.ndarray:
+    """Return hand recordings' DOFs (engine hand BVH or .pose) one after another at 120 Hz."""
+    parts = []
     for path in paths:
         motion = read_hand_motion(path, side)
         if not isinstance(motion.rig, HandModel):
             raise ValueError(f"{path}: a pose database takes hand recordings.")
         parts.append(resample_curves(motion.dofs_rad, motion.rate_hz, RATE_HZ))
-        names.append(Path(path).name)
-    return pose_database_of(hand, np.vstack(parts), f"recordings {', '.join(names)}", root)
+    return np.vstack(parts)
+
+
+def recorded_pose_database(
+    paths: Iterable[str | Path], side: str = "right", root: str = "wrist"
+) -> PoseDatabase:
+    """Return the poses of hand recordings (engine hand BVH or .pose), resampled to 120 Hz."""
+    paths = list(paths)
+    names = ", ".join(Path(path).name for path in paths)
+    return pose_database_of(
+        HandModel(side), recorded_dofs(paths, side), f"recordings {names}", root
+    )
 
 
 def combined(*databases: PoseDatabase) -> PoseDatabase:
@@ -122,26 +127,37 @@ def combined(*databases: PoseDatabase) -> PoseDatabase:
 
 def human_letter_dofs(side: str = "right", letters: str = "") -> dict[str, np.ndarray]:
     """Return each human letter's hand DOFs at 120 Hz (``spoken-to-signed``'s lexicon):
-    *letters*, or A–Z when empty.
+    *letters* in order (repeats once), or A–Z when empty.
 
-    The hand model is fitted to each ``.pose`` file (about a second a letter) once and
-    kept in the engine's disk cache. Raise LexiconMissing without the package and
-    ValueError for a letter it has no recording of.
+    The hand model is fitted to each letter's ``.pose`` file (about a second a letter)
+    once and kept, letter by letter, in the engine's disk cache. Raise LexiconMissing
+    without the package and ValueError for a letter it has no recording of.
     """
     from synthesis.capture.lexicon import human_letter_files
     from synthesis.diskcache import cached
 
     files = human_letter_files()
-    wanted = "".join(sorted(set(letters.upper()))) or "".join(files)
+    wanted = "".join(dict.fromkeys(letters.upper())) or "".join(files)
     missing = sorted(set(wanted) - set(files))
     if missing:
         raise ValueError(f"No human recording of {', '.join(missing)}.")
 
-    def compute() -> dict[str, np.ndarray]:
-        fitted = {}
-        for letter in wanted:
-            motion = read_hand_motion(files[letter], side)
-            fitted[letter] = resample_curves(motion.dofs_rad, motion.rate_hz, RATE_HZ)
-        return fitted
+    def fitted(letter: str) -> np.ndarray:
+        motion = read_hand_motion(files[letter], side)
+        return resample_curves(motion.dofs_rad, motion.rate_hz, RATE_HZ)
 
-    return cached(f"human-letters-{side}-{wanted}", ("numpy", "scipy"), compute, dict, dict)
+    return {
+        letter: cached(
+            f"human-letter-{side}-{letter}",
+            ("numpy", "scipy"),
+            lambda letter=letter: fitted(letter),
+            lambda dofs: {"dofs": dofs},
+            lambda stored: stored["dofs"],
+        )
+        for letter in wanted
+    }
+
+
+def human_letter_poses(side: str = "right", letters: str = "") -> np.ndarray:
+    """Return the human letters' DOFs at 120 Hz one after another (n_frames, 30)."""
+    return np.vstack(list(human_letter_dofs(side, letters).values()))

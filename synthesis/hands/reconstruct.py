@@ -30,7 +30,7 @@ import numpy as np
 from scipy.cluster.vq import kmeans2
 from scipy.ndimage import convolve1d
 
-from synthesis.hands.markers import ROOTS, marker_distances, pca
+from synthesis.hands.markers import check_root, marker_distances, pca
 
 LWR_FILTER_SAMPLES = 17
 NEAREST_FILTER_SAMPLES = 15
@@ -94,6 +94,9 @@ class PoseDatabase:
     source: str
     root: str = "wrist"
 
+    def __post_init__(self) -> None:
+        check_root(self.root)
+
     def write(self, path) -> Path:
         """Write the database as ``.npz`` (angles, markers, source) at *path*."""
         path = Path(path)
@@ -124,9 +127,10 @@ class PoseDatabase:
             raise ValueError(f"{path}: a pose database holds 13 markers per pose.")
         if len(dofs) < 2 or not (np.all(np.isfinite(dofs)) and np.all(np.isfinite(markers))):
             raise ValueError(f"{path}: a pose database needs at least 2 finite poses.")
-        if root not in ROOTS:
-            raise ValueError(f"{path}: the markers' root is {' or '.join(ROOTS)}, not {root!r}.")
-        return cls(dofs, markers, source, root)
+        try:
+            return cls(dofs, markers, source, root)
+        except ValueError as error:
+            raise ValueError(f"{path}: {error}") from None
 
     def clustered(self, poses: int, rng: np.random.Generator) -> "PoseDatabase":
         """Return *poses* representative poses by k-means over the full marker set (§3.1.2):

@@ -1,9 +1,11 @@
 """Write a DOF reduction's report: seed 002 Tables 1–5, errors per DOF, a figure."""
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from synthesis.hands.reconstruct import LWR_VARIANCE
 from synthesis.hands.reduction import (
     SEED_STEPS,
     Reduction,
@@ -57,12 +59,17 @@ def step_rows(curves_deg: np.ndarray, names, source: str = "") -> list[dict]:
 
 
 def write_reduction_report(
-    curves_deg: np.ndarray, reduction: Reduction, directory: str | Path, source: str
+    curves_deg: np.ndarray,
+    reduction: Reduction,
+    directory: str | Path,
+    source: str,
+    steps: list[dict] | None = None,
 ) -> list[Path]:
     """Write the reduction of *curves_deg* (the analysis curves) to *directory*.
 
     *source* says what the motion was (a recording, the engine's spelling, simulated):
     every table's caption repeats it, as the published figures came from captures.
+    *steps*: Table 5's rows (:func:`step_rows`) when already computed.
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
@@ -112,7 +119,7 @@ def write_reduction_report(
             ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"],
         ),
     ]
-    steps = step_rows(curves_deg, names, source)
+    steps = steps or step_rows(curves_deg, names, source)
     written.append(write_csv(directory / "steps.csv", steps, list(steps[0])))
     caption = f"Free DOFs after seed 002's steps: {source}; published: {PUBLISHED_REDUCTION_INPUT}"
     written.append(write_latex(directory / "steps.tex", steps, STEP_COLUMNS, caption))
@@ -179,22 +186,31 @@ def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
     return path
 
 
-def write_reconstruction_report(
-    motion, method: str, directory: str | Path, source: str, database_path: str = ""
-) -> list[Path]:
-    """Write the marker ranking and the error by marker count (1–13) of reconstructing
-    *motion*'s hands, and a figure of marker count against error."""
+@dataclass(frozen=True, eq=False)
+class ReconstructionErrors:
+    """The error by marker count (1–13) of rebuilding a hand motion, and what it was on."""
+
+    method: str
+    source: str
+    database: str
+    ranking: list[dict]
+    rows: list[dict]
+
+
+def reconstruction_errors(
+    motion, method: str, source: str, database_path: str = "", variance: float = LWR_VARIANCE
+) -> ReconstructionErrors:
+    """Return the marker ranking and the error by marker count of reconstructing *motion*
+    (a hand), each row beside seed 000 Table 3.1's p = 1000 figure where there is one."""
     from synthesis.hands.evaluation import PUBLISHED_INPUT, PUBLISHED_TABLE_3_1
     from synthesis.hands.handover import pose_database, reconstruct_hand
     from synthesis.hands.markers import MARKERS, rank_markers, virtual_markers
     from synthesis.hands.reconstruct import marker_error_cm
     from synthesis.rigs.hand import HandModel
 
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
-    side = getattr(motion.rig, "side", "right")
     if not isinstance(motion.rig, HandModel):
         raise ValueError("The reconstruction report takes a hand motion (not the body).")
+    side = motion.rig.side
     database = pose_database(side, database_path)
     order, influence = rank_markers(database.markers)
     ranking = [
@@ -208,7 +224,7 @@ def write_reconstruction_report(
     rows = []
     for count in range(1, len(MARKERS) + 1):
         rebuilt = reconstruct_hand(
-            motion.dofs_rad, side, motion.rate_hz, count, method, database_path
+            motion.dofs_rad, side, motion.rate_hz, count, method, database_path, variance
         )
         error, spread = marker_error_cm(truth, virtual_markers(hand, rebuilt, database.root))
         paper = published.get(count, (None, None))
@@ -225,18 +241,32 @@ def write_reconstruction_report(
                 "published_input": PUBLISHED_INPUT if paper[0] is not None else "",
             }
         )
+    return ReconstructionErrors(method, source, database.source, ranking, rows)
+
+
+def write_reconstruction_report(errors: ReconstructionErrors, directory: str | Path) -> list[Path]:
+    """Write the marker ranking, the errors by marker count (CSV, LaTeX) and a figure of
+    marker count against error to *directory*."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
     caption = (
-        f"Mean marker error (cm) by markers kept ({method}): {source}; database: "
-        f"{database.source}; published: seed 000 Table 3.1, p = 1000 (nearest pose only)"
+        f"Mean marker error (cm) by markers kept ({errors.method}): {errors.source}; "
+        f"database: {errors.database}; published: seed 000 Table 3.1, p = 1000 (nearest "
+        "pose only)"
     )
-    written = [
-        write_csv(directory / "marker-ranking.csv", ranking, ["rank", "marker", "influence"]),
+    title = (
+        f"Marker count vs reconstruction error ({errors.method})\n{errors.source}; "
+        f"database: {errors.database}"
+    )
+    rows = errors.rows
+    return [
+        write_csv(
+            directory / "marker-ranking.csv", errors.ranking, ["rank", "marker", "influence"]
+        ),
         write_csv(directory / "errors-by-markers.csv", rows, list(rows[0])),
         write_latex(directory / "errors-by-markers.tex", rows, RECONSTRUCTION_COLUMNS, caption),
+        _plot_markers(rows, directory / "markers-vs-error.png", title),
     ]
-    title = f"Marker count vs reconstruction error ({method})\n{source}; database: "
-    written.append(_plot_markers(rows, directory / "markers-vs-error.png", title + database.source))
-    return written
 
 
 def _plot_markers(rows: list[dict], path: Path, title: str) -> Path:

@@ -20,6 +20,13 @@ from synthesis.skeleton.skeleton import Skeleton
 Warp = Callable[[np.ndarray], np.ndarray]
 
 
+def minimum_jerk(fraction: np.ndarray) -> np.ndarray:
+    """Return the minimum-jerk profile ``10s³ − 15s⁴ + 6s⁵`` of *fraction* s, clipped to
+    [0, 1] (Flash and Hogan's reach: a move from rest to rest)."""
+    s = np.clip(fraction, 0.0, 1.0)
+    return 10 * s**3 - 15 * s**4 + 6 * s**5
+
+
 def _slerp_groups(skeleton: Skeleton) -> dict[str, np.ndarray]:
     """Return, per Euler order, the value columns of joints with three rotation channels."""
     groups = {}

@@ -110,19 +110,19 @@ def _evaluate(args: argparse.Namespace) -> int:
 def _metrics(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from synthesis.timing.training import transition_distances
     from synthesis.timing.transitions import (
         PUBLISHED_TRANSITION_R,
+        PUBLISHED_TRANSITIONS_INPUT,
         TransitionModel,
-        letter_distance,
     )
 
     transitions = read_annotations(args.transitions, TRANSITION_COLUMNS)
     times = np.array([t.duration_ms for t in transitions])
     print(f"{len(transitions)} transitions from {args.transitions} (seed 000 Fig. 4.7)")
-    pairs = [(t.word[t.index], t.word[t.index + 1]) for t in transitions]
     rows = []
     for metric in METRICS:
-        distances = np.array([letter_distance(a, b, metric, args.space) for a, b in pairs])
+        distances = transition_distances(transitions, metric, args.space)
         line = TransitionModel.fit(distances, times, metric, args.space)
         print(
             f"{metric}: r = {line.r:.2f}, mean error {line.mean_abs_error_ms:.2f} ms; "
@@ -137,7 +137,7 @@ def _metrics(args: argparse.Namespace) -> int:
                 "transitions": line.nobs,
                 "input": str(args.transitions),
                 "published_r": PUBLISHED_TRANSITION_R[metric],
-                "published_input": "recorded transitions (seed 000 §4.2.2, Fig. 4.7)",
+                "published_input": PUBLISHED_TRANSITIONS_INPUT,
             }
         )
     if args.out:

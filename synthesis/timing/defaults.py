@@ -26,7 +26,12 @@ import numpy as np
 
 from synthesis.timing.bayes import CLASS_STEP_MS, N_CLASSES, HoldClassifier
 from synthesis.timing.features import word_features
-from synthesis.timing.transitions import TransitionModel, letter_distance
+from synthesis.timing.transitions import (
+    PUBLISHED_RMSD_ERROR_MS,
+    PUBLISHED_TRANSITION_R,
+    TransitionModel,
+    letter_distance,
+)
 from synthesis.timing.variable import VariableModel
 
 VOCABULARY = (
@@ -41,7 +46,7 @@ LAST_LETTER_FACTOR = 1.5
 DOUBLE_LETTER_SPEEDUP = 0.22
 TRANSITION_MEAN_MS = 216.11
 TRANSITION_SD_MS = 60.0
-TRANSITION_R = 0.44
+TRANSITION_R = PUBLISHED_TRANSITION_R["rmsd"]
 SEED = 2016
 SOURCE = (
     "built from published statistics (Wheatland 2016, seed 000 Table 4.1, §4.1, §4.2.2) "
@@ -81,7 +86,9 @@ def published_transitions() -> TransitionModel:
     distances = np.array([letter_distance(a, b) for a, b in sorted(pairs)])
     slope = TRANSITION_R * TRANSITION_SD_MS / distances.std()
     intercept = TRANSITION_MEAN_MS - slope * distances.mean()
-    return TransitionModel(float(intercept), float(slope), "rmsd", TRANSITION_R, 44.69, len(pairs))
+    return TransitionModel(
+        float(intercept), float(slope), "rmsd", TRANSITION_R, PUBLISHED_RMSD_ERROR_MS, len(pairs)
+    )
 
 
 @cache

@@ -19,7 +19,9 @@ from synthesis.timing.features import DEFAULT_FEATURES, letter_features
 from synthesis.timing.transitions import (
     DEFAULT_SPACE,
     METRICS,
+    PUBLISHED_RMSD_ERROR_MS,
     PUBLISHED_TRANSITION_R,
+    PUBLISHED_TRANSITIONS_INPUT,
     SPACES,
     TransitionModel,
     letter_distance,
@@ -99,7 +101,6 @@ class TrainingReport:
         what each was computed on."""
         h, t, p = self.holds, self.transitions, PUBLISHED_HOLDS
         published_input = f"{p['holds']} recorded holds (seed 000 §4.2)"
-        transitions_input = "recorded transitions (seed 000 §4.2.2, Fig. 4.7)"
         measures = [
             ("hold accuracy (leave-one-out, %)", 100 * h.accuracy, 100 * p["accuracy"], False),
             ("hold mean error (ms)", h.mean_abs_error_ms, p["mean_abs_error_ms"], False),
@@ -112,7 +113,7 @@ class TrainingReport:
                 "ours": round(float(ours), 2),
                 "published": published,
                 "input": (self.transition_source or self.source) if transition else self.source,
-                "published_input": transitions_input if transition else published_input,
+                "published_input": PUBLISHED_TRANSITIONS_INPUT if transition else published_input,
             }
             for name, ours, published, transition in measures
         ]
@@ -124,7 +125,7 @@ class TrainingReport:
         unit = "unit" if t.metric == "gplvm" else "rad"
         over = "" if t.metric == "gplvm" else f" over {t.space}"
         published = f"r = {PUBLISHED_TRANSITION_R[t.metric]:.2f}" + (
-            ", mean error 44.69 ms" if t.metric == "rmsd" else ""
+            f", mean error {PUBLISHED_RMSD_ERROR_MS} ms" if t.metric == "rmsd" else ""
         )
         return [
             f"holds: {h.nobs}; leave-one-out accuracy {100 * h.accuracy:.2f} %, "
@@ -138,6 +139,14 @@ class TrainingReport:
             f"ms/{unit} · {t.metric}{over}; r = {t.r:.2f}, mean error {t.mean_abs_error_ms:.2f} ms",
             f"  seed 000 §4.2.2: {t.metric} of the 18-joint poses, {published}",
         ]
+
+
+def transition_distances(
+    transitions: list[Annotation], metric: str = "rmsd", space: str = DEFAULT_SPACE
+) -> np.ndarray:
+    """Return each annotated transition's pose distance, from its letter to the next."""
+    return np.array([letter_distance(t.word[t.index], t.word[t.index + 1], metric, space)
+                     for t in transitions])  # fmt: skip
 
 
 def train(
@@ -156,10 +165,9 @@ def train(
         raise TimingError(f"Unknown distance space {space!r}; use one of {', '.join(SPACES)}.")
     samples = hold_samples(holds)
     classifier = HoldClassifier.fit(samples, features)
-    distances = np.array([letter_distance(t.word[t.index], t.word[t.index + 1], metric, space)
-                          for t in transitions])  # fmt: skip
     times = np.array([t.duration_ms for t in transitions])
-    line = TransitionModel.fit(distances, times, metric, space)
+    line = TransitionModel.fit(transition_distances(transitions, metric, space), times, metric,
+                               space)  # fmt: skip
     report = TrainingReport(classifier.leave_one_out(samples), line, source)
     model = VariableModel(
         classifier,

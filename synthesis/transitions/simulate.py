@@ -31,6 +31,7 @@ import numpy as np
 
 from synthesis.signing.sentence import SentenceOptions, synthesize
 from synthesis.signing.signs import SignLibrary, default_library
+from synthesis.skeleton.retime import minimum_jerk
 from synthesis.transitions.curves import SIDES, arm_columns
 from synthesis.transitions.recording import SegmentedRecording
 from synthesis.transitions.segments import Segment, Segmentation
@@ -81,11 +82,6 @@ def signer_styles(count: int, rng: np.random.Generator) -> tuple[SignerStyle, ..
             )
         )
     return tuple(styles)
-
-
-def minimum_jerk(s: np.ndarray) -> np.ndarray:
-    """Return the minimum-jerk profile ``10s³ − 15s⁴ + 6s⁵`` at normalized times *s*."""
-    return 10 * s**3 - 15 * s**4 + 6 * s**5
 
 
 def human_transition(

@@ -153,3 +153,15 @@ def test_every_hands_command_writes_the_published_figures_beside_ours(tmp_path, 
         errors = {int(r["markers"]): r for r in csv.DictReader(handle)}
     assert errors[6]["published_cm"] == "0.65" and errors[3]["published_cm"] == ""
     assert "alphabet" in errors[6]["database"] and "CAT" in errors[6]["input"]
+
+
+def test_the_reconstruction_report_uses_the_variance_the_motion_was_rebuilt_with():
+    from synthesis.fingerspelling.spelling import spell
+    from synthesis.hands.motion import from_dofs
+    from synthesis.hands.report import reconstruction_errors
+
+    motion = from_dofs(HAND, spell("CAB", "right", 120.0), 120.0)
+    every = reconstruction_errors(motion, "lwr", "CAB", variance=1.0)
+    fewer = reconstruction_errors(motion, "lwr", "CAB", variance=0.9)
+    assert [r["error_cm"] for r in every.rows] != [r["error_cm"] for r in fewer.rows]
+    assert every.rows[0]["published_cm"] is None and len(every.ranking) == len(MARKERS)
