@@ -1,5 +1,6 @@
 """Write a DOF reduction's report: seed 002 Tables 1–5, errors per DOF, a figure."""
 
+import textwrap
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -166,20 +167,21 @@ def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
     plt = pyplot()
 
     figure, axes = plt.subplots(figsize=(5.6, 3.6))
-    dofs = [r["dofs"] for r in steps]
-    error = [r["mean_error_deg"] for r in steps]
-    axes.plot(dofs, error, "o-")
+    # Steps that land on the same point share one label: overprinted text is unreadable.
+    points: dict[tuple, list[str]] = {}
     for row in steps:
-        axes.annotate(
-            row["step"],
-            (row["dofs"], row["mean_error_deg"]),
-            fontsize=7,
-            textcoords="offset points",
-            xytext=(4, 4),
-        )
+        points.setdefault((row["dofs"], row["mean_error_deg"]), []).append(row["step"])
+    ordered = sorted(points)
+    axes.plot([p[0] for p in ordered], [p[1] for p in ordered], "o-")
+    # Neighbouring points' labels alternate above and below so that they do not meet.
+    for k, point in enumerate(ordered):
+        below = k % 2 == 1
+        axes.annotate("\n".join(points[point]), point, fontsize=7, textcoords="offset points",
+                      xytext=(4, -4 if below else 4), va="top" if below else "bottom")  # fmt: skip
+    axes.margins(x=0.3, y=0.2)
     axes.set_xlabel("free DOFs")
     axes.set_ylabel("mean reconstruction error (°)")
-    axes.set_title(f"DOF count vs reconstruction error\n{source}", fontsize=9)
+    axes.set_title(f"DOF count vs reconstruction error\n{textwrap.fill(source, 60)}", fontsize=9)
     figure.tight_layout()
     figure.savefig(path, dpi=120)
     plt.close(figure)
@@ -273,11 +275,18 @@ def _plot_markers(rows: list[dict], path: Path, title: str) -> Path:
     from synthesis.plotting import pyplot
 
     plt = pyplot()
-    figure, axes = plt.subplots(figsize=(5.6, 3.6))
-    axes.plot([r["markers"] for r in rows], [r["error_cm"] for r in rows], "o-")
+    figure, axes = plt.subplots(figsize=(5.6, 3.8))
+    axes.plot([r["markers"] for r in rows], [r["error_cm"] for r in rows], "o-", label="ours")
+    published = [r for r in rows if r["published_cm"] is not None]
+    if published:
+        axes.plot([r["markers"] for r in published], [r["published_cm"] for r in published],
+                  "s", fillstyle="none", label="seed 000 Table 3.1, p = 1000")  # fmt: skip
+        axes.legend(fontsize=8)
     axes.set_xlabel("markers kept (PCA rank order)")
     axes.set_ylabel("mean marker error (cm)")
-    axes.set_title(title, fontsize=8)
+    # Sources and databases are long: wrap them rather than let the title run off the page.
+    lines = [textwrap.fill(line, 80) for line in title.splitlines()]
+    axes.set_title("\n".join(lines), fontsize=8)
     figure.tight_layout()
     figure.savefig(path, dpi=120)
     plt.close(figure)
