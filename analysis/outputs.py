@@ -9,24 +9,80 @@ from analysis import figures
 from analysis.report import Report, results_json
 from analysis.results import format_p
 
+# Table columns named for a reader, each read from a rendered result's own field (a dotted
+# path for a nested result); results.json keeps the results' vocabulary.
+PAIR_COLUMNS = {
+    "a": "a", "b": "b", "a_wins": "a_wins", "b_wins": "b_wins", "ties": "ties", "n": "nobs",
+    "pct_a": "statistic", "p_two_sided": "pvalue",
+    "p_one_sided_majority": "pvalue_one_sided_majority", "majority": "majority",
+    "p_adjusted": "pvalue_adjusted",
+}  # fmt: skip
+CONDITION_COLUMNS = {
+    "condition": "condition", "shown": "shown", "chosen": "chosen", "win_rate": "win_rate",
+    "share": "share", "mean_participant_rate": "mean_participant_rate", "sem": "sem",
+    "n_participants": "nobs",
+}  # fmt: skip
+POSTHOC_COLUMNS = {
+    "a": "a", "b": "b", "t": "statistic", "df": "df", "p": "pvalue",
+    "p_adjusted": "pvalue_adjusted", "dz": "dz", "mean_difference": "mean_difference",
+    "ci": "ci", "apa": "apa",
+}  # fmt: skip
+WILCOXON_COLUMNS = {
+    "a": "a", "b": "b", "W": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
+    "rank_biserial": "rank_biserial", "n": "nobs", "apa": "apa",
+}  # fmt: skip
+PAIRED_COLUMNS = {
+    "a": "a", "b": "b", "n": "nobs", "mean_difference": "ttest.mean_difference",
+    "ci": "ttest.ci", "t": "ttest.statistic", "df": "ttest.df", "t_p": "ttest.pvalue",
+    "t_p_adjusted": "ttest.pvalue_adjusted", "dz": "ttest.dz",
+    "wilcoxon_W": "wilcoxon.statistic", "wilcoxon_p": "wilcoxon.pvalue",
+    "wilcoxon_p_adjusted": "wilcoxon.pvalue_adjusted",
+    "rank_biserial": "wilcoxon.rank_biserial", "apa": "apa",
+}  # fmt: skip
+COMPARATIVE_COLUMNS = {
+    "a": "a", "b": "b", "mean_preference_a": "mean_preference", "ci": "ci",
+    "W": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
+    "rank_biserial": "rank_biserial", "participants": "nobs", "judgements": "judgements",
+    "apa": "apa",
+}  # fmt: skip
+
+
+def _field(row: dict, path: str):
+    for name in path.split("."):
+        row = row[name]
+    return row
+
+
+def _table(rows: list[dict], columns: dict[str, str], first: tuple[str, ...] = ()) -> pd.DataFrame:
+    """Return rendered results as a table with *columns* (a ``ci`` pair becomes
+    ``ci_low`` and ``ci_high``), after the fields named in *first*."""
+    table = []
+    for row in rows:
+        cells = {name: row[name] for name in first}
+        for column, path in columns.items():
+            value = _field(row, path)
+            if column == "ci":
+                cells["ci_low"], cells["ci_high"] = value
+            else:
+                cells[column] = value
+        table.append(cells)
+    return pd.DataFrame(table)
+
 
 def _split_ci(rows: list[dict]) -> pd.DataFrame:
     """Return *rows* as a table whose ``ci`` pair becomes ``ci_low`` and ``ci_high``."""
-    split = []
-    for row in rows:
-        cells = {}
-        for key, value in row.items():
-            if key == "ci":
-                cells["ci_low"], cells["ci_high"] = value
-            else:
-                cells[key] = value
-        split.append(cells)
-    return pd.DataFrame(split)
+    return _table(rows, {key: key for key in rows[0]})
 
 
 def _summaries(rows: list[dict]) -> pd.DataFrame:
     """Return per-condition summaries across items, participants named as such."""
     return _split_ci(rows).rename(columns={"n": "answers", "nobs": "participants"})
+
+
+def _pairs(rows: list[dict]) -> pd.DataFrame:
+    """Return binomial tests of pairs, a's share of the decisive judgements in per cent."""
+    table = _table(rows, PAIR_COLUMNS, ("item",) if rows and rows[0]["item"] is not None else ())
+    return table.assign(pct_a=100 * table["pct_a"].astype(float))
 
 
 def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
@@ -38,48 +94,27 @@ def tables(report: Report, data: dict | None = None) -> dict[str, pd.DataFrame]:
     found: dict[str, pd.DataFrame] = {}
     pairwise = data["pairwise"]
     if pairwise:
-        found["pairs"] = pd.DataFrame(pairwise["pairs"])
-        found["items"] = pd.DataFrame(pairwise["items"])
-        found["conditions"] = pd.DataFrame(pairwise["conditions"])
+        found["pairs"] = _pairs(pairwise["pairs"])
+        found["items"] = _pairs(pairwise["items"])
+        found["conditions"] = _table(pairwise["conditions"], CONDITION_COLUMNS)
         if pairwise["posthoc"]:
-            found["posthoc"] = _split_ci(pairwise["posthoc"])
+            found["posthoc"] = _table(pairwise["posthoc"], POSTHOC_COLUMNS)
         if pairwise["wilcoxon"]:
-            found["wilcoxon"] = pd.DataFrame(pairwise["wilcoxon"]).rename(
-                columns={"statistic": "W", "pvalue": "p", "pvalue_adjusted": "p_adjusted",
-                         "nobs": "n"}
-            )  # fmt: skip
+            found["wilcoxon"] = _table(pairwise["wilcoxon"], WILCOXON_COLUMNS)
     lists = (
         ("ratings", pd.DataFrame),
         ("rating_conditions", _summaries),
-        ("rating_comparisons", _split_ci),
-        ("rating_condition_comparisons", _split_ci),
+        ("rating_comparisons", lambda rows: _table(rows, PAIRED_COLUMNS, ("item", "question"))),
+        ("rating_condition_comparisons", lambda rows: _table(rows, PAIRED_COLUMNS, ("measure",))),
         ("intelligibility", pd.DataFrame),
         ("intelligibility_conditions", _summaries),
-        ("intelligibility_comparisons", _split_ci),
+        ("intelligibility_comparisons", lambda rows: _table(rows, PAIRED_COLUMNS, ("measure",))),
     )
     for name, build in lists:
         if data.get(name):
             found[name] = build(data[name])
     if data.get("comparative"):
-        found["comparative"] = pd.DataFrame(
-            [
-                {
-                    "a": c["a"],
-                    "b": c["b"],
-                    "mean_preference_a": c["mean_preference"],
-                    "ci_low": c["ci"][0],
-                    "ci_high": c["ci"][1],
-                    "W": c["statistic"],
-                    "p": c["pvalue"],
-                    "p_adjusted": c["pvalue_adjusted"],
-                    "rank_biserial": c["rank_biserial"],
-                    "participants": c["nobs"],
-                    "judgements": c["judgements"],
-                    "apa": c["apa"],
-                }
-                for c in data["comparative"]
-            ]
-        )
+        found["comparative"] = _table(data["comparative"], COMPARATIVE_COLUMNS)
     found.update(mixed_tables(data.get("mixed_models")))
     if data.get("quality"):
         found["quality"] = pd.DataFrame(data["quality"])

@@ -23,12 +23,12 @@ from analysis.results import (
     PairwiseAnalysis,
     Result,
     plain,
+    rendered,
 )
 from analysis.summaries import (
     ConditionComparison,
     ConditionSummary,
     IntelligibilityScore,
-    PairedComparison,
     RatingComparison,
     RatingSummary,
 )
@@ -179,160 +179,27 @@ def build_report(
     )
 
 
-def _pair_row(pair) -> dict[str, Any]:
-    return {
-        **({"item": pair.item} if pair.item is not None else {}),
-        "a": pair.a,
-        "b": pair.b,
-        "a_wins": pair.a_wins,
-        "b_wins": pair.b_wins,
-        "ties": pair.ties,
-        "n": pair.nobs,
-        "pct_a": None if pair.nobs == 0 else 100 * pair.statistic,
-        "p_two_sided": pair.pvalue,
-        "p_one_sided_majority": pair.pvalue_one_sided_majority,
-        "majority": pair.majority,
-        "p_adjusted": pair.pvalue_adjusted,
-    }
-
-
 def results_json(report: Report) -> dict[str, Any]:
-    """Render *report* in the documented results.json layout (docs/tidy-format.md)."""
-    pairwise = report.pairwise
-    correction = report.options.correction
-    data: dict[str, Any] = {
+    """Render *report* as results.json (docs/tidy-format.md): every result in its own
+    vocabulary (``statistic``, ``pvalue``, ``nobs``…), with its APA sentence."""
+    return {
         "source": report.source,
         "studies": list(report.studies),
-        "design": report.design,
+        "design": plain(report.design),
         "exclusions": report.exclusions.to_dict(),
         "options": report.options.to_dict(),
         "software": report.software,
-        "pairwise": None,
-        "ratings": [r.to_dict() for r in report.ratings],
-        "rating_comparisons": [
-            {"item": c.item, "question": c.question, **_paired_json(c)}
-            for c in report.rating_comparisons
-        ],
-        "rating_conditions": [s.to_dict() for s in report.rating_conditions],
-        "rating_condition_comparisons": [
-            {"measure": c.measure, **_paired_json(c)} for c in report.rating_condition_comparisons
-        ],
-        "intelligibility_conditions": [s.to_dict() for s in report.intelligibility_conditions],
-        "intelligibility_comparisons": [
-            {"measure": c.measure, **_paired_json(c)} for c in report.intelligibility_comparisons
-        ],
-        "intelligibility": [s.to_dict() for s in report.intelligibility],
-        "comparative": [{**c.to_dict(), "apa": c.apa()} for c in report.comparative],
-        "mixed_models": None if report.mixed is None else mixed_json(report.mixed),
-        "quality": [q.to_dict() for q in report.quality],
-    }
-    if pairwise is not None:
-        anova = pairwise.rm_anova
-        data["pairwise"] = {
-            "participants": pairwise.participants,
-            "judgements": pairwise.judgements,
-            "ties": pairwise.ties,
-            "tie_handling": pairwise.tie_handling,
-            "correction": correction,
-            "notes": list(pairwise.notes),
-            "pairs": [_pair_row(p) for p in pairwise.pairs],
-            "items": [_pair_row(p) for p in pairwise.items],
-            "conditions": [
-                {
-                    "condition": c.condition,
-                    "shown": c.shown,
-                    "chosen": c.chosen,
-                    "win_rate": c.win_rate,
-                    "share": c.share,
-                    "mean_participant_rate": c.mean_participant_rate,
-                    "sem": c.sem,
-                    "n_participants": c.nobs,
-                }
-                for c in pairwise.conditions
-            ],
-            "rm_anova": None
-            if anova is None
-            else {
-                "F": anova.statistic,
-                "df_num": anova.df_num,
-                "df_den": anova.df_den,
-                "p": anova.pvalue,
-                "p_gg": anova.pvalue_gg,
-                "epsilon_gg": anova.epsilon_gg,
-                "eta_p2": anova.eta_p2,
-                "mauchly_W": anova.mauchly_w,
-                "mauchly_p": anova.mauchly_pvalue,
-                "n": anova.nobs,
-                "apa": anova.apa(),
-            },
-            "posthoc": [
-                {
-                    "a": t.a,
-                    "b": t.b,
-                    "t": t.statistic,
-                    "df": t.df,
-                    "p": t.pvalue,
-                    "p_adjusted": t.pvalue_adjusted,
-                    "dz": t.dz,
-                    "mean_difference": t.mean_difference,
-                    "ci": list(t.ci),
-                    "apa": t.apa(),
-                }
-                for t in pairwise.posthoc
-            ],
-            "friedman": None if pairwise.friedman is None else pairwise.friedman.to_dict(),
-            "wilcoxon": [{**w.to_dict(), "apa": w.apa()} for w in pairwise.wilcoxon],
-            "bradley_terry": None
-            if pairwise.bradley_terry is None
-            else pairwise.bradley_terry.to_dict(),
-            "position_bias": None
-            if pairwise.position_bias is None
-            else {**pairwise.position_bias.to_dict(), "apa": pairwise.position_bias.apa()},
-        }
-    return plain(data)
-
-
-def _paired_json(c: PairedComparison) -> dict[str, Any]:
-    """Render two conditions' paired t and Wilcoxon tests (rating_comparisons' columns)."""
-    return {
-        "a": c.a,
-        "b": c.b,
-        "n": c.nobs,
-        "mean_difference": c.ttest.mean_difference,
-        "ci": list(c.ttest.ci),
-        "t": c.ttest.statistic,
-        "df": c.ttest.df,
-        "t_p": c.ttest.pvalue,
-        "t_p_adjusted": c.ttest.pvalue_adjusted,
-        "dz": c.ttest.dz,
-        "wilcoxon_W": c.wilcoxon.statistic,
-        "wilcoxon_p": c.wilcoxon.pvalue,
-        "wilcoxon_p_adjusted": c.wilcoxon.pvalue_adjusted,
-        "rank_biserial": c.wilcoxon.rank_biserial,
-        "apa": c.apa(),
-    }
-
-
-def _model_json(result) -> dict[str, Any]:
-    return {**result.to_dict(), "apa": result.apa(), "summary": result.summary()}
-
-
-def mixed_json(mixed: MixedModels) -> dict[str, Any]:
-    """Render the mixed models with each one's APA string and plain-text summary."""
-    pairwise = None
-    if mixed.pairwise is not None:
-        pairwise = _model_json(mixed.pairwise)
-        pairwise["contrasts"] = [{**c.to_dict(), "apa": c.apa()} for c in mixed.pairwise.contrasts]
-    ordinal = []
-    for model in mixed.ordinal:
-        entry = _model_json(model)
-        entry["proportional_odds"]["apa"] = model.proportional_odds.apa()
-        ordinal.append(entry)
-    return {
-        "pairwise": pairwise,
-        "ordinal": ordinal,
-        "linear": [_model_json(model) for model in mixed.linear],
-        "skipped": list(mixed.skipped),
+        "pairwise": rendered(report.pairwise),
+        "ratings": rendered(report.ratings),
+        "rating_comparisons": rendered(report.rating_comparisons),
+        "rating_conditions": rendered(report.rating_conditions),
+        "rating_condition_comparisons": rendered(report.rating_condition_comparisons),
+        "intelligibility_conditions": rendered(report.intelligibility_conditions),
+        "intelligibility_comparisons": rendered(report.intelligibility_comparisons),
+        "intelligibility": rendered(report.intelligibility),
+        "comparative": rendered(report.comparative),
+        "mixed_models": rendered(report.mixed),
+        "quality": rendered(report.quality),
     }
 
 

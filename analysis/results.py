@@ -30,6 +30,20 @@ class Result:
         return plain(dataclasses.asdict(self))
 
 
+def rendered(value: Any) -> Any:
+    """Render results in their own vocabulary, JSON-ready: each one's fields (nested results
+    rendered alike), with its APA sentence and, for a model, its plain-text summary."""
+    if isinstance(value, Result) and dataclasses.is_dataclass(value):
+        data = {f.name: rendered(getattr(value, f.name)) for f in dataclasses.fields(value)}
+        for name in ("apa", "summary"):
+            if callable(getattr(value, name, None)):
+                data[name] = getattr(value, name)()
+        return plain(data)
+    if isinstance(value, list | tuple):
+        return [rendered(item) for item in value]
+    return plain(value)
+
+
 def format_p(pvalue: float) -> str:
     """Format a p-value the APA way: "p = .043", "p < .001" (no leading zero)."""
     if pvalue is None or not math.isfinite(pvalue):

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Lint, then run the test suite on SQLite and, when PostgreSQL answers, its database tests
-# on PostgreSQL too.
+# (the Chromium ones among them) on PostgreSQL.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=.venv/bin/python
@@ -30,17 +30,27 @@ if [ -z "$pg_url" ] && "$PY" scripts/port_open.py 127.0.0.1 5432; then
   pg_url=$DEFAULT_PG_URL
 fi
 
-echo "== tests on SQLite"
-env -u DATABASE_URL "${PYTEST[@]}" "$@"
-
-if [ -n "$pg_url" ]; then
-  # Only tests/studyplatform touches a database (synthesis, stimuli and analysis never
-  # import Django), so by default only it runs again; arguments choose otherwise.
-  targets=("$@")
-  [ ${#targets[@]} -eq 0 ] && targets=(tests/studyplatform)
-  echo "== database tests on PostgreSQL ($pg_url): ${targets[*]}"
-  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "${PYTEST[@]}" "${targets[@]}"
+if [ $# -gt 0 ]; then
+  # Arguments choose the tests: they run on SQLite, then on PostgreSQL if it answers.
+  echo "== tests on SQLite: $*"
+  env -u DATABASE_URL "${PYTEST[@]}" "$@"
+  if [ -n "$pg_url" ]; then
+    echo "== the same tests on PostgreSQL ($pg_url)"
+    DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "${PYTEST[@]}" "$@"
+  fi
+elif [ -n "$pg_url" ]; then
+  # Every test runs on SQLite (the demo's database) and the platform's database tests
+  # again on PostgreSQL (production's); the Chromium tests, which check what a browser
+  # sees and sends, run once, against PostgreSQL. Only tests/studyplatform touches a
+  # database (synthesis, stimuli and analysis never import Django); tests/conftest.py
+  # sets the markers.
+  echo "== tests on SQLite, Chromium's apart"
+  env -u DATABASE_URL "${PYTEST[@]}" -m "not browser"
+  echo "== database and Chromium tests on PostgreSQL ($pg_url)"
+  DATABASE_URL=$pg_url SIGNSTUDY_EXPECT_POSTGRES=1 "${PYTEST[@]}" -m "database or browser"
 else
+  echo "== tests on SQLite"
+  env -u DATABASE_URL "${PYTEST[@]}"
   echo "!! PostgreSQL is not answering on 127.0.0.1:5432 and DATABASE_URL is unset:"
   echo "!! the PostgreSQL run is SKIPPED. CI must not skip it."
 fi

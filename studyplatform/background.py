@@ -15,6 +15,8 @@ from urllib.parse import quote
 from django.conf import settings
 from django.db import connection
 
+from studyplatform.queue import RENDER_STIMULUS, queue_job
+
 LOG_NAME = "render-background.log"
 
 
@@ -54,11 +56,9 @@ def start_render_process(stimulus_ids: Sequence[int]) -> subprocess.Popen:
 def dispatch_renders(stimulus_ids: Sequence[int], background: bool = False) -> str:
     """Render *stimulus_ids*: as Celery jobs, or in a background process where jobs would
     run eagerly and *background* is asked for. Return "queued" or "background"."""
-    from studyplatform.tasks import render_stimulus
-
     if background and settings.CELERY_TASK_ALWAYS_EAGER:
         start_render_process(stimulus_ids)
         return "background"
     for pk in stimulus_ids:
-        render_stimulus.delay(pk)
+        queue_job(RENDER_STIMULUS, pk)
     return "queued"

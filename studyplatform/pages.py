@@ -87,39 +87,65 @@ def participant_page(participant: Participant, number: int, trial: Trial) -> Par
     *trial* comes with its block, item, conditions and questions with their options
     (as :func:`~studyplatform.actions.page_trial` returns it).
     """
-    study = participant.study
-    previous = participant.schedule[number - 2].get("trial") if number > 1 else None
-    block_intro = bool(trial.block.intro_text) and (
-        previous is None
-        or not Trial.objects.filter(study=study, key=previous, block=trial.block)
-        .order_by()
-        .exists()
-    )
     questions = sorted(trial.questions.all(), key=lambda q: (q.position, q.pk))
-    clips = []
-    if trial.item_id and trial.condition_a_id:
-        shown = presented_conditions(participant, trial)
-        conditions = [c for c in shown if c is not None]
-        stimuli = {
-            s.condition_id: s
-            for s in Stimulus.objects.filter(
-                item_id=trial.item_id, condition__in=conditions, status=Stimulus.Status.READY
-            ).order_by()
-        }
-        two = len(conditions) == 2
-        for position, condition in enumerate(conditions, 1):
-            stimulus = stimuli.get(condition.pk)
-            label = f"Clip {position}" if two else ("Clip" if questions else "Example clip")
-            clips.append(
-                PageClip(
-                    number=position,
-                    label=label,
-                    video_url=stimulus.video.url if stimulus and stimulus.video else "",
-                    poster_url=stimulus.poster.url if stimulus and stimulus.poster else "",
-                    width=(stimulus.width if stimulus and stimulus.width else 640),
-                    height=(stimulus.height if stimulus and stimulus.height else 480),
-                )
-            )
+    page_questions = _page_questions(participant, trial, questions)
+    return ParticipantPage(
+        number=number,
+        total=page_count(participant),
+        trial=trial,
+        block=trial.block,
+        block_intro=_opens_block(participant, number, trial),
+        clips=_page_clips(participant, trial, asks=bool(questions)),
+        questions=page_questions,
+        asl=_page_asl(participant, trial, page_questions),
+    )
+
+
+def _opens_block(participant: Participant, number: int, trial: Trial) -> bool:
+    """Return whether page *number* is the first of a block with an introduction."""
+    if not trial.block.intro_text:
+        return False
+    if number == 1:
+        return True
+    previous = participant.schedule[number - 2].get("trial")
+    same_block = Trial.objects.filter(study=participant.study, key=previous, block=trial.block)
+    return previous is None or not same_block.order_by().exists()
+
+
+def _page_clips(participant: Participant, trial: Trial, asks: bool) -> tuple[PageClip, ...]:
+    """Return the clips the participant is shown on *trial* (one query), in their order."""
+    if not (trial.item_id and trial.condition_a_id):
+        return ()
+    conditions = [c for c in presented_conditions(participant, trial) if c is not None]
+    ready = Stimulus.objects.filter(
+        item_id=trial.item_id, condition__in=conditions, status=Stimulus.Status.READY
+    )
+    stimuli = {stimulus.condition_id: stimulus for stimulus in ready.order_by()}
+    single = "Clip" if asks else "Example clip"
+    return tuple(
+        _clip(number, f"Clip {number}" if len(conditions) == 2 else single, stimuli.get(c.pk))
+        for number, c in enumerate(conditions, 1)
+    )
+
+
+def _clip(number: int, label: str, stimulus: Stimulus | None) -> PageClip:
+    """Return clip *number* showing *stimulus* (none yet: no files)."""
+    if stimulus is None:
+        return PageClip(number=number, label=label)
+    return PageClip(
+        number=number,
+        label=label,
+        video_url=stimulus.video.url if stimulus.video else "",
+        poster_url=stimulus.poster.url if stimulus.poster else "",
+        width=stimulus.width or 640,
+        height=stimulus.height or 480,
+    )
+
+
+def _page_questions(
+    participant: Participant, trial: Trial, questions: list[Question]
+) -> tuple[PageQuestion, ...]:
+    """Return *questions* with their options and the participant's answers so far."""
     responses = {
         r.question_id: r
         for r in Response.objects.filter(participant=participant, trial=trial).order_by()
@@ -132,36 +158,34 @@ def participant_page(participant: Participant, number: int, trial: Trial) -> Par
                 participant=participant, question__in=personal_questions
             ).values_list("question_id", "value")
         )
-    page_questions = []
-    for question in questions:
-        answer = (
-            personal.get(question.pk, "")
-            if question.is_personal
-            else _answer_text(responses.get(question.pk), question)
-        )
-        options = tuple(sorted(question.options.all(), key=lambda o: (o.position, o.value)))
-        response = responses.get(question.pk)
-        video_url = (
-            reverse("participant_answer_video", args=[participant.token, response.pk])
-            if response is not None and response.video
-            else ""
-        )
-        page_questions.append(PageQuestion(question, options, answer, video_url))
-    asl: dict = {}
-    if participant.language == Participant.Language.ASL_ENGLISH:
-        objects = [trial, trial.block, *questions]
-        objects += [option for q in page_questions for option in q.options]
-        asl = with_templates(asl_videos(objects), participant.study, objects, ui=True)
-    return ParticipantPage(
-        number=number,
-        total=page_count(participant),
-        trial=trial,
-        block=trial.block,
-        block_intro=block_intro,
-        clips=tuple(clips),
-        questions=tuple(page_questions),
-        asl=asl,
+    return tuple(
+        _page_question(participant, question, responses.get(question.pk), personal)
+        for question in questions
     )
+
+
+def _page_question(
+    participant: Participant, question: Question, response: Response | None, personal: dict
+) -> PageQuestion:
+    """Return *question* with its options, its answer and a signed answer's video link."""
+    if question.is_personal:
+        answer = personal.get(question.pk, "")
+    else:
+        answer = _answer_text(response, question)
+    options = tuple(sorted(question.options.all(), key=lambda o: (o.position, o.value)))
+    video_url = ""
+    if response is not None and response.video:
+        video_url = reverse("participant_answer_video", args=[participant.token, response.pk])
+    return PageQuestion(question, options, answer, video_url)
+
+
+def _page_asl(participant: Participant, trial: Trial, questions: tuple[PageQuestion, ...]) -> dict:
+    """Return the ASL versions of the page's texts, for a participant reading ASL first."""
+    if participant.language != Participant.Language.ASL_ENGLISH:
+        return {}
+    objects = [trial, trial.block, *(q.question for q in questions)]
+    objects += [option for q in questions for option in q.options]
+    return with_templates(asl_videos(objects), participant.study, objects, ui=True)
 
 
 def study_asl(study: Study, language: str) -> dict:

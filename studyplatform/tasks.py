@@ -13,6 +13,12 @@ from django.conf import settings
 from stimuli.clips import ClipSpec, render
 from studyplatform.lib.stimuli import SUBDIRECTORY, clips_folder
 from studyplatform.models import Stimulus
+from studyplatform.queue import (
+    APPLY_RETENTION,
+    CLEAN_ABANDONED_UPLOADS,
+    PREPARE_RECORDING,
+    RENDER_STIMULUS,
+)
 
 
 def render_now(stimulus_id: int) -> str:
@@ -37,7 +43,7 @@ def render_now(stimulus_id: int) -> str:
     return do_record_rendered_stimulus(stimulus, spec, clip, SUBDIRECTORY)
 
 
-@shared_task(name="studyplatform.render_stimulus", acks_late=True, reject_on_worker_lost=True)
+@shared_task(name=RENDER_STIMULUS, acks_late=True, reject_on_worker_lost=True)
 def render_stimulus(stimulus_id: int) -> str:
     """Render one stimulus (Celery job)."""
     return render_now(stimulus_id)
@@ -122,13 +128,13 @@ def _contact_sheet(hand, video: Path) -> bytes | None:
         return None
 
 
-@shared_task(name="studyplatform.prepare_recording", acks_late=True, reject_on_worker_lost=True)
+@shared_task(name=PREPARE_RECORDING, acks_late=True, reject_on_worker_lost=True)
 def prepare_recording(recording_id: int) -> str:
     """Capture, fit and check one recording (Celery job)."""
     return prepare_now(recording_id)
 
 
-@shared_task(name="studyplatform.clean_abandoned_uploads")
+@shared_task(name=CLEAN_ABANDONED_UPLOADS)
 def clean_abandoned_uploads() -> int:
     """Delete unfinished signed-answer uploads older than the configured age (beat job)."""
     from studyplatform.actions.uploads import do_remove_abandoned_uploads
@@ -136,7 +142,7 @@ def clean_abandoned_uploads() -> int:
     return len(do_remove_abandoned_uploads(settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS))
 
 
-@shared_task(name="studyplatform.apply_retention")
+@shared_task(name=APPLY_RETENTION)
 def apply_retention() -> int:
     """Delete personal data whose study's retention period has passed (beat job)."""
     from studyplatform.actions import do_apply_retention

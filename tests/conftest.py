@@ -10,7 +10,9 @@ import os
 import re
 import subprocess
 import tempfile
+import threading
 import time
+from pathlib import Path
 
 import pytest
 
@@ -139,6 +141,7 @@ def browser():
     # Playwright's sync API runs an event loop in the test thread; the ORM calls the
     # tests make there are still synchronous.
     os.environ["DJANGO_ALLOW_ASYNC_UNSAFE"] = "true"
+    _server_requests()  # counting from before the first page opens (close_context waits)
     with sync_playwright() as playwright:
         chromium = playwright.chromium.launch(
             executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS
@@ -147,15 +150,55 @@ def browser():
         chromium.close()
 
 
+class _ServerRequests:
+    """Count the live server's requests in flight: its threads run in this process, so
+    Django's request signals fire here."""
+
+    def __init__(self) -> None:
+        from django.core.signals import request_finished, request_started
+
+        self.lock = threading.Lock()
+        self.active = 0
+        self.last_s = time.monotonic()
+        request_started.connect(self._started, weak=False)
+        request_finished.connect(self._finished, weak=False)
+
+    def _started(self, **kwargs) -> None:
+        with self.lock:
+            self.active += 1
+            self.last_s = time.monotonic()
+
+    def _finished(self, **kwargs) -> None:
+        with self.lock:
+            self.active = max(0, self.active - 1)
+            self.last_s = time.monotonic()
+
+    def settle(self, quiet_s: float, timeout_s: float) -> None:
+        """Wait until no request is in flight and none started for *quiet_s*."""
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
+            with self.lock:
+                if self.active == 0 and time.monotonic() - self.last_s >= quiet_s:
+                    return
+            time.sleep(0.02)
+
+
+@functools.cache
+def _server_requests() -> _ServerRequests:
+    return _ServerRequests()
+
+
 def close_context(context) -> None:
-    """Close a browser context and let the requests its pages sent on closing finish.
+    """Close a browser context and wait for the requests its pages sent on closing.
 
     Closing hides a participant page, which sends its last events with keepalive; the
     live server must finish that request before pytest-django flushes the database, or
-    PostgreSQL's TRUNCATE and the insert deadlock.
+    PostgreSQL's TRUNCATE and the insert deadlock. The wait ends once the server has been
+    idle for a quarter second (the keepalive request arrives within milliseconds).
     """
+    requests = _server_requests()
     context.close()
-    time.sleep(1.0)
+    requests.settle(quiet_s=0.25, timeout_s=10.0)
 
 
 @pytest.fixture
@@ -219,3 +262,16 @@ def as_draft(*studies) -> None:
     for study in studies:
         study.status = "draft"
         study.save(update_fields=["status"])
+
+
+def pytest_collection_modifyitems(items) -> None:
+    """Mark the platform's tests ``database`` (only they touch one), and those that drive
+    Chromium ``browser`` and ``slow``: scripts/test.sh runs the database tests on SQLite
+    and PostgreSQL, the Chromium ones once (on PostgreSQL when it answers)."""
+    platform = Path(__file__).parent / "studyplatform"
+    for item in items:
+        if platform in Path(item.path).parents:
+            item.add_marker(pytest.mark.database)
+        if "browser" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.browser)
+            item.add_marker(pytest.mark.slow)

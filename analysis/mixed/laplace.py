@@ -86,15 +86,24 @@ def _fit(problem, stage, sd_start, extra_start) -> LaplaceFit:
     """Fit a problem with a full-rank fixed-effect design (fit_laplace's search)."""
     family = problem.family
     state = ConditionalModes(problem)
-    p, k = state.p, len(problem.components)
     extra_free = (
         family.extra_start(state.y) if extra_start is None else family.extra_free(extra_start)
     )
-    n_extra = len(extra_free)
-    beta = _start_beta(problem, family.extra_natural(extra_free))
-    memo = {"beta": beta}
+    first, beta, fast_loglik = _profiled_search(problem, state, sd_start, extra_free)
+    k = len(problem.components)
+    sd, extra_free = first.x[:k], first.x[k:]
+    if stage == "fast":
+        return _fast_fit(problem, state, sd, extra_free, beta, first, fast_loglik)
+    return _laplace_fit(problem, state, sd, extra_free, beta)
 
-    def fast_objective(vector: np.ndarray) -> float:
+
+def _profiled_search(problem, state, sd_start, extra_free):
+    """Search the SDs (and a family's extra parameters) with β profiled out; return the
+    optimiser's result, β at its optimum and the log-likelihood there."""
+    family, k, n_extra = problem.family, len(problem.components), len(extra_free)
+    memo = {"beta": _start_beta(problem, family.extra_natural(extra_free))}
+
+    def objective(vector: np.ndarray) -> float:
         sd, free = vector[:k], vector[k:]
         value, found = state.profiled_loglik(
             sd[state.owner], family.extra_natural(free), memo["beta"]
@@ -112,36 +121,39 @@ def _fit(problem, stage, sd_start, extra_start) -> LaplaceFit:
     step = np.concatenate([np.full(k, 0.2), np.full(n_extra, 0.2)])
     # The first stage only needs to land near the optimum: the second refines it, and
     # power simulations, which stop here, need no more than a few digits.
-    first = optimize.minimize(fast_objective, starts, lower, upper, step, xtol=1e-6)
-    sd, extra_free = first.x[:k], first.x[k:]
+    first = optimize.minimize(objective, starts, lower, upper, step, xtol=1e-6)
     # Evaluating at the optimum leaves β and v there (the search's last call need not be).
-    fast_loglik = -fast_objective(first.x) / 2
-    beta = memo["beta"]
+    loglik = -objective(first.x) / 2
+    return first, memo["beta"], loglik
+
+
+def _fast_fit(problem, state, sd, extra_free, beta, first, loglik) -> LaplaceFit:
+    """Finish the first stage's fit (lme4's nAGQ = 0): β's covariance at the joint mode."""
+    family, p, n_extra = problem.family, state.p, len(extra_free)
     converged, message = first.converged, first.message
+    beta, _, _, solve = state.joint_mode(sd[state.owner], family.extra_natural(extra_free), beta)
+    try:
+        unit = np.zeros((p + state.q, p))
+        unit[np.arange(p), np.arange(p)] = 1.0
+        cov = solve(unit)[:p, :p]
+    except (np.linalg.LinAlgError, RuntimeError):
+        cov = np.full((p, p), np.nan)
+        converged, message = False, "singular Hessian: standard errors unavailable"
+    params, names = beta, problem.fixed_names
+    if n_extra:
+        # The fast stage serves power simulations, which test β only.
+        params = np.concatenate([beta, family.extra_natural(extra_free)])
+        cov = linalg.block_diag(cov, np.full((n_extra, n_extra), np.nan))
+        names = names + family.extra_names(state.y)
+    return finish_fit(problem, state, names, params, cov, sd, converged, "fast", message, loglik)
 
-    if stage == "fast":
-        scale = sd[state.owner]
-        beta, _, _, solve = state.joint_mode(scale, family.extra_natural(extra_free), beta)
-        try:
-            unit = np.zeros((p + state.q, p))
-            unit[np.arange(p), np.arange(p)] = 1.0
-            inverse = solve(unit)[:p, :p]
-        except (np.linalg.LinAlgError, RuntimeError):
-            inverse = np.full((p, p), np.nan)
-            converged, message = False, "singular Hessian: standard errors unavailable"
-        params = beta
-        cov = inverse
-        names = problem.fixed_names
-        if n_extra:
-            # The fast stage serves power simulations, which test β only.
-            params = np.concatenate([beta, family.extra_natural(extra_free)])
-            cov = linalg.block_diag(inverse, np.full((n_extra, n_extra), np.nan))
-            names = names + family.extra_names(state.y)
-        return finish_fit(
-            problem, state, names, params, cov, sd, converged, "fast", message, fast_loglik
-        )
 
-    def full_objective(vector: np.ndarray) -> float:
+def _laplace_fit(problem, state, sd, extra_free, beta) -> LaplaceFit:
+    """Refine the first stage's estimates on the Laplace likelihood of all parameters;
+    the covariance from its Hessian (lme4's nAGQ = 1)."""
+    family, p, k, n_extra = problem.family, state.p, len(sd), len(extra_free)
+
+    def objective(vector: np.ndarray) -> float:
         beta_, free, sd_ = vector[:p], vector[p : p + n_extra], vector[p + n_extra :]
         value = state.loglik(beta_, family.extra_natural(free), sd_)
         return -2 * value if np.isfinite(value) else np.inf
@@ -150,7 +162,7 @@ def _fit(problem, stage, sd_start, extra_start) -> LaplaceFit:
     lower = np.concatenate([np.full(p + n_extra, -np.inf), np.zeros(k)])
     upper = np.concatenate([np.full(p + n_extra, np.inf), np.full(k, LARGEST_SD)])
     step = np.concatenate([np.full(p + n_extra, 0.05), np.maximum(0.05, 0.1 * sd)])
-    second = optimize.minimize(full_objective, [start], lower, upper, step)
+    second = optimize.minimize(objective, [start], lower, upper, step)
     beta, extra_free, sd = second.x[:p], second.x[p : p + n_extra], second.x[p + n_extra :]
     extra = family.extra_natural(extra_free)
     converged, message = second.converged, second.message

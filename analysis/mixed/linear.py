@@ -123,6 +123,28 @@ def likelihood_ratio(
     )
 
 
+def _notes(problem, fit, random, order: Sequence[str], reason: str) -> list[str]:
+    """Return what a reader of the linear model must know: its scale, its tests, and
+    which random effects the data could not support."""
+    notes = [
+        f"Effects are differences of mean rating from {order[0]}; ratings are treated "
+        "as interval numbers (see the ordinal model for the ordered-category analysis).",
+        "t and F tests use Satterthwaite's degrees of freedom (as lmerTest).",
+    ]
+    if reason:
+        notes.append(f"Intercepts only: {reason}.")
+    correlated = {c.name for c in problem.components if c.correlated}
+    at_zero = [c.name in fit.singular_components and c.name not in correlated for c in random]
+    notes += fit_notes(fit, random, at_zero)
+    for name in sorted(correlated & set(fit.singular_components)):
+        notes.append(
+            f"Singular (boundary) fit: the covariance of the {name} random effects "
+            "(intercept and condition effects) is singular — a variance at zero or a "
+            f"correlation at ±1 — so the data cannot support {SLOPES}; fit intercepts only."
+        )
+    return notes
+
+
 def linear_mixed(
     frame: pd.DataFrame,
     question: str,
@@ -174,49 +196,27 @@ def linear_mixed(
     ml = fit if not reml else fit_lmm(problem, reml=False)
     intervals = sd_intervals(ml) if sd_ci else [None] * (len(fit.sd) + 1)
     random = _random(problem, fit, intervals[:-1])
-    notes = [
-        f"Effects are differences of mean rating from {order[0]}; ratings are treated "
-        "as interval numbers (see the ordinal model for the ordered-category analysis).",
-        "t and F tests use Satterthwaite's degrees of freedom (as lmerTest).",
-    ]
-    if reason:
-        notes.append(f"Intercepts only: {reason}.")
-    correlated = {c.name for c in problem.components if c.correlated}
-    at_zero = [c.name in fit.singular_components and c.name not in correlated for c in random]
-    notes += fit_notes(fit, random, at_zero)
-    for name in sorted(correlated & set(fit.singular_components)):
-        notes.append(
-            f"Singular (boundary) fit: the covariance of the {name} random effects "
-            "(intercept and condition effects) is singular — a variance at zero or a "
-            f"correlation at ±1 — so the data cannot support {SLOPES}; fit intercepts only."
-        )
+    notes = _notes(problem, fit, random, order, reason)
     formula = f"{question} ~ condition + " + " + ".join(
         f"(1 + condition | {c.name})" if c.correlated else f"(1 | {c.name})"
         for c in problem.components
     )
-    return LinearMixedResult(
+    return LinearMixedResult.from_fit(
+        fit,
+        data,
+        order,
+        test=(statistic, df, pvalue),
+        n_params=len(fit.beta) + len(fit.theta) + 1,
+        notes=notes,
         model="Linear mixed model",
         estimator="REML, lme4::lmer's profiled criterion"
         if reml
         else "maximum likelihood, lme4::lmer(REML = FALSE)",
         formula=formula,
-        conditions=tuple(order),
-        reference=order[0],
         effects=tuple(effects),
         contrasts=contrasts(order, full, full_cov, correction, df_of),
         random=random,
-        statistic=statistic,
-        df=df,
-        pvalue=pvalue,
-        nobs=fit.nobs,
-        participants=int(data["participant"].nunique()),
-        items=int(data["item"].nunique()),
-        loglik=fit.loglik,
-        aic=-2 * fit.loglik + 2 * (len(fit.beta) + len(fit.theta) + 1),
-        converged=fit.converged,
         correction=correction,
-        notes=tuple(notes),
-        singular=fit.singular,
         question=question,
         residual_sd=fit.sigma,
         residual_sd_ci=intervals[-1],

@@ -156,34 +156,26 @@ def mixed_bradley_terry(
     notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
     notes += separation_note([position, *effects])
     notes += covariance_note(fit.cov[:p, :p])
-    n_params = len(fit.params) + len(fit.sd)
     formula = "chose clip 1 ~ position + strengths + (1 | participant)" + (
         " + (1 | item)" if any(c.group == "item" for c in problem.components) else ""
     )
     if random_strengths:
         formula += " + (strengths | participant)"
-    return MixedBradleyTerryResult(
+    return MixedBradleyTerryResult.from_fit(
+        fit,
+        data,
+        order,
+        test=(statistic, df, pvalue),
+        n_params=len(fit.params) + len(fit.sd),
+        notes=notes,
         model="Mixed-effects Bradley–Terry"
         + (" with Davidson ties" if ties == "davidson" else " (logistic)"),
         estimator="maximum likelihood, Laplace approximation (as lme4::glmer, nAGQ = 1)",
         formula=formula,
-        conditions=tuple(order),
-        reference=order[0],
         effects=tuple(effects),
         contrasts=contrasts(order, full, full_cov, correction),
         random=random,
-        statistic=statistic,
-        df=df,
-        pvalue=pvalue,
-        nobs=fit.nobs,
-        participants=int(data["participant"].nunique()),
-        items=int(data["item"].nunique()),
-        loglik=fit.loglik,
-        aic=-2 * fit.loglik + 2 * n_params,
-        converged=fit.converged,
-        singular=fit.singular,
         correction=correction,
-        notes=tuple(notes),
         position=position,
         tie_handling=ties,
         tie_parameter=float(np.exp(fit.params[p])) if ties == "davidson" else None,

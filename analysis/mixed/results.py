@@ -6,6 +6,10 @@ conditions are alike), ``nobs``, ``summary()`` (a plain-text table), ``to_dict()
 """
 
 import dataclasses
+from collections.abc import Sequence
+from typing import Any, Self
+
+import pandas as pd
 
 from analysis.results import Result, format_p
 
@@ -143,6 +147,42 @@ class _ModelResult(Result):
     # A variance component on its bound of zero (lme4's isSingular): named in summary()
     # and apa() as well as in the notes.
     singular: bool = False
+
+    @classmethod
+    def from_fit(
+        cls,
+        fit: Any,
+        data: pd.DataFrame,
+        order: Sequence[str],
+        *,
+        test: tuple[float, int, float],
+        n_params: int,
+        notes: Sequence[str],
+        **fields: Any,
+    ) -> Self:
+        """Build the result of *fit* to *data*: the fields every mixed model fills alike.
+
+        *fit* is a linear or a Laplace fit (``nobs``, ``loglik``, ``converged``,
+        ``singular``); *test* is the conditions-alike test's (statistic, df, p);
+        *n_params* counts the estimated parameters for the AIC (−2 log L + 2k).
+        """
+        statistic, df, pvalue = test
+        return cls(
+            conditions=tuple(order),
+            reference=order[0],
+            statistic=statistic,
+            df=df,
+            pvalue=pvalue,
+            nobs=fit.nobs,
+            participants=int(data["participant"].nunique()),
+            items=int(data["item"].nunique()),
+            loglik=fit.loglik,
+            aic=-2 * fit.loglik + 2 * n_params,
+            converged=fit.converged,
+            singular=fit.singular,
+            notes=tuple(notes),
+            **fields,
+        )
 
     def apa(self) -> str:
         return self._test() + (

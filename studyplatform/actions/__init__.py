@@ -27,7 +27,7 @@ from studyplatform.actions.recordings import (
     do_relabel_stand_ins,
     do_report_capture_progress,
 )
-from studyplatform.actions.responses import do_save_response
+from studyplatform.actions.responses import do_save_page_answers, do_save_response
 from studyplatform.actions.reviews import do_review_participants
 from studyplatform.actions.stimuli import (
     GenerationResult,
@@ -87,6 +87,7 @@ __all__ = [
     "do_report_capture_progress",
     "do_retry_stimuli",
     "do_review_participants",
+    "do_save_page_answers",
     "do_save_response",
     "do_set_participant_language",
     "do_start_rendering",

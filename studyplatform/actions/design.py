@@ -156,18 +156,9 @@ def _builder_blocks(study: Study, practice: bool) -> tuple[Block | None, Block]:
     return practice_block, trial_block
 
 
-def do_build_design(
-    study: Study,
-    spec: DesignSpec,
-    questions: Sequence[Question] = (),
-    randomize_order: bool = True,
-) -> DesignBuilt:
-    """Replace the builder's pages of draft *study* with those *spec* plans.
-
-    With no *questions*, a standard one is created (a 2AFC "Which clip looks more
-    natural?" or a 5-point naturalness rating). Latin-square designs switch the study's
-    condition rotation on, the others off.
-    """
+def _checked_design(study: Study, spec: DesignSpec) -> tuple[list[PlannedPage], dict, dict]:
+    """Return the pages *spec* plans and its conditions and items by key, or DesignRejected
+    (a study no longer in draft, a design that cannot be built, a key not in the study)."""
     if study.status != Study.Status.DRAFT:
         raise DesignRejected(
             f"“{study.title}” is {study.get_status_display().lower()}: its design is locked. "
@@ -185,6 +176,45 @@ def do_build_design(
                if k not in conditions and k not in items]  # fmt: skip
     if missing:
         raise DesignRejected(f"Not in this study: {', '.join(missing)}.")
+    return pages, conditions, items
+
+
+def _delete_builder_pages(study: Study) -> None:
+    """Delete the pages the builder made before, unless a pilot answered them."""
+    old = Trial.objects.filter(
+        study=study, block__key__in=list((study.design.get("blocks") or {}).values())
+    )
+    answered = old.filter(responses__isnull=False).distinct().count()
+    if answered:
+        raise DesignRejected(
+            f"{answered} of the pages this builder made have answers (from a pilot). "
+            "Delete those participants first, or make a new version of the study."
+        )
+    old.delete()
+
+
+def _ask_on_pages(questions: Sequence[Question], blocks: list) -> None:
+    """Ask *questions* on every page of *blocks*."""
+    Trial.questions.through.objects.bulk_create(
+        Trial.questions.through(trial_id=trial.pk, question_id=question.pk)
+        for trial in Trial.objects.filter(block__in=blocks)
+        for question in questions
+    )
+
+
+def do_build_design(
+    study: Study,
+    spec: DesignSpec,
+    questions: Sequence[Question] = (),
+    randomize_order: bool = True,
+) -> DesignBuilt:
+    """Replace the builder's pages of draft *study* with those *spec* plans.
+
+    With no *questions*, a standard one is created (a 2AFC "Which clip looks more
+    natural?" or a 5-point naturalness rating). Latin-square designs switch the study's
+    condition rotation on, the others off.
+    """
+    pages, conditions, items = _checked_design(study, spec)
     with transaction.atomic():
         study = Study.objects.select_for_update().get(pk=study.pk)
         created = None
@@ -193,16 +223,7 @@ def do_build_design(
             questions = [created]
         kind = _trial_kind(spec.design, questions)
         expected = _expected_answer(kind, questions) if spec.attention_checks else ("", "")
-        old = Trial.objects.filter(
-            study=study, block__key__in=list((study.design.get("blocks") or {}).values())
-        )
-        answered = old.filter(responses__isnull=False).distinct().count()
-        if answered:
-            raise DesignRejected(
-                f"{answered} of the pages this builder made have answers (from a pilot). "
-                "Delete those participants first, or make a new version of the study."
-            )
-        old.delete()
+        _delete_builder_pages(study)
         practice_block, trial_block = _builder_blocks(study, bool(spec.practice_items))
         taken = set(Trial.objects.filter(study=study).values_list("key", flat=True))
         trials = _make_trials(study, pages, kind, expected, practice_block, trial_block, taken,
@@ -210,13 +231,7 @@ def do_build_design(
         for trial in trials:
             trial.full_clean(exclude=["questions"])
         Trial.objects.bulk_create(trials)
-        Trial.questions.through.objects.bulk_create(
-            Trial.questions.through(trial_id=trial.pk, question_id=question.pk)
-            for trial in Trial.objects.filter(
-                block__in=[b for b in (practice_block, trial_block) if b]
-            )
-            for question in questions
-        )
+        _ask_on_pages(questions, [b for b in (practice_block, trial_block) if b])
         trial_block.randomize_order = randomize_order
         trial_block.save(update_fields=["randomize_order"])
         study.rotate_conditions = spec.design is Design.LATIN_SQUARE

@@ -25,13 +25,8 @@ class EventsRejected(ValidationError):
     """A batch of events with a malformed event; none of the batch was saved."""
 
 
-def _event(
-    participant: Participant, number: int, raw: object, trials: dict, stimuli: dict
-) -> MediaEvent:
-    """Check one raw event (a JSON object) and return the unsaved row.
-
-    *trials* (by page) and *stimuli* (by page and clip) remember lookups across a batch.
-    """
+def _checked(number: int, raw: object) -> dict:
+    """Check one raw event's fields (a JSON object); return them, or EventsRejected."""
     if not isinstance(raw, dict):
         raise EventsRejected(f"Event {number} is not an object.")
     kind = raw.get("kind")
@@ -40,12 +35,6 @@ def _event(
     page = raw.get("page")
     if not isinstance(page, int) or isinstance(page, bool):
         raise EventsRejected(f"Event {number} names no page.")
-    if page not in trials:
-        try:
-            trials[page] = page_trial(participant, page)
-        except PageRejected as error:
-            raise EventsRejected(f"Event {number}: {error.message}") from None
-    trial = trials[page]
     clip = raw.get("clip")
     # Exactly None, 1 or 2: 1.0 and True compare equal to 1 but index nothing.
     if not (clip is None or (type(clip) is int and clip in (1, 2))):
@@ -53,38 +42,58 @@ def _event(
     if not isinstance(raw.get("client_time_ms"), int | float):
         # The browser's clock tells a resent event from a new one (see do_log_media_events).
         raise EventsRejected(f"Event {number} has no client_time_ms.")
-    numbers = {}
-    for name in ("media_time_s", "client_time_ms"):
-        value = raw.get(name)
-        if value is not None and (not isinstance(value, int | float) or isinstance(value, bool)):
-            raise EventsRejected(f"Event {number}: {name} is not a number.")
-        # NaN and infinities compare false too; an integer beyond any float compares fine.
-        if value is not None and not abs(value) <= NUMBER_LIMITS[name]:
-            raise EventsRejected(f"Event {number}: {name} {value!r} is out of range.")
-        numbers[name] = value
     detail = raw.get("detail") or {}
     if not isinstance(detail, dict) or len(str(detail)) > MAX_DETAIL_LENGTH:
         raise EventsRejected(f"Event {number}: the detail is not a small object.")
-    stimulus = None
-    if clip is not None and trial.item_id:
-        if (page, clip) not in stimuli:  # a batch holds many events of the same clips
-            condition = presented_conditions(participant, trial)[clip - 1]
-            stimuli[(page, clip)] = (
-                Stimulus.objects.filter(condition=condition, item_id=trial.item_id).first()
-                if condition is not None
-                else None
-            )
-        stimulus = stimuli[(page, clip)]
-    client_ms = numbers["client_time_ms"]
+    fields = {"kind": kind, "page": page, "clip": clip, "detail": detail}
+    for name in ("media_time_s", "client_time_ms"):
+        fields[name] = _number(number, name, raw.get(name))
+    return fields
+
+
+def _number(number: int, name: str, value: object) -> float | None:
+    """Return an event's optional number field, or EventsRejected naming it."""
+    if value is not None and (not isinstance(value, int | float) or isinstance(value, bool)):
+        raise EventsRejected(f"Event {number}: {name} is not a number.")
+    # NaN and infinities compare false too; an integer beyond any float compares fine.
+    if value is not None and not abs(value) <= NUMBER_LIMITS[name]:
+        raise EventsRejected(f"Event {number}: {name} {value!r} is out of range.")
+    return value
+
+
+def _event(
+    participant: Participant, number: int, raw: object, trials: dict, stimuli: dict
+) -> MediaEvent:
+    """Check one raw event (a JSON object) and return the unsaved row.
+
+    *trials* (by page) and *stimuli* (by page and clip) remember lookups across a batch.
+    """
+    fields = _checked(number, raw)
+    page, clip = fields["page"], fields["clip"]
+    if page not in trials:
+        try:
+            trials[page] = page_trial(participant, page)
+        except PageRejected as error:
+            raise EventsRejected(f"Event {number}: {error.message}") from None
+    trial = trials[page]
+    if clip is not None and trial.item_id and (page, clip) not in stimuli:
+        # A batch holds many events of the same clips.
+        condition = presented_conditions(participant, trial)[clip - 1]
+        stimuli[(page, clip)] = (
+            Stimulus.objects.filter(condition=condition, item_id=trial.item_id).first()
+            if condition is not None
+            else None
+        )
+    client_ms = fields["client_time_ms"]
     return MediaEvent(
         participant=participant,
         trial=trial,
-        stimulus=stimulus,
+        stimulus=stimuli.get((page, clip)) if clip is not None and trial.item_id else None,
         clip_position=clip,
-        kind=kind,
-        media_time_s=numbers["media_time_s"],
+        kind=fields["kind"],
+        media_time_s=fields["media_time_s"],
         client_time_ms=None if client_ms is None else int(client_ms),
-        detail=detail,
+        detail=fields["detail"],
     )
 
 

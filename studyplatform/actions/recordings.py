@@ -17,6 +17,7 @@ from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
 from studyplatform.media_types import POSE, MediaKind, MediaRejected, check_upload, stored_video
 from studyplatform.models import Item, Recording, Study
+from studyplatform.queue import PREPARE_RECORDING, queue_job_on_commit
 
 MAX_RECORDING_BYTES = 300 * 1024 * 1024
 
@@ -83,13 +84,11 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
 
 def _save_recording(item: Item, upload, name: str, sha256: str, mirrored: bool,
                     one_hand: bool) -> Recording:  # fmt: skip
-    from studyplatform.tasks import prepare_recording
-
     with transaction.atomic():
         recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand, sha256=sha256)
         recording.upload.save(name, upload, save=False)
         recording.save()
-        transaction.on_commit(lambda: prepare_recording.delay(recording.pk))
+        queue_job_on_commit(PREPARE_RECORDING, recording.pk)
     return recording
 
 

@@ -60,6 +60,35 @@ def _refuse_changes_in_the_field(study: Study, changed: list[tuple[Stimulus, Cli
     )
 
 
+def _clip_spec(condition, item) -> ClipSpec:
+    """Return the specification of one clip; a ClipError names the condition and item."""
+    try:
+        return clip_spec(condition, item)
+    except ClipError as error:
+        raise ClipError(f"{condition.key} × {item.key}: {error}") from None
+
+
+def _record_clip(stimulus: Stimulus, spec: ClipSpec, content_hash: str, force: bool) -> bool:
+    """Record one clip as ready (rendered already, here or elsewhere) or pending; return
+    whether it must be rendered."""
+    unchanged = stimulus.pk and stimulus.content_hash == content_hash
+    done = unchanged and stimulus.status == Stimulus.Status.READY and files_exist(stimulus)
+    if done and not force:
+        return False
+    existing = None if force else already_rendered(spec, clips_folder(), content_hash)
+    if existing is not None:
+        # Rendered already (another study, version, import or database): reuse it.
+        _record_ready(stimulus, spec, existing)
+        return False
+    stimulus.content_hash = content_hash
+    stimulus.parameters = spec.to_dict()
+    stimulus.engine_version = spec.engine
+    stimulus.status = Stimulus.Status.PENDING
+    stimulus.error = ""
+    stimulus.save()
+    return True
+
+
 def do_generate_stimuli(
     study: Study,
     force: bool = False,
@@ -89,10 +118,7 @@ def do_generate_stimuli(
     refuse_changes = in_field and not rerender_open
     with transaction.atomic():
         for condition, item in needed_pairs(study):
-            try:
-                spec = clip_spec(condition, item)
-            except ClipError as error:
-                raise ClipError(f"{condition.key} × {item.key}: {error}") from None
+            spec = _clip_spec(condition, item)
             content_hash = spec.content_hash()
             hashed.append((condition, item, content_hash))
             stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
@@ -101,27 +127,11 @@ def do_generate_stimuli(
                 changed.append((stimulus, spec))
                 if refuse_changes:
                     continue
-            if stimulus is None:
-                stimulus = Stimulus(condition=condition, item=item)
-            unchanged = stimulus.pk and stimulus.content_hash == content_hash
-            done = unchanged and stimulus.status == Stimulus.Status.READY and files_exist(stimulus)
-            existing = (
-                None if done or force else already_rendered(spec, clips_folder(), content_hash)
-            )
-            if done and not force:
-                ready += 1
-            elif existing is not None:
-                # Rendered already (another study, version, import or database): reuse it.
-                _record_ready(stimulus, spec, existing)
-                ready += 1
-            else:
-                stimulus.content_hash = content_hash
-                stimulus.parameters = spec.to_dict()
-                stimulus.engine_version = spec.engine
-                stimulus.status = Stimulus.Status.PENDING
-                stimulus.error = ""
-                stimulus.save()
+            stimulus = stimulus or Stimulus(condition=condition, item=item)
+            if _record_clip(stimulus, spec, content_hash, force):
                 queued.append(stimulus.pk)
+            else:
+                ready += 1
             ids.append(stimulus.pk)
         identical = group_identical(hashed)
         if identical and not allow_identical:

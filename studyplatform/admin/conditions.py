@@ -13,12 +13,12 @@ from django.http import HttpRequest
 
 from studyplatform.admin.design import OwnStudyFilter
 from studyplatform.admin.permissions import DesignLockMixin, StudyScopedMixin
-from studyplatform.lib.techniques import (
+from studyplatform.models import Condition
+from studyplatform.rules import (
     condition_item_kinds,
     describe_condition,
     supported_kinds,
 )
-from studyplatform.models import Condition
 from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS, Parameter
 
 PREFIX = "technique_"

@@ -28,9 +28,9 @@ from studyplatform.admin.roster import StudyRosterMixin
 from studyplatform.asl import study_prompts
 from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.stimuli import describe_identical, identical_clips
-from studyplatform.lib.techniques import describe_condition
 from studyplatform.models import Block, Condition, Item, Question, SignedTemplate, Study, Trial
 from studyplatform.preview import build_preview
+from studyplatform.rules import describe_condition
 
 # Compact cells keep the study page within the window; each object's page has the room.
 COMPACT_TEXT = {

@@ -15,6 +15,7 @@ from studyplatform.lib.participants import (
     missing_answers,
     page_count,
     page_trial,
+    participant_by_token,
     time_left,
     unwatched_clips,
 )
@@ -29,30 +30,16 @@ from studyplatform.lib.stimuli import (
     stimuli_progress,
     study_manifest,
 )
-from studyplatform.lib.techniques import (
-    check_condition,
-    check_item,
-    check_parameters,
-    condition_item_kinds,
-    describe_condition,
-    describe_parameters,
-)
 
 __all__ = [
     "TIME_LOW",
     "DesignSummary",
     "PageRejected",
-    "check_condition",
-    "check_item",
-    "check_parameters",
     "clean_recruitment_params",
     "clip_spec",
     "closed_reason",
     "completion_url",
-    "condition_item_kinds",
-    "describe_condition",
     "describe_identical",
-    "describe_parameters",
     "device_of",
     "device_problem",
     "files_exist",
@@ -63,6 +50,7 @@ __all__ = [
     "page_count",
     "page_orders",
     "page_trial",
+    "participant_by_token",
     "presented_conditions",
     "quality_cells",
     "schedule_entry",

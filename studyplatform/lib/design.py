@@ -47,35 +47,14 @@ def summarize_design(study: Study) -> DesignSummary:
         .prefetch_related("questions")
     }
     schedule = build_schedule(study, seed=0)
-    blocks: Counter = Counter()
-    conditions: Counter = Counter()
-    pairs: Counter = Counter()
-    for trial in trials.values():
-        blocks[trial.block] += 1
-        if trial.block.kind != Block.Kind.TRIALS or trial.is_attention_check:
-            continue
-        for condition in (trial.condition_a, trial.condition_b):
-            if condition is not None:
-                conditions[str(condition)] += 1
-        if trial.condition_b is not None:
-            pairs[(str(trial.condition_a), str(trial.condition_b))] += 1
+    blocks, conditions, pairs = _counts(trials.values())
     lengths = {
         (s.condition_id, s.item_id): s.duration_ms / 1000
         for s in Stimulus.objects.filter(condition__study=study, status=Stimulus.Status.READY)
         if s.duration_ms
     }
     assumed = sum(lengths.values()) / len(lengths) if lengths else DEFAULT_CLIP_S
-    seconds, known, total = 0.0, 0, 0
-    for entry in schedule:
-        trial = trials[entry["trial"]]
-        questions = len(trial.questions.all())
-        seconds += ANSWER_S * questions if questions else INFO_PAGE_S
-        for condition_id in (trial.condition_a_id, trial.condition_b_id):
-            if condition_id is not None and trial.item_id is not None:
-                total += 1
-                length = lengths.get((condition_id, trial.item_id))
-                known += length is not None
-                seconds += assumed if length is None else length
+    seconds, known, total = _duration(schedule, trials, lengths, assumed)
     return DesignSummary(
         pages=len(schedule),
         pages_by_block=tuple(
@@ -92,3 +71,37 @@ def summarize_design(study: Study) -> DesignSummary:
         assumed_clip_s=assumed,
         identical=tuple((item, tuple(same)) for item, same in identical_clips(study)),
     )
+
+
+def _counts(trials) -> tuple[Counter, Counter, Counter]:
+    """Count pages per block, and the study's pages per condition and per pair."""
+    blocks: Counter = Counter()
+    conditions: Counter = Counter()
+    pairs: Counter = Counter()
+    for trial in trials:
+        blocks[trial.block] += 1
+        if trial.block.kind != Block.Kind.TRIALS or trial.is_attention_check:
+            continue
+        for condition in (trial.condition_a, trial.condition_b):
+            if condition is not None:
+                conditions[str(condition)] += 1
+        if trial.condition_b is not None:
+            pairs[(str(trial.condition_a), str(trial.condition_b))] += 1
+    return blocks, conditions, pairs
+
+
+def _duration(schedule, trials: dict, lengths: dict, assumed: float) -> tuple[float, int, int]:
+    """Return a participant's expected seconds, and how many of the clips shown have a
+    known length out of all (the others are assumed *assumed* seconds long)."""
+    seconds, known, total = 0.0, 0, 0
+    for entry in schedule:
+        trial = trials[entry["trial"]]
+        questions = len(trial.questions.all())
+        seconds += ANSWER_S * questions if questions else INFO_PAGE_S
+        for condition_id in (trial.condition_a_id, trial.condition_b_id):
+            if condition_id is not None and trial.item_id is not None:
+                total += 1
+                length = lengths.get((condition_id, trial.item_id))
+                known += length is not None
+                seconds += assumed if length is None else length
+    return seconds, known, total

@@ -173,3 +173,11 @@ def completion_url(participant: Participant) -> str:
     return re.sub(
         r"\{([A-Za-z0-9_]+)\}", lambda m: quote(str(params.get(m.group(1), "")), safe=""), template
     )
+
+
+def participant_by_token(token: str) -> Participant | None:
+    """Return the participant whose link holds *token* (with their study), or None."""
+    # Sliced, not .first(): the token is unique, and first()'s ORDER BY pk costs a
+    # noticeable share of compiling this query on every request.
+    found = Participant.objects.select_related("study").filter(token=token).order_by()[:1]
+    return next(iter(found), None)

@@ -1,9 +1,7 @@
 """Read which recording an item's clips are made from, and which conditions it replaces.
 
-An item's performance is its newest ready recording. A condition whose performance is
-"a recording" without naming a file retimes each item's own recording; one whose
-performance is "a simulated capture" does so too where the item has a recording, so the
-simulated stand-in remains only where no recording exists (seed 000 §4.3).
+An item's performance is its newest ready recording. Which conditions take it, and how,
+is the source technique's rule (:mod:`synthesis.techniques.source`, seed 000 §4.3).
 """
 
 from collections.abc import Mapping
@@ -11,12 +9,13 @@ from pathlib import Path
 from typing import Any
 
 from studyplatform.models import Condition, Item, Recording, Study
-
-# The performances a recording replaces: a recording, or the simulated stand-in for one.
-RETIMED_SOURCES = ("recording", "simulated")
-# Stands for "each item's own recording" when a condition's parameters are checked or
-# described; the real file is found when a clip is specified.
-ITEM_RECORDING = "each word's own recording"
+from synthesis.techniques import (
+    is_simulated_stand_in,
+    retimes_recording,
+    takes_item_recording,
+    uses_item_recording,
+    with_recording,
+)
 
 
 def current_recording(item: Item) -> Recording | None:
@@ -25,37 +24,21 @@ def current_recording(item: Item) -> Recording | None:
     return ready.order_by("-created_at", "-pk").first()
 
 
-def uses_item_recording(parameters: Mapping[str, Any]) -> bool:
-    """Return whether a condition with *parameters* retimes each item's own recording."""
-    return parameters.get("source") == "recording" and not parameters.get("recording")
-
-
-def as_checked(parameters: Mapping[str, Any]) -> dict:
-    """Return *parameters* as the registry checks them: a condition that retimes each
-    word's own recording names it by :data:`ITEM_RECORDING`."""
-    parameters = dict(parameters)
-    if uses_item_recording(parameters):
-        parameters["recording"] = ITEM_RECORDING
-    return parameters
-
-
 def with_item_recording(parameters: Mapping[str, Any], item: Item, condition_key: str) -> dict:
     """Return a word's clip *parameters* with its recording as the performance.
 
-    Conditions retiming a capture (:data:`RETIMED_SOURCES`) without a file of their own
-    take the item's newest ready recording; a simulated capture stays where there is
-    none. Raise ClipError when a condition retimes each word's recording and this word
-    has none.
+    Conditions that take a word's own recording take the item's newest ready one; a
+    simulated capture stays where there is none. Raise ClipError when a condition
+    retimes each word's recording and this word has none.
     """
     from stimuli.clips import ClipError
 
     parameters = dict(parameters)
-    retimes = parameters.get("source") in RETIMED_SOURCES and not parameters.get("recording")
-    if item.kind != Item.Kind.WORD or not retimes:
+    if item.kind != Item.Kind.WORD or not takes_item_recording(parameters):
         return parameters
     recording = current_recording(item)
     if recording is not None:
-        parameters.update(source="recording", recording=str(Path(recording.motion.path)))
+        parameters = with_recording(parameters, str(Path(recording.motion.path)))
     elif uses_item_recording(parameters):
         raise ClipError(
             f"{item.key} has no recording yet, and condition {condition_key!r} retimes "
@@ -63,15 +46,6 @@ def with_item_recording(parameters: Mapping[str, Any], item: Item, condition_key
             "its capture to finish."
         )
     return parameters
-
-
-def is_simulated_stand_in(parameters: Mapping[str, Any]) -> bool:
-    """Return whether a condition shows the simulated capture as it is (its own timing).
-
-    That condition stands in for motion capture: it is labelled simulated exactly while
-    some word of its study has no recording.
-    """
-    return parameters.get("source") == "simulated" and parameters.get("timing") == "mocap"
 
 
 def words_without_recording(study: Study) -> list[Item]:
@@ -142,11 +116,4 @@ def _describe(recording: Recording | None) -> dict | None:
 def retimes_recordings(study: Study) -> bool:
     """Return whether a condition of the study retimes its words' recordings (so their
     holds must be found), rather than only playing them as performed."""
-    from synthesis.techniques import REGISTRY
-
-    default = REGISTRY.parameters(Item.Kind.WORD)["timing"][0].default
-    return any(
-        (c.parameters or {}).get("source") in RETIMED_SOURCES
-        and (c.parameters or {}).get("timing", default) != "mocap"
-        for c in study.conditions.all()
-    )
+    return any(retimes_recording(c.parameters or {}) for c in study.conditions.all())

@@ -235,29 +235,36 @@ class Trial(models.Model):
     def clean(self) -> None:
         """Check that the trial's clips suit its kind and belong to its study."""
         check_unlocked(self.study if self.study_id else None)
-        errors: dict[str, str] = {}
+        errors = {**self._foreign_parts(), **self._clip_problems()}
+        if errors:
+            raise ValidationError(errors)
+
+    def _foreign_parts(self) -> dict[str, str]:
+        """Name the block, item or conditions that belong to another study."""
+        errors = {}
         if self.block_id and self.study_id and self.block.study_id != self.study_id:
             errors["block"] = "The block belongs to another study."
         for field in ("item", "condition_a", "condition_b"):
             related = getattr(self, field)
             if related is not None and related.study_id != self.study_id:
                 errors[field] = "This belongs to another study."
+        return errors
+
+    def _clip_problems(self) -> dict[str, str]:
+        """Name what the trial's kind needs of its item and clips and does not have."""
+        errors = {}
         if self.kind in self.TWO_CLIP_KINDS:
             for field in ("item", "condition_a", "condition_b"):
                 if getattr(self, field) is None:
                     errors[field] = "A comparison needs an item and two conditions."
-            if (
-                self.condition_a_id
-                and self.condition_a_id == self.condition_b_id
-                and not self.is_attention_check
-            ):
+            same = self.condition_a_id and self.condition_a_id == self.condition_b_id
+            if same and not self.is_attention_check:
                 errors["condition_b"] = "Identical clips are only allowed in attention checks."
         elif self.kind in self.ONE_CLIP_KINDS and (self.item is None or self.condition_a is None):
             errors["item"] = "This trial needs an item and the condition of its clip."
         if self.condition_b is not None and self.kind not in self.TWO_CLIP_KINDS:
             errors["condition_b"] = "Only pairwise and comparative trials show a second clip."
-        if errors:
-            raise ValidationError(errors)
+        return errors
 
     def check_questions(self, questions: Iterable[Question]) -> None:
         """Raise ValidationError unless *questions* may be asked on this trial."""

@@ -5,13 +5,14 @@ from django.db import models
 from studyplatform.models.design import Question, Trial
 from studyplatform.models.participants import Participant
 from studyplatform.models.stimuli import Stimulus
+from studyplatform.questions import NO_DIFFERENCE
 from studyplatform.storage import private_storage
 
 
 class Response(models.Model):
     """A participant's answer to one question of one trial; at most one exists per key."""
 
-    NO_DIFFERENCE = "none"
+    NO_DIFFERENCE = NO_DIFFERENCE
 
     participant = models.ForeignKey(Participant, on_delete=models.CASCADE, related_name="responses")
     trial = models.ForeignKey(Trial, on_delete=models.RESTRICT, related_name="responses")

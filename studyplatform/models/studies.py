@@ -10,6 +10,8 @@ from django.contrib.contenttypes.fields import GenericRelation
 from django.core.validators import MinValueValidator
 from django.db import models
 
+from studyplatform.rules import check_condition, check_item
+
 
 def position_field() -> models.SmallIntegerField:
     """Return the field that orders a study's rows (conditions, items, blocks …)."""
@@ -300,8 +302,6 @@ class Condition(models.Model):
         return f"{self.label} (simulated)" if self.is_simulated else self.label
 
     def clean(self) -> None:
-        from studyplatform.lib.techniques import check_condition
-
         check_unlocked(self.study if self.study_id else None)
         check_condition(self)
 
@@ -345,8 +345,6 @@ class Item(models.Model):
         return self.key
 
     def clean(self) -> None:
-        from studyplatform.lib.techniques import check_item
-
         check_unlocked(self.study if self.study_id else None)
         check_item(self)
 

@@ -5,7 +5,14 @@ name its widget template and its export kind), add the kind to ``Question.Kind``
 migration, and list the class in :data:`QUESTION_TYPES`.
 """
 
-from studyplatform.questions.base import MAX_TEXT_LENGTH, Answer, AnswerRejected, QuestionType
+from studyplatform.questions.base import (
+    MAX_TEXT_LENGTH,
+    NO_DIFFERENCE,
+    Answer,
+    AnswerRejected,
+    QuestionType,
+    Shown,
+)
 from studyplatform.questions.clips import PairwiseQuestion
 from studyplatform.questions.free import (
     EmailQuestion,
@@ -43,9 +50,11 @@ def question_type(question_or_kind) -> QuestionType:
 
 __all__ = [
     "MAX_TEXT_LENGTH",
+    "NO_DIFFERENCE",
     "QUESTION_TYPES",
     "Answer",
     "AnswerRejected",
     "QuestionType",
+    "Shown",
     "question_type",
 ]

@@ -2,7 +2,8 @@
 
 A question type is one class per :class:`~studyplatform.models.Question` kind; the
 participant view, the save action, the page layout, the export and the templates ask
-the type instead of branching on the kind.
+the type instead of branching on the kind. A question type reads nothing from the
+database: what it needs of the page (the clips shown) is handed to it as :class:`Shown`.
 """
 
 import math
@@ -28,6 +29,18 @@ class Answer:
     client_ms: int | None = None  # when it was given, on the browser's clock
 
 
+@dataclass(frozen=True)
+class Shown:
+    """What the page an answer comes from showed: the conditions as Clip 1 and Clip 2
+    (for question types with *shows_clips*) and the words a scored answer is scored
+    against (for those with *is_scored*)."""
+
+    clips: tuple = (None, None)
+    scoring_target: str = ""
+
+
+# A pairwise answer of "Cannot see a difference", stored in place of a condition's key.
+NO_DIFFERENCE = "none"
 MAX_TEXT_LENGTH = 10_000
 # A personal answer (name, e-mail) is stored in PersonalAnswer.value, a 300-character
 # column that SQLite would not enforce.
@@ -79,6 +92,7 @@ class QuestionType:
     uses_options = False
     is_scale = False
     is_scored = False  # scored against the item's target words (the export's ``target``)
+    shows_clips = False  # its answers name a clip the page showed (Shown.clips)
     allows_no_difference = False
     takes_signed_answer = False
     can_be_personal = False
@@ -92,8 +106,9 @@ class QuestionType:
         """Return the posted *value* as an Answer; raise ValueError if it is not one."""
         return Answer(text=value)
 
-    def response_values(self, question, answer: Answer, participant, trial) -> dict:
-        """Check *answer* and return the Response fields it sets (AnswerRejected if bad)."""
+    def response_values(self, question, answer: Answer, shown: Shown) -> dict:
+        """Check *answer* to *question* on a page that showed *shown*; return the Response
+        fields it sets (AnswerRejected if bad)."""
         raise NotImplementedError
 
     def display(self, question, response) -> str:

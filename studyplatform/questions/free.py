@@ -20,7 +20,7 @@ class NumberQuestion(QuestionType):
     def parse(self, question, value: str) -> Answer:
         return Answer(number=parse_number(value.strip()))
 
-    def response_values(self, question, answer, participant, trial) -> dict:
+    def response_values(self, question, answer, shown) -> dict:
         number = answer.number
         if number is None or number != number:
             raise AnswerRejected(f"“{question.key}” needs a number.")
@@ -41,7 +41,7 @@ class TextQuestion(QuestionType):
 
     template = "studyplatform/questions/text.html"
 
-    def response_values(self, question, answer, participant, trial) -> dict:
+    def response_values(self, question, answer, shown) -> dict:
         text, limit = answer.text.strip(), self.max_length(question)
         if len(text) > limit:
             raise AnswerRejected(f"The answer is longer than {limit:,} characters.")
@@ -65,11 +65,11 @@ class EmailQuestion(ShortTextQuestion):
     kind = "email"
     template = "studyplatform/questions/email.html"
 
-    def response_values(self, question, answer, participant, trial) -> dict:
+    def response_values(self, question, answer, shown) -> dict:
         from django.core.exceptions import ValidationError
         from django.core.validators import validate_email
 
-        values = super().response_values(question, answer, participant, trial)
+        values = super().response_values(question, answer, shown)
         if values["text"]:
             try:
                 validate_email(values["text"])
@@ -96,11 +96,11 @@ class IntelligibilityQuestion(OpenQuestion):
     trial_kinds = frozenset({"intelligibility"})
     is_scored = True
 
-    def response_values(self, question, answer, participant, trial) -> dict:
+    def response_values(self, question, answer, shown) -> dict:
         from analysis.intelligibility import word_accuracy
 
-        values = super().response_values(question, answer, participant, trial)
-        if trial.item is not None and values["text"]:
-            score = word_accuracy(values["text"], trial.item.scoring_target)
+        values = super().response_values(question, answer, shown)
+        if shown.scoring_target and values["text"]:
+            score = word_accuracy(values["text"], shown.scoring_target)
             values["score"] = None if score != score else score
         return values

@@ -19,7 +19,7 @@ class OptionsQuestion(QuestionType):
     def parse(self, question, value: str) -> Answer:
         return Answer(rating=parse_integer(value))
 
-    def response_values(self, question, answer, participant, trial) -> dict:
+    def response_values(self, question, answer, shown) -> dict:
         allowed = {option.value for option in question.options.all()}
         if answer.rating not in allowed:
             raise AnswerRejected(

@@ -10,8 +10,8 @@ from studyplatform.views.participate import (
     save_answer,
     set_language,
     study_welcome,
-    upload_signed_answer,
 )
+from studyplatform.views.signed import upload_signed_answer
 
 __all__ = [
     "done",

@@ -24,16 +24,9 @@ from studyplatform.actions import (
     do_enroll_participant,
     do_go_back_participant,
     do_log_media_events,
+    do_save_page_answers,
     do_save_response,
     do_set_participant_language,
-)
-from studyplatform.actions.uploads import (
-    UploadOffsetMismatch,
-    UploadRejected,
-    do_append_signed_answer_chunk,
-    parse_final,
-    take_id,
-    upload_offset,
 )
 from studyplatform.lib import (
     TIME_LOW,
@@ -42,6 +35,7 @@ from studyplatform.lib import (
     device_problem,
     page_count,
     page_trial,
+    participant_by_token,
     time_left,
     unwatched_clips,
 )
@@ -57,7 +51,6 @@ from studyplatform.views.posted import (
 )
 
 SESSION_KEY = PARTICIPANT_SESSION_KEY
-UPLOAD_CONTENT_TYPES = ("application/octet-stream", "video/webm", "video/mp4")
 NEW_PARTICIPANT_PARAM = "new"
 
 
@@ -79,13 +72,6 @@ def _problem(request: HttpRequest, message: str, status: int = 400, **context) -
     )
 
 
-def _participant(token: str) -> Participant | None:
-    # Sliced, not .first(): the token is unique, and first()'s ORDER BY pk costs a
-    # noticeable share of compiling this query on every request.
-    found = Participant.objects.select_related("study").filter(token=token).order_by()[:1]
-    return next(iter(found), None)
-
-
 def _page_url(participant: Participant, number: int) -> str:
     if number > page_count(participant) or participant.is_finished:
         return reverse("participant_done", args=[participant.token])
@@ -99,39 +85,19 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     study = Study.objects.filter(slug=slug).first()
     if study is None:
         return _problem(request, "There is no study at this address.", status=404)
-    # On a shared computer, ?new=1 starts the next participant even when the one before
-    # left without finishing (the researcher's way to clear the computer).
-    fresh = study.shared_computer and request.GET.get(NEW_PARTICIPANT_PARAM) == "1"
-    known = None if fresh else request.session.get(SESSION_KEY, {}).get(slug)
-    if known:
-        participant = _participant(known)
-        # On a shared computer a finished participant's link is the next one's start.
-        if participant is not None and not (study.shared_computer and participant.is_finished):
-            return redirect(_page_url(participant, participant.position))
+    returning = _returning_participant(request, study)
+    if returning is not None:
+        return redirect(_page_url(returning, returning.position))
     if not study.is_accepting_participants:
         return _problem(request, "This study is not taking participants now.", status=410)
-    user_agent = request.headers.get("User-Agent", "")
-    device = device_problem(study, user_agent)
+    device = device_problem(study, request.headers.get("User-Agent", ""))
     error = ""
     if request.method == "POST" and not device:
         agreed = request.POST.get("consent") == "yes"
         if study.consent_mode == Study.ConsentMode.EXPLICIT and not agreed:
             error = "Please tick the box to agree before you start."
         else:
-            try:
-                params = request.GET.dict()
-                params.pop(NEW_PARTICIPANT_PARAM, None)
-                participant = do_enroll_participant(
-                    study,
-                    recruitment_params=params,
-                    user_agent=user_agent,
-                    consented=True,
-                )
-            except ValidationError as problem:
-                return _problem(request, problem.messages[0], status=410)
-            request.session.setdefault(SESSION_KEY, {})[slug] = participant.token
-            request.session.modified = True
-            return redirect(_page_url(participant, 1))
+            return _enroll(request, study)
     language = Participant.Language.ASL_ENGLISH if study.asl_first else Participant.Language.ENGLISH
     return render(
         request,
@@ -147,10 +113,43 @@ def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     )
 
 
+def _returning_participant(request: HttpRequest, study: Study) -> Participant | None:
+    """Return the participant this browser already enrolled in *study*, to resume, or None.
+
+    On a shared computer, ?new=1 starts the next participant even when the one before
+    left without finishing (the researcher's way to clear the computer), and a finished
+    participant's link is the next one's start.
+    """
+    fresh = study.shared_computer and request.GET.get(NEW_PARTICIPANT_PARAM) == "1"
+    known = None if fresh else request.session.get(SESSION_KEY, {}).get(study.slug)
+    participant = participant_by_token(known) if known else None
+    if participant is None or (study.shared_computer and participant.is_finished):
+        return None
+    return participant
+
+
+def _enroll(request: HttpRequest, study: Study) -> HttpResponse:
+    """Enroll a participant who agreed, remember them in the session, go to page 1."""
+    params = request.GET.dict()
+    params.pop(NEW_PARTICIPANT_PARAM, None)
+    try:
+        participant = do_enroll_participant(
+            study,
+            recruitment_params=params,
+            user_agent=request.headers.get("User-Agent", ""),
+            consented=True,
+        )
+    except ValidationError as problem:
+        return _problem(request, problem.messages[0], status=410)
+    request.session.setdefault(SESSION_KEY, {})[study.slug] = participant.token
+    request.session.modified = True
+    return redirect(_page_url(participant, 1))
+
+
 @never_cache
 def resume(request: HttpRequest, token: str) -> HttpResponse:
     """Send the participant to the page they are on."""
-    participant = _participant(token)
+    participant = participant_by_token(token)
     if participant is None:
         return _problem(request, "This link is not valid.", status=404)
     return redirect(_page_url(participant, max(participant.position, 1)))
@@ -158,21 +157,25 @@ def resume(request: HttpRequest, token: str) -> HttpResponse:
 
 def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str, str]:
     """Save every answer the page's form holds; return the errors by question key."""
-    errors = {}
+    errors, answers = {}, {}
     for question in trial.questions.all():
         value = post.get(f"q-{question.key}")
         if not value:
             continue  # unanswered (a required question is caught on moving on)
         try:
-            answer = parse_answer(
+            answers[question] = parse_answer(
                 question,
                 value,
                 post.get(f"rt-{question.key}"),
                 post.get(f"client-{question.key}"),
             )
-            do_save_response(participant, trial, question, answer)
         except AnswerRejected as error:
             errors[question.key] = error.messages[0]
+    if answers:
+        try:
+            errors.update(do_save_page_answers(participant, trial, answers))
+        except AnswerRejected as error:  # the page itself: not the study's, or finished
+            errors.update({question.key: error.messages[0] for question in answers})
     return errors
 
 
@@ -180,46 +183,69 @@ def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str
 @require_http_methods(["GET", "POST"])
 def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
     """Show page *number*; its form saves the answers and moves on (or back)."""
-    participant = _participant(token)
+    participant = participant_by_token(token)
     if participant is None:
         return _problem(request, "This link is not valid.", status=404)
-    if participant.is_finished:
-        return redirect(_page_url(participant, number))
-    reason = closed_reason(participant)
-    if reason:
-        return _problem(request, reason, status=410)
-    study = participant.study
-    if request.method == "GET" and number != participant.position and not study.allow_back:
-        return redirect(_page_url(participant, participant.position))
+    refused = _refuse_page(request, participant, number)
+    if refused is not None:
+        return refused
     try:
         trial = page_trial(participant, number)
     except PageRejected as error:
         if request.method == "GET":
             return redirect(_page_url(participant, max(participant.position, 1)))
         return _problem(request, error.messages[0])
-
     errors: dict[str, str] = {}
     if request.method == "POST":
-        if number < participant.position and not study.allow_back:
-            # A re-posted earlier page (double click, back button): already moved on.
-            return _moved(request, participant, participant.position)
-        errors = _save_form_answers(participant, trial, request.POST)
-        if not errors:
-            try:
-                if request.POST.get("nav") == "back":
-                    target = do_go_back_participant(participant, number - 1)
-                else:
-                    target = do_advance_participant(participant, number, trial)
-                return _moved(request, participant, target)
-            except PageRejected as error:
-                missing = error.params.get("questions", []) if error.params else []
-                errors = {key: "Please answer this question." for key in missing}
-                errors["__page__"] = error.messages[0]
-        if _wants_json(request):
-            message = errors.get("__page__") or "Some answers could not be saved."
-            questions = {key: text for key, text in errors.items() if key != "__page__"}
-            return JsonResponse({"error": message, "questions": questions}, status=400)
+        moved_or_errors = _submit_page(request, participant, number, trial)
+        if isinstance(moved_or_errors, HttpResponse):
+            return moved_or_errors
+        errors = moved_or_errors
+    return _render_page(request, participant, number, trial, errors)
 
+
+def _refuse_page(request: HttpRequest, participant: Participant, number: int):
+    """Return where a participant who may not see page *number* now goes, or None."""
+    if participant.is_finished:
+        return redirect(_page_url(participant, number))
+    reason = closed_reason(participant)
+    if reason:
+        return _problem(request, reason, status=410)
+    earlier = number != participant.position and not participant.study.allow_back
+    if request.method == "GET" and earlier:
+        return redirect(_page_url(participant, participant.position))
+    return None
+
+
+def _submit_page(request: HttpRequest, participant: Participant, number: int, trial: Trial):
+    """Save the page's form and move on (or back): the move's answer, or else the errors
+    to show on the page (a JSON answer naming them for the page's script)."""
+    if number < participant.position and not participant.study.allow_back:
+        # A re-posted earlier page (double click, back button): already moved on.
+        return _moved(request, participant, participant.position)
+    errors = _save_form_answers(participant, trial, request.POST)
+    if not errors:
+        try:
+            if request.POST.get("nav") == "back":
+                target = do_go_back_participant(participant, number - 1)
+            else:
+                target = do_advance_participant(participant, number, trial)
+            return _moved(request, participant, target)
+        except PageRejected as error:
+            missing = error.params.get("questions", []) if error.params else []
+            errors = {key: "Please answer this question." for key in missing}
+            errors["__page__"] = error.messages[0]
+    if _wants_json(request):
+        message = errors.get("__page__") or "Some answers could not be saved."
+        questions = {key: text for key, text in errors.items() if key != "__page__"}
+        return JsonResponse({"error": message, "questions": questions}, status=400)
+    return errors
+
+
+def _render_page(request: HttpRequest, participant: Participant, number: int, trial: Trial,
+                 errors: dict[str, str]) -> HttpResponse:  # fmt: skip
+    """Render page *number* with *errors* (400 when there are any)."""
+    study = participant.study
     page_shown = participant_page(participant, number, trial)
     watched = []
     if study.require_full_view and page_shown.clips:
@@ -237,12 +263,8 @@ def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
         "seconds_left": _seconds(time_left(participant)),
         "low_seconds": _seconds(TIME_LOW),
     }
-    return render(
-        request,
-        "studyplatform/participate/page.html",
-        context,
-        status=400 if errors else 200,
-    )
+    template = "studyplatform/participate/page.html"
+    return render(request, template, context, status=400 if errors else 200)
 
 
 def _seconds(left) -> int | None:
@@ -260,7 +282,7 @@ def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpR
 @require_POST
 def save_answer(request: HttpRequest, token: str) -> JsonResponse:
     """Save one answer now (JSON ``{page, trial, question, value, rt_ms, client_ms}``)."""
-    participant = _participant(token)
+    participant = participant_by_token(token)
     if participant is None:
         return _invalid_link()
     try:
@@ -284,55 +306,10 @@ def save_answer(request: HttpRequest, token: str) -> JsonResponse:
 
 
 @never_cache
-@require_http_methods(["GET", "POST"])
-def upload_signed_answer(
-    request: HttpRequest, token: str, number: int, question: str
-) -> JsonResponse:
-    """Take a chunk of a webcam recording (POST), or say how much of a take is stored (GET).
-
-    Headers ``X-Upload-Take`` (the take's UUID; ``?take=`` on GET), ``X-Upload-Offset``
-    (where the chunk starts), and on the last chunk ``X-Upload-Final: 1`` with
-    ``X-Upload-Sha256`` (of the whole file) and optionally ``X-Upload-Duration-Ms``; a
-    chunk at the wrong offset gets 409 and the offset to resume from.
-    """
-    participant = _participant(token)
-    if participant is None:
-        return JsonResponse({"error": "This link is not valid."}, status=404)
-    try:
-        trial = page_trial(participant, number, for_answer=True)
-        found = next((q for q in trial.questions.all() if q.key == question), None)
-        if found is None:
-            raise UploadRejected(f"“{question}” is not asked on this page.")
-        if request.method == "GET":
-            take = take_id(request.GET.get("take"))
-            return JsonResponse({"offset": upload_offset(participant, trial, found, take)})
-        if request.content_type not in UPLOAD_CONTENT_TYPES:
-            sent = request.content_type or "nothing"
-            message = f"A recording is sent as application/octet-stream, not “{sent}”."
-            return JsonResponse({"error": message}, status=415)
-        offset_text = request.headers.get("X-Upload-Offset", "")
-        if not (offset_text.isascii() and offset_text.isdigit() and len(offset_text) < 16):
-            raise UploadRejected("The chunk does not say where it starts.")
-        final = None
-        if request.headers.get("X-Upload-Final") == "1":
-            final = parse_final(request.headers.get("X-Upload-Sha256"),
-                                request.headers.get("X-Upload-Duration-Ms"))  # fmt: skip
-        stored, response = do_append_signed_answer_chunk(
-            participant, trial, found, request.headers.get("X-Upload-Take", ""),
-            int(offset_text), request.body, final,
-        )  # fmt: skip
-    except UploadOffsetMismatch as mismatch:
-        return JsonResponse({"error": mismatch.messages[0], "offset": mismatch.offset}, status=409)
-    except ValidationError as error:
-        return JsonResponse({"error": error.messages[0]}, status=400)
-    return JsonResponse({"offset": stored, "saved": response is not None})
-
-
-@never_cache
 @require_POST
 def log_events(request: HttpRequest, token: str) -> JsonResponse:
     """Log a batch of media and page events (JSON ``{"events": [...]}``)."""
-    participant = _participant(token)
+    participant = participant_by_token(token)
     if participant is None:
         return _invalid_link()
     try:
@@ -351,7 +328,7 @@ def log_events(request: HttpRequest, token: str) -> JsonResponse:
 @require_POST
 def set_language(request: HttpRequest, token: str) -> HttpResponse:
     """Switch between ASL + English and English only, then show the same page."""
-    participant = _participant(token)
+    participant = participant_by_token(token)
     if participant is None:
         return _problem(request, "This link is not valid.", status=404)
     try:
@@ -369,7 +346,7 @@ REDIRECT_AFTER_S = 8
 @never_cache
 def done(request: HttpRequest, token: str) -> HttpResponse:
     """Thank the participant: the completion code, or the way back to the recruiter."""
-    participant = _participant(token)
+    participant = participant_by_token(token)
     if participant is None:
         return _problem(request, "This link is not valid.", status=404)
     if not participant.is_finished:

@@ -147,6 +147,46 @@ def follow_hand(
     half = np.tan(np.radians(yfov_deg) / 2)
     tangents = (half * width / height * (1 - 2 * margin_share * height / width),
                 half * (1 - 2 * margin_share))  # fmt: skip
+    runs = _still_runs(points, rate_hz)
+    extremes = [_extremes(points, tangent, axis) for axis, tangent in enumerate(tangents)]
+    needed = _needed(points, extremes, tangents)
+    # One distance for the clip where it can be; nearer where a held letter would be
+    # small. A hand that needs the camera at z (filling 1 − 2·margin of the frame) fills
+    # hold_share of it from depth + (z − depth)·(1 − 2·margin) / hold_share.
+    depth = points[..., 2].mean(axis=1)
+    close_enough = depth + (needed - depth) * (1 - 2 * margin_share) / hold_share
+    if scale_poses is not None:
+        scale = hand_vertices(avatar, np.atleast_2d(scale_poses))
+        distance = _needed(scale, [_extremes(scale, t, axis) for axis, t in enumerate(tangents)],
+                           tangents).max()  # fmt: skip
+    else:
+        # The clip's distance comes from still hands alone (a transition that needs more
+        # room backs off for its own frames).
+        distance = needed[_still_frames(runs, len(points))].max()
+    at_rest = _per_run(np.minimum(distance, close_enough), runs, np.min)
+    rest_extremes = None
+    if rest_pose is not None:
+        rest = hand_vertices(avatar, np.atleast_2d(rest_pose))
+        rest_extremes = [_extremes(rest, t, axis) for axis, t in enumerate(tangents)]
+    held_z = np.maximum(at_rest, _per_run(needed, runs, np.max))
+    if rest_extremes is not None:
+        for a, b, still in (runs[0], runs[-1]):
+            if still:
+                held_z[a:b] = distance
+    eye_z = np.maximum(_ease(held_z, runs, None if rest_extremes is None else distance), needed)
+    rest_extremes = rest_extremes or [None, None]
+    centre = [
+        _centre(extremes[axis], tangents[axis], eye_z, runs, rate_hz, rest_extremes[axis])
+        for axis in range(2)
+    ]
+    eye = np.column_stack([centre[0], centre[1], eye_z])
+    target = eye.copy()
+    target[:, 2] = 0.0
+    return CameraPath(f"{base.name} (following the hand)", eye, target, yfov_deg)
+
+
+def _still_runs(points: np.ndarray, rate_hz: float) -> list[tuple[int, int, bool]]:
+    """Return the stretches of frames in which the hand is still or moving."""
     speed = np.zeros(len(points))
     if len(points) > 1:
         step = np.linalg.norm(np.diff(points, axis=0), axis=-1).max(axis=1) * rate_hz
@@ -157,58 +197,38 @@ def follow_hand(
         # Never still (a noisy recording): one stretch, filmed from one place where
         # the hand allows it.
         runs = [(0, len(points), True)]
-    extremes = [_extremes(points, tangent, axis) for axis, tangent in enumerate(tangents)]
-    needed = _needed(points, extremes, tangents)
-    # One distance for the clip where it can be; nearer where a held letter would be
-    # small. A hand that needs the camera at z (filling 1 − 2·margin of the frame) fills
-    # hold_share of it from depth + (z − depth)·(1 − 2·margin) / hold_share.
-    depth = points[..., 2].mean(axis=1)
-    close_enough = depth + (needed - depth) * (1 - 2 * margin_share) / hold_share
-    # The clip's distance comes from still hands alone (a transition that needs more
-    # room backs off for its own frames).
-    if scale_poses is not None:
-        scale = hand_vertices(avatar, np.atleast_2d(scale_poses))
-        distance = _needed(scale, [_extremes(scale, t, axis) for axis, t in enumerate(tangents)],
-                           tangents).max()  # fmt: skip
-    else:
-        still = np.zeros(len(points), dtype=bool)
-        for a, b, is_still in runs:
-            still[a:b] = is_still
-        distance = needed[still].max()
-    at_rest = _per_run(np.minimum(distance, close_enough), runs, np.min)
-    rest = None
-    if rest_pose is not None:
-        rest = hand_vertices(avatar, np.atleast_2d(rest_pose))
-        rest_extremes = [_extremes(rest, t, axis) for axis, t in enumerate(tangents)]
-    held_z = np.maximum(at_rest, _per_run(needed, runs, np.max))
-    if rest is not None:
+    return runs
+
+
+def _still_frames(runs, n_frames: int) -> np.ndarray:
+    still = np.zeros(n_frames, dtype=bool)
+    for a, b, is_still in runs:
+        still[a:b] = is_still
+    return still
+
+
+def _centre(extremes, tangent: float, eye_z: np.ndarray, runs, rate_hz: float,
+            rest_extremes=None) -> np.ndarray:  # fmt: skip
+    """Return the camera's centre along one image axis, per frame: each stretch framed
+    from one place where it can be, eased between them, clamped to keep the hand in."""
+    upper, lower = extremes
+    low, high = upper - tangent * eye_z, lower + tangent * eye_z
+    ends = None
+    if rest_extremes is not None:
+        rest_upper, rest_lower = rest_extremes
+        ends = float((rest_upper[0] + rest_lower[0]) / 2)  # its middle at any distance
+    common_low, common_high = _per_run(low, runs, np.max), _per_run(high, runs, np.min)
+    # Where no one centre suits a whole stretch, its frames' mean middle does, and
+    # the clamp below pans just enough.
+    middle = _per_run((low + high) / 2, runs, np.mean)
+    aim = np.where(common_low <= common_high, (common_low + common_high) / 2, middle)
+    if ends is not None:
+        # The clip opens and closes on the rest pose's framing.
         for a, b, still in (runs[0], runs[-1]):
             if still:
-                held_z[a:b] = distance
-    eye_z = np.maximum(_ease(held_z, runs, None if rest is None else distance), needed)
-    centre = []
-    for axis, ((upper, lower), tangent) in enumerate(zip(extremes, tangents, strict=True)):
-        low, high = upper - tangent * eye_z, lower + tangent * eye_z
-        ends = None
-        if rest is not None:
-            rest_upper, rest_lower = rest_extremes[axis]
-            ends = float((rest_upper[0] + rest_lower[0]) / 2)  # its middle at any distance
-        common_low, common_high = _per_run(low, runs, np.max), _per_run(high, runs, np.min)
-        # Where no one centre suits a whole stretch, its frames' mean middle does, and
-        # the clamp below pans just enough.
-        middle = _per_run((low + high) / 2, runs, np.mean)
-        aim = np.where(common_low <= common_high, (common_low + common_high) / 2, middle)
-        if ends is not None:
-            # The clip opens and closes on the rest pose's framing.
-            for a, b, still in (runs[0], runs[-1]):
-                if still:
-                    aim[a:b] = ends
-        pauses = {a: (low[a:b].max() + high[a:b].min()) / 2 for a, b, still in runs
-                  if not still and (b - a) * 1000 / rate_hz >= LONG_MOVE_MS
-                  and low[a:b].max() <= high[a:b].min()}  # fmt: skip
-        eased = _ease(aim, runs, ends, pauses, PAUSE_EASE_MS * rate_hz / 1000)
-        centre.append(np.clip(eased, low, high))
-    eye = np.column_stack([centre[0], centre[1], eye_z])
-    target = eye.copy()
-    target[:, 2] = 0.0
-    return CameraPath(f"{base.name} (following the hand)", eye, target, yfov_deg)
+                aim[a:b] = ends
+    pauses = {a: (low[a:b].max() + high[a:b].min()) / 2 for a, b, still in runs
+              if not still and (b - a) * 1000 / rate_hz >= LONG_MOVE_MS
+              and low[a:b].max() <= high[a:b].min()}  # fmt: skip
+    eased = _ease(aim, runs, ends, pauses, PAUSE_EASE_MS * rate_hz / 1000)
+    return np.clip(eased, low, high)

@@ -160,31 +160,41 @@ def parse_library(data) -> SignLibrary:
                           float(data.get("transition_ms", 200)), shapes,
                           dict(data.get("locations") or {}), nonmanuals)  # fmt: skip
     for gloss, entry in (data.get("signs") or {}).items():
-        carried = (entry or {}).get("nonmanual") or ()
-        carried = (carried,) if isinstance(carried, str) else tuple(carried)
-        for name in carried:
-            if name not in nonmanuals:
-                raise SignError(f"{gloss}: unknown non-manual signal {name!r}.")
-        if carried:
-            library.sign_nonmanuals[str(gloss).upper()] = carried
-        keys = []
-        for k, key in enumerate((entry or {}).get("keys") or []):
-            where = f"{gloss} key {k + 1}"
-            hands = {side: library.hand(side, key[side], where)
-                     for side in ("right", "left") if side in key}  # fmt: skip
-            for part in ("spine", "head"):
-                unknown = set(key.get(part) or {}) - set(KEYED_DOFS)
-                if unknown:
-                    raise SignError(f"{where}: unknown {part} angle {sorted(unknown)[0]!r}.")
-            times = float(key.get("ms", 0)), float(key.get("hold_ms", 0))
-            poses = dict(key.get("spine") or {}), dict(key.get("head") or {})
-            keys.append(SignKey(*times, hands, *poses))
-        if not keys:
-            raise SignError(f"{gloss}: a sign needs at least one key.")
-        if any(b.ms < a.ms for a, b in itertools.pairwise(keys)):
-            raise SignError(f"{gloss}: keys must be in time order.")
-        library.signs[str(gloss).upper()] = tuple(keys)
+        _add_sign(library, str(gloss).upper(), entry or {})
     return library
+
+
+def _add_sign(library: SignLibrary, gloss: str, entry: dict) -> None:
+    """Check one sign's entry and add its keys and non-manual signals to *library*."""
+    carried = entry.get("nonmanual") or ()
+    carried = (carried,) if isinstance(carried, str) else tuple(carried)
+    for name in carried:
+        if name not in library.nonmanuals:
+            raise SignError(f"{gloss}: unknown non-manual signal {name!r}.")
+    if carried:
+        library.sign_nonmanuals[gloss] = carried
+    keys = [
+        _sign_key(library, key, f"{gloss} key {k + 1}")
+        for k, key in enumerate(entry.get("keys") or [])
+    ]
+    if not keys:
+        raise SignError(f"{gloss}: a sign needs at least one key.")
+    if any(b.ms < a.ms for a, b in itertools.pairwise(keys)):
+        raise SignError(f"{gloss}: keys must be in time order.")
+    library.signs[gloss] = tuple(keys)
+
+
+def _sign_key(library: SignLibrary, key: dict, where: str) -> SignKey:
+    """Return one key of a sign: its hands, time, hold and spine and head angles."""
+    hands = {side: library.hand(side, key[side], where)
+             for side in ("right", "left") if side in key}  # fmt: skip
+    for part in ("spine", "head"):
+        unknown = set(key.get(part) or {}) - set(KEYED_DOFS)
+        if unknown:
+            raise SignError(f"{where}: unknown {part} angle {sorted(unknown)[0]!r}.")
+    times = float(key.get("ms", 0)), float(key.get("hold_ms", 0))
+    poses = dict(key.get("spine") or {}), dict(key.get("head") or {})
+    return SignKey(*times, hands, *poses)
 
 
 def read_library(path: str | Path) -> SignLibrary:

@@ -26,11 +26,21 @@ from synthesis.techniques.request import (
     rig_for,
     validate_parameters,
 )
+from synthesis.techniques.source import (
+    ITEM_RECORDING,
+    as_checked,
+    is_simulated_stand_in,
+    retimes_recording,
+    takes_item_recording,
+    uses_item_recording,
+    with_recording,
+)
 
 REGISTRY = default_registry()
 
 __all__ = [
     "FIELDS",
+    "ITEM_RECORDING",
     "MOTION",
     "PREPARE",
     "REGISTRY",
@@ -42,11 +52,17 @@ __all__ = [
     "Parameter",
     "Registry",
     "Technique",
+    "as_checked",
     "avatar_and_camera",
     "build_motion",
     "default_registry",
     "filming",
+    "is_simulated_stand_in",
     "render_request",
+    "retimes_recording",
     "rig_for",
+    "takes_item_recording",
+    "uses_item_recording",
     "validate_parameters",
+    "with_recording",
 ]

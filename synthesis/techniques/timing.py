@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from synthesis.techniques.request import Build
 
 TIMINGS = ("mocap", *MODEL_TIMINGS, "simple")
+DEFAULT_TIMING = "simple"
 LABELS = {
     "simple": "simple (equal holds)",
     "constant": "Constant",
@@ -115,7 +116,7 @@ TECHNIQUE = Technique(
         Parameter(
             "timing",
             "choice",
-            "simple",
+            DEFAULT_TIMING,
             "How long each letter is held and each transition takes.",
             choices=TIMINGS,
             labels=LABELS,

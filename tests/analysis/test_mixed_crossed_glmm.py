@@ -16,6 +16,9 @@ import pytest
 from analysis.mixed import fit_laplace, mixed_bradley_terry, ordinal_mixed
 from tests.analysis import crossed_data
 
+# 100 reference sets fitted several ways: tens of seconds.
+pytestmark = pytest.mark.slow
+
 SETS = crossed_data.fits()["sets"]
 SHORT = 0.01
 

@@ -23,6 +23,9 @@ from analysis.mixed.problem import Component, MixedProblem
 from analysis.tidy import TidyFormatError
 from tests.analysis import crossed_data
 
+# 100 reference sets fitted several ways: tens of seconds.
+pytestmark = pytest.mark.slow
+
 SETS = crossed_data.fits()["sets"]
 
 

@@ -24,7 +24,8 @@ sys.path.insert(0, str(ROOT / "bench"))
 from app_server import AppServer  # noqa: E402
 from participant_http import HttpParticipant  # noqa: E402
 
-pytestmark = pytest.mark.django_db(transaction=True)  # the server must see the rows
+# The server must see the rows.
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.slow]
 
 
 def _database_url() -> str:

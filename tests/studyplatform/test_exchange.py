@@ -253,7 +253,7 @@ def test_an_import_commits_in_short_transactions(fingerspelling, bob):
     from django.db import transaction
     from django.db.models.signals import post_save
 
-    from studyplatform.actions.studies import BATCH_ROWS
+    from studyplatform.actions.import_rows import BATCH_ROWS
     from studyplatform.models import Condition
 
     data = export_study(fingerspelling)

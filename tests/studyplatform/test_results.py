@@ -161,7 +161,7 @@ def test_results_page_shows_every_test_with_its_interval_and_apa(bob_client, spi
         "clarity", "grammaticality", "understandability", "naturalness",
     }  # fmt: skip
     comparisons = data["rating_condition_comparisons"]
-    assert len(comparisons) == 4 and all(c["n"] == 6 for c in comparisons)
+    assert len(comparisons) == 4 and all(c["nobs"] == 6 for c in comparisons)
     for comparison in comparisons:
         assert comparison["apa"].replace("<", "&lt;") in text
     # A statistic that was not computed prints "–" in a cell, never "None".

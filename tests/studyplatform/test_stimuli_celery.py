@@ -20,7 +20,7 @@ from django.db import connection
 from studyplatform.actions.stimuli import do_generate_stimuli
 from studyplatform.models import Stimulus, Trial
 
-pytestmark = pytest.mark.django_db(transaction=True)
+pytestmark = [pytest.mark.django_db(transaction=True), pytest.mark.slow]
 ROOT = Path(__file__).resolve().parents[2]
 REDIS_URL = "redis://127.0.0.1:6379/13"
 
@@ -41,16 +41,12 @@ def broker(settings, monkeypatch):
         pytest.skip(message)
     from celery import Celery
 
-    from studyplatform.tasks import render_stimulus
+    from studyplatform.celery import app
 
     # The suite's Celery app runs jobs eagerly and keeps the connections it made; jobs
     # go to Redis through a second app, by name, as any other client would send them.
     sender = Celery("test-sender", broker=REDIS_URL, set_as_current=False)
-
-    def send(*args):
-        return sender.send_task(render_stimulus.name, args=args)
-
-    monkeypatch.setattr(render_stimulus, "delay", send)
+    monkeypatch.setattr(app, "send_task", sender.send_task)
     settings.CELERY_TASK_ALWAYS_EAGER = False
     yield sender
     sender.close()

@@ -33,6 +33,7 @@ def test_a_candidate_is_taken_for_its_nearest_reference():
     assert score.taken == {"A": "A", "B": "B"}
 
 
+@pytest.mark.slow
 def test_our_alphabet_against_real_signers():
     """Source: spoken-to-signed 0.4.0's ASL letters. Measured: 20 of 26 agree (the
     misses: A, T and V taken for X, C for O, R and U for P), two fist letters taken for

@@ -2,7 +2,9 @@
 
 A condition's parameters apply to every item of its study, so they are checked against
 each item kind the study holds (against any kind while it holds none); an item's
-against its own kind. The rules themselves live in :mod:`synthesis.techniques`.
+against its own kind. The rules themselves live in :mod:`synthesis.techniques`. A pure
+rule: the models' ``clean`` calls it, so it imports nothing of the platform (it reads a
+saved condition's study through the instance it is given).
 """
 
 from collections.abc import Iterable, Mapping
@@ -10,12 +12,12 @@ from typing import Any
 
 from django.core.exceptions import ValidationError
 
-from studyplatform.lib.recordings import as_checked
 from synthesis.techniques import (
     FIELDS,
     REGISTRY,
     REQUEST_PARAMETERS,
     ClipError,
+    as_checked,
     validate_parameters,
 )
 

@@ -1,0 +1,25 @@
+"""The platform's pure rules: checks the models' ``clean`` calls, importing no model.
+
+Floors (docs/architecture.md): rules and questions ← models ← lib ← actions ← jobs,
+views, admin; :mod:`tests.test_architecture` finds any import circle.
+"""
+
+from studyplatform.rules.techniques import (
+    check_condition,
+    check_item,
+    check_parameters,
+    condition_item_kinds,
+    describe_condition,
+    describe_parameters,
+    supported_kinds,
+)
+
+__all__ = [
+    "check_condition",
+    "check_item",
+    "check_parameters",
+    "condition_item_kinds",
+    "describe_condition",
+    "describe_parameters",
+    "supported_kinds",
+]
