@@ -44,6 +44,31 @@ _FLAG_RULES = (
 )
 
 
+def _flag_reasons(frame: pd.DataFrame, rules: ExclusionRules) -> dict[str, set]:
+    """Return the participants each flag rule excludes (and ``excluded``, always)."""
+    participant_flags = frame.groupby("participant")["flags"].agg(
+        lambda cells: {flag for cell in cells for flag in split_flags(cell)}
+    )
+    reasons: dict[str, set] = {}
+    for rule, flag in (*_FLAG_RULES, ("excluded", "excluded")):
+        if rule == "excluded" or getattr(rules, rule):
+            reasons[flag] = {who for who, flags in participant_flags.items() if flag in flags}
+    return reasons
+
+
+def _answer_reasons(frame: pd.DataFrame, rules: ExclusionRules) -> dict[str, set]:
+    """Return the participants whose demographic answer is not among ``keep_only``'s."""
+    reasons: dict[str, set] = {}
+    for column, allowed in rules.keep_only.items():
+        if column not in frame.columns:
+            raise TidyFormatError(f"Cannot filter on {column!r}: the table has no such column.")
+        values = frame.groupby("participant")[column].first()
+        reasons[f"{column} not in {', '.join(map(str, allowed))}"] = set(
+            values.index[~values.astype(str).isin([str(v) for v in allowed])]
+        )
+    return reasons
+
+
 def apply_exclusions(
     frame: pd.DataFrame, rules: ExclusionRules = ExclusionRules()
 ) -> tuple[pd.DataFrame, ExclusionReport]:
@@ -53,20 +78,7 @@ def apply_exclusions(
     their demographic answer is not among ``keep_only``'s values. The ``excluded``
     flag always excludes.
     """
-    participant_flags = frame.groupby("participant")["flags"].agg(
-        lambda cells: {flag for cell in cells for flag in split_flags(cell)}
-    )
-    reasons: dict[str, set] = {}
-    for rule, flag in (*_FLAG_RULES, ("excluded", "excluded")):
-        if rule == "excluded" or getattr(rules, rule):
-            reasons[flag] = {who for who, flags in participant_flags.items() if flag in flags}
-    for column, allowed in rules.keep_only.items():
-        if column not in frame.columns:
-            raise TidyFormatError(f"Cannot filter on {column!r}: the table has no such column.")
-        values = frame.groupby("participant")[column].first()
-        reasons[f"{column} not in {', '.join(map(str, allowed))}"] = set(
-            values.index[~values.astype(str).isin([str(v) for v in allowed])]
-        )
+    reasons = {**_flag_reasons(frame, rules), **_answer_reasons(frame, rules)}
     reasons.update(_behaviour_reasons(frame, rules))
     excluded = set().union(*reasons.values()) if reasons else set()
     kept = frame[~frame["participant"].isin(excluded)]

@@ -196,6 +196,23 @@ def position_bias(data: pd.DataFrame) -> PositionBias | None:
     )
 
 
+def _repeated_measures(rates: pd.DataFrame, order, correction: str, notes: list[str]):
+    """Return the repeated-measures tests of participants' win rates (ANOVA, paired t,
+    Wilcoxon, Friedman), None where they cannot run; say why in *notes*."""
+    complete = rates.dropna()
+    if len(complete) < len(rates):
+        notes.append(
+            f"{len(rates) - len(complete)} participant(s) did not see every condition and are "
+            "left out of the repeated-measures tests."
+        )
+    if len(complete) < 2 or len(order) < 2:
+        notes.append("Fewer than two complete participants: no repeated-measures tests.")
+        return None, None, None, None
+    fried = friedman(complete) if len(order) >= 3 else None
+    return (rm_anova(complete), paired_ttests(complete, correction), fried,
+            wilcoxon_tests(complete, correction))  # fmt: skip
+
+
 def analyze_pairwise(
     frame: pd.DataFrame,
     *,
@@ -229,23 +246,8 @@ def analyze_pairwise(
         np.lexsort((item_counts["b"].map(rank), item_counts["a"].map(rank), item_counts["item"]))
     ]
     items = _pair_tests(item_counts, tie_handling, correction, item_column=True)
-
     rates = participant_rates(data, order)
-    complete = rates.dropna()
-    if len(complete) < len(rates):
-        notes.append(
-            f"{len(rates) - len(complete)} participant(s) did not see every condition and are "
-            "left out of the repeated-measures tests."
-        )
-    rm = post = fried = wil = None
-    if len(complete) >= 2 and len(order) >= 2:
-        rm = rm_anova(complete)
-        post = paired_ttests(complete, correction)
-        wil = wilcoxon_tests(complete, correction)
-        if len(order) >= 3:
-            fried = friedman(complete)
-    else:
-        notes.append("Fewer than two complete participants: no repeated-measures tests.")
+    rm, post, fried, wil = _repeated_measures(rates, order, correction, notes)
     bt = None
     if len(order) >= 2 and int(pair_counts[["a_wins", "b_wins"]].to_numpy().sum()) > 0:
         bt = bradley_terry(pair_counts, order)

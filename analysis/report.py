@@ -126,57 +126,59 @@ def build_report(
         )
         check_conditions(frame, options.conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
-    pairwise = ratings = comparisons = scores = mixed = preferences = None
-    across: dict[str, tuple] = {}
-    if not kept.empty:
-        pairwise = analyze_pairwise(
-            kept,
-            conditions=options.conditions,
-            tie_handling=options.tie_handling,
-            correction=options.correction,
-            comparative_points=options.comparative_points,
-        )
-        ratings = summarize_ratings(kept)
-        comparisons = compare_ratings(kept, options.correction)
-        scores = score_intelligibility(kept, options.fuzzy_scoring)
-        for name, long in (
-            ("rating", rating_scores(kept)),
-            ("intelligibility", accuracy_scores(kept, options.fuzzy_scoring)),
-        ):
-            across[name] = (
-                summarize_conditions(long),
-                compare_conditions(long, options.correction),
-            )
-        preferences = compare_preferences(
-            kept, options.conditions, options.comparative_points, options.correction
-        )
-        if options.mixed_models:
-            mixed = fit_mixed_models(
-                kept,
-                options.conditions,
-                ties=options.mixed_ties,
-                correction=options.correction,
-                comparative_points=options.comparative_points,
-            )
     return Report(
         source=source,
         studies=tuple(sorted(set(frame["study"]) - {""})),
         design=_design(kept) if not kept.empty else {"participants": 0, "rows": 0},
         exclusions=exclusions,
-        pairwise=pairwise,
-        ratings=ratings or (),
-        rating_comparisons=comparisons or (),
-        intelligibility=scores or (),
         options=options,
         software=software_versions(),
-        mixed=mixed,
         quality=summarize_quality(frame),
-        comparative=preferences or (),
-        rating_conditions=across.get("rating", ((), ()))[0],
-        rating_condition_comparisons=across.get("rating", ((), ()))[1],
-        intelligibility_conditions=across.get("intelligibility", ((), ()))[0],
-        intelligibility_comparisons=across.get("intelligibility", ((), ()))[1],
+        **(_analyses(kept, options) if not kept.empty else _NO_ANALYSES),
     )
+
+
+# The Report's fields when every participant was excluded.
+_NO_ANALYSES: dict[str, Any] = {"pairwise": None, "ratings": (), "rating_comparisons": (),
+                                "intelligibility": ()}  # fmt: skip
+
+
+def _analyses(kept: pd.DataFrame, options: ReportOptions) -> dict[str, Any]:
+    """Run every analysis on the rows kept; return the Report's fields they fill."""
+    found: dict[str, Any] = {
+        "pairwise": analyze_pairwise(
+            kept,
+            conditions=options.conditions,
+            tie_handling=options.tie_handling,
+            correction=options.correction,
+            comparative_points=options.comparative_points,
+        ),
+        "ratings": summarize_ratings(kept),
+        "rating_comparisons": compare_ratings(kept, options.correction),
+        "intelligibility": score_intelligibility(kept, options.fuzzy_scoring),
+        "comparative": compare_preferences(
+            kept, options.conditions, options.comparative_points, options.correction
+        ),
+    }
+    for conditions, comparisons, long in (
+        ("rating_conditions", "rating_condition_comparisons", rating_scores(kept)),
+        ("intelligibility_conditions", "intelligibility_comparisons",
+         accuracy_scores(kept, options.fuzzy_scoring)),
+    ):  # fmt: skip
+        found[conditions] = summarize_conditions(long)
+        found[comparisons] = compare_conditions(long, options.correction)
+    if options.mixed_models:
+        found["mixed"] = fit_mixed_models(
+            kept,
+            options.conditions,
+            ties=options.mixed_ties,
+            correction=options.correction,
+            comparative_points=options.comparative_points,
+        )
+    # A summary that found nothing to summarise is an empty tuple in the Report.
+    for name in ("ratings", "rating_comparisons", "intelligibility", "comparative"):
+        found[name] = found[name] or ()
+    return found
 
 
 def results_json(report: Report) -> dict[str, Any]:

@@ -135,6 +135,18 @@ def study_asl_videos(study: Study, questions=None) -> list:
     return asl_videos
 
 
+def _trial(trial, question_order: dict[str, int]) -> dict[str, Any]:
+    """Return one trial's definition: its fields, what it refers to by key, its questions."""
+    return {
+        **_values(trial, TRIAL_FIELDS),
+        **{
+            ref: (getattr(trial, ref).key if getattr(trial, ref) is not None else None)
+            for ref in TRIAL_REFERENCES
+        },
+        "questions": sorted((q.key for q in trial.questions.all()), key=question_order.__getitem__),
+    }
+
+
 def export_study(study: Study) -> dict[str, Any]:
     """Return the complete definition of *study* as JSON-compatible data."""
     questions = list(study.questions.prefetch_related("options"))
@@ -160,19 +172,7 @@ def export_study(study: Study) -> dict[str, Any]:
             for q in questions
         ],
         "blocks": [_values(b, BLOCK_FIELDS) for b in study.blocks.all()],
-        "trials": [
-            {
-                **_values(t, TRIAL_FIELDS),
-                **{
-                    ref: (getattr(t, ref).key if getattr(t, ref) is not None else None)
-                    for ref in TRIAL_REFERENCES
-                },
-                "questions": sorted(
-                    (q.key for q in t.questions.all()), key=question_order.__getitem__
-                ),
-            }
-            for t in trials
-        ],
+        "trials": [_trial(t, question_order) for t in trials],
         "asl_videos": [
             {
                 "target": _asl_target(v),

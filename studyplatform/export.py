@@ -36,21 +36,20 @@ def _failed_attention(response: Response, trial: Trial) -> bool:
     return given != expected
 
 
-def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
-    """Return the column names and the rows of *study*'s responses in the tidy format."""
-    demographic_questions = list(
+def _demographic_questions(study: Study) -> list[Question]:
+    """Return the questions whose answers are participant columns, in page order."""
+    return list(
         Question.objects.filter(
             study=study, kind__in=ATTRIBUTE_KINDS, trials__isnull=False, is_personal=False
         )
         .distinct()
         .order_by("position", "pk")
     )
-    labels = {
-        (option.question_id, option.value): option.label or str(option.value)
-        for question in demographic_questions
-        for option in question.options.all()
-    }
-    responses = list(
+
+
+def _responses(study: Study) -> list[Response]:
+    """Return the study's responses with what a row needs, in participant and page order."""
+    return list(
         Response.objects.filter(participant__study=study)
         .select_related(
             "participant",
@@ -64,17 +63,35 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             "participant__started_at", "participant_id", "trial__position", "question__position"
         )
     )
+
+
+def _participant_answers(responses, questions: list[Question]) -> tuple[dict, set[int]]:
+    """Return each participant's demographic answers by question key, and who failed an
+    attention check."""
+    labels = {
+        (option.question_id, option.value): option.label or str(option.value)
+        for question in questions
+        for option in question.options.all()
+    }
     attributes: dict[int, dict[str, str]] = defaultdict(dict)
     failed: set[int] = set()
-    demographic_keys = {q.pk for q in demographic_questions}
+    keys = {q.pk for q in questions}
     for response in responses:
-        if response.question_id in demographic_keys:
+        if response.question_id in keys:
             question = response.question
             attributes[response.participant_id][question.key] = question.type.export_value(
                 question, response, labels
             )
         if response.trial.is_attention_check and _failed_attention(response, response.trial):
             failed.add(response.participant_id)
+    return attributes, failed
+
+
+def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
+    """Return the column names and the rows of *study*'s responses in the tidy format."""
+    demographic_questions = _demographic_questions(study)
+    responses = _responses(study)
+    attributes, failed = _participant_answers(responses, demographic_questions)
     attribute_columns = [q.key for q in demographic_questions]
     clash = set(attribute_columns) & {*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS}
     if clash:
@@ -84,52 +101,20 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
-
     conditions = {condition.key: condition for condition in study.conditions.all()}
-    simulated = {key for key, condition in conditions.items() if condition.is_simulated}
     quality = study_quality(study)
     orders: dict[int, dict[str, str]] = {}  # each participant's schedule, read once
 
     def rows() -> Iterator[dict[str, str]]:
         for response in responses:
-            question, trial, participant = response.question, response.trial, response.participant
-            kind = question.type.export_kind
-            if kind is None:
+            participant = response.participant
+            if response.question.type.export_kind is None:
                 continue  # demographic answers are participant columns
-            flags = _flags(participant, trial, participant.pk in failed)
-            clip1 = clip2 = label1 = label2 = ""
-            if trial.condition_a is not None:
-                first, second = presented_conditions(participant, trial, conditions)
-                clip1, label1 = (first.key, first.label) if first is not None else ("", "")
-                clip2, label2 = (second.key, second.label) if second is not None else ("", "")
-            row = {
-                "participant": str(participant.pk),
-                "study": study.slug,
-                "block": trial.block.key,
-                "trial": trial.key,
-                "item": trial.item.key if trial.item else "",
-                "kind": kind,
-                "condition_a": clip1,
-                "condition_b": clip2,
-                "chosen": response.chosen,
-                "question": question.key,
-                "rating": "" if response.rating is None else str(response.rating),
-                "text": response.text,
-                "rt_ms": "" if response.rt_ms is None else str(response.rt_ms),
-                "flags": ";".join(flags),
-                "target": trial.item.scoring_target
-                if question.type.is_scored and trial.item
-                else "",
-                "condition_a_label": label1,
-                "condition_b_label": label2,
-                "condition_simulated": ";".join(
-                    key for key in dict.fromkeys((clip1, clip2)) if key in simulated
-                ),
-            }
+            row = _row(study, response, conditions, participant.pk in failed)
             if participant.pk not in orders:
                 orders[participant.pk] = page_orders(participant)
-            row.update(quality_cells(participant, trial,
-                                     quality.get(participant.pk, {}).get(trial.pk),
+            row.update(quality_cells(participant, response.trial,
+                                     quality.get(participant.pk, {}).get(response.trial.pk),
                                      response.rt_ms, response.updated_at,
                                      orders[participant.pk],
                                      response.answered_client_ms))  # fmt: skip
@@ -140,6 +125,39 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             yield row
 
     return columns, rows()
+
+
+def _row(study: Study, response: Response, conditions: dict, failed: bool) -> dict[str, str]:
+    """Return the tidy row of one response: its page, clips as shown, answer and flags."""
+    question, trial, participant = response.question, response.trial, response.participant
+    clip1 = clip2 = label1 = label2 = ""
+    if trial.condition_a is not None:
+        first, second = presented_conditions(participant, trial, conditions)
+        clip1, label1 = (first.key, first.label) if first is not None else ("", "")
+        clip2, label2 = (second.key, second.label) if second is not None else ("", "")
+    simulated = {key for key, condition in conditions.items() if condition.is_simulated}
+    return {
+        "participant": str(participant.pk),
+        "study": study.slug,
+        "block": trial.block.key,
+        "trial": trial.key,
+        "item": trial.item.key if trial.item else "",
+        "kind": question.type.export_kind,
+        "condition_a": clip1,
+        "condition_b": clip2,
+        "chosen": response.chosen,
+        "question": question.key,
+        "rating": "" if response.rating is None else str(response.rating),
+        "text": response.text,
+        "rt_ms": "" if response.rt_ms is None else str(response.rt_ms),
+        "flags": ";".join(_flags(participant, trial, failed)),
+        "target": trial.item.scoring_target if question.type.is_scored and trial.item else "",
+        "condition_a_label": label1,
+        "condition_b_label": label2,
+        "condition_simulated": ";".join(
+            key for key in dict.fromkeys((clip1, clip2)) if key in simulated
+        ),
+    }
 
 
 def _flags(participant: Participant, trial: Trial, failed_attention: bool) -> list[str]:

@@ -145,6 +145,41 @@ def _notes(problem, fit, random, order: Sequence[str], reason: str) -> list[str]
     return notes
 
 
+# How the model was fitted, by whether it was REML (True) or maximum likelihood.
+ESTIMATORS = {
+    True: "REML, lme4::lmer's profiled criterion",
+    False: "maximum likelihood, lme4::lmer(REML = FALSE)",
+}
+
+
+def _contrast_df(satterthwaite: Satterthwaite, n_beta: int):
+    """Return the Satterthwaite df of condition j's effect (i = 0) or of j − i."""
+
+    def df_of(i: int, j: int) -> float:
+        row = np.zeros(n_beta)
+        row[j] = 1.0
+        if i:
+            row[i] = -1.0
+        return satterthwaite.df(row)
+
+    return df_of
+
+
+def _checked(question: str, data: pd.DataFrame, order: Sequence[str], slopes) -> str:
+    """Check that the ratings can be modelled; return why participants' condition effects
+    cannot be identified ("" where they can, or were not asked for)."""
+    if len(order) < 2 or data["participant"].nunique() < 2:
+        raise TidyFormatError(
+            f"question {question!r}: a linear mixed model needs ratings of two or more "
+            "conditions by two or more participants."
+        )
+    check_ratings(question, data)
+    reason = slopes_identifiable(data, order) if slopes is not False else ""
+    if slopes and reason:
+        raise TidyFormatError(f"question {question!r}: {reason}.")
+    return reason
+
+
 def linear_mixed(
     frame: pd.DataFrame,
     question: str,
@@ -163,32 +198,13 @@ def linear_mixed(
     profile CIs of the SDs (intercept-only models).
     """
     data, order = rated_conditions(frame, question, conditions)
-    if len(order) < 2 or data["participant"].nunique() < 2:
-        raise TidyFormatError(
-            f"question {question!r}: a linear mixed model needs ratings of two or more "
-            "conditions by two or more participants."
-        )
-    check_ratings(question, data)
-    asked = slopes
-    reason = slopes_identifiable(data, order) if asked is not False else ""
-    if asked and reason:
-        raise TidyFormatError(f"question {question!r}: {reason}.")
-    slopes = asked is not False and not reason
+    reason = _checked(question, data, order, slopes)
+    slopes = slopes is not False and not reason
     problem = _problem(data, order, with_conditions=True, slopes=slopes)
     fit = fit_lmm(problem, reml=reml)
     width = len(order) - 1
     satterthwaite = Satterthwaite.of(fit)
-
-    def vector(i: int, j: int) -> np.ndarray:
-        row = np.zeros(len(fit.beta))
-        row[j] = 1.0
-        if i:
-            row[i] = -1.0
-        return row
-
-    def df_of(i: int, j: int) -> float:
-        return satterthwaite.df(vector(i, j))
-
+    df_of = _contrast_df(satterthwaite, len(fit.beta))
     estimates, cov = fit.beta[1 : 1 + width], fit.cov[1 : 1 + width, 1 : 1 + width]
     effects, full, full_cov = condition_effects(order, estimates, cov, df_of)
     statistic, df, den_df, pvalue = satterthwaite.f_test(np.eye(len(fit.beta))[1:], fit.beta)
@@ -209,9 +225,7 @@ def linear_mixed(
         n_params=len(fit.beta) + len(fit.theta) + 1,
         notes=notes,
         model="Linear mixed model",
-        estimator="REML, lme4::lmer's profiled criterion"
-        if reml
-        else "maximum likelihood, lme4::lmer(REML = FALSE)",
+        estimator=ESTIMATORS[reml],
         formula=formula,
         effects=tuple(effects),
         contrasts=contrasts(order, full, full_cov, correction, df_of),

@@ -249,6 +249,24 @@ class LinearCriterion:
         return float(varpar[-1]) ** 2 * np.linalg.inv(found.reduced)
 
 
+def _random_effects(problem: MixedProblem, factors, sigma2: float):
+    """Return the random effects' SDs, their (component, column) names, and the
+    correlations within each correlated component, from the relative factors Λ."""
+    sd, columns, correlations = [], [], []
+    for component, block in zip(problem.components, factors, strict=True):
+        covariance = sigma2 * block @ block.T
+        spread = np.sqrt(np.diag(covariance))
+        sd += list(spread)
+        columns += [(component.name, column) for column in component.columns]
+        if component.correlated:
+            for i in range(len(spread)):
+                for j in range(i):
+                    r = covariance[i, j] / (spread[i] * spread[j]) if spread[i] * spread[j] else 0
+                    a, b = component.columns[j], component.columns[i]
+                    correlations.append((component.name, a, b, float(r)))
+    return sd, columns, correlations
+
+
 def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
     """Fit *problem* (its family is ignored: the response is Gaussian) by REML or ML.
 
@@ -278,18 +296,7 @@ def fit_lmm(problem: MixedProblem, *, reml: bool = True) -> LinearFit:
         problem.components[k].name for k in sorted(set(owners[on_bound].tolist()))
     )
     checks = convergence.check(criterion.profiled, theta, ~on_bound)
-    sd, columns, correlations = [], [], []
-    for component, block in zip(problem.components, criterion.factors(theta), strict=True):
-        covariance = sigma2 * block @ block.T
-        spread = np.sqrt(np.diag(covariance))
-        sd += list(spread)
-        columns += [(component.name, column) for column in component.columns]
-        if component.correlated:
-            for i in range(len(spread)):
-                for j in range(i):
-                    r = covariance[i, j] / (spread[i] * spread[j]) if spread[i] * spread[j] else 0
-                    a, b = component.columns[j], component.columns[i]
-                    correlations.append((component.name, a, b, float(r)))
+    sd, columns, correlations = _random_effects(problem, criterion.factors(theta), sigma2)
     return LinearFit(
         names=tuple(problem.fixed_names),
         beta=found.beta,

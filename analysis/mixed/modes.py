@@ -12,6 +12,57 @@ from analysis.mixed.factor import DENSE_UP_TO, Blocks, Factor
 from analysis.mixed.problem import NEWTON_STEP, MixedProblem
 
 
+def _grouped_with_first(components) -> list[int]:
+    """Return the components grouped by the first one's factor (its intercepts, and e.g.
+    participants' own strengths): each observation has one level of them, so their part
+    of ZᵀWZ is block diagonal and Factor eliminates it first."""
+    first = components[0] if components else None
+    if first is None or first.correlated:
+        return []
+    return [
+        k
+        for k, c in enumerate(components)
+        if not c.correlated
+        and len(c.levels) == len(first.levels)
+        and np.array_equal(c.codes, first.codes)
+    ]
+
+
+def _positions(components, grouped, order, widths, offsets, q: int) -> tuple[np.ndarray, int]:
+    """Return each column of Z's place in Factor's order (the grouped components first,
+    level by level) and the grouped columns per level."""
+    per_level = [components[k].values.shape[1] for k in grouped]
+    c = int(sum(per_level))
+    position = np.empty(q, dtype=np.int64)
+    inside = np.concatenate([[0], np.cumsum(per_level)])
+    for at, k in enumerate(grouped):
+        level, column = np.divmod(np.arange(widths[k]), per_level[at])
+        position[offsets[k] : offsets[k + 1]] = level * c + inside[at] + column
+    after = c * (len(components[0].levels) if components else 0)
+    for k in order[len(grouped) :]:
+        position[offsets[k] : offsets[k + 1]] = after + np.arange(widths[k])
+        after += widths[k]
+    return position, c
+
+
+def _rows_of_z(components, order, position, offsets, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Return Z's few non-zeros per row: their columns (n_obs, m) and values, the grouped
+    components' entries first."""
+    cols = np.column_stack(
+        [
+            position[
+                offsets[k]
+                + components[k].codes[:, None] * components[k].values.shape[1]
+                + np.arange(components[k].values.shape[1])
+            ]
+            for k in order
+        ]
+        or [np.zeros((n, 0), dtype=np.int64)]
+    )
+    vals = np.column_stack([components[k].values for k in order] or [np.zeros((n, 0))])
+    return cols, vals
+
+
 class ConditionalModes:
     """The approximate log-likelihood of one problem, with a warm start for v̂."""
 
@@ -24,54 +75,15 @@ class ConditionalModes:
         widths = [c.width for c in components]
         offsets = np.concatenate([[0], np.cumsum(widths)]).astype(np.int64)
         self.q = int(sum(widths))
-        # The components grouped by the first one's factor (its intercepts, and e.g.
-        # participants' own strengths) come first, level by level: each observation has
-        # one level, so their part of ZᵀWZ is block diagonal and Factor eliminates it
-        # first. ``position[j]`` is original column j's place in that order.
-        first = components[0] if components else None
-        grouped = [
-            k
-            for k, c in enumerate(components)
-            if not c.correlated
-            and first is not None
-            and not first.correlated
-            and len(c.levels) == len(first.levels)
-            and np.array_equal(c.codes, first.codes)
-        ]
+        grouped = _grouped_with_first(components)
         order = grouped + [k for k in range(len(components)) if k not in grouped]
-        per_level = [components[k].values.shape[1] for k in grouped]
-        c = int(sum(per_level))
-        self.position = np.empty(self.q, dtype=np.int64)
-        inside = np.concatenate([[0], np.cumsum(per_level)])
-        for at, k in enumerate(grouped):
-            m = per_level[at]
-            level, column = np.divmod(np.arange(widths[k]), m)
-            self.position[offsets[k] : offsets[k + 1]] = level * c + inside[at] + column
-        after = c * (len(first.levels) if first is not None else 0)
-        for k in order[len(grouped) :]:
-            self.position[offsets[k] : offsets[k + 1]] = after + np.arange(widths[k])
-            after += widths[k]
-        # Each row of Z has few non-zeros: its columns (n_obs, m) and their values,
-        # the grouped components' entries first.
-        self.cols = np.column_stack(
-            [
-                self.position[
-                    offsets[k]
-                    + components[k].codes[:, None] * components[k].values.shape[1]
-                    + np.arange(components[k].values.shape[1])
-                ]
-                for k in order
-            ]
-            or [np.zeros((self.n, 0), dtype=np.int64)]
-        )
-        self.vals = np.column_stack(
-            [components[k].values for k in order] or [np.zeros((self.n, 0))]
-        )
+        self.position, c = _positions(components, grouped, order, widths, offsets, self.q)
+        self.cols, self.vals = _rows_of_z(components, order, self.position, offsets, self.n)
         self.owner = np.empty(self.q, dtype=np.int64)
         self.owner[self.position] = np.repeat(np.arange(len(widths)), widths)
         self.v = np.zeros(self.q)
         self.evaluations = 0
-        self.head = c * len(first.levels) if grouped else 0
+        self.head = c * len(components[0].levels) if grouped else 0
         self.rest_width = self.q - self.head
         self.level_width = c
         # I + S ZᵀWZ S is factored in blocks, the grouped levels eliminated first.
@@ -82,15 +94,20 @@ class ConditionalModes:
         if self.q <= DENSE_UP_TO:
             self.pairs = (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
         if self.blocked:
-            k, r = self.head, self.rest_width
-            head, rest = self.cols[:, :c], self.cols[:, c:] - k
-            level = head[:, 0] // c
-            within = head - level[:, None] * c
-            self.pivot_index = (
-                level[:, None, None] * c * c + within[:, :, None] * c + within[:, None, :]
-            ).ravel()
-            self.coupling_index = (head[:, :, None] * r + rest[:, None, :]).ravel()
-            self.rest_pairs = (rest[:, :, None] * r + rest[:, None, :]).ravel()
+            self._index_blocks(c)
+
+    def _index_blocks(self, c: int) -> None:
+        """Set the flat indices of each row's entries in the blocks Factor works on: the
+        grouped levels' c × c pivots, their coupling to the rest, and the rest's square."""
+        k, r = self.head, self.rest_width
+        head, rest = self.cols[:, :c], self.cols[:, c:] - k
+        level = head[:, 0] // c
+        within = head - level[:, None] * c
+        self.pivot_index = (
+            level[:, None, None] * c * c + within[:, :, None] * c + within[:, None, :]
+        ).ravel()
+        self.coupling_index = (head[:, :, None] * r + rest[:, None, :]).ravel()
+        self.rest_pairs = (rest[:, :, None] * r + rest[:, None, :]).ravel()
 
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""

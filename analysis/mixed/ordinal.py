@@ -102,6 +102,21 @@ def proportional_odds_test(data: pd.DataFrame, conditions: Sequence[str]) -> Pro
     )
 
 
+def _notes(order, check: ProportionalOddsTest, fit, random, effects) -> list[str]:
+    """Return what a reader of the model must know: its scale, proportional odds, the fit."""
+    notes = [
+        f"Effects are log odds ratios of rating higher than under {order[0]}.",
+        "Proportional odds holds: the effects are common to every threshold."
+        if check.holds
+        else "Proportional odds is doubtful: report the per-threshold proportions beside "
+        "the model.",
+    ]
+    notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
+    notes += separation_note(effects)
+    notes += covariance_note(fit.cov)
+    return notes
+
+
 def ordinal_mixed(
     frame: pd.DataFrame,
     question: str,
@@ -135,16 +150,7 @@ def ordinal_mixed(
     )
     random = variance_components(problem.components, fit.sd)
     check = proportional_odds_test(data, order)
-    notes = [
-        f"Effects are log odds ratios of rating higher than under {order[0]}.",
-        "Proportional odds holds: the effects are common to every threshold."
-        if check.holds
-        else "Proportional odds is doubtful: report the per-threshold proportions beside "
-        "the model.",
-    ]
-    notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
-    notes += separation_note(effects)
-    notes += covariance_note(fit.cov)
+    notes = _notes(order, check, fit, random, effects)
     formula = f"{question} ~ condition + (1 | participant)" + (
         " + (1 | item)" if len(problem.components) > 1 else ""
     )

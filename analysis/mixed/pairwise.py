@@ -102,6 +102,36 @@ def pairwise_problem(
     )
 
 
+def _check_judgements(data: pd.DataFrame, order: Sequence[str]) -> None:
+    """Refuse judgements of conditions outside *order*, or too few to fit the model."""
+    unknown = (set(data["clip1"]) | set(data["clip2"])) - set(order)
+    if unknown:
+        raise TidyFormatError(f"conditions {sorted(unknown)} are not in the condition order")
+    decisive = data["position"].isin((1, 2)).sum()
+    if len(order) < 2 or decisive < 2 * len(order):
+        raise TidyFormatError(
+            f"a mixed Bradley–Terry model needs two or more conditions and at least "
+            f"{2 * len(order)} decisive judgements; there are {decisive}."
+        )
+
+
+def _notes(data, order, ties: str, fit, random, coefficients, p: int) -> list[str]:
+    """Return what a reader of the model must know: its scale, the ties, the fit."""
+    notes = [
+        f"Strengths are log-worths relative to {order[0]}; a positive position effect "
+        "means clip 1 was chosen more often between equals.",
+    ]
+    ties_seen = int(data["position"].eq(0).sum())
+    if ties == "exclude" and ties_seen:
+        notes.append(f"{ties_seen} “cannot see a difference” answers were left out.")
+    if ties == "davidson":
+        notes.append(f"{ties_seen} “cannot see a difference” answers were modelled as ties.")
+    notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
+    notes += separation_note(coefficients)
+    notes += covariance_note(fit.cov[:p, :p])
+    return notes
+
+
 def mixed_bradley_terry(
     frame: pd.DataFrame,
     conditions: Sequence[str] | None = None,
@@ -119,15 +149,7 @@ def mixed_bradley_terry(
     """
     data = judgements(frame, comparative_points)
     order = condition_order(data, conditions)
-    unknown = (set(data["clip1"]) | set(data["clip2"])) - set(order)
-    if unknown:
-        raise TidyFormatError(f"conditions {sorted(unknown)} are not in the condition order")
-    decisive = data["position"].isin((1, 2)).sum()
-    if len(order) < 2 or decisive < 2 * len(order):
-        raise TidyFormatError(
-            f"a mixed Bradley–Terry model needs two or more conditions and at least "
-            f"{2 * len(order)} decisive judgements; there are {decisive}."
-        )
+    _check_judgements(data, order)
     if random_strengths is None:
         random_strengths = strengths_identifiable(data, order)
     problem = pairwise_problem(data, order, ties=ties, random_strengths=random_strengths)
@@ -144,18 +166,7 @@ def mixed_bradley_terry(
     statistic, df, pvalue = wald_test(estimates, cov)
     position = coefficient(POSITION, fit.params[0], standard_error(fit.cov[0, 0]))
     random = variance_components(problem.components, fit.sd)
-    notes = [
-        f"Strengths are log-worths relative to {order[0]}; a positive position effect "
-        "means clip 1 was chosen more often between equals.",
-    ]
-    ties_seen = int(data["position"].eq(0).sum())
-    if ties == "exclude" and ties_seen:
-        notes.append(f"{ties_seen} “cannot see a difference” answers were left out.")
-    if ties == "davidson":
-        notes.append(f"{ties_seen} “cannot see a difference” answers were modelled as ties.")
-    notes += fit_notes(fit, random, fit.sd < BOUNDARY_SD)
-    notes += separation_note([position, *effects])
-    notes += covariance_note(fit.cov[:p, :p])
+    notes = _notes(data, order, ties, fit, random, [position, *effects], p)
     formula = "chose clip 1 ~ position + strengths + (1 | participant)" + (
         " + (1 | item)" if any(c.group == "item" for c in problem.components) else ""
     )

@@ -43,6 +43,24 @@ class PlannedDesign(Result):
         return sum(len(s) for s in self.schedules) / len(self.schedules)
 
 
+def _schedule(schedule: Any, where: str, kind: str, conditions: tuple[str, ...]):
+    """Check one participant's schedule (a list of trials) and return its trials."""
+    if not isinstance(schedule, list) or not schedule:
+        raise TidyFormatError(f"{where} must be a non-empty list.")
+    trials = []
+    for t, entry in enumerate(schedule):
+        at = f"{where}, trial {t + 1}"
+        if not isinstance(entry, dict):
+            raise TidyFormatError(f"{at}: a trial is an object.")
+        a, b = str(entry.get("condition_a", "")), str(entry.get("condition_b", ""))
+        if a not in conditions or (kind == "pairwise" and b not in conditions):
+            raise TidyFormatError(f"{at}: condition {a or b!r} is not in conditions.")
+        if kind == "pairwise" and a == b:
+            raise TidyFormatError(f"{at}: a pair needs two different conditions.")
+        trials.append(Trial(str(entry.get("item", "")), a, b if kind == "pairwise" else ""))
+    return tuple(trials)
+
+
 def parse_design(data: Any, source: str = "design") -> PlannedDesign:
     """Check a design.json document and return it; errors name the problem."""
     if not isinstance(data, dict):
@@ -57,22 +75,10 @@ def parse_design(data: Any, source: str = "design") -> PlannedDesign:
     schedules = data.get("schedules")
     if not isinstance(schedules, list) or not schedules:
         raise TidyFormatError(f"{source}: schedules must be a non-empty list of trial lists.")
-    parsed = []
-    for s, schedule in enumerate(schedules):
-        if not isinstance(schedule, list) or not schedule:
-            raise TidyFormatError(f"{source}: schedule {s + 1} must be a non-empty list.")
-        trials = []
-        for t, entry in enumerate(schedule):
-            where = f"{source}: schedule {s + 1}, trial {t + 1}"
-            if not isinstance(entry, dict):
-                raise TidyFormatError(f"{where}: a trial is an object.")
-            a, b = str(entry.get("condition_a", "")), str(entry.get("condition_b", ""))
-            if a not in conditions or (kind == "pairwise" and b not in conditions):
-                raise TidyFormatError(f"{where}: condition {a or b!r} is not in conditions.")
-            if kind == "pairwise" and a == b:
-                raise TidyFormatError(f"{where}: a pair needs two different conditions.")
-            trials.append(Trial(str(entry.get("item", "")), a, b if kind == "pairwise" else ""))
-        parsed.append(tuple(trials))
+    parsed = [
+        _schedule(schedule, f"{source}: schedule {s + 1}", kind, conditions)
+        for s, schedule in enumerate(schedules)
+    ]
     return PlannedDesign(kind, conditions, tuple(parsed), str(data.get("question", "")))
 
 

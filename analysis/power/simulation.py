@@ -234,24 +234,8 @@ def _one_blas_thread() -> None:
     threadpool_limits(limits=1)
 
 
-def power_curve(
-    design: PlannedDesign,
-    effects: Effects,
-    participants: Sequence[int],
-    *,
-    simulations: int = 200,
-    alpha: float = 0.05,
-    seed: int = 0,
-    tests: Sequence[str] | None = None,
-    correction: str = "holm",
-    workers: int | None = None,
-) -> PowerCurve:
-    """Simulate *simulations* studies at each N in *participants*; return each test's power.
-
-    Seeds come from ``numpy.random.SeedSequence(seed)``, one per simulated study, so the
-    answer does not depend on *workers* (processes; default: the machine's cores).
-    """
-    tests = tuple(tests or TESTS[design.kind])
+def _checked_sizes(design: PlannedDesign, effects: Effects, tests, participants) -> list[int]:
+    """Return the planned Ns in order; ValueError names what cannot be simulated."""
     unknown = set(tests) - set(TESTS[design.kind])
     if unknown:
         raise ValueError(f"unknown test(s) {sorted(unknown)} for a {design.kind} design")
@@ -263,22 +247,11 @@ def power_curve(
     sizes = sorted({int(n) for n in participants})
     if not sizes or sizes[0] < 2:
         raise ValueError("plan for two or more participants")
-    children = np.random.SeedSequence(seed).spawn(len(sizes) * simulations)
-    seeds = [int(child.generate_state(1)[0]) for child in children]
-    workers = workers if workers is not None else (os.cpu_count() or 1)
-    chunk = max(1, simulations // max(workers, 1) // 2)
-    jobs = []
-    for k, n in enumerate(sizes):
-        mine = seeds[k * simulations : (k + 1) * simulations]
-        jobs += [
-            (design, effects, n, mine[i : i + chunk], tests, correction)
-            for i in range(0, simulations, chunk)
-        ]
-    if workers > 1:
-        with ProcessPoolExecutor(workers, initializer=_one_blas_thread) as pool:
-            batches = list(pool.map(_one_batch, jobs))
-    else:
-        batches = [_one_batch(job) for job in jobs]
+    return sizes
+
+
+def _power_points(batches, alpha: float) -> tuple[PowerPoint, ...]:
+    """Return each N's and test's power: the share of simulated studies with p < *alpha*."""
     pvalues_by: dict[tuple[int, str], list[float]] = {}
     for batch in batches:
         for n, pvalues in batch:
@@ -299,7 +272,45 @@ def power_curve(
                 failures=int(np.isnan(found).sum()),
             )
         )
-    points = tuple(points)
+    return tuple(points)
+
+
+def power_curve(
+    design: PlannedDesign,
+    effects: Effects,
+    participants: Sequence[int],
+    *,
+    simulations: int = 200,
+    alpha: float = 0.05,
+    seed: int = 0,
+    tests: Sequence[str] | None = None,
+    correction: str = "holm",
+    workers: int | None = None,
+) -> PowerCurve:
+    """Simulate *simulations* studies at each N in *participants*; return each test's power.
+
+    Seeds come from ``numpy.random.SeedSequence(seed)``, one per simulated study, so the
+    answer does not depend on *workers* (processes; default: the machine's cores).
+    """
+    tests = tuple(tests or TESTS[design.kind])
+    sizes = _checked_sizes(design, effects, tests, participants)
+    children = np.random.SeedSequence(seed).spawn(len(sizes) * simulations)
+    seeds = [int(child.generate_state(1)[0]) for child in children]
+    workers = workers if workers is not None else (os.cpu_count() or 1)
+    chunk = max(1, simulations // max(workers, 1) // 2)
+    jobs = []
+    for k, n in enumerate(sizes):
+        mine = seeds[k * simulations : (k + 1) * simulations]
+        jobs += [
+            (design, effects, n, mine[i : i + chunk], tests, correction)
+            for i in range(0, simulations, chunk)
+        ]
+    if workers > 1:
+        with ProcessPoolExecutor(workers, initializer=_one_blas_thread) as pool:
+            batches = list(pool.map(_one_batch, jobs))
+    else:
+        batches = [_one_batch(job) for job in jobs]
+    points = _power_points(batches, alpha)
     return PowerCurve(
         kind=design.kind,
         conditions=design.conditions,

@@ -97,24 +97,34 @@ def _expected_answer(kind: str, questions: Sequence[Question]) -> tuple[str, str
     if any(not options for options in values):
         raise DesignRejected("An attention check needs questions with answer options.")
     if kind == Trial.Kind.COMPARATIVE:
-        middles = {options[len(options) // 2][0] for options in values if len(options) % 2}
-        if len(middles) != 1 or any(len(options) % 2 == 0 for options in values):
-            raise DesignRejected(
-                "An identical-clip attention check on a comparative scale needs an odd number "
-                "of points, the middle one meaning 'the same'."
-            )
-        return str(middles.pop()), ""
+        return _middle_point(values), ""
     if kind == Trial.Kind.RATING:
-        highest = {options[-1] for options in values}
-        if len(highest) != 1:
-            raise DesignRejected(
-                "An instructed attention check needs rating questions with the same top point."
-            )
-        value, label = highest.pop()
-        return str(value), (
-            f"Attention check: whatever you think of this clip, please choose “{label or value}”."
-        )
+        return _top_point(values)
     raise DesignRejected("Attention checks are built for comparison and rating pages only.")
+
+
+def _middle_point(values: list[list[tuple[int, str]]]) -> str:
+    """Return the comparative scales' common middle point ('the same')."""
+    middles = {options[len(options) // 2][0] for options in values if len(options) % 2}
+    if len(middles) != 1 or any(len(options) % 2 == 0 for options in values):
+        raise DesignRejected(
+            "An identical-clip attention check on a comparative scale needs an odd number "
+            "of points, the middle one meaning 'the same'."
+        )
+    return str(middles.pop())
+
+
+def _top_point(values: list[list[tuple[int, str]]]) -> tuple[str, str]:
+    """Return the rating scales' common top point and the instruction to choose it."""
+    highest = {options[-1] for options in values}
+    if len(highest) != 1:
+        raise DesignRejected(
+            "An instructed attention check needs rating questions with the same top point."
+        )
+    value, label = highest.pop()
+    return str(value), (
+        f"Attention check: whatever you think of this clip, please choose “{label or value}”."
+    )
 
 
 def _free_key(wanted: str, taken: set[str]) -> str:
@@ -145,7 +155,12 @@ def _builder_blocks(study: Study, practice: bool) -> tuple[Block | None, Block]:
     unused = made.get("practice") if not practice else None
     if unused and unused in blocks and not blocks[unused].trials.exists():
         blocks[unused].delete()
-    ours = [b for b in (practice_block, trial_block) if b is not None]
+    _place_before_closing(study, [b for b in (practice_block, trial_block) if b is not None])
+    return practice_block, trial_block
+
+
+def _place_before_closing(study: Study, ours: list[Block]) -> None:
+    """Number the study's blocks so that *ours* come after the others, before closing ones."""
     others = [b for b in study.blocks.order_by("position", "pk") if b not in ours]
     ordered = [b for b in others if b.kind != Block.Kind.CLOSING] + ours
     ordered += [b for b in others if b.kind == Block.Kind.CLOSING]
@@ -153,7 +168,6 @@ def _builder_blocks(study: Study, practice: bool) -> tuple[Block | None, Block]:
         if each.position != position:
             each.position = position
             each.save(update_fields=["position"])
-    return practice_block, trial_block
 
 
 def _checked_design(study: Study, spec: DesignSpec) -> tuple[list[PlannedPage], dict, dict]:

@@ -25,8 +25,8 @@ class EventsRejected(ValidationError):
     """A batch of events with a malformed event; none of the batch was saved."""
 
 
-def _checked(number: int, raw: object) -> dict:
-    """Check one raw event's fields (a JSON object); return them, or EventsRejected."""
+def _kind_and_page(number: int, raw: object) -> tuple[str, int]:
+    """Check one raw event's kind and page (a JSON object); EventsRejected names a problem."""
     if not isinstance(raw, dict):
         raise EventsRejected(f"Event {number} is not an object.")
     kind = raw.get("kind")
@@ -35,6 +35,11 @@ def _checked(number: int, raw: object) -> dict:
     page = raw.get("page")
     if not isinstance(page, int) or isinstance(page, bool):
         raise EventsRejected(f"Event {number} names no page.")
+    return kind, page
+
+
+def _checked(number: int, raw: dict) -> dict:
+    """Check the rest of one raw event's fields (its page is known); return them."""
     clip = raw.get("clip")
     # Exactly None, 1 or 2: 1.0 and True compare equal to 1 but index nothing.
     if not (clip is None or (type(clip) is int and clip in (1, 2))):
@@ -45,7 +50,7 @@ def _checked(number: int, raw: object) -> dict:
     detail = raw.get("detail") or {}
     if not isinstance(detail, dict) or len(str(detail)) > MAX_DETAIL_LENGTH:
         raise EventsRejected(f"Event {number}: the detail is not a small object.")
-    fields = {"kind": kind, "page": page, "clip": clip, "detail": detail}
+    fields = {"clip": clip, "detail": detail}
     for name in ("media_time_s", "client_time_ms"):
         fields[name] = _number(number, name, raw.get(name))
     return fields
@@ -68,14 +73,15 @@ def _event(
 
     *trials* (by page) and *stimuli* (by page and clip) remember lookups across a batch.
     """
-    fields = _checked(number, raw)
-    page, clip = fields["page"], fields["clip"]
+    kind, page = _kind_and_page(number, raw)
     if page not in trials:
         try:
             trials[page] = page_trial(participant, page)
         except PageRejected as error:
             raise EventsRejected(f"Event {number}: {error.message}") from None
     trial = trials[page]
+    fields = _checked(number, raw)
+    clip = fields["clip"]
     if clip is not None and trial.item_id and (page, clip) not in stimuli:
         # A batch holds many events of the same clips.
         condition = presented_conditions(participant, trial)[clip - 1]
@@ -90,7 +96,7 @@ def _event(
         trial=trial,
         stimulus=stimuli.get((page, clip)) if clip is not None and trial.item_id else None,
         clip_position=clip,
-        kind=fields["kind"],
+        kind=kind,
         media_time_s=fields["media_time_s"],
         client_time_ms=None if client_ms is None else int(client_ms),
         detail=fields["detail"],

@@ -60,6 +60,15 @@ def _refuse_changes_in_the_field(study: Study, changed: list[tuple[Stimulus, Cli
     )
 
 
+def _in_field(study: Study) -> bool:
+    """Return whether the study's clips are in the field: participants of an open (or
+    closed) study have seen them."""
+    return (
+        study.status in (Study.Status.OPEN, Study.Status.CLOSED)
+        and study.participants.filter(is_pilot=False).exists()
+    )
+
+
 def _clip_spec(condition, item) -> ClipSpec:
     """Return the specification of one clip; a ClipError names the condition and item."""
     try:
@@ -110,12 +119,7 @@ def do_generate_stimuli(
     """
     queued, ready, ids, changed = [], 0, [], []
     hashed = []
-    # Clips are in the field once participants of an open (or closed) study have seen them.
-    in_field = (
-        study.status in (Study.Status.OPEN, Study.Status.CLOSED)
-        and study.participants.filter(is_pilot=False).exists()
-    )
-    refuse_changes = in_field and not rerender_open
+    refuse_changes = _in_field(study) and not rerender_open
     with transaction.atomic():
         for condition, item in needed_pairs(study):
             spec = _clip_spec(condition, item)

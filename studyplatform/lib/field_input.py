@@ -22,37 +22,55 @@ def _integer_range(field: models.Field) -> tuple[int, int]:
     return ranges.get(field.get_internal_type(), (-(2**63), 2**63 - 1))
 
 
+def _text_problem(field: models.Field, value: Any) -> str | None:
+    if not isinstance(value, str):
+        return f"must be text, not {type(value).__name__}"
+    return "must not contain a NUL character" if "\x00" in value else None
+
+
+def _integer_problem(field: models.Field, value: Any) -> str | None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        return f"must be a whole number, not {type(value).__name__}"
+    low, high = _integer_range(field)
+    return None if low <= value <= high else f"must be between {low} and {high}"
+
+
+def _float_problem(field: models.Field, value: Any) -> str | None:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return f"must be a number, not {type(value).__name__}"
+    try:
+        finite = math.isfinite(float(value))
+    except OverflowError:  # an integer beyond any float
+        finite = False
+    return None if finite else "must be a finite number"
+
+
+def _boolean_problem(field: models.Field, value: Any) -> str | None:
+    return None if isinstance(value, bool) else "must be true or false"
+
+
+def _object_problem(field: models.Field, value: Any) -> str | None:
+    # Parameters, a design: objects, never lists.
+    return None if isinstance(value, dict) else f"must be an object, not {type(value).__name__}"
+
+
+# Each field class's check, the first that matches (AutoFields are IntegerFields).
+_PROBLEMS = (
+    (models.BooleanField, _boolean_problem),
+    (models.CharField | models.TextField, _text_problem),
+    (models.IntegerField, _integer_problem),
+    (models.FloatField, _float_problem),
+    (models.JSONField, _object_problem),
+)
+
+
 def value_problem(field: models.Field, value: Any) -> str | None:
     """Return why *value* cannot fill *field* (None if it can, for full_clean to judge)."""
     if value is None:
         return None if field.null else "must not be null"
-    if isinstance(field, models.BooleanField):
-        return None if isinstance(value, bool) else "must be true or false"
-    if isinstance(field, models.CharField | models.TextField):
-        if not isinstance(value, str):
-            return f"must be text, not {type(value).__name__}"
-        if "\x00" in value:
-            return "must not contain a NUL character"
-        return None
-    if isinstance(field, models.IntegerField):  # AutoFields among them
-        if isinstance(value, bool) or not isinstance(value, int):
-            return f"must be a whole number, not {type(value).__name__}"
-        low, high = _integer_range(field)
-        if not low <= value <= high:
-            return f"must be between {low} and {high}"
-        return None
-    if isinstance(field, models.FloatField):
-        if isinstance(value, bool) or not isinstance(value, int | float):
-            return f"must be a number, not {type(value).__name__}"
-        try:
-            finite = math.isfinite(float(value))
-        except OverflowError:  # an integer beyond any float
-            finite = False
-        return None if finite else "must be a finite number"
-    if isinstance(field, models.JSONField):  # parameters, a design: objects, never lists
-        if not isinstance(value, dict):
-            return f"must be an object, not {type(value).__name__}"
-        return None
+    for kind, problem in _PROBLEMS:
+        if isinstance(field, kind):
+            return problem(field, value)
     return None
 
 

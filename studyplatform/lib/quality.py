@@ -52,6 +52,24 @@ def _iso(client_ms: float | None) -> str:
     return datetime.fromtimestamp(client_ms / 1000, tz=UTC).isoformat(timespec="milliseconds")
 
 
+def _count_event(quality: TrialQuality, event, at: float) -> None:
+    """Count one event of a page: a showing (the first one's viewport), a play, an end of a
+    clip, an error."""
+    if event.kind == MediaEvent.Kind.PAGE_SHOWN:
+        quality.visits.append([at, None])
+        if quality.first_shown_ms is None:
+            quality.first_shown_ms = at
+            size = event.detail or {}
+            if "width" in size and "height" in size:
+                quality.viewport = f"{size['width']}x{size['height']}"
+    elif event.kind == MediaEvent.Kind.PLAY and event.clip_position in (1, 2):
+        quality.plays[event.clip_position] += 1
+    elif event.kind == MediaEvent.Kind.ENDED and event.clip_position in (1, 2):
+        quality.first_ended_ms.setdefault(event.clip_position, at)
+    elif event.kind == MediaEvent.Kind.ERROR:
+        quality.errors += 1
+
+
 def participant_quality(events) -> dict[int, TrialQuality]:
     """Return each trial's quality of one participant from their events (any order).
 
@@ -74,21 +92,9 @@ def participant_quality(events) -> dict[int, TrialQuality]:
             visit = None
         if event.trial_id is None or at is None:
             continue
-        quality = by_trial[event.trial_id]
         if event.kind == MediaEvent.Kind.PAGE_SHOWN:
             visit = (event.trial_id, at)
-            quality.visits.append([at, None])
-            if quality.first_shown_ms is None:
-                quality.first_shown_ms = at
-                size = event.detail or {}
-                if "width" in size and "height" in size:
-                    quality.viewport = f"{size['width']}x{size['height']}"
-        elif event.kind == MediaEvent.Kind.PLAY and event.clip_position in (1, 2):
-            quality.plays[event.clip_position] += 1
-        elif event.kind == MediaEvent.Kind.ENDED and event.clip_position in (1, 2):
-            quality.first_ended_ms.setdefault(event.clip_position, at)
-        elif event.kind == MediaEvent.Kind.ERROR:
-            quality.errors += 1
+        _count_event(by_trial[event.trial_id], event, at)
         last_ms = at
     close(last_ms)
     return dict(by_trial)

@@ -111,6 +111,12 @@ def hand_primitives(
             blend_m=0.012,
         ),
     ]
+    return tuple(primitives) + _digits(at, prefix)
+
+
+def _digits(at, prefix: str) -> tuple[RoundCone, ...]:
+    """Return the phalanges of the thumb and the fingers, *at* giving a joint's position."""
+    primitives = []
     thumb = ("thumb_mcp", "thumb_ip", "thumb_tip")
     for k, (start, end) in enumerate(itertools.pairwise(thumb)):
         radii = THUMB_RADII_M[k + 1 : k + 3]

@@ -113,14 +113,49 @@ def _wrist_in_palm(body: BodyModel, side: str) -> np.ndarray:
     return _palm_frame(marks)[0].T @ wrist
 
 
+def _arm_targets(body, side: str, rest, shoulder, arm_points, seen):
+    """Return the elbow and wrist targets (n, 3): the landmarks' arm directions from the
+    fitted shoulder, scaled to the model's arm length."""
+    model_arm = (np.linalg.norm(rest[_joint(body, side, "elbow")]
+                                - rest[_joint(body, side, "shoulder")])
+                 + np.linalg.norm(rest[_joint(body, side, "wrist")]
+                                  - rest[_joint(body, side, "elbow")]))  # fmt: skip
+    upper = arm_points[:, 1] - arm_points[:, 0]
+    lower = arm_points[:, 2] - arm_points[:, 1]
+    observed_arm = np.median(np.linalg.norm(upper[seen], axis=1)
+                             + np.linalg.norm(lower[seen], axis=1))  # fmt: skip
+    scale = model_arm / observed_arm
+    elbow_t = shoulder + upper * scale
+    return elbow_t, elbow_t + lower * scale
+
+
+def _fit_hand_of(body, recording: PoseRecording, side: str, dofs):
+    """Return the wrist's world frames from the hand landmarks (None without a seen hand)
+    and *dofs* with the hand's fingers fitted where the fit finds them."""
+    from synthesis.capture.handfit import FitError, fit_hand
+    from synthesis.rigs.hand import HandModel
+
+    marks, marks_confidence = recording.hand(side)
+    hand_seen = marks_confidence.min(axis=1) >= MIN_CONFIDENCE
+    if not hand_seen.any():
+        return None, dofs
+    rotation = _palm_frame(to_mediapipe(marks)) @ _wrist_in_palm(body, side)
+    # Frames without the hand keep the nearest seen hand's orientation.
+    rotation = rotation[_nearest_seen(hand_seen)]
+    try:
+        fit = fit_hand(HandModel(side), marks, marks_confidence, rate_hz=recording.fps)
+        dofs = body.with_hand(dofs, side, fit.dofs_rad)
+    except FitError:  # no confident frame: the fingers keep their rest pose
+        pass
+    return rotation, dofs
+
+
 def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
              hands: bool = True) -> ArmFit:  # fmt: skip
     """Fit *body*'s arms (and with *hands*, fingers and wrists) to *recording*'s landmarks.
 
     Raise PoseFileError if the recording has no pose landmarks or no arm in any frame.
     """
-    from synthesis.capture.handfit import FitError, fit_hand
-    from synthesis.rigs.hand import HandModel
     from synthesis.rigs.ik import solve_arm
 
     # Holistic's metric pose, where the file has it: its depth is far surer than the
@@ -148,31 +183,10 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
             continue
         fitted_any = True
         shoulder = posed[:, _joint(body, side, "shoulder")]
-        model_arm = (np.linalg.norm(rest[_joint(body, side, "elbow")]
-                                    - rest[_joint(body, side, "shoulder")])
-                     + np.linalg.norm(rest[_joint(body, side, "wrist")]
-                                      - rest[_joint(body, side, "elbow")]))  # fmt: skip
-        upper = points[:, e] - points[:, s]
-        lower = points[:, w] - points[:, e]
-        observed_arm = np.median(np.linalg.norm(upper[seen], axis=1)
-                                 + np.linalg.norm(lower[seen], axis=1))  # fmt: skip
-        scale = model_arm / observed_arm
-        elbow_t = shoulder + upper * scale
-        wrist_t = elbow_t + lower * scale
+        elbow_t, wrist_t = _arm_targets(body, side, rest, shoulder, points[:, [s, e, w]], seen)
         rotation = None
         if hands and recording.has_component(HAND_COMPONENTS[side]):
-            marks, marks_confidence = recording.hand(side)
-            hand_seen = marks_confidence.min(axis=1) >= MIN_CONFIDENCE
-            if hand_seen.any():
-                rotation = _palm_frame(to_mediapipe(marks)) @ _wrist_in_palm(body, side)
-                # Frames without the hand keep the nearest seen hand's orientation.
-                rotation = rotation[_nearest_seen(hand_seen)]
-                try:
-                    fit = fit_hand(HandModel(side), marks, marks_confidence,
-                                   rate_hz=recording.fps)  # fmt: skip
-                    dofs = body.with_hand(dofs, side, fit.dofs_rad)
-                except FitError:  # no confident frame: the fingers keep their rest pose
-                    pass
+            rotation, dofs = _fit_hand_of(body, recording, side, dofs)
         swivel = _swivel(shoulder, elbow_t, wrist_t, side)
         dofs = solve_arm(body, dofs, side, wrist_t, rotation, swivel)
         fitted = body.pose(dofs).positions_m

@@ -274,6 +274,38 @@ def _smooth(values: np.ndarray, rate_hz: float, smooth_s: float, problem: _Probl
     return np.clip(smoothed, problem.lower[3:], problem.upper[3:])
 
 
+def _checked_landmarks(points, confidence) -> tuple[np.ndarray, np.ndarray]:
+    """Return landmarks (n_frames, 21, 3) and confidences, a missing point at confidence 0;
+    FitError names a shape that is not a hand's."""
+    points = np.asarray(points, dtype=np.float64)
+    if points.ndim == 2:
+        points = points[None]
+    if points.ndim != 3 or points.shape[1:] != (21, 3):
+        raise FitError(f"Expected hand landmarks (n_frames, 21, 3), not {points.shape}.")
+    confidence = np.ones(points.shape[:2]) if confidence is None else np.asarray(confidence)
+    if confidence.shape != points.shape[:2]:
+        raise FitError(f"Confidences {confidence.shape} do not match landmarks {points.shape}.")
+    finite = np.isfinite(points).all(axis=-1)
+    confidence = np.where(finite, np.clip(np.nan_to_num(confidence), 0, 1), 0.0)
+    points = np.where(finite[..., None], points, 0.0)
+    return points, confidence
+
+
+def _track(problem, solutions, targets, weights, axes, found, points) -> None:
+    """Fill *solutions* at the frames where the hand was *found*."""
+    # Fit the stillest frame afresh, then track from it forwards and backwards: a
+    # recording's first frames are often a transition, whose shape, carried into the
+    # hold by tracking, can hold the fit in a wrong answer.
+    seen = np.flatnonzero(found)
+    anchor = _stillest(points, seen)
+    solutions[anchor] = _first_fit(problem, targets[anchor], weights[anchor], axes).x
+    for run in (seen[seen > anchor], seen[seen < anchor][::-1]):
+        previous = solutions[anchor]
+        for frame in run:
+            previous = problem.fit(targets[frame], weights[frame], previous, axes).x
+            solutions[frame] = previous
+
+
 def fit_hand(
     model: HandModel, points: np.ndarray, confidence: np.ndarray | None = None,
     scale: float | None = None, depth_weight: float = 1.0, bones: bool = False,
@@ -290,17 +322,7 @@ def fit_hand(
     (frames per second) the DOF curves are smoothed over *smooth_s* seconds by a
     Savitzky–Golay filter, which keeps holds flat and follows transitions.
     """
-    points = np.asarray(points, dtype=np.float64)
-    if points.ndim == 2:
-        points = points[None]
-    if points.ndim != 3 or points.shape[1:] != (21, 3):
-        raise FitError(f"Expected hand landmarks (n_frames, 21, 3), not {points.shape}.")
-    confidence = np.ones(points.shape[:2]) if confidence is None else np.asarray(confidence)
-    if confidence.shape != points.shape[:2]:
-        raise FitError(f"Confidences {confidence.shape} do not match landmarks {points.shape}.")
-    finite = np.isfinite(points).all(axis=-1)
-    confidence = np.where(finite, np.clip(np.nan_to_num(confidence), 0, 1), 0.0)
-    points = np.where(finite[..., None], points, 0.0)
+    points, confidence = _checked_landmarks(points, confidence)
     axes = np.array([1.0, 1.0, depth_weight])
     if not has_depth(points, confidence):
         # Image landmarks whose depth was flattened: fit their projection only (the hand
@@ -322,17 +344,7 @@ def fit_hand(
     solutions = np.full((n, 3 + len(problem.free)), np.nan)
     targets = (points - points[:, list(PALM_CENTRE)].mean(axis=1, keepdims=True)) * scale
     weights = np.maximum(confidence, 1e-3)
-    # Fit the stillest frame afresh, then track from it forwards and backwards: a
-    # recording's first frames are often a transition, whose shape, carried into the
-    # hold by tracking, can hold the fit in a wrong answer.
-    seen = np.flatnonzero(found)
-    anchor = _stillest(points, seen)
-    solutions[anchor] = _first_fit(problem, targets[anchor], weights[anchor], axes).x
-    for run in (seen[seen > anchor], seen[seen < anchor][::-1]):
-        previous = solutions[anchor]
-        for frame in run:
-            previous = problem.fit(targets[frame], weights[frame], previous, axes).x
-            solutions[frame] = previous
+    _track(problem, solutions, targets, weights, axes, found, points)
     # Frames without the hand: interpolated between the fitted ones (held at the ends).
     frames = np.arange(n)
     for column in range(solutions.shape[1]):

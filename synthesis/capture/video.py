@@ -98,6 +98,21 @@ def expected_frames(path: str | Path) -> int | None:
     return round(duration_s * fps) if known else None
 
 
+def _hands_seen(found, width: int, height: int, one_hand: str | None, sides: dict) -> dict:
+    """Return one frame's hands by the signer's side: landmarks in pixels and the score,
+    the surer of two that claim one side."""
+    seen = {}
+    for marks, handed in zip(found.multi_hand_landmarks or (),
+                             found.multi_handedness or (), strict=True):  # fmt: skip
+        label = handed.classification[0]
+        side = one_hand or sides.get(label.label)
+        if side is None or (side in seen and seen[side][1] >= label.score):
+            continue
+        xyz = np.array([(m.x * width, m.y * height, m.z * width) for m in marks.landmark])
+        seen[side] = (xyz, float(label.score))
+    return seen
+
+
 def capture_hands(
     path: str | Path, mirrored: bool = False, progress: Callable[[int], None] | None = None,
     model_complexity: int = 1, one_hand: str | None = None,
@@ -127,16 +142,7 @@ def capture_hands(
     with tracker:
         for number, frame in enumerate(frames, start=1):
             height, width = frame.shape[:2]
-            found = tracker.process(frame)
-            seen = {}
-            for marks, handed in zip(found.multi_hand_landmarks or (),
-                                     found.multi_handedness or (), strict=True):  # fmt: skip
-                label = handed.classification[0]
-                side = one_hand or sides.get(label.label)
-                if side is None or (side in seen and seen[side][1] >= label.score):
-                    continue
-                xyz = np.array([(m.x * width, m.y * height, m.z * width) for m in marks.landmark])
-                seen[side] = (xyz, float(label.score))
+            seen = _hands_seen(tracker.process(frame), width, height, one_hand, sides)
             for side in ("right", "left"):
                 xyz, score = seen.get(side, (np.zeros((21, 3)), 0.0))
                 points[side].append(xyz)
@@ -154,6 +160,29 @@ def capture_hands(
     return PoseRecording(fps, components, data, confidence, width, height)
 
 
+def _add_holistic_frame(rows: dict, found, width: int, height: int, n_points: int) -> None:
+    """Append one frame's Holistic landmarks to *rows* (zeros, unseen, where it found none):
+    the pose in pixels, its metric twin, and each hand."""
+    scale = np.array([width, height, width])
+    if found.pose_landmarks is not None:
+        marks = found.pose_landmarks.landmark
+        rows["pose"].append(np.array([(m.x, m.y, m.z) for m in marks]) * scale)
+        rows["pose_seen"].append(np.array([m.visibility for m in marks]))
+        metric = found.pose_world_landmarks.landmark
+        rows["world"].append(np.array([(m.x, m.y, m.z) for m in metric]) * WORLD_UNITS_PER_M)
+    else:
+        rows["pose"].append(np.zeros((n_points, 3)))
+        rows["pose_seen"].append(np.zeros(n_points))
+        rows["world"].append(np.zeros((n_points, 3)))
+    for side in ("left", "right"):
+        marks = getattr(found, f"{side}_hand_landmarks")
+        seen = marks is not None
+        xyz = (np.array([(m.x, m.y, m.z) for m in marks.landmark]) * scale if seen
+               else np.zeros((21, 3)))  # fmt: skip
+        rows[side].append(xyz)
+        rows[f"{side}_seen"].append(np.full(21, 1.0 if seen else 0.0))
+
+
 def capture_body(
     path: str | Path, progress: Callable[[int], None] | None = None, model_complexity: int = 1
 ) -> PoseRecording:
@@ -169,36 +198,20 @@ def capture_body(
     holistic = _solution("holistic")
     names = tuple(landmark.name for landmark in holistic.PoseLandmark)
     fps, frames = read_frames(path)
-    pose, pose_seen, world = [], [], []
-    hands = {"left": [], "right": []}
-    hands_seen = {"left": [], "right": []}
+    rows = {"pose": [], "pose_seen": [], "world": [], "left": [], "right": [],
+            "left_seen": [], "right_seen": []}  # fmt: skip
     width = height = 0
     with holistic.Holistic(static_image_mode=False, model_complexity=model_complexity,
                            min_detection_confidence=0.3,
                            min_tracking_confidence=0.3) as tracker:  # fmt: skip
         for number, frame in enumerate(frames, start=1):
             height, width = frame.shape[:2]
-            found = tracker.process(frame)
-            scale = np.array([width, height, width])
-            if found.pose_landmarks is not None:
-                marks = found.pose_landmarks.landmark
-                pose.append(np.array([(m.x, m.y, m.z) for m in marks]) * scale)
-                pose_seen.append(np.array([m.visibility for m in marks]))
-                metric = found.pose_world_landmarks.landmark
-                world.append(np.array([(m.x, m.y, m.z) for m in metric]) * WORLD_UNITS_PER_M)
-            else:
-                pose.append(np.zeros((len(names), 3)))
-                pose_seen.append(np.zeros(len(names)))
-                world.append(np.zeros((len(names), 3)))
-            for side in ("left", "right"):
-                marks = getattr(found, f"{side}_hand_landmarks")
-                seen = marks is not None
-                xyz = (np.array([(m.x, m.y, m.z) for m in marks.landmark]) * scale if seen
-                       else np.zeros((21, 3)))  # fmt: skip
-                hands[side].append(xyz)
-                hands_seen[side].append(np.full(21, 1.0 if seen else 0.0))
+            _add_holistic_frame(rows, tracker.process(frame), width, height, len(names))
             if progress is not None:
                 progress(number)
+    pose, pose_seen, world = rows["pose"], rows["pose_seen"], rows["world"]
+    hands = {side: rows[side] for side in ("left", "right")}
+    hands_seen = {side: rows[f"{side}_seen"] for side in ("left", "right")}
     n = len(pose)
     if n < MIN_FRAMES:
         raise CaptureError(f"{path}: the video is too short ({n} frame(s)).")

@@ -68,25 +68,35 @@ def _point(spec, where: str) -> tuple[tuple[str, float], ...]:
     raise AlphabetError(f"{where}: a contact point is a joint name or {{between: [a, b], t}}.")
 
 
-def _angles(entry: dict, model: HandModel, where: str) -> np.ndarray:
-    """Turn a letter's grouped angles (degrees) into a DOF vector (radians)."""
+# A letter's angle groups that name DOFs directly: group → the DOF name for a key.
+_NAMED_GROUPS = {
+    "spread": "{}_mcp_abduction",
+    "twist": "{}_mcp_twist",
+    "wrist": "wrist_{}",
+    "forearm": "forearm_{}",
+}
+
+
+def _grouped_degrees(entry: dict, where: str) -> dict[str, float]:
+    """Return a letter's angles (degrees) by DOF name from its groups (fingers, thumb…)."""
     degrees: dict[str, float] = {}
     for finger, values in (entry.get("fingers") or {}).items():
         if finger not in FINGERS or len(values) != 3:
             raise AlphabetError(f"{where}: fingers.{finger} must be [mcp, pip, dip] of a finger.")
         degrees.update({f"{finger}_{key}": v for key, v in zip(_FINGER_KEYS, values, strict=True)})
-    for finger, value in (entry.get("spread") or {}).items():
-        degrees[f"{finger}_mcp_abduction"] = value
-    for finger, value in (entry.get("twist") or {}).items():
-        degrees[f"{finger}_mcp_twist"] = value
     for key, value in (entry.get("thumb") or {}).items():
         if key not in _THUMB_KEYS:
             raise AlphabetError(f"{where}: unknown thumb angle {key!r}.")
         degrees[f"thumb_{key}"] = value
-    for key, value in (entry.get("wrist") or {}).items():
-        degrees[f"wrist_{key}"] = value
-    for key, value in (entry.get("forearm") or {}).items():
-        degrees[f"forearm_{key}"] = value
+    for group, name in _NAMED_GROUPS.items():
+        for key, value in (entry.get(group) or {}).items():
+            degrees[name.format(key)] = value
+    return degrees
+
+
+def _angles(entry: dict, model: HandModel, where: str) -> np.ndarray:
+    """Turn a letter's grouped angles (degrees) into a DOF vector (radians)."""
+    degrees = _grouped_degrees(entry, where)
     try:
         dofs = model.from_degrees(degrees)
     except KeyError as error:
@@ -171,16 +181,8 @@ def _check_file(data) -> None:
         raise AlphabetError(f"The alphabet file lacks {', '.join(missing)}.")
 
 
-def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Letter:
-    """Build one letter from its data-file entry, solving its contacts.
-
-    *solved* (``dofs_rad`` and, for a letter with a path, ``path_rad``) gives the
-    solution found before; ValueError if it does not fit the entry.
-    """
-    where = f"letter {letter}"
-    if not isinstance(entry, dict):
-        raise AlphabetError(f"{where}: expected a mapping of angles.")
-    dofs = _angles(entry, model, where)
+def _contacts(entry: dict, model: HandModel, where: str) -> tuple[Contact, ...]:
+    """Return a letter's contacts; AlphabetError names a joint the hand does not have."""
     contacts = tuple(
         Contact(
             a=_point(c["a"], where),
@@ -200,6 +202,34 @@ def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Let
     ]
     if unknown:
         raise AlphabetError(f"{where}: unknown joint(s) {', '.join(unknown)} in contacts.")
+    return contacts
+
+
+def _path(entry: dict, model: HandModel, contacts, where: str, solved) -> np.ndarray:
+    """Return a moving letter's path (n_keys, n_dofs): solved here, or the stored solution."""
+    keys = entry["path"]
+    if solved is not None:
+        path = np.array(solved["path_rad"], dtype=np.float64)
+        if path.shape != (len(keys), len(model.dofs)):
+            raise ValueError(f"{where}: a stored path of another shape.")
+        return path
+    return np.stack([
+        solve_contacts(model, _angles({**entry, **k.get("pose", {})}, model, where), contacts)
+        for k in keys
+    ])  # fmt: skip
+
+
+def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Letter:
+    """Build one letter from its data-file entry, solving its contacts.
+
+    *solved* (``dofs_rad`` and, for a letter with a path, ``path_rad``) gives the
+    solution found before; ValueError if it does not fit the entry.
+    """
+    where = f"letter {letter}"
+    if not isinstance(entry, dict):
+        raise AlphabetError(f"{where}: expected a mapping of angles.")
+    dofs = _angles(entry, model, where)
+    contacts = _contacts(entry, model, where)
     if solved is not None:
         dofs = np.array(solved["dofs_rad"], dtype=np.float64)
         if dofs.shape != (len(model.dofs),):
@@ -208,18 +238,8 @@ def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Let
         dofs = solve_contacts(model, dofs, contacts)
     path = times = None
     if "path" in entry:
-        keys = entry["path"]
-        times = np.array([float(k["t"]) for k in keys])
-        if solved is not None:
-            path = np.array(solved["path_rad"], dtype=np.float64)
-            if path.shape != (len(keys), len(model.dofs)):
-                raise ValueError(f"{where}: a stored path of another shape.")
-        else:
-            path = np.stack([
-                solve_contacts(model, _angles({**entry, **k.get("pose", {})}, model, where),
-                               contacts)
-                for k in keys
-            ])  # fmt: skip
+        times = np.array([float(k["t"]) for k in entry["path"]])
+        path = _path(entry, model, contacts, where, solved)
         path.setflags(write=False)
     dofs.setflags(write=False)
     return Letter(letter, entry.get("description", ""), dofs, path, times, contacts)

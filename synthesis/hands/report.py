@@ -74,57 +74,48 @@ def write_reduction_report(
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    names = reduction.names
-    reduced = apply_reduction(curves_deg, reduction)
-    errors = reconstruction_error_deg(curves_deg, reduced)
-    means = curves_deg.mean(axis=0)
-    written = [
-        write_csv(
-            directory / "irrelevant.csv",
-            [
-                {
-                    "curve": n,
-                    "range_deg": round(reduction.ranges_deg[n], 3),
-                    "mean_deg": round(reduction.constant[n], 3),
-                }
-                for n in reduction.constant
-            ],
-            ["curve", "range_deg", "mean_deg"],
-        ),
-        write_csv(
-            directory / "relations.csv",
-            [
-                {
-                    "dependent": r.dependent,
-                    "controlling": r.controller,
-                    "metric": r.metric,
-                    "rmsd": round(r.rmsd, 3),
-                    "pair_rmsd": round(r.pair_rmsd, 3),
-                }
-                for r in reduction.relations
-            ],
-            ["dependent", "controlling", "metric", "rmsd", "pair_rmsd"],
-        ),
-        write_csv(
-            directory / "errors.csv",
-            [
-                {
-                    "curve": n,
-                    "role": _role(reduction, n),
-                    "mean_deg": round(float(m), 3),
-                    "range_deg": round(reduction.ranges_deg[n], 3),
-                    "rms_error_deg": round(float(e), 4),
-                }
-                for n, m, e in zip(names, means, errors, strict=True)
-            ],
-            ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"],
-        ),
-    ]
-    steps = steps or step_rows(curves_deg, names, source)
+    errors = reconstruction_error_deg(curves_deg, apply_reduction(curves_deg, reduction))
+    written = _reduction_tables(curves_deg, reduction, errors, directory)
+    steps = steps or step_rows(curves_deg, reduction.names, source)
     written.append(write_csv(directory / "steps.csv", steps, list(steps[0])))
     caption = f"Free DOFs after seed 002's steps: {source}; published: {PUBLISHED_REDUCTION_INPUT}"
     written.append(write_latex(directory / "steps.tex", steps, STEP_COLUMNS, caption))
     summary = directory / "report.md"
+    summary.write_text(_reduction_summary(curves_deg, reduction, errors, steps, source), "utf-8")
+    written += [summary, _plot_steps(steps, directory / "dofs-vs-error.png", source)]
+    return written
+
+
+def _reduction_tables(curves_deg, reduction: Reduction, errors, directory: Path) -> list[Path]:
+    """Write the constant curves, the relations and each curve's error as CSV."""
+    means = curves_deg.mean(axis=0)
+    irrelevant = [
+        {"curve": n, "range_deg": round(reduction.ranges_deg[n], 3),
+         "mean_deg": round(reduction.constant[n], 3)}
+        for n in reduction.constant
+    ]  # fmt: skip
+    relations = [
+        {"dependent": r.dependent, "controlling": r.controller, "metric": r.metric,
+         "rmsd": round(r.rmsd, 3), "pair_rmsd": round(r.pair_rmsd, 3)}
+        for r in reduction.relations
+    ]  # fmt: skip
+    curves = [
+        {"curve": n, "role": _role(reduction, n), "mean_deg": round(float(m), 3),
+         "range_deg": round(reduction.ranges_deg[n], 3), "rms_error_deg": round(float(e), 4)}
+        for n, m, e in zip(reduction.names, means, errors, strict=True)
+    ]  # fmt: skip
+    return [
+        write_csv(directory / "irrelevant.csv", irrelevant, ["curve", "range_deg", "mean_deg"]),
+        write_csv(directory / "relations.csv", relations,
+                  ["dependent", "controlling", "metric", "rmsd", "pair_rmsd"]),
+        write_csv(directory / "errors.csv", curves,
+                  ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"]),
+    ]  # fmt: skip
+
+
+def _reduction_summary(curves_deg, reduction: Reduction, errors, steps, source: str) -> str:
+    """Return report.md: the thresholds, the motion, the free DOFs and Table 5's steps."""
+    names = reduction.names
     lines = [
         f"# DOF reduction (seed 002): range < {reduction.range_deg:g}°"
         + (f", rmsd < {reduction.rmsd:g}" if reduction.rmsd == reduction.rmsd else ""),
@@ -147,9 +138,7 @@ def write_reduction_report(
         ),
         "",
     ]
-    summary.write_text("\n".join(lines), "utf-8")
-    written += [summary, _plot_steps(steps, directory / "dofs-vs-error.png", source)]
-    return written
+    return "\n".join(lines)
 
 
 def _role(reduction: Reduction, name: str) -> str:

@@ -90,23 +90,35 @@ def _ease(values_at_rest: np.ndarray, runs, ends: float | None = None,
             continue
         before = [r for r in rests if r[1] <= a]
         after = [r for r in rests if r[0] >= b]
-        first = values_at_rest[before[-1][0]] if before else ends
-        last = values_at_rest[after[0][0]] if after else ends
-        first = last if first is None else first
-        last = first if last is None else last
+        first, last = _neighbours(values_at_rest, before, after, ends)
         # A stretch at the clip's start begins on its first value, one at its end
         # finishes on its last; between still stretches both are the neighbours'.
         lead, tail = (1 if before else 0), (1 if after else 0)
         u = (np.arange(a, b) - a + lead) / max(b - a - 1 + lead + tail, 1)
         if a in pauses:
-            middle = pauses[a]
             share = min(0.25, ease_frames / (b - a + 1))
-            into, out_of = np.clip(u / share, 0, 1), np.clip((u - 1) / share + 1, 0, 1)
-            out[a:b] = (first + (middle - first) * into * into * (3 - 2 * into)
-                        + (last - middle) * out_of * out_of * (3 - 2 * out_of))  # fmt: skip
+            out[a:b] = _ease_through(u, first, pauses[a], last, share)
         else:
             out[a:b] = first + (last - first) * u * u * (3 - 2 * u)
     return out
+
+
+def _neighbours(values_at_rest, before, after, ends: float | None) -> tuple[float, float]:
+    """Return the still values a moving run eases from and to (*ends* at the clip's ends,
+    the other neighbour's where *ends* is None)."""
+    first = values_at_rest[before[-1][0]] if before else ends
+    last = values_at_rest[after[0][0]] if after else ends
+    first = last if first is None else first
+    last = first if last is None else last
+    return first, last
+
+
+def _ease_through(u: np.ndarray, first: float, middle: float, last: float, share: float):
+    """Ease (smoothstep) from *first* to *middle* over the first *share* of u ∈ [0, 1],
+    hold it, and ease on to *last* over the last *share*."""
+    into, out_of = np.clip(u / share, 0, 1), np.clip((u - 1) / share + 1, 0, 1)
+    return (first + (middle - first) * into * into * (3 - 2 * into)
+            + (last - middle) * out_of * out_of * (3 - 2 * out_of))  # fmt: skip
 
 
 def _per_run(values: np.ndarray, runs, reduce) -> np.ndarray:
@@ -155,14 +167,7 @@ def follow_hand(
     # hold_share of it from depth + (z − depth)·(1 − 2·margin) / hold_share.
     depth = points[..., 2].mean(axis=1)
     close_enough = depth + (needed - depth) * (1 - 2 * margin_share) / hold_share
-    if scale_poses is not None:
-        scale = hand_vertices(avatar, np.atleast_2d(scale_poses))
-        distance = _needed(scale, [_extremes(scale, t, axis) for axis, t in enumerate(tangents)],
-                           tangents).max()  # fmt: skip
-    else:
-        # The clip's distance comes from still hands alone (a transition that needs more
-        # room backs off for its own frames).
-        distance = needed[_still_frames(runs, len(points))].max()
+    distance = _distance(avatar, scale_poses, needed, runs, tangents)
     at_rest = _per_run(np.minimum(distance, close_enough), runs, np.min)
     rest_extremes = None
     if rest_pose is not None:
@@ -200,11 +205,18 @@ def _still_runs(points: np.ndarray, rate_hz: float) -> list[tuple[int, int, bool
     return runs
 
 
-def _still_frames(runs, n_frames: int) -> np.ndarray:
-    still = np.zeros(n_frames, dtype=bool)
+def _distance(avatar: Avatar, scale_poses, needed: np.ndarray, runs, tangents) -> float:
+    """Return the clip's camera distance: the nearest at which every one of *scale_poses*
+    fits, or without them every still frame (a transition that needs more room backs off
+    for its own frames)."""
+    if scale_poses is not None:
+        scale = hand_vertices(avatar, np.atleast_2d(scale_poses))
+        extremes = [_extremes(scale, t, axis) for axis, t in enumerate(tangents)]
+        return float(_needed(scale, extremes, tangents).max())
+    still = np.zeros(len(needed), dtype=bool)
     for a, b, is_still in runs:
         still[a:b] = is_still
-    return still
+    return float(needed[still].max())
 
 
 def _centre(extremes, tangent: float, eye_z: np.ndarray, runs, rate_hz: float,

@@ -70,6 +70,32 @@ def _set_joint(body: BodyModel, dofs: np.ndarray, joint: str, local: np.ndarray)
         dofs[:, index] = angles[:, column] / sign
 
 
+def _swing(n: np.ndarray, swivel: np.ndarray, side: str) -> np.ndarray:
+    """Return the unit directions (n, 3), normal to the reach *n*, the elbow swings to:
+    *swivel* from straight down, outward (away from the body) for positive angles."""
+    down = np.array([0.0, -1.0, 0.0]) - n[:, 1:2] * -n
+    vertical = np.linalg.norm(down, axis=1) < 1e-6
+    if vertical.any():  # reaching straight up or down: swivel from forward
+        down[vertical] = np.array([0.0, 0.0, 1.0]) - n[vertical, 2:3] * n[vertical]
+    down = _unit(down)
+    outward = -1.0 if side == "right" else 1.0
+    return np.cos(swivel) * down + np.sin(swivel) * outward * np.cross(n, down)
+
+
+def _turn_hand(body, dofs, p: str, upper_arm, elbow_index: int, target) -> None:
+    """Set the forearm twist and wrist DOFs that turn the hand to *target* (n, 3, 3)."""
+    # The forearm's frame before its twist: the shoulder's, turned by the elbow.
+    elbow_dof = body.dofs[elbow_index]
+    bend = Rotation.from_euler(elbow_dof.axis, dofs[:, elbow_index, None] * elbow_dof.sign)
+    forearm = upper_arm @ bend.as_matrix()
+    twist, deviation, flexion = euler_angles(
+        Rotation.from_matrix(np.transpose(forearm, (0, 2, 1)) @ target), "YZX"
+    ).T
+    _set_joint(body, dofs, p + "forearm", Rotation.from_euler("Y", twist[:, None]).as_matrix())
+    wrist_local = Rotation.from_euler("ZX", np.stack([deviation, flexion], axis=1))
+    _set_joint(body, dofs, p + "wrist", wrist_local.as_matrix())
+
+
 def solve_arm(
     body: BodyModel,
     dofs_rad: np.ndarray,
@@ -107,17 +133,10 @@ def solve_arm(
     distance = np.clip(np.linalg.norm(to_target, axis=1), abs(upper - fore) + 1e-4,
                        upper + fore - 1e-4)[:, None]  # fmt: skip
     n = _unit(to_target)
-    # The elbow's circle: angle at the shoulder by the law of cosines, then swivel from
-    # straight down, outward (away from the body) for positive angles.
-    cos_a = (upper**2 + distance**2 - fore**2) / (2 * upper * distance)
-    down = np.array([0.0, -1.0, 0.0]) - n[:, 1:2] * -n
-    vertical = np.linalg.norm(down, axis=1) < 1e-6
-    if vertical.any():  # reaching straight up or down: swivel from forward
-        down[vertical] = np.array([0.0, 0.0, 1.0]) - n[vertical, 2:3] * n[vertical]
-    down = _unit(down)
-    outward = -1.0 if side == "right" else 1.0
     swivel = np.broadcast_to(np.asarray(swivel_rad, dtype=float), (n_keys,))[:, None]
-    swing = np.cos(swivel) * down + np.sin(swivel) * outward * np.cross(n, down)
+    swing = _swing(n, swivel, side)
+    # The elbow's circle: angle at the shoulder by the law of cosines.
+    cos_a = (upper**2 + distance**2 - fore**2) / (2 * upper * distance)
     elbow = shoulder + upper * (cos_a * n + np.sqrt(np.clip(1 - cos_a**2, 0.0, None)) * swing)
     y = _unit(elbow - shoulder)
     # upper × forearm is along swing × n for this elbow.
@@ -129,16 +148,7 @@ def solve_arm(
     elbow_index = body.dof_names.index(p + "elbow_flexion")
     dofs[:, elbow_index] = np.pi - np.arccos(np.clip(cos_b, -1.0, 1.0))
     if hand_rotation is not None:
-        # The forearm's frame before its twist: the shoulder's, turned by the elbow.
-        elbow_dof = body.dofs[elbow_index]
-        bend = Rotation.from_euler(elbow_dof.axis, dofs[:, elbow_index, None] * elbow_dof.sign)
-        forearm = world @ bend.as_matrix()
         target = np.broadcast_to(np.asarray(hand_rotation, dtype=float), (n_keys, 3, 3))
-        twist, deviation, flexion = euler_angles(
-            Rotation.from_matrix(np.transpose(forearm, (0, 2, 1)) @ target), "YZX"
-        ).T
-        _set_joint(body, dofs, p + "forearm", Rotation.from_euler("Y", twist[:, None]).as_matrix())
-        wrist_local = Rotation.from_euler("ZX", np.stack([deviation, flexion], axis=1))
-        _set_joint(body, dofs, p + "wrist", wrist_local.as_matrix())
+        _turn_hand(body, dofs, p, world, elbow_index, target)
     dofs = body.clip(dofs)
     return dofs[0] if single else dofs

@@ -156,6 +156,34 @@ class _Key:
     head_deg: dict
 
 
+def _spelled_keys(token: str, library: SignLibrary, rest: dict, t: float) -> list[_Key]:
+    """Return a fingerspelled token's keys from *t* (ms): each letter held, then moved on."""
+    spelling = library.spelling
+    keys: list[_Key] = []
+    for character in token.split("-"):
+        hand = library.hand("right", {**spelling, "shape": character}, token)
+        pose = {"right": hand, "left": rest["left"]}
+        keys += [_Key(t, pose, {}, {}),
+                 _Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
+        t = keys[-1].ms + float(spelling.get("transition_ms", 110))
+    return keys
+
+
+def _sign_keys(sign, rest: dict, t: float) -> list[_Key]:
+    """Return a sign's keys from *t* (ms); a hand the sign leaves out stays at rest, and a
+    hand holds its last pose between the keys that name it."""
+    used = {side for key in sign for side in key.hands}
+    last = {side: next(k.hands[side] for k in sign if side in k.hands) for side in used}
+    keys = []
+    for key in sign:
+        last.update(key.hands)
+        hands = {side: last[side] if side in used else rest[side] for side in rest}
+        keys.append(_Key(t + key.ms, hands, key.spine_deg, key.head_deg))
+        if key.hold_ms > 0:
+            keys.append(_Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
+    return keys
+
+
 def _timeline(glosses, library: SignLibrary,
               gaps_ms=None) -> tuple[list[_Key], list[tuple[float, float]]]:  # fmt: skip
     """Return the sentence's keys in time order, holds written out as repeated keys, and
@@ -171,30 +199,13 @@ def _timeline(glosses, library: SignLibrary,
     rest = {side: library.hand(side, library.rest, "rest") for side in ("right", "left")}
     keys = [_Key(0.0, dict(rest), {}, {}), _Key(REST_HOLD_MS, dict(rest), {}, {})]
     t = LEAD_MS
-    spelling = library.spelling
     tokens_ms = []
     for token in glosses:
         first = len(keys)
         if _is_spelled(token):
-            for character in token.split("-"):
-                hand = library.hand("right", {**spelling, "shape": character}, token)
-                pose = {"right": hand, "left": rest["left"]}
-                keys += [_Key(t, pose, {}, {}),
-                         _Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
-                t = keys[-1].ms + float(spelling.get("transition_ms", 110))
-            tokens_ms.append((keys[first].ms, keys[-1].ms))
-            t = keys[-1].ms + (gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps)
-                               else library.transition_ms)  # fmt: skip
-            continue
-        sign = library.sign(token)
-        used = {side for key in sign for side in key.hands}
-        last = {side: next(k.hands[side] for k in sign if side in k.hands) for side in used}
-        for key in sign:
-            last.update(key.hands)
-            hands = {side: last[side] if side in used else rest[side] for side in rest}
-            keys.append(_Key(t + key.ms, hands, key.spine_deg, key.head_deg))
-            if key.hold_ms > 0:
-                keys.append(_Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
+            keys += _spelled_keys(token, library, rest, t)
+        else:
+            keys += _sign_keys(library.sign(token), rest, t)
         tokens_ms.append((keys[first].ms, keys[-1].ms))
         t = keys[-1].ms + (gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps)
                            else library.transition_ms)  # fmt: skip

@@ -84,6 +84,37 @@ class _Tokens:
         return value
 
 
+def _parse_channels(tokens: _Tokens, name: str) -> tuple[str, ...]:
+    """Parse a CHANNELS list (its keyword already taken): the count, then the names."""
+    count_token, count_line = tokens.take()
+    if not count_token.isdigit():
+        raise tokens.error(count_line, f"channel count {count_token!r} is not a whole number")
+    found = []
+    for _ in range(int(count_token)):
+        channel, channel_line = tokens.take()
+        if channel.lower() not in _CHANNEL_LOOKUP:
+            raise tokens.error(
+                channel_line,
+                f"unknown channel {channel!r} (expected {', '.join(CHANNEL_NAMES)})",
+            )
+        found.append(_CHANNEL_LOOKUP[channel.lower()])
+    if len(set(found)) != len(found):
+        raise tokens.error(count_line, f"joint {name!r} lists a channel twice")
+    return tuple(found)
+
+
+def _parse_end_site(tokens: _Tokens, joints: list[Joint], parent: int, name: str) -> None:
+    """Parse an End Site block (its keyword already taken) into a channel-less joint."""
+    tokens.take("{")
+    tokens.take("OFFSET")
+    site_offset = tuple(tokens.number("OFFSET value") for _ in range(3))
+    tokens.take("}")
+    site_name = f"{name}_End"
+    while any(joint.name == site_name for joint in joints):
+        site_name += "_"
+    joints.append(Joint(site_name, parent, site_offset, (), is_end_site=True))
+
+
 def _parse_joint(
     tokens: _Tokens, joints: list[Joint], parent: int, keyword: str, depth: int
 ) -> None:
@@ -101,21 +132,7 @@ def _parse_joint(
     channels: tuple[str, ...] = ()
     if tokens.peek()[0].upper() == "CHANNELS":
         tokens.take()
-        count_token, count_line = tokens.take()
-        if not count_token.isdigit():
-            raise tokens.error(count_line, f"channel count {count_token!r} is not a whole number")
-        found = []
-        for _ in range(int(count_token)):
-            channel, channel_line = tokens.take()
-            if channel.lower() not in _CHANNEL_LOOKUP:
-                raise tokens.error(
-                    channel_line,
-                    f"unknown channel {channel!r} (expected {', '.join(CHANNEL_NAMES)})",
-                )
-            found.append(_CHANNEL_LOOKUP[channel.lower()])
-        if len(set(found)) != len(found):
-            raise tokens.error(count_line, f"joint {name!r} lists a channel twice")
-        channels = tuple(found)
+        channels = _parse_channels(tokens, name)
     elif keyword == "ROOT":
         raise tokens.error(tokens.peek()[1], f"ROOT {name!r} needs CHANNELS")
     index = len(joints)
@@ -131,14 +148,7 @@ def _parse_joint(
             _parse_joint(tokens, joints, index, "JOINT", depth + 1)
         elif upper == "END SITE":
             tokens.take()
-            tokens.take("{")
-            tokens.take("OFFSET")
-            site_offset = tuple(tokens.number("OFFSET value") for _ in range(3))
-            tokens.take("}")
-            site_name = f"{name}_End"
-            while any(joint.name == site_name for joint in joints):
-                site_name += "_"
-            joints.append(Joint(site_name, index, site_offset, (), is_end_site=True))
+            _parse_end_site(tokens, joints, index, name)
         elif token_line is None:
             raise tokens.error(None, f"file ends inside joint {name!r}; expected '}}'")
         else:
@@ -167,6 +177,26 @@ def _read_numbers(text: str) -> np.ndarray | None:
     return frame.to_numpy(dtype=np.float64)
 
 
+def _unreadable_values(rows, values, n_channels: int, source: str) -> BvhError:
+    """Return the error naming the first frame line that cannot be read as values."""
+    for number, line in rows:
+        words = line.split()
+        if len(words) != n_channels:
+            return BvhError(
+                f"{source}, line {number}: {len(words)} values, expected {n_channels} "
+                "(one per channel)."
+            )
+        for word in words:
+            try:
+                float(word)
+            except ValueError:
+                return BvhError(f"{source}, line {number}: {word!r} is not a number.")
+    if values is not None and np.isnan(values).any():
+        row = int(np.flatnonzero(np.isnan(values).any(axis=1))[0])
+        return BvhError(f"{source}, line {rows[row][0]}: values must be finite numbers.")
+    return BvhError(f"{source}: the frame values cannot be read.")
+
+
 def _parse_values(
     lines: list[str], first_line: int, n_frames: int, n_channels: int, source: str
 ) -> np.ndarray:
@@ -187,22 +217,7 @@ def _parse_values(
         return np.zeros((0, n_channels))
     values = _read_numbers("\n".join(line for _, line in rows))
     if values is None or values.shape != (n_frames, n_channels) or np.isnan(values).any():
-        for number, line in rows:
-            words = line.split()
-            if len(words) != n_channels:
-                raise BvhError(
-                    f"{source}, line {number}: {len(words)} values, expected {n_channels} "
-                    "(one per channel)."
-                )
-            for word in words:
-                try:
-                    float(word)
-                except ValueError:
-                    raise BvhError(f"{source}, line {number}: {word!r} is not a number.") from None
-        if values is not None and np.isnan(values).any():
-            row = int(np.flatnonzero(np.isnan(values).any(axis=1))[0])
-            raise BvhError(f"{source}, line {rows[row][0]}: values must be finite numbers.")
-        raise BvhError(f"{source}: the frame values cannot be read.")
+        raise _unreadable_values(rows, values, n_channels, source)
     bad = ~np.isfinite(values)
     if bad.any():
         row = int(np.flatnonzero(bad.any(axis=1))[0])
@@ -210,25 +225,11 @@ def _parse_values(
     return values
 
 
-def parse_bvh(text: str, source: str = "<bvh>", length_unit: str | None = None) -> Motion:
-    """Parse BVH text into a Motion; *length_unit* overrides the guessed unit ("cm", "m", …)."""
-    lines = text.splitlines()
-    tokens = _Tokens(lines, source)
-    tokens.take("HIERARCHY")
-    joints: list[Joint] = []
-    while tokens.peek()[1] is not None:
-        token, line = tokens.peek()
-        if token == "}":
-            raise tokens.error(line, "'}' closes nothing (one brace too many)")
-        tokens.take("ROOT")
-        _parse_joint(tokens, joints, -1, "ROOT", 0)
-    if not joints:
-        raise tokens.error(tokens.motion_line, "no ROOT joint")
-    if tokens.motion_line is None:
-        raise BvhError(f"{source}, end of file: MOTION section missing.")
+def _motion_header(lines: list[str], motion_line: int, source: str) -> tuple[int, float, int]:
+    """Return the MOTION section's frame count and frame time, and the frame time's line."""
     header = [
         (number, line)
-        for number, line in enumerate(lines[tokens.motion_line :], start=tokens.motion_line + 1)
+        for number, line in enumerate(lines[motion_line:], start=motion_line + 1)
         if line.strip()
     ][:2]
     if len(header) < 2:
@@ -248,8 +249,28 @@ def parse_bvh(text: str, source: str = "<bvh>", length_unit: str | None = None) 
         ) from None
     if not (math.isfinite(frame_time) and frame_time > 0):
         raise BvhError(f"{source}, line {time_line}: frame time must be positive.")
+    return int(frames_value), frame_time, time_line
+
+
+def parse_bvh(text: str, source: str = "<bvh>", length_unit: str | None = None) -> Motion:
+    """Parse BVH text into a Motion; *length_unit* overrides the guessed unit ("cm", "m", …)."""
+    lines = text.splitlines()
+    tokens = _Tokens(lines, source)
+    tokens.take("HIERARCHY")
+    joints: list[Joint] = []
+    while tokens.peek()[1] is not None:
+        token, line = tokens.peek()
+        if token == "}":
+            raise tokens.error(line, "'}' closes nothing (one brace too many)")
+        tokens.take("ROOT")
+        _parse_joint(tokens, joints, -1, "ROOT", 0)
+    if not joints:
+        raise tokens.error(tokens.motion_line, "no ROOT joint")
+    if tokens.motion_line is None:
+        raise BvhError(f"{source}, end of file: MOTION section missing.")
+    n_frames, frame_time, time_line = _motion_header(lines, tokens.motion_line, source)
     n_channels = sum(len(joint.channels) for joint in joints)
-    values = _parse_values(lines[time_line:], time_line + 1, int(frames_value), n_channels, source)
+    values = _parse_values(lines[time_line:], time_line + 1, n_frames, n_channels, source)
     offsets = np.array([joint.offset for joint in joints], dtype=np.float64)
     parents = np.array([joint.parent for joint in joints])
     unit = length_unit or guess_length_unit(offsets, parents)

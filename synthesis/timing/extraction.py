@@ -264,25 +264,8 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
             f"The hand's poses where it slows down do not look like the letters of "
             f"{''.join(letters)} (only {100 * matched:.0f} % match): is this a recording of it?"
         )
-    # The hand moves in from a rest pose (and out to one) if it speeds up before the first
-    # anchor (after the last) and ends up far from the letter; otherwise the clip starts
-    # (ends) on the letter.
-    steps = np.linalg.norm(np.diff(angles[anchors], axis=0), axis=1)
-    far = LEAD_DISTANCE * (float(np.median(steps)) if len(steps) else 0.0)
-    moves_in = (velocity[: anchors[0] + 1].max() >= velocity[anchors[0]] + rise
-                and np.linalg.norm(angles[0] - angles[anchors[0]]) > far)  # fmt: skip
-    moves_out = (velocity[anchors[-1] :].max() >= velocity[anchors[-1]] + rise
-                 and np.linalg.norm(angles[-1] - angles[anchors[-1]]) > far)  # fmt: skip
-    bounds = _boundaries(raw, anchors, moves_in, moves_out)
-    hold_bounds = np.zeros((len(letters), 2))
-    for (k, end, _), (arrive, leave) in zip(keys, bounds, strict=True):
-        if end:
-            hold_bounds[k, 1] = leave
-        else:
-            hold_bounds[k] = arrive, leave
-    for k in range(len(letters) - 1):  # fits that overlap meet halfway
-        if hold_bounds[k, 1] > hold_bounds[k + 1, 0]:
-            hold_bounds[k, 1] = hold_bounds[k + 1, 0] = hold_bounds[k, 1:].mean()
+    moves_in, moves_out = _moves_in_and_out(angles, velocity, anchors, rise)
+    hold_bounds = _hold_bounds(keys, len(letters), _boundaries(raw, anchors, moves_in, moves_out))
     frame_ms = 1000.0 / rate
     hold_ms = tuple(max(end - start, 1.0) * frame_ms for start, end in hold_bounds)
     transition_ms = tuple(
@@ -290,6 +273,35 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
     )
     timing = WordTiming(letters, hold_ms, transition_ms, "mocap", {"rate_hz": rate})
     return Extraction(timing, hold_bounds / rate, velocity, weights)
+
+
+def _moves_in_and_out(angles, velocity, anchors, rise: float) -> tuple[bool, bool]:
+    """Return whether the hand moves in from a rest pose and out to one.
+
+    It does if it speeds up before the first anchor (after the last) and ends up far
+    from the letter; otherwise the clip starts (ends) on the letter.
+    """
+    steps = np.linalg.norm(np.diff(angles[anchors], axis=0), axis=1)
+    far = LEAD_DISTANCE * (float(np.median(steps)) if len(steps) else 0.0)
+    moves_in = (velocity[: anchors[0] + 1].max() >= velocity[anchors[0]] + rise
+                and np.linalg.norm(angles[0] - angles[anchors[0]]) > far)  # fmt: skip
+    moves_out = (velocity[anchors[-1] :].max() >= velocity[anchors[-1]] + rise
+                 and np.linalg.norm(angles[-1] - angles[anchors[-1]]) > far)  # fmt: skip
+    return bool(moves_in), bool(moves_out)
+
+
+def _hold_bounds(keys, n_letters: int, bounds) -> np.ndarray:
+    """Return each letter's hold (n_letters, 2) in frames from its keys' arrive and leave."""
+    hold_bounds = np.zeros((n_letters, 2))
+    for (k, end, _), (arrive, leave) in zip(keys, bounds, strict=True):
+        if end:
+            hold_bounds[k, 1] = leave
+        else:
+            hold_bounds[k] = arrive, leave
+    for k in range(n_letters - 1):  # fits that overlap meet halfway
+        if hold_bounds[k, 1] > hold_bounds[k + 1, 0]:
+            hold_bounds[k, 1] = hold_bounds[k + 1, 0] = hold_bounds[k, 1:].mean()
+    return hold_bounds
 
 
 def _boundaries(

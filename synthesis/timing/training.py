@@ -41,6 +41,29 @@ class Annotation:
     duration_ms: float
 
 
+def _annotation(row: dict, duration_column: str, where: str) -> Annotation:
+    """Return one CSV row as an annotation; TimingError names what is wrong with it."""
+    word = (row["word"] or "").strip().upper()
+    try:
+        index = int(row["index"])
+        duration = float(row[duration_column])
+    except (TypeError, ValueError):
+        raise TimingError(
+            f"{where}: index must be a whole number and {duration_column} a number."
+        ) from None
+    limit = len(word) - (1 if duration_column == "transition_ms" else 0)
+    if not word.isalpha() or not 0 <= index < limit:
+        raise TimingError(f"{where}: no letter {index} in {word!r}.")
+    if not (np.isfinite(duration) and duration > 0):
+        raise TimingError(f"{where}: {duration_column} must be positive.")
+    if row.get("letter") and row["letter"].strip().upper() != word[index]:
+        raise TimingError(
+            f"{where}: letter {index} of {word} is {word[index]}, "
+            f"not {row['letter'].strip().upper()}."
+        )
+    return Annotation(word, index, duration)
+
+
 def read_annotations(path: str | Path, columns: tuple[str, str, str]) -> list[Annotation]:
     """Read holds or transitions from a CSV file; TimingError names any bad line."""
     path = Path(path)
@@ -49,27 +72,10 @@ def read_annotations(path: str | Path, columns: tuple[str, str, str]) -> list[An
         missing = [c for c in columns if c not in (reader.fieldnames or [])]
         if missing:
             raise TimingError(f"{path}: missing column(s) {', '.join(missing)}.")
-        rows = []
-        for line, row in enumerate(reader, start=2):
-            word = (row["word"] or "").strip().upper()
-            try:
-                index = int(row["index"])
-                duration = float(row[columns[2]])
-            except (TypeError, ValueError):
-                raise TimingError(
-                    f"{path}, line {line}: index must be a whole number and {columns[2]} a number."
-                ) from None
-            limit = len(word) - (1 if columns[2] == "transition_ms" else 0)
-            if not word.isalpha() or not 0 <= index < limit:
-                raise TimingError(f"{path}, line {line}: no letter {index} in {word!r}.")
-            if not (np.isfinite(duration) and duration > 0):
-                raise TimingError(f"{path}, line {line}: {columns[2]} must be positive.")
-            if row.get("letter") and row["letter"].strip().upper() != word[index]:
-                raise TimingError(
-                    f"{path}, line {line}: letter {index} of {word} is {word[index]}, "
-                    f"not {row['letter'].strip().upper()}."
-                )
-            rows.append(Annotation(word, index, duration))
+        rows = [
+            _annotation(row, columns[2], f"{path}, line {line}")
+            for line, row in enumerate(reader, start=2)
+        ]
     if not rows:
         raise TimingError(f"{path}: no rows.")
     return rows

@@ -52,12 +52,7 @@ class Command(BaseCommand):
             raise CommandError("Name a study (its slug), or give --from-manifest.")
         if options["manifest"] is not None and len(studies) > 1:
             raise CommandError("--manifest writes one study's manifest: name one study.")
-        found = []
-        for slug in studies:
-            study = Study.objects.filter(slug=slug).first()
-            if study is None:
-                raise CommandError(f"No study with the slug {slug!r}.")
-            found.append(study)
+        found = self._studies(studies)
         started = time.perf_counter()
         eager = settings.CELERY_TASK_ALWAYS_EAGER
         try:
@@ -74,7 +69,24 @@ class Command(BaseCommand):
                     self._wait([pk for result in results for pk in result.stimulus_ids], timeout)
         except ClipError as error:
             raise CommandError(str(error)) from None
-        seconds = time.perf_counter() - started
+        failures = self._report(found, results, time.perf_counter() - started)
+        if options["manifest"] is not None:
+            path = write_manifest(study_manifest(found[0]), options["manifest"], found[0].slug)
+            self.stdout.write(f"manifest written to {path}")
+        if failures:
+            raise CommandError(f"{failures} clip(s) failed; retry them from the admin.")
+
+    def _studies(self, slugs: list[str]) -> list[Study]:
+        found = []
+        for slug in slugs:
+            study = Study.objects.filter(slug=slug).first()
+            if study is None:
+                raise CommandError(f"No study with the slug {slug!r}.")
+            found.append(study)
+        return found
+
+    def _report(self, found: list[Study], results, seconds: float) -> int:
+        """Print each study's clips and failures; return how many failed."""
         failures = 0
         for study, result in zip(found, results, strict=True):
             failed = Stimulus.objects.filter(pk__in=result.stimulus_ids,
@@ -86,11 +98,7 @@ class Command(BaseCommand):
                 f"{study.slug}: {result.total} clips, {result.queued} rendered, {result.ready} "
                 f"already there, {failed.count()} failed ({seconds:.1f} s)"
             )
-        if options["manifest"] is not None:
-            path = write_manifest(study_manifest(found[0]), options["manifest"], found[0].slug)
-            self.stdout.write(f"manifest written to {path}")
-        if failures:
-            raise CommandError(f"{failures} clip(s) failed; retry them from the admin.")
+        return failures
 
     def _render_manifest(self, path: Path) -> None:
         """Render every clip of the manifest at *path* that the media folder lacks."""
