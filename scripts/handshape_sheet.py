@@ -8,14 +8,10 @@ A check of the handshape data (synthesis/data/asl_alphabet.yaml) without renderi
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from synthesis.fingerspelling.alphabet import LETTERS, alphabet
+from synthesis.plotting import pyplot
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import landmarks
 
@@ -38,6 +34,7 @@ def main() -> None:
     table = alphabet("right")
     columns = 6 if len(letters) > 8 else min(3, len(letters))
     rows = -(-len(letters) // columns)
+    plt = pyplot()
     figure, axes = plt.subplots(rows, columns * 2, figsize=(columns * 3.2, rows * 2.0))
     for k, letter in enumerate(letters):
         points = landmarks(model, table[letter].dofs_rad)

@@ -159,7 +159,6 @@ def ordinal_mixed(
         data,
         order,
         test=(statistic, df, pvalue),
-        n_params=len(fit.params) + len(fit.sd),
         notes=notes,
         model="Cumulative-link mixed model (proportional odds, logit)",
         estimator="maximum likelihood, Laplace approximation (as ordinal::clmm)",

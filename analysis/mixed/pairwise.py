@@ -177,7 +177,6 @@ def mixed_bradley_terry(
         data,
         order,
         test=(statistic, df, pvalue),
-        n_params=len(fit.params) + len(fit.sd),
         notes=notes,
         model="Mixed-effects Bradley–Terry"
         + (" with Davidson ties" if ties == "davidson" else " (logistic)"),

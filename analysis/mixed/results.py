@@ -156,17 +156,20 @@ class _ModelResult(Result):
         order: Sequence[str],
         *,
         test: tuple[float, int, float],
-        n_params: int,
         notes: Sequence[str],
+        n_params: int | None = None,
         **fields: Any,
     ) -> Self:
         """Build the result of *fit* to *data*: the fields every mixed model fills alike.
 
         *fit* is a linear or a Laplace fit (``nobs``, ``loglik``, ``converged``,
         ``singular``); *test* is the conditions-alike test's (statistic, df, p);
-        *n_params* counts the estimated parameters for the AIC (−2 log L + 2k).
+        *n_params* counts the estimated parameters for the AIC (−2 log L + 2k): a
+        Laplace fit's fixed effects, extra parameters and SDs unless given.
         """
         statistic, df, pvalue = test
+        if n_params is None:
+            n_params = len(fit.params) + len(fit.sd)
         return cls(
             conditions=tuple(order),
             reference=order[0],
