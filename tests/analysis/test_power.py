@@ -5,7 +5,6 @@ import json
 import numpy as np
 import pytest
 from scipy.special import logit
-from statsmodels.stats.multitest import multipletests
 
 from analysis.cli import main
 from analysis.power import (
@@ -21,7 +20,6 @@ from analysis.power import (
     power_curve,
     simulate,
 )
-from analysis.power.simulation import holm
 from analysis.tidy import TidyFormatError
 from tests.analysis.mixed_data import pairwise_tidy
 
@@ -77,13 +75,6 @@ def test_simulated_data_follow_the_design():
     assert len(data) == 2 + 1 + 2 + 1
     assert list(data["clip1"][:3]) == ["a", "c", "b"]
     assert set(data["position"]) <= {1, 2}
-
-
-def test_holm_matches_statsmodels():
-    rng = np.random.default_rng(4)
-    for _ in range(4):
-        p = rng.random(6) ** 3
-        assert holm(p) == pytest.approx(multipletests(p, method="holm")[1])
 
 
 @pytest.mark.parametrize(
