@@ -76,8 +76,10 @@ def do_import_study(
     batches = Batches()
     try:
         # A draft while its rows arrive: an open study's design is locked.
+        study.being_filled = True
         warnings = import_rows(data, study, batches, media)
         batches.close()
+        study.being_filled = False
         study.status = final_status
         with transaction.atomic():
             save_checked(study, "study")  # its status, checked like the rest

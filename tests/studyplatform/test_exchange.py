@@ -152,6 +152,10 @@ BAD_DEFINITIONS = [
         lambda d: d["conditions"].append(dict(d["conditions"][0])),
         r"conditions\[4\]: __all__: .*already exists",
     ),
+    (  # the study's own key is not looked up, but a key used twice in it is refused
+        lambda d: d["trials"].append(dict(d["trials"][5])),
+        r"trials\[\d+\]: __all__: .*already exists",
+    ),
     (
         lambda d: d["trials"][5].update(condition_a="telepathy"),
         r"trials\[5\].condition_a: unknown condition 'telepathy'",
