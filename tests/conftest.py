@@ -247,8 +247,9 @@ def renderable():
 
     try:
         pyrender = import_pyrender()
-        probe = pyrender.OffscreenRenderer(16, 16)
-        probe.delete()
+        from synthesis.render.pyrender_compat import delete_offscreen
+
+        delete_offscreen(pyrender.OffscreenRenderer(16, 16))
     except (RenderUnavailable, Exception) as error:  # any GL failure means "cannot render"
         message = f"RENDERING TESTS SKIPPED: no offscreen OpenGL here ({error})."
         if os.environ.get("SIGNSTUDY_REQUIRE_RENDER"):

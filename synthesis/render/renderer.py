@@ -162,7 +162,8 @@ class Renderer:
     def close(self) -> None:
         """Release the OpenGL context."""
         if self._renderer is not None:
-            self._renderer.delete()  # frees the anti-aliasing pass with the context
+            # Frees the anti-aliasing pass with the context.
+            compat.delete_offscreen(self._renderer)
             self._renderer = None
             self._fxaa = None
 

@@ -225,3 +225,26 @@ def test_a_bad_platform_setting_is_named(monkeypatch):
     monkeypatch.setenv("PYOPENGL_PLATFORM", "glx")
     with pytest.raises(RenderUnavailable, match="PYOPENGL_PLATFORM='glx' cannot render"):
         select_platform()
+
+
+def test_a_closed_renderer_collected_later_leaves_the_next_ones_framebuffers_alone():
+    """Regression: pyrender's delete keeps its shadow framebuffer's name, and a renderer
+    collected later (it sits in a reference cycle) deleted it again in the context that
+    was current then: another renderer's framebuffer (GLError 1282 in its next frame).
+    pyrender hid it with a full gc.collect() on every close; ours forgets the name."""
+    import gc
+
+    avatar, camera = hand_avatar("right"), hand_close_up()
+    pose = letter_pose("B")
+    first = Renderer(avatar, camera, 64, 48)
+    first.frame(pose)
+    inner = first._renderer._renderer
+    first.close()
+    with Renderer(avatar, camera, 64, 48) as second:
+        before = second.frame(pose)
+        platform = second._renderer._platform
+        platform.make_current()
+        del inner
+        gc.collect()  # the first renderer's __del__, with the second's context current
+        platform.make_uncurrent()
+        assert np.array_equal(second.frame(pose), before)
