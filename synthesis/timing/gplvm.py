@@ -24,7 +24,8 @@ class GplvmMissing(ImportError):
     """GPy, which fits the GPLVM, is not installed."""
 
 
-def embed(poses: np.ndarray, latent_dims: int = LATENT_DIMS) -> np.ndarray:
+def embed(poses: np.ndarray, latent_dims: int = LATENT_DIMS,
+          max_iterations: int = MAX_ITERATIONS) -> np.ndarray:  # fmt: skip
     """Return the GPLVM's latent points (n, latent_dims) of *poses* (n, d), PCA-initialised."""
     try:
         import GPy
@@ -35,7 +36,7 @@ def embed(poses: np.ndarray, latent_dims: int = LATENT_DIMS) -> np.ndarray:
     poses = np.asarray(poses, dtype=float)
     varying = poses[:, poses.std(axis=0) > 1e-9]
     model = GPy.models.GPLVM(varying - varying.mean(axis=0), latent_dims, init="PCA")
-    model.optimize(max_iters=MAX_ITERATIONS)
+    model.optimize(max_iters=max_iterations)
     return np.array(model.X)
 
 

@@ -200,7 +200,7 @@ def test_the_gplvm_keeps_the_order_of_points_on_a_curve_and_needs_gpy(monkeypatc
 
     t = np.linspace(0.0, 1.0, 12)
     curve = np.column_stack([t, t**2, np.sin(2 * t), 0.5 * t, np.zeros_like(t)])
-    latent = embed(curve, latent_dims=1)[:, 0]
+    latent = embed(curve, latent_dims=1, max_iterations=100)[:, 0]  # 0.98 already
     assert abs(np.corrcoef(latent, t)[0, 1]) > 0.9
     monkeypatch.setitem(sys.modules, "GPy", None)
     with pytest.raises(GplvmMissing, match="make install"):
