@@ -75,3 +75,48 @@ def test_the_page_survives_server_errors(page, live_server, fingerspelling, clip
     _until(page, shown.exists)
     page.wait_for_timeout(2000)
     assert shown.count() == 1 and plays.count() == 1
+
+
+def test_a_save_still_on_its_way_never_lands_over_the_answer_next_carried(
+    page, live_server, fingerspelling, clips_dir, one_clip, monkeypatch
+):
+    """Regression (found by a phone-keyboard test): an answer changed twice in a moment
+    and Next pressed at once. The first save, slow at the server, landed after the page's
+    form and put the older answer over the newer one the form carried, and the page was
+    gone before the newer save was sent. Next now waits for the saves in flight."""
+    import threading
+
+    from studyplatform.views import participate
+
+    _with_clips(fingerspelling, one_clip, clips_dir)
+    arrived, release = threading.Event(), threading.Event()
+    save = participate.do_save_response
+
+    def slow_first_age(participant, trial, question, answer):
+        if question.key == "age" and not arrived.is_set():
+            arrived.set()
+            release.wait(20)
+        return save(participant, trial, question, answer)
+
+    monkeypatch.setattr(participate, "do_save_response", slow_first_age)
+    page.goto(f"{live_server.url}/s/{fingerspelling.slug}/")
+    page.get_by_role("button", name="Continue (I agree to take part)").click()
+    _wait_ready(page)
+    participant = Participant.objects.get()
+    page.locator('input[name="q-name"]').fill("Ann")
+    page.locator('input[name="q-name"]').dispatch_event("change")
+    page.locator('input[name="q-asl-fluency"][value="1"]').check()
+    page.get_by_text("Answer saved.").wait_for()
+    page.locator('input[name="q-age"][value="3"]').check()
+    assert arrived.wait(10)  # the save of 3 is at the server, held there
+    page.locator('input[name="q-age"][value="4"]').check()
+    page.locator("#next-button").click()
+    page.wait_for_timeout(1000)  # time enough for a Next that does not wait to be taken
+    participant.refresh_from_db()
+    assert participant.position == 1
+    release.set()
+    page.wait_for_function("Number(document.getElementById('page-form').dataset.page) === 2")
+    stored = participant.responses.get(
+        question__key="age", trial__key=participant.schedule[0]["trial"]
+    )
+    assert stored.rating == 4

@@ -137,7 +137,14 @@
    * the answer waits for the page's Next, which sends every answer again. */
   const SERVER_ERROR_ATTEMPTS = 5;
   const unsaved = new Set();
-  async function send(question) {
+  const sending = new Map();  // question → its send loop, until the loop ends
+  function send(question) {
+    if (!sending.has(question)) {
+      sending.set(question, sendLoop(question).finally(function () { sending.delete(question); }));
+    }
+    return sending.get(question);
+  }
+  async function sendLoop(question) {
     if (inflight.has(question)) { return; }
     inflight.add(question);
     for (let attempt = 0, serverErrors = 0; pending.has(question); attempt++) {
@@ -197,6 +204,10 @@
     form.querySelectorAll(".page-nav button").forEach(function (b) { b.disabled = true; });
     pageError.hidden = true;
     await flush();
+    // A save still on its way would reach the server after this page's form and put an
+    // older answer over the one the form carries; the page would be gone before the
+    // newer save was sent. Let the saves in flight (and their newer values) land first.
+    await Promise.all(Array.from(sending.values()));
     const data = new FormData(form);
     data.set("nav", nav);
     for (let attempt = 0, serverErrors = 0; ; attempt++) {
