@@ -12,6 +12,7 @@ models' validators use it while the app registry is still loading.
 """
 
 import hashlib
+import logging
 import shutil
 import struct
 import subprocess
@@ -22,6 +23,8 @@ from pathlib import Path, PurePosixPath
 
 from django.core.exceptions import ValidationError
 from django.utils.deconstruct import deconstructible
+
+logger = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -61,6 +64,9 @@ MEDIA_CSP = (
 EBML_MAGIC = b"\x1a\x45\xdf\xa3"  # Matroska / WebM
 HEAD_BYTES = 64
 DECODE_TIMEOUT_S = 60
+# Chromium's MediaRecorder, busy, stamps two frames with the same millisecond; both
+# decode, and only the null muxer the check writes to complains. Not a broken recording.
+MUXER_TIMESTAMP_NOTE = "non monotonically increasing dts to muxer"
 
 
 class MediaRejected(ValidationError):
@@ -167,7 +173,14 @@ def decoded_duration_s(path: Path) -> float | None:
     only decoding to the end finds that it ends before its data does.
     """
     done = _ffmpeg(path, "-progress", "pipe:1", "-nostats")
-    if done is None or done.returncode != 0 or done.stderr.strip():
+    complaints = [] if done is None else [
+        line for line in done.stderr.decode(errors="replace").splitlines()
+        if line.strip() and MUXER_TIMESTAMP_NOTE not in line
+    ]  # fmt: skip
+    if done is None or done.returncode != 0 or complaints:
+        # The participant is told to record again; the log says why, for the researcher.
+        why = "timed out" if done is None else "; ".join(complaints)[-600:]
+        logger.warning("%s does not decode to its end: %s", path.name, why)
         return None
     times = [line.split(b"=", 1)[1] for line in done.stdout.splitlines()
              if line.startswith(b"out_time_us=")]  # fmt: skip

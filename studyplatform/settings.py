@@ -21,8 +21,10 @@ configuration at all:
   in-process (eagerly) when neither is set.
 """
 
+import contextlib
 import os
 import secrets
+import tempfile
 from datetime import timedelta
 from pathlib import Path
 
@@ -51,15 +53,16 @@ def _load_or_create_secret_key(path: Path) -> str:
     if path.exists():
         return path.read_text().strip()
     path.parent.mkdir(parents=True, exist_ok=True)
-    key = secrets.token_urlsafe(50)
-    # O_EXCL: two processes starting at once must not write two different keys.
-    try:
-        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-    except FileExistsError:
-        return path.read_text().strip()
-    with os.fdopen(fd, "w") as handle:
-        handle.write(key)
-    return key
+    # Written whole under a private name, then linked into place: two processes starting
+    # at once must not write two keys, nor read the file before its key is in it.
+    with tempfile.NamedTemporaryFile("w", dir=path.parent, prefix=".secret_key.") as draft:
+        draft.write(secrets.token_urlsafe(50))
+        draft.flush()
+        os.fsync(draft.fileno())
+        os.chmod(draft.name, 0o600)
+        with contextlib.suppress(FileExistsError):  # another process linked first
+            os.link(draft.name, path)
+    return path.read_text().strip()
 
 
 DEBUG = _env_flag("SIGNSTUDY_DEBUG")

@@ -50,6 +50,28 @@ def test_secret_key_is_generated_once_and_kept(tmp_path):
     assert oct(key_file.stat().st_mode & 0o777) == "0o600"
 
 
+def test_processes_starting_at_once_read_one_whole_key(tmp_path):
+    """Two test workers starting on a fresh clone read the key file as it was being
+    written, got an empty key and failed every request (found by parallel test runs)."""
+    from concurrent.futures import ThreadPoolExecutor
+    from threading import Barrier
+
+    from studyplatform.settings import _load_or_create_secret_key
+
+    for attempt in range(20):
+        path = tmp_path / f"key{attempt}" / "secret_key"
+        start = Barrier(8)
+
+        def read(_, path=path, start=start):
+            start.wait()
+            return _load_or_create_secret_key(path)
+
+        with ThreadPoolExecutor(8) as pool:
+            keys = set(pool.map(read, range(8)))
+        assert len(keys) == 1 and len(keys.pop()) >= 50
+        assert [p.name for p in path.parent.iterdir()] == ["secret_key"]
+
+
 def test_secret_key_file_is_never_committed():
     ignored = subprocess.run(["git", "check-ignore", "-q", "var/secret_key"], cwd=ROOT, check=False)
     if ignored.returncode == 128:
