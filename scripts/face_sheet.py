@@ -1,6 +1,6 @@
 """Render the face's expressions on the upper-body avatar as one labelled contact sheet.
 
-    .venv/bin/python scripts/face_sheet.py docs/img/face.png
+    .venv/bin/python scripts/face_sheet.py docs/img/face.png [--avatar human|simple]
 
 Each expression of synthesis.rigs.face.EXPRESSIONS twice: on the face close-up, and
 beneath it at the signing view's own pixels (the head cut out of a 640×480 frame of the
@@ -17,7 +17,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from synthesis.avatar.body_mesh import body_avatar
+from synthesis.avatar.looks import Look, avatar_for
 from synthesis.render.renderer import Renderer
 from synthesis.render.scene import face_close_up, project_px, upper_body_front
 from synthesis.rigs.face import EXPRESSIONS
@@ -31,8 +31,9 @@ FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out", type=Path)
+    parser.add_argument("--avatar", choices=("human", "simple"), default="human")
     args = parser.parse_args()
-    avatar = body_avatar("right")
+    avatar = avatar_for("upper-body", "right", Look(avatar=args.avatar))
     rig = avatar.rig
     close = face_close_up()
     signing = upper_body_front()

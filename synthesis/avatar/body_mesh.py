@@ -89,7 +89,8 @@ def body_primitives(model: BodyModel, dofs_rad: np.ndarray) -> tuple[Primitive, 
     return tuple(primitives)
 
 
-def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad):
+def clothing_colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad,
+                     skin_rgb=SKIN_RGB, top_rgb=TOP_RGB):  # fmt: skip
     """Return the skin's colour edge (see SkinnedPart): skin colour, the signed distance
     (m) into the skin from the edge of the top, and the top's colour.
 
@@ -121,8 +122,8 @@ def _colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad):
         into_skin[on_forearm] = CUFF_M - along[on_forearm]
     n = len(vertices_m)
     # Far from any edge the distance only needs its sign.
-    return (np.broadcast_to(np.asarray(SKIN_RGB), (n, 3)), np.clip(into_skin, -1.0, 1.0),
-            np.broadcast_to(np.asarray(TOP_RGB), (n, 3)))  # fmt: skip
+    return (np.broadcast_to(np.asarray(skin_rgb), (n, 3)), np.clip(into_skin, -1.0, 1.0),
+            np.broadcast_to(np.asarray(top_rgb), (n, 3)))  # fmt: skip
 
 
 @cache
@@ -151,7 +152,7 @@ def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar
     vertices = np.asarray(vertices, dtype=np.float64)
     index = {name: i for i, name in enumerate(model.skeleton.names)}
     weights = face_skin_weights(model, bind, vertices, skin_weights(vertices, primitives, index))
-    colours, edge_m, across_rgb = _colours(model, vertices, weights, bind)
+    colours, edge_m, across_rgb = clothing_colours(model, vertices, weights, bind)
     skin = SkinnedPart("skin", vertices, np.asarray(faces, dtype=np.int64), colours, weights,
                        edge_m=edge_m, across_rgb=across_rgb)  # fmt: skip
     # Three parts, three draw calls a pass: pyrender's per-draw overhead in Python was a

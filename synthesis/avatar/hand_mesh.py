@@ -147,16 +147,21 @@ def _phalanx(joint: str, start, end, radii, k: int) -> RoundCone:
 
 
 def hand_nails(
-    rig: Rig, dofs_rad: np.ndarray, side: str, prefix: str = ""
+    rig: Rig, dofs_rad: np.ndarray, side: str, prefix: str = "", radii_m: dict | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Return nail meshes (vertices, faces) and each vertex's bone, at a pose."""
+    """Return nail meshes (vertices, faces) and each vertex's bone, at a pose.
+
+    *radii_m* gives each digit's radius at its nail (this skin's by default).
+    """
     pose = rig.pose(dofs_rad)
     mirror = MIRROR_X if side == "left" else np.eye(3)
+    radii = {**{f: FINGER_RADII_M[f][3] for f in FINGERS}, "thumb": THUMB_RADII_M[3],
+             **(radii_m or {})}  # fmt: skip
     vertices, faces, owners = [], [], []
     offset = 0
     for finger, joint, tip, radius in [
-        *((f, f"{f}_dip", f"{f}_tip", FINGER_RADII_M[f][3]) for f in FINGERS),
-        ("thumb", "thumb_ip", "thumb_tip", THUMB_RADII_M[3]),
+        *((f, f"{f}_dip", f"{f}_tip", radii[f]) for f in FINGERS),
+        ("thumb", "thumb_ip", "thumb_tip", radii["thumb"]),
     ]:
         index = rig.skeleton.index(prefix + joint)
         rotation = pose.quaternions[0, index]

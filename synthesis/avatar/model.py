@@ -8,6 +8,8 @@ import trimesh
 from scipy import sparse
 
 from synthesis.avatar.skinning import (
+    MorphDrive,
+    Morphs,
     SkinWeights,
     linear_blend_skinning,
     skin_transforms,
@@ -41,6 +43,7 @@ class SkinnedPart:
     edge_m: np.ndarray | None = None
     across_rgb: np.ndarray | None = None
     casts_shadow: bool = True
+    morphs: Morphs | None = None
 
     def __post_init__(self) -> None:
         if self.normals is None:
@@ -87,7 +90,29 @@ def merge_parts(name: str, parts, casts_shadow: bool = True) -> SkinnedPart:
         stack("edge_m", lambda part: np.ones(len(part.vertices_m))) if edged else None,
         stack("across_rgb", lambda part: np.asarray(part.colors_rgb)) if edged else None,
         casts_shadow,
+        _merge_morphs(parts, offsets),
     )
+
+
+def _merge_morphs(parts, offsets) -> Morphs | None:
+    """Return the blendshapes of merged *parts* (each keeps its own; a part without one
+    of the others' has zero offsets in it), or None if no part has any."""
+    shaped = [(part.morphs, offset) for part, offset in zip(parts, offsets, strict=True)
+              if part.morphs is not None]  # fmt: skip
+    if not shaped:
+        return None
+    names = tuple(dict.fromkeys(name for morphs, _ in shaped for name in morphs.names))
+    vertices = np.concatenate([morphs.vertices + offset for morphs, offset in shaped])
+    offsets_m = np.zeros((len(names), len(vertices), 3))
+    normal_offsets = np.zeros_like(offsets_m)
+    start = 0
+    for morphs, _ in shaped:
+        rows = [names.index(name) for name in morphs.names]
+        stop = start + len(morphs.vertices)
+        offsets_m[rows, start:stop] = morphs.offsets_m
+        normal_offsets[rows, start:stop] = morphs.normal_offsets
+        start = stop
+    return Morphs(names, vertices, offsets_m, normal_offsets)
 
 
 def rigid_part(name: str, vertices_m, faces, owners, color_rgb, casts_shadow: bool = True
@@ -107,12 +132,18 @@ def rigid_part(name: str, vertices_m, faces, owners, color_rgb, casts_shadow: bo
 
 @dataclass(frozen=True, eq=False)
 class Avatar:
-    """A rig plus skinned parts; ``rig`` has ``skeleton``, ``pose(dofs)`` and ``neutral()``."""
+    """A rig plus skinned parts; ``rig`` has ``skeleton``, ``pose(dofs)`` and ``neutral()``.
+
+    Parts with blendshapes (``morphs``) take their weights from the rig's DOFs through
+    *drive* (the face's channels); posed from joint transforms alone they keep their
+    bind shape.
+    """
 
     name: str
     rig: object
     bind_dofs_rad: np.ndarray
     parts: tuple[SkinnedPart, ...]
+    drive: MorphDrive | None = None
 
     @cached_property
     def bind_pose(self) -> Pose:
@@ -126,25 +157,39 @@ class Avatar:
 
     def deform(self, dofs_rad: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
         """Return, per part, posed vertices and normals (n_frames, n, 3) for DOF vectors."""
-        return self.deform_pose(self.rig.pose(np.atleast_2d(dofs_rad)))
+        dofs = np.atleast_2d(dofs_rad)
+        weights = None if self.drive is None else self.drive.weights(dofs)
+        return self.deform_pose(self.rig.pose(dofs), morph_weights=weights)
 
-    def deform_pose(self, pose: Pose, select: list[np.ndarray] | None = None
+    @cached_property
+    def _morph_columns(self) -> list[np.ndarray | None]:
+        """Return, per part, the drive's column of each of its blendshapes."""
+        names = () if self.drive is None else self.drive.names
+        return [None if part.morphs is None else
+                np.array([names.index(name) for name in part.morphs.names], dtype=np.intp)
+                for part in self.parts]  # fmt: skip
+
+    def deform_pose(self, pose: Pose, select: list[np.ndarray] | None = None,
+                    morph_weights: np.ndarray | None = None
                     ) -> list[tuple[np.ndarray, np.ndarray]]:  # fmt: skip
         """Return, per part, posed vertices and normals for joint transforms (n_frames, …).
 
-        *select*, per part a boolean mask (n,) or indices, poses only those vertices.
+        *select*, per part a boolean mask (n,) or indices, poses only those vertices;
+        *morph_weights* (n_frames, the drive's blendshapes) shape the parts that have
+        blendshapes first.
         """
         transforms = skin_transforms(pose, self.bind_pose)
-        if select is None:
-            return [
-                linear_blend_skinning(part.vertices_m, part.normals, matrix, transforms)
-                for part, matrix in zip(self.parts, self._weight_matrices, strict=True)
-            ]
-        chosen = zip(self.parts, self._weight_matrices, select, strict=True)
-        return [
-            linear_blend_skinning(part.vertices_m[k], part.normals[k], matrix[k], transforms)
-            for part, matrix, k in chosen
-        ]
+        select = select if select is not None else [None] * len(self.parts)
+        posed = []
+        for part, matrix, columns, k in zip(self.parts, self._weight_matrices,
+                                            self._morph_columns, select, strict=True):  # fmt: skip
+            vertices, normals = part.vertices_m, part.normals
+            if morph_weights is not None and columns is not None:
+                vertices, normals = part.morphs.rest(vertices, normals, morph_weights[:, columns])
+            if k is not None:
+                vertices, normals, matrix = vertices[..., k, :], normals[..., k, :], matrix[k]
+            posed.append(linear_blend_skinning(vertices, normals, matrix, transforms))
+        return posed
 
     @property
     def triangle_count(self) -> int:

@@ -8,12 +8,13 @@ versions, so a stale mesh is never loaded; ``SIGNSTUDY_AVATAR_CACHE=off`` builds
 time). An unreadable file is built again and replaced.
 """
 
+import dataclasses
 from collections.abc import Callable
 
 import numpy as np
 
 from synthesis.avatar.model import Avatar, SkinnedPart
-from synthesis.avatar.skinning import SkinWeights
+from synthesis.avatar.skinning import MorphDrive, Morphs, SkinWeights
 from synthesis.diskcache import CACHE_ENV, cache_directory, cached
 
 __all__ = ["CACHE_ENV", "MESH_LIBRARIES", "cache_directory", "cached_avatar"]
@@ -22,12 +23,19 @@ __all__ = ["CACHE_ENV", "MESH_LIBRARIES", "cache_directory", "cached_avatar"]
 MESH_LIBRARIES = ("numpy", "scipy", "scikit-image", "trimesh", "fast-simplification")
 _FIELDS = ("vertices_m", "faces", "colors_rgb", "normals")
 _OPTIONAL_FIELDS = ("edge_m", "across_rgb")
+_MORPH_FIELDS = ("names", "vertices", "offsets_m", "normal_offsets")
+_DRIVE_FIELDS = ("names", "rising", "falling")
+# Rig fields an avatar's build may set from its mesh (the human's eyes): kept with it.
+_RIG_FIELDS = ("eye_centre_m",)
 
 
-def cached_avatar(key: str, rig, build: Callable[[], Avatar]) -> Avatar:
+def cached_avatar(key: str, rig, build: Callable[[], Avatar],
+                  libraries: tuple[str, ...] = MESH_LIBRARIES) -> Avatar:  # fmt: skip
     """Return the avatar stored under *key* for this engine, built by *build* if it is not
-    there (and then stored). *rig* is the avatar's rig (not stored: it is code)."""
-    return cached(key, MESH_LIBRARIES, build, _arrays, lambda stored: _avatar(stored, rig))
+    there (and then stored). *rig* is the avatar's rig (not stored: it is code; the
+    fields in ``_RIG_FIELDS`` that the build set are stored and given back to it).
+    *libraries* are those whose versions the build depends on."""
+    return cached(key, libraries, build, _arrays, lambda stored: _avatar(stored, rig))
 
 
 def _arrays(avatar: Avatar) -> dict[str, np.ndarray]:
@@ -42,7 +50,23 @@ def _arrays(avatar: Avatar) -> dict[str, np.ndarray]:
             if getattr(part, field) is not None:
                 arrays[f"{k}.{field}"] = np.asarray(getattr(part, field))
         arrays[f"{k}.joints"], arrays[f"{k}.weights"] = part.weights.joints, part.weights.weights
+        if part.morphs is not None:
+            for field in _MORPH_FIELDS:
+                arrays[f"{k}.morphs.{field}"] = np.asarray(getattr(part.morphs, field))
+    if avatar.drive is not None:
+        for field in _DRIVE_FIELDS:
+            arrays[f"drive.{field}"] = np.asarray(getattr(avatar.drive, field))
+    for field in _RIG_FIELDS:
+        if getattr(avatar.rig, field, None) is not None:
+            arrays[f"rig.{field}"] = np.asarray(getattr(avatar.rig, field))
     return arrays
+
+
+def _morphs(stored: dict, prefix: str, kind, fields) -> object | None:
+    if f"{prefix}.names" not in stored:
+        return None
+    values = [stored[f"{prefix}.{field}"] for field in fields]
+    return kind(tuple(str(name) for name in values[0]), *values[1:])
 
 
 def _avatar(stored: dict[str, np.ndarray], rig) -> Avatar:
@@ -55,7 +79,13 @@ def _avatar(stored: dict[str, np.ndarray], rig) -> Avatar:
             stored[f"{k}.normals"],
             *(stored.get(f"{k}.{field}") for field in _OPTIONAL_FIELDS),
             bool(stored["casts_shadow"][k]),
+            _morphs(stored, f"{k}.morphs", Morphs, _MORPH_FIELDS),
         )
         for k, name in enumerate(stored["part_names"])
     )
-    return Avatar(str(stored["name"]), rig, stored["bind_dofs_rad"], parts)
+    kept = {field: tuple(float(v) for v in stored[f"rig.{field}"])
+            for field in _RIG_FIELDS if f"rig.{field}" in stored}  # fmt: skip
+    if kept:
+        rig = dataclasses.replace(rig, **kept)
+    return Avatar(str(stored["name"]), rig, stored["bind_dofs_rad"], parts,
+                  _morphs(stored, "drive", MorphDrive, _DRIVE_FIELDS))  # fmt: skip

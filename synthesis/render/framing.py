@@ -119,12 +119,35 @@ def measure_framing(
     outside = ((pixels[..., 0] < 0) | (pixels[..., 0] > width) | (pixels[..., 1] < 0)
                | (pixels[..., 1] > height) | np.isnan(pixels).any(axis=-1)).any(axis=1)  # fmt: skip
     heights = []
-    for owned in (lambda name: name == "head" or name in FACE_JOINT_NAMES,
-                  lambda name: name in FACE_JOINT_NAMES):  # fmt: skip
-        points = _posed(avatar, motion, _owned(avatar, owned))
+    head = _owned(avatar, lambda name: name == "head" or name in FACE_JOINT_NAMES)
+    for masks in (head, face_vertices(avatar)):
+        points = _posed(avatar, motion, masks)
         if points.shape[1]:
             y = _project(camera, points, width, height)[..., 1]
             heights.append(np.nanmax(y, axis=1) - np.nanmin(y, axis=1))
         else:
             heights.append(np.full(len(hand), np.nan))
     return Framing(share, outside, *heights)
+
+
+# The face of an avatar whose face moves by blendshapes (no face bones): the head's skin
+# in front of the ears, from the chin to the forehead (below the hairline, as far up as
+# MediaPipe's face mesh reaches), measured from the eyes' centres.
+FOREHEAD_ABOVE_EYES_M, EARS_BEHIND_EYES_M = 0.045, 0.05
+
+
+def face_vertices(avatar: Avatar) -> list[np.ndarray]:
+    """Return, per part, the face's vertices: those the face's bones carry (brows to chin),
+    or on an avatar whose face moves by blendshapes, the head's skin before the ears from
+    the chin to the forehead."""
+    if avatar.drive is None:
+        return _owned(avatar, lambda name: name in FACE_JOINT_NAMES)
+    head = _owned(avatar, lambda name: name == "head")
+    names = avatar.rig.skeleton.names
+    if "right_eye" not in names:
+        return [np.zeros_like(mask) for mask in head]
+    bind = avatar.bind_pose.positions_m[0]
+    eyes = (bind[names.index("right_eye")] + bind[names.index("left_eye")]) / 2
+    return [mask & (part.vertices_m[:, 1] < eyes[1] + FOREHEAD_ABOVE_EYES_M)
+            & (part.vertices_m[:, 2] > eyes[2] - EARS_BEHIND_EYES_M)
+            for mask, part in zip(head, avatar.parts, strict=True)]  # fmt: skip

@@ -145,6 +145,21 @@ def upper_body_front(side: str = "right") -> CameraPreset:
     return CameraPreset("upper body", (0.0, 1.40, 2.2), (0.0, 1.38, 0.0), 30.0)
 
 
+def signing_view(side: str = "right", width: int = 640, height: int = 480) -> CameraPreset:
+    """Return the signing view for a frame of *width* × *height*: the upper-body camera
+    at 4:3, and at 16:9 or wider a closer one (the frame's width holds the arms that 4:3
+    needed height for), in which the face is over 120 px tall at 720p and the hands of
+    every demo sentence stay in the frame (bench/bench_framing.py)."""
+    if width / height < WIDE_ASPECT:
+        return upper_body_front(side)
+    # Farther and narrower than the 4:3 camera: a hand raised in front of the head is
+    # magnified less, so the frame's height holds the hands' range with the face larger.
+    return CameraPreset("signing view 16:9", (0.0, 1.39, 3.5), (0.0, 1.377, 0.0), 18.0)
+
+
+WIDE_ASPECT = 1.6
+
+
 def face_close_up() -> CameraPreset:
     """Return a camera on the face of the upper-body avatar at rest: chin to crown in
     a 640×480 frame, for the face's contact sheet and its MediaPipe test."""

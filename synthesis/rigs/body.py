@@ -108,9 +108,15 @@ def _arm(side: str) -> tuple[list[JointSpec], list[Dof]]:
 
 @dataclass(frozen=True)
 class BodyModel(Rig):
-    """The signer's upper body with both hands; *dominant* names the signing hand."""
+    """The signer's upper body with both hands; *dominant* names the signing hand.
+
+    *eye_centre_m* places the eyes' centres on the head (see :func:`face_joints`);
+    nothing else, DOFs included, depends on it, so a motion of one body model plays on
+    another.
+    """
 
     dominant: str = "right"
+    eye_centre_m: tuple[float, float, float] | None = None
     kind = "body"
 
     def __post_init__(self) -> None:
@@ -121,7 +127,7 @@ class BodyModel(Rig):
     def _parts(self) -> tuple[tuple[JointSpec, ...], tuple[Dof, ...]]:
         # The face's joints follow the head's (a depth-first order, as BVH writes it);
         # its DOFs, the face channels, come last.
-        joints, dofs = [*_TRUNK, *face_joints()], _trunk_dofs()
+        joints, dofs = [*_TRUNK, *face_joints(self.eye_centre_m)], _trunk_dofs()
         for side in SIDES:
             arm_joints, arm_dofs = _arm(side)
             joints += arm_joints
@@ -146,12 +152,20 @@ class BodyModel(Rig):
             [index.get(f"{side}_{name}", -1) for name in HandModel(side).dof_names], dtype=np.intp
         )
 
-    def with_hand(self, dofs_rad: np.ndarray, side: str, hand_dofs_rad: np.ndarray) -> np.ndarray:
-        """Return body DOF vectors with one hand set from hand-model DOF vectors."""
+    def with_hand(self, dofs_rad: np.ndarray, side: str, hand_dofs_rad: np.ndarray,
+                  digits_only: bool = False) -> np.ndarray:  # fmt: skip
+        """Return body DOF vectors with one hand set from hand-model DOF vectors.
+
+        With *digits_only* the forearm twist and the wrist keep their values (an arm
+        solved by IK has turned the hand already; a handshape only curls the digits).
+        """
         dofs = np.array(dofs_rad, dtype=np.float64, copy=True)
         hand = np.asarray(hand_dofs_rad, dtype=np.float64)
         where = self.hand_dofs(side)
         kept = where >= 0
+        if digits_only:
+            names = HandModel(side).dof_names
+            kept &= np.array([not name.startswith(("forearm_", "wrist_")) for name in names])
         dofs[..., where[kept]] = hand[..., kept]
         return dofs
 

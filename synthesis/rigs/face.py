@@ -71,12 +71,19 @@ _MIDLINE_DOFS = (
 SIDES = ("right", "left")
 
 
-def face_joints() -> tuple[JointSpec, ...]:
-    """Return the face's joints, in an order where each follows its parent."""
+def face_joints(eye_centre_m=None) -> tuple[JointSpec, ...]:
+    """Return the face's joints, in an order where each follows its parent.
+
+    *eye_centre_m* puts the right eye's centre (and its lids' pivot) elsewhere on the
+    head (its frame, m), for a face modelled apart from the rig (the human avatar's);
+    the left eye mirrors it.
+    """
+    eye = EYE_CENTRE_M if eye_centre_m is None else tuple(eye_centre_m)
     joints = []
     for side in SIDES:
         mirror = MIRROR_X if side == "left" else np.eye(3)
         for name, parent, offset in _SIDED_JOINTS:
+            offset = eye if offset == EYE_CENTRE_M else offset
             joints.append(JointSpec(f"{side}_{name}", parent, tuple(mirror @ offset)))
     joints += [JointSpec(name, parent, offset) for name, parent, offset in _MIDLINE_JOINTS]
     return tuple(joints)

@@ -152,3 +152,47 @@ def solve_arm(
         _turn_hand(body, dofs, p, world, elbow_index, target)
     dofs = body.clip(dofs)
     return dofs[0] if single else dofs
+
+
+# Elbow swivels tried when the key's own one cannot turn the hand as asked (rad).
+SWIVEL_CANDIDATES_RAD = np.radians(np.arange(-60.0, 161.0, 20.0))
+# A key keeps its own swivel unless another turns the hand this much closer (rad)...
+_BETTER_RAD = np.radians(10.0)
+# ...and its own misses by more than this.
+_MISSED_RAD = np.radians(20.0)
+
+
+def hand_turn_error(body: BodyModel, dofs_rad: np.ndarray, side: str,
+                    hand_rotation: np.ndarray) -> np.ndarray:  # fmt: skip
+    """Return the angle (rad, (n,)) between the wrists' world frames and *hand_rotation*."""
+    pose = body.pose(np.atleast_2d(dofs_rad))
+    found = quat_to_matrix(pose.quaternions[:, body.skeleton.index(f"{side}_wrist")])
+    relative = np.transpose(found, (0, 2, 1)) @ np.asarray(hand_rotation)
+    cosine = (np.trace(relative, axis1=-2, axis2=-1) - 1.0) / 2.0
+    return np.arccos(np.clip(cosine, -1.0, 1.0))
+
+
+def solve_arm_turning(body: BodyModel, dofs_rad: np.ndarray, side: str, wrist_m: np.ndarray,
+                      hand_rotation: np.ndarray, swivel_rad) -> np.ndarray:  # fmt: skip
+    """Return :func:`solve_arm`'s DOFs (n, n_dofs), but where the joint limits keep a key's
+    hand from turning as asked with its swivel, with the elbow where it turns closest.
+
+    A palm asked to face the signer's midline with the fingers pointing back (the index
+    of ME at the chest) needs the elbow out to the side: hung low, the wrist cannot bend
+    that far. Each key keeps its own swivel unless it misses the hand's turn by more than
+    20° and another of :data:`SWIVEL_CANDIDATES_RAD` comes 10° closer.
+    """
+    rotation = np.asarray(hand_rotation, dtype=float)
+    own = solve_arm(body, dofs_rad, side, wrist_m, rotation, swivel_rad)
+    n_keys = len(own)
+    best, best_error = own, hand_turn_error(body, own, side, rotation)
+    missed = best_error > _MISSED_RAD
+    if not missed.any():
+        return own
+    for candidate in SWIVEL_CANDIDATES_RAD:
+        trial = solve_arm(body, dofs_rad, side, wrist_m, rotation, np.full(n_keys, candidate))
+        error = hand_turn_error(body, trial, side, rotation)
+        better = missed & (error < best_error - _BETTER_RAD)
+        best = np.where(better[:, None], trial, best)
+        best_error = np.where(better, error, best_error)
+    return best

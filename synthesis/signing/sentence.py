@@ -31,7 +31,7 @@ from scipy.interpolate import PchipInterpolator
 from synthesis.fingerspelling.alphabet import AlphabetError
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.face import gaze_degrees, is_face_dof
-from synthesis.rigs.ik import hand_frame, solve_arm
+from synthesis.rigs.ik import hand_frame, solve_arm_turning
 from synthesis.signing.liveliness import Liveliness, joint_group
 from synthesis.signing.nonmanual import (
     NonmanualError,
@@ -184,7 +184,7 @@ def _sign_keys(sign, rest: dict, t: float) -> list[_Key]:
     return keys
 
 
-def _timeline(glosses, library: SignLibrary,
+def timeline(glosses, library: SignLibrary,
               gaps_ms=None) -> tuple[list[_Key], list[tuple[float, float]]]:  # fmt: skip
     """Return the sentence's keys in time order, holds written out as repeated keys, and
     each token's first and last key (ms).
@@ -213,7 +213,7 @@ def _timeline(glosses, library: SignLibrary,
     return keys, tokens_ms
 
 
-class _Solver:
+class KeySolver:
     """Key postures → body DOFs, and the automated spine motion for them."""
 
     def __init__(self, body: BodyModel, params: SpineParams):
@@ -256,8 +256,9 @@ class _Solver:
                                   for h in hands])  # fmt: skip
             targets = np.stack([self.world(h.at_m) for h in hands])
             swivels = np.array([h.swivel_rad for h in hands])
-            dofs = solve_arm(self.body, dofs, side, targets, rotations, swivels)
-            dofs = self.body.with_hand(dofs, side, np.stack([h.shape_rad for h in hands]))
+            dofs = solve_arm_turning(self.body, dofs, side, targets, rotations, swivels)
+            dofs = self.body.with_hand(dofs, side, np.stack([h.shape_rad for h in hands]),
+                                       digits_only=True)  # fmt: skip
         return dofs
 
     def automated(self, keys: list[_Key]) -> np.ndarray:
@@ -325,13 +326,13 @@ def synthesize(
         raise SignError(str(error)) from None
     glosses = parse_glosses(plain)
     try:
-        keys, tokens_ms = _timeline(glosses, library, options.gaps_ms)
+        keys, tokens_ms = timeline(glosses, library, options.gaps_ms)
     except AlphabetError as error:
         raise SignError(str(error)) from None
     body = BodyModel(options.dominant)
     names = body.dof_names
     # Signs are written for a right-handed signer; a left-handed one mirrors them.
-    solver = _Solver(BodyModel("right"), options.params)
+    solver = KeySolver(BodyModel("right"), options.params)
     auto_keys = solver.automated(keys) if options.spine else np.zeros((len(keys), len(names)))
     # The arms reach the key's targets from the torso as the spine leaves it, so the
     # hands' positions are the same in both conditions.

@@ -10,6 +10,7 @@ from synthesis.techniques.registry import Registry
 def default_registry() -> Registry:
     """Return the engine's item kinds and techniques, in pipeline order."""
     from synthesis.techniques import (
+        avatar,
         face,
         hand,
         kinds,
@@ -32,5 +33,6 @@ def default_registry() -> Registry:
             liveliness.TECHNIQUE,
             transition.TECHNIQUE,
             hand.TECHNIQUE,
+            avatar.TECHNIQUE,
         ],
     )

@@ -129,7 +129,8 @@ class Build:
     *performance* a recording to retime (words), *timing* a word's holds and transitions,
     *options* the sentence synthesis options, *library* a sign library, *motion* the
     result: DOF vectors (n_frames, n_dofs) of *rig*, or a Pose of its skeleton; *result*
-    what the item kind made it from (a Sentence for sentences).
+    what the item kind made it from (a Sentence for sentences); *look* the avatar that
+    films it (:class:`synthesis.avatar.looks.Look`; the default one when unset).
     """
 
     request: ClipRequest
@@ -140,6 +141,7 @@ class Build:
     library: Any = None
     motion: Any = None
     result: Any = None
+    look: Any = None
 
     def but(self, **changes: Any) -> "Build":
         """Return a copy with *changes*."""
@@ -175,26 +177,25 @@ def build_motion(request: ClipRequest) -> Build:
     return build
 
 
-def avatar_and_camera(view: str, side: str):
-    """Return the avatar and camera preset of *view* (the avatar is built once a process)."""
-    from synthesis.render.scene import hand_close_up, upper_body_front
+def avatar_and_camera(view: str, side: str, look=None, width: int = 640, height: int = 480):
+    """Return the avatar of *view* in *look* (the default avatar when None) and the camera
+    preset that films it at *width* × *height* (built once a process)."""
+    from synthesis.avatar.looks import Look, avatar_for
+    from synthesis.render.scene import hand_close_up, signing_view
 
+    avatar = avatar_for(view, side, look or Look())
     if view == "hand":
-        from synthesis.avatar.hand_mesh import hand_avatar
-
-        return hand_avatar(side), hand_close_up(side)
-    from synthesis.avatar.body_mesh import body_avatar
-
-    return body_avatar(side), upper_body_front(side)
+        return avatar, hand_close_up(side)
+    return avatar, signing_view(side, width, height)
 
 
 def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int,
-            word: str | None = None):  # fmt: skip
-    """Return the avatar of *view* and the camera that films *motion* (DOF vectors or a
-    Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`) at the scale
-    that fits every letter of *word* (so all conditions of a word share it) and from the
-    rest pose's framing at both ends; the upper body's stands still."""
-    avatar, camera = avatar_and_camera(view, side)
+            word: str | None = None, look=None):  # fmt: skip
+    """Return the avatar of *view* (in *look*) and the camera that films *motion* (DOF
+    vectors or a Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`)
+    at the scale that fits every letter of *word* (so all conditions of a word share it)
+    and from the rest pose's framing at both ends; the signing view's stands still."""
+    avatar, camera = avatar_and_camera(view, side, look, width, height)
     if view == "hand":
         import numpy as np
 
@@ -228,7 +229,8 @@ def render_request(
     build = build or build_motion(request)
     avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
                              request.width, request.height,
-                             request.text if request.kind == "word" else None)  # fmt: skip
+                             request.text if request.kind == "word" else None,
+                             build.look)  # fmt: skip
     return render_clip(
         avatar, build.motion, camera, out, request.rate_hz, poster=poster, width=request.width,
         height=request.height, progress=progress, workers=workers,

@@ -131,3 +131,17 @@ def test_every_demo_asks_one_asl_fluency_scale():
             if question["key"] == "asl-fluency":
                 scales[data["study"]["slug"]] = tuple(o["label"] for o in question["options"])
     assert len(scales) >= 4 and set(scales.values()) == {ASL_FLUENCY}, scales
+
+
+def test_every_demo_sentence_turns_its_palms_as_its_signs_say():
+    """Issue 36: every key of the demo's sign pairs and signed prompts within 30° of the
+    palm its sign asks for, spine on and off (the story's: tests/synthesis/test_palms.py)."""
+    from studyplatform.demo.signed import SPINE_PROMPTS
+    from studyplatform.demo.transitions import SIGN_PAIRS
+    from synthesis.signing.nonmanual import parse_spans
+    from synthesis.signing.palms import palm_errors
+
+    for text in [text for _, text in SIGN_PAIRS] + [gloss for *_, gloss in SPINE_PROMPTS]:
+        for spine in (True, False):
+            worst = max(palm_errors(parse_spans(text)[0], spine=spine), key=lambda e: e.angle_deg)
+            assert worst.angle_deg <= 30.0, (text, spine, worst)

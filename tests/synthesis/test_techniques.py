@@ -135,8 +135,10 @@ def test_techniques_describe_a_condition_in_plain_words():
         "Performance: a simulated capture",
         "Timing model: Constant (200 ms holds, the last 800 ms, 250 ms transitions)",
         "Hand DOFs: full hand",
+        "Avatar: human signer (woman, medium skin)",
     ]
     assert REGISTRY.describe("sentence", {"spine": False})[1] == "Automated spine motion: off"
+    assert REGISTRY.describe("word", {"avatar": "simple"})[-1] == "Avatar: simple avatar"
 
 
 def test_the_cli_lists_the_techniques(capsys):

@@ -8,6 +8,7 @@ import itertools
 import numpy as np
 import pytest
 
+from synthesis.rigs.body import BodyModel
 from synthesis.signing.sentence import SentenceOptions, synthesize
 from synthesis.techniques import REGISTRY, ClipError, ClipRequest, build_motion
 from synthesis.transitions import (
@@ -235,5 +236,10 @@ def test_every_transition_model_keeps_the_liveliness_noise(database, tmp_path):
 
     noise = motion("keyed", True) - motion("keyed", False)
     assert np.abs(noise).max() > 1e-3
+    low, high = BodyModel().limits_rad
     for model in ("linear", "hermite"):
-        np.testing.assert_allclose(motion(model, True) - motion(model, False), noise, atol=1e-9)
+        quiet = motion(model, False)
+        # Where a filled gap runs into a joint's limit, the limit clips the noise too.
+        free = (quiet > low + 1e-3) & (quiet < high - 1e-3)
+        assert free.mean() > 0.95
+        np.testing.assert_allclose((motion(model, True) - quiet)[free], noise[free], atol=1e-9)

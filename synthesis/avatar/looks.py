@@ -1,0 +1,51 @@
+"""Which avatar films a clip: the human signer (a body and skin tone) or the simple one.
+
+The human signer is MakeHuman's CC0 body on the engine's rig
+(:mod:`synthesis.avatar.human`); the simple one is the engine's first avatar, meshed
+from round cones (:mod:`synthesis.avatar.body_mesh`, :mod:`~synthesis.avatar.hand_mesh`),
+kept for studies made with it. Either has a hand-and-forearm avatar for the close-up and
+an upper body for the signing view.
+"""
+
+from dataclasses import dataclass
+
+from synthesis.avatar.human.build import DEFAULT_SKIN_TONE, SKIN_TONES
+from synthesis.avatar.human.phenotype import DEFAULT_PRESET, PRESETS
+
+AVATARS = ("human", "simple")
+
+
+@dataclass(frozen=True)
+class Look:
+    """An avatar by name; the human one's body (a preset) and skin tone."""
+
+    avatar: str = "human"
+    body: str = DEFAULT_PRESET
+    skin_tone: str = DEFAULT_SKIN_TONE
+
+    def __post_init__(self) -> None:
+        if self.avatar not in AVATARS:
+            raise ValueError(f"Unknown avatar {self.avatar!r}: use {' or '.join(AVATARS)}.")
+        if self.body not in PRESETS:
+            raise ValueError(f"Unknown body {self.body!r}: the bodies are {', '.join(PRESETS)}.")
+        if self.skin_tone not in SKIN_TONES:
+            raise ValueError(f"Unknown skin tone {self.skin_tone!r}: {', '.join(SKIN_TONES)}.")
+
+
+def avatar_for(view: str, side: str, look: Look = Look()):
+    """Return the avatar of *view* ("hand" or "upper-body") for the signer's *side* hand."""
+    if look.avatar == "simple":
+        if view == "hand":
+            from synthesis.avatar.hand_mesh import hand_avatar
+
+            return hand_avatar(side)
+        from synthesis.avatar.body_mesh import body_avatar
+
+        return body_avatar(side)
+    if view == "hand":
+        from synthesis.avatar.human.hand import human_hand_avatar
+
+        return human_hand_avatar(side, look.body, look.skin_tone)
+    from synthesis.avatar.human.build import human_avatar
+
+    return human_avatar(side, look.body, look.skin_tone)

@@ -1,0 +1,83 @@
+"""MediaPipe reads the human signer's face in the signing view, whole frames (issue 36).
+
+Holistic gives MediaPipe the whole frame: its pose model finds the signer and its face
+model (Face Mesh's 468 landmarks, refined with irises) reads the face there. Face Mesh's
+own detector is a short-range one (faces filling much of the image) and finds a face of
+120 px in a 1280-px frame in almost no frame, a human's or ours; so the signing view
+is read as Holistic reads a video of a person.
+
+Reference values, measured with mediapipe 0.10.21 on the default human (woman, medium
+skin) in the 16:9 signing view at 1280×720, Holistic with refined face landmarks
+(bench/bench_face.py prints them): neutral brow-over-eye 15.0 px, eyelid gap 7.5 px,
+lip gap 1.7 px, mouth width 31.6 px; brow raise brow 17.4; furrow 12.0; blink lids 0.0;
+squint 0.4; mouth open lips 20.9; CHA 25.8; spread lips width 37.9; OO width 24.0;
+gaze left iris +0.18 eye widths, right −0.14. At 640×480 (4:3 camera): brow 9.7 →
+10.9 raised; lids 5.0 → 0.5 blinking; lips 1.1 → 13.7 open.
+"""
+
+import numpy as np
+import pytest
+
+from synthesis.avatar.looks import Look, avatar_for
+from synthesis.render.scene import signing_view
+from synthesis.rigs.face import EXPRESSIONS
+from tests.synthesis.test_face import _landmarks, _measures
+
+pytestmark = pytest.mark.usefixtures("renderable")
+
+# How far each channel must move MediaPipe's measures from the neutral face's, in pixels
+# at 1280×720 (the iris's in eye widths): about two thirds of what was measured.
+MOVES_720P = {
+    "brow raise": {"brow": +1.5},
+    "brow furrow": {"brow": -2.0},
+    "blink": {"eye": -5.0},
+    "squint": {"eye": -4.5},
+    "mouth open": {"mouth": +12.0},
+    "CHA": {"mouth": +15.0},
+    "spread lips": {"width": +4.0},
+    "rounded lips (OO)": {"width": -5.0},
+    "gaze left": {"iris": +0.1},
+    "gaze right": {"iris": -0.08},
+}
+# At 640×480 the brow's raise is about 1 px; the lids and lips are read as at 720p.
+MOVES_480P = {"brow raise": {"brow": +0.6}, "blink": {"eye": -3.0}, "mouth open": {"mouth": +8}}
+
+
+def _read_faces(size: tuple[int, int], names) -> tuple[dict, dict]:
+    """Return MediaPipe's measures and the frames of the default human at each expression."""
+    solutions = pytest.importorskip(
+        "mediapipe.python.solutions", reason="FACE TESTS SKIPPED: MediaPipe is not installed"
+    )
+    from synthesis.render.renderer import Renderer
+
+    avatar = avatar_for("upper-body", "right", Look())
+    measured, frames = {}, {}
+    with Renderer(avatar, signing_view("right", *size), width=size[0], height=size[1]) as renderer:
+        for name in names:
+            frames[name] = renderer.frame(avatar.rig.from_degrees(EXPRESSIONS[name]))
+            with solutions.holistic.Holistic(static_image_mode=True,
+                                             refine_face_landmarks=True) as model:  # fmt: skip
+                points = _landmarks(model, frames[name])
+            assert points is not None, f"no face found in {name!r} at {size}"
+            measured[name] = _measures(points)
+    return measured, frames
+
+
+@pytest.mark.parametrize(("size", "moves"), [((1280, 720), MOVES_720P), ((640, 480), MOVES_480P)])
+def test_mediapipe_reads_each_face_channel_in_the_signing_view(size, moves):
+    measured, _ = _read_faces(size, ["neutral", *moves])
+    neutral = measured["neutral"]
+    for name, wanted in moves.items():
+        for measure, least in wanted.items():
+            change = measured[name][measure] - neutral[measure]
+            assert np.sign(least) * change >= abs(least), (name, measure, change)
+
+
+def test_every_face_channel_changes_the_faces_pixels_at_640x480():
+    """A non-manual signal a participant should see changes the face's pixels visibly."""
+    names = [name for name in EXPRESSIONS if name != "neutral"]
+    _, frames = _read_faces((640, 480), ["neutral", *names])
+    for name in names:
+        changed = np.abs(frames[name].astype(int) - frames["neutral"].astype(int)).sum(axis=2)
+        # Measured: 86 pixels (a gaze) to 1016 (CHA) change by more than 30 levels.
+        assert (changed > 30).sum() >= 60, name
