@@ -20,13 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from synthesis.avatar.looks import Look
 from synthesis.render.renderer import Renderer
-from synthesis.signing.stories import SPINE_STORY
+from synthesis.signing.stories import DEMO_SENTENCES
 from synthesis.techniques import ClipRequest, build_motion, filming
-
-# The ASL-first demo's prompts (studyplatform/demo/signed.py; copied: this bench does not
-# import Django).
-PROMPTS = ("[top S-T-O-R-Y LITTLE], ME INFORM-YOU. [q O-K]?", "[whq C-L-E-A-R]?",
-           "[whq N-A-T-U-R-A-L]?", "[whq FAVORITE]?", "[happy T-Y]!")  # fmt: skip
 
 
 def missed_frames(text: str, size: tuple[int, int], look: Look, holistic) -> tuple[int, list]:
@@ -58,7 +53,7 @@ def main() -> int:
 
     started = time.perf_counter()
     frames = found = 0
-    for text in (*SPINE_STORY, *PROMPTS):
+    for text in DEMO_SENTENCES:
         count, missed = missed_frames(text, size, Look(avatar=arguments.avatar), holistic)
         frames, found = frames + count, found + count - len(missed)
         when = ", ".join(f"{number / 30:.2f} s" for number in missed)

@@ -12,17 +12,19 @@ also shows what a text without a video looks like.
 import re
 from typing import Any
 
+from synthesis.signing.stories import DEMO_PROMPTS
+
 # Shown under each video whatever the language setting (AslVideo.credit).
 CREDIT = "Avatar-signed demo material (the platform's avatar, not a human signer)"
 # The spine study's signed texts: (model, key or None for the study, field, gloss). The
 # glosses use the sign library's signs and fingerspell the rest; the markers are its
 # non-manual signals (whq: wh-question brows).
 SPINE_PROMPTS: tuple[tuple[str, str | None, str, str], ...] = (
-    ("study", None, "consent_text", "[top S-T-O-R-Y LITTLE], ME INFORM-YOU. [q O-K]?"),
-    ("question", "clarity", "text", "[whq C-L-E-A-R]?"),
-    ("question", "naturalness", "text", "[whq N-A-T-U-R-A-L]?"),
-    ("question", "preferred", "text", "[whq FAVORITE]?"),
-    ("study", None, "thank_you_text", "[happy T-Y]!"),
+    ("study", None, "consent_text", DEMO_PROMPTS["consent"]),
+    ("question", "clarity", "text", DEMO_PROMPTS["clarity"]),
+    ("question", "naturalness", "text", DEMO_PROMPTS["naturalness"]),
+    ("question", "preferred", "text", DEMO_PROMPTS["preferred"]),
+    ("study", None, "thank_you_text", DEMO_PROMPTS["thank you"]),
 )
 # The prompts are signed as the study's sentences are, spine on, smaller and at 30 fps.
 CLIP = {"spine": True, "rate_hz": 30.0, "width": 480, "height": 360, "seed": 1}

@@ -13,3 +13,14 @@ SPINE_STORY = (
     "INFORM-YOU [top BLUE] [assert MY FAVORITE COLOR].",
     "FINALLY HAVE C-A-R AGAIN — HAPPY!",
 )
+# The ASL-first demo's signed prompts (studyplatform/demo/signed.py attaches them to its
+# texts), by the text they sign: signs from the library, fingerspelling for the rest.
+DEMO_PROMPTS = {
+    "consent": "[top S-T-O-R-Y LITTLE], ME INFORM-YOU. [q O-K]?",
+    "clarity": "[whq C-L-E-A-R]?",
+    "naturalness": "[whq N-A-T-U-R-A-L]?",
+    "preferred": "[whq FAVORITE]?",
+    "thank you": "[happy T-Y]!",
+}
+# Every sentence the demo signs in the signing view (the sign pairs aside).
+DEMO_SENTENCES = (*SPINE_STORY, *DEMO_PROMPTS.values())

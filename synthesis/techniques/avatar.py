@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from synthesis.avatar.human.build import DEFAULT_SKIN_TONE, SKIN_TONES
-from synthesis.avatar.human.phenotype import DEFAULT_PRESET, PRESETS
+from synthesis.avatar.human.phenotype import ADULT_AGE, CUSTOM, DEFAULT_PRESET, PRESETS, RAW_VALUES
 from synthesis.avatar.looks import AVATARS, Look
 from synthesis.techniques.kinds import SIGNED, WORD
 from synthesis.techniques.parameters import ClipError, Parameter
@@ -19,8 +19,18 @@ if TYPE_CHECKING:
     from synthesis.techniques.request import Build
 
 
+# MakeHuman's default human: each macro value a custom body leaves as it is.
+RAW_DEFAULT = 0.5
+
+
+def _raw(values) -> tuple[tuple[str, float], ...]:
+    # The parameters are body_<value>: "height" alone is the clip's.
+    given = {name: values[f"body_{name}"] for name in RAW_VALUES}
+    return tuple((name, value) for name, value in given.items() if value != RAW_DEFAULT)
+
+
 def _look(values) -> Look:
-    return Look(values["avatar"], values["body"], values["skin_tone"])
+    return Look(values["avatar"], values["body"], values["skin_tone"], _raw(values))
 
 
 def _apply(build: Build) -> Build:
@@ -28,17 +38,31 @@ def _apply(build: Build) -> Build:
 
 
 def _check(values) -> None:
+    raw = _raw(values)
     if values["avatar"] == "simple" and (
-        values["body"] != DEFAULT_PRESET or values["skin_tone"] != DEFAULT_SKIN_TONE
+        values["body"] != DEFAULT_PRESET or values["skin_tone"] != DEFAULT_SKIN_TONE or raw
     ):
-        raise ClipError("The simple avatar has one body and skin tone; body and skin_tone "
-                        "choose the human avatar's.")  # fmt: skip
+        raise ClipError("The simple avatar has one body and skin tone; body, skin_tone and "
+                        "the macro values choose the human avatar's.")  # fmt: skip
+    if raw and values["body"] != CUSTOM:
+        given = ", ".join(f"body_{name}" for name, _ in raw)
+        raise ClipError(f"{given} shape a body only when body is {CUSTOM}; "
+                        f"{values['body']} is a preset.")  # fmt: skip
 
 
 def _summary(values) -> str:
     if values["avatar"] == "simple":
         return "simple avatar"
-    return f"human signer ({values['body']}, {values['skin_tone']} skin)"
+    body = values["body"]
+    if body == CUSTOM:
+        body = ", ".join(f"{name} {value:g}" for name, value in _raw(values)) or "MakeHuman default"
+        body = f"custom body: {body}"
+    return f"human signer ({body}, {values['skin_tone']} skin)"
+
+
+def _macro(name: str, help: str, minimum: float = 0.0) -> Parameter:
+    help = f"{help} (a custom body only; MakeHuman's macro value, {RAW_DEFAULT:g} its default)."
+    return Parameter(f"body_{name}", "float", RAW_DEFAULT, help, minimum=minimum, maximum=1.0)
 
 
 TECHNIQUE = Technique(
@@ -61,8 +85,8 @@ TECHNIQUE = Technique(
             "choice",
             DEFAULT_PRESET,
             f"The human signer's body, a MakeHuman preset (gender, age, build): "
-            f"{', '.join(PRESETS)}.",
-            choices=tuple(PRESETS),
+            f"{', '.join(PRESETS)}; or {CUSTOM}, shaped by the macro values below.",
+            choices=(*PRESETS, CUSTOM),
         ),
         Parameter(
             "skin_tone",
@@ -71,6 +95,12 @@ TECHNIQUE = Technique(
             "The human signer's skin tone; the top's colour stands apart from it.",
             choices=tuple(SKIN_TONES),
         ),
+        _macro("gender", "0 female … 1 male"),
+        _macro("age", f"{ADULT_AGE:g} is 25 years, 1 is 90", minimum=ADULT_AGE),
+        _macro("muscle", "0 least … 1 most muscular"),
+        _macro("weight", "0 lightest … 1 heaviest build"),
+        _macro("height", "0 shortest … 1 tallest (the rig keeps its size: proportions change)"),
+        _macro("proportions", "0 uncommon … 1 idealised proportions"),
     ),
     source="issue 36",
     order=90,

@@ -37,3 +37,26 @@ def test_a_camera_too_close_puts_the_hand_outside_and_makes_it_taller():
     # B (fingers up) is taller than A (a fist); the hand avatar has no face.
     assert far.hand_share[1] > far.hand_share[0] and np.isnan(far.head_px).all()
     assert far.to_dict()["frames_hand_outside"] == 0
+
+
+def test_the_16_9_signing_view_holds_every_demo_sentence_and_a_large_face():
+    """Issue 36: at 1280×720 the hands of every sentence the demo signs (the story and
+    the ASL-first prompts, spine on and off) stay in the frame, and the face, forehead
+    to chin, is 120 px tall at rest; measured 112 px at the smallest (a nodded head
+    foreshortens it). bench/bench_framing.py prints the figures per sentence."""
+    from synthesis.signing.stories import DEMO_SENTENCES
+    from synthesis.techniques import ClipRequest, build_motion, filming
+
+    smallest, at_rest = [], []
+    for spine in (True, False):
+        for text in DEMO_SENTENCES:
+            values = {"rate_hz": 15.0, "width": 1280, "height": 720, "spine": spine}
+            request = ClipRequest.from_parameters("sentence", text, values)
+            motion = np.asarray(build_motion(request).motion)
+            avatar, camera = filming(request.view, request.side, motion, request.rate_hz,
+                                     1280, 720)  # fmt: skip
+            framing = measure_framing(avatar, camera, motion, 1280, 720)
+            assert not framing.hand_outside.any(), (text, spine)
+            smallest.append(np.nanmin(framing.face_px))
+            at_rest.append(framing.face_px[0])
+    assert min(at_rest) >= 119.5 and min(smallest) >= 110, (min(at_rest), min(smallest))

@@ -21,7 +21,7 @@ from synthesis.avatar.human.fit import (
     palm_frame,
 )
 from synthesis.avatar.human.parts import sphere_fit
-from synthesis.avatar.human.phenotype import PRESETS, shaped_vertices
+from synthesis.avatar.human.phenotype import Phenotype, body_phenotype, shaped_vertices
 from synthesis.avatar.human.skeleton import SIDE_SUFFIX, engine_joint, place_skeleton
 from synthesis.avatar.human.warp import (
     Affine,
@@ -190,10 +190,11 @@ def _transforms(skeleton, matches, engine: dict) -> tuple[dict, Affine]:
     return transforms, head
 
 
-def warp_body(preset: str, dominant: str) -> Warped:
-    """Return MakeHuman's body in *preset*'s shape on the engine's rig."""
+def warp_body(body: str | Phenotype, dominant: str) -> Warped:
+    """Return MakeHuman's body in *body*'s shape (a preset or a phenotype) on the engine's
+    rig."""
     mesh = assets.base_mesh()
-    shaped = shaped_vertices(mesh.vertices_m, PRESETS[preset], assets.macro_target)
+    shaped = shaped_vertices(mesh.vertices_m, body_phenotype(body), assets.macro_target)
     skeleton = place_skeleton(assets.rig_json(), shaped, mesh.group)
     weights = assets.weights_json()
     rig = BodyModel(dominant)

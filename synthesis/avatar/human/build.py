@@ -19,7 +19,7 @@ from synthesis.avatar.human.body import TRUNK_JOINTS, warp_body
 from synthesis.avatar.human.face import morph_drive
 from synthesis.avatar.human.features import eyes, face_morphs, features, nails
 from synthesis.avatar.human.parts import smoothed
-from synthesis.avatar.human.phenotype import DEFAULT_PRESET, PRESETS
+from synthesis.avatar.human.phenotype import DEFAULT_PRESET, Phenotype, body_key, body_phenotype
 from synthesis.avatar.model import Avatar, SkinnedPart, merge_parts
 from synthesis.rigs.body import SIDES, BodyModel
 
@@ -53,9 +53,9 @@ def waistband(rig: BodyModel, bind_pose, warped, colours: np.ndarray, edge: np.n
     return colours, edge
 
 
-def build_human(dominant: str, preset: str, skin_tone: str) -> Avatar:
+def build_human(dominant: str, body: str | Phenotype, skin_tone: str) -> Avatar:
     """Build the human avatar (seconds; :func:`human_avatar` keeps it on disk)."""
-    warped = warp_body(preset, dominant)
+    warped = warp_body(body, dominant)
     skin_rgb, top_rgb = SKIN_TONES[skin_tone]
     rig = warped.rig
     bind_pose = rig.pose(warped.bind_dofs_rad)
@@ -89,16 +89,16 @@ def build_human(dominant: str, preset: str, skin_tone: str) -> Avatar:
 
 
 @cache
-def human_avatar(dominant: str = "right", preset: str = DEFAULT_PRESET,
+def human_avatar(dominant: str = "right", body: str | Phenotype = DEFAULT_PRESET,
                  skin_tone: str = DEFAULT_SKIN_TONE) -> Avatar:  # fmt: skip
-    """Return the human upper-body avatar (built once per engine version and look, then
-    kept on disk by :mod:`synthesis.avatar.store`, and once per process in memory)."""
+    """Return the human upper-body avatar of *body* (a preset's name or a phenotype),
+    built once per engine version and look, then kept on disk by
+    :mod:`synthesis.avatar.store`, and once per process in memory."""
     from synthesis.avatar.store import cached_avatar
 
-    if preset not in PRESETS:
-        raise ValueError(f"Unknown body {preset!r}: the bodies are {', '.join(PRESETS)}.")
+    body_phenotype(body)  # names an unknown body
     if skin_tone not in SKIN_TONES:
         raise ValueError(f"Unknown skin tone {skin_tone!r}: {', '.join(SKIN_TONES)}.")
-    key = f"human-{dominant}-{preset.replace(' ', '_')}-{skin_tone}"
+    key = f"human-{dominant}-{body_key(body)}-{skin_tone}"
     return cached_avatar(key, BodyModel(dominant),
-                         lambda: build_human(dominant, preset, skin_tone), LIBRARIES)  # fmt: skip
+                         lambda: build_human(dominant, body, skin_tone), LIBRARIES)  # fmt: skip

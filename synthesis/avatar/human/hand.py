@@ -14,7 +14,7 @@ import numpy as np
 
 from synthesis.avatar.human.build import DEFAULT_SKIN_TONE, LIBRARIES, SKIN_TONES, human_avatar
 from synthesis.avatar.human.features import nail_radii
-from synthesis.avatar.human.phenotype import DEFAULT_PRESET, PRESETS
+from synthesis.avatar.human.phenotype import DEFAULT_PRESET, Phenotype, body_key
 from synthesis.avatar.model import NAIL_RGB, Avatar, SkinnedPart, rigid_part
 from synthesis.avatar.skinning import SkinWeights
 from synthesis.rigs.hand import HandModel
@@ -65,11 +65,11 @@ def _hand_part(body: Avatar, side: str, model: HandModel, move: np.ndarray) -> S
                        None if skin.across_rgb is None else skin.across_rgb[kept])  # fmt: skip
 
 
-def build_human_hand(side: str, preset: str, skin_tone: str) -> Avatar:
+def build_human_hand(side: str, body_shape: str | Phenotype, skin_tone: str) -> Avatar:
     """Build the human hand-and-forearm avatar from the human body avatar."""
     from synthesis.avatar.hand_mesh import hand_nails
 
-    body = human_avatar("right", preset, skin_tone)
+    body = human_avatar("right", body_shape, skin_tone)
     model = HandModel(side)
     bind = np.zeros(len(model.dofs))
     where = body.rig.hand_dofs(side)
@@ -85,14 +85,14 @@ def build_human_hand(side: str, preset: str, skin_tone: str) -> Avatar:
 
 
 @cache
-def human_hand_avatar(side: str = "right", preset: str = DEFAULT_PRESET,
+def human_hand_avatar(side: str = "right", body: str | Phenotype = DEFAULT_PRESET,
                       skin_tone: str = DEFAULT_SKIN_TONE) -> Avatar:  # fmt: skip
     """Return the human hand-and-forearm avatar of the close-up (kept on disk as
     :func:`~synthesis.avatar.human.build.human_avatar` is)."""
     from synthesis.avatar.store import cached_avatar
 
-    if preset not in PRESETS or skin_tone not in SKIN_TONES:
-        human_avatar("right", preset, skin_tone)  # names the unknown one
-    key = f"human-hand-{side}-{preset.replace(' ', '_')}-{skin_tone}"
-    return cached_avatar(key, HandModel(side), lambda: build_human_hand(side, preset, skin_tone),
+    if skin_tone not in SKIN_TONES:
+        human_avatar("right", body, skin_tone)  # names the unknown one
+    key = f"human-hand-{side}-{body_key(body)}-{skin_tone}"
+    return cached_avatar(key, HandModel(side), lambda: build_human_hand(side, body, skin_tone),
                          LIBRARIES)  # fmt: skip

@@ -105,6 +105,30 @@ PRESETS = MappingProxyType(
     }
 )
 DEFAULT_PRESET = "woman"
+# A body given by its macro values instead of a preset (Look, the avatar technique).
+CUSTOM = "custom"
+# The values a custom body sets; ancestry, cup size and firmness stay MakeHuman's.
+RAW_VALUES = ("gender", "age", "muscle", "weight", "height", "proportions")
+# Youngest age a custom body may have: 0.5 is 25 years (the signers the rig is fitted to).
+ADULT_AGE = 0.5
+
+
+def body_phenotype(body: str | Phenotype) -> Phenotype:
+    """Return the phenotype of a preset's name, or *body* itself when it is one."""
+    if isinstance(body, Phenotype):
+        return body
+    if body not in PRESETS:
+        raise ValueError(f"Unknown body {body!r}: the bodies are {', '.join(PRESETS)}.")
+    return PRESETS[body]
+
+
+def body_key(body: str | Phenotype) -> str:
+    """Return a file-name-safe key of a body: its preset's name, or its macro values."""
+    phenotype = body_phenotype(body)
+    for name, preset in PRESETS.items():
+        if preset == phenotype:
+            return name.replace(" ", "_")
+    return "custom_" + "_".join(f"{value:.3f}" for value in phenotype.to_dict().values())
 
 
 def shaped_vertices(vertices_m: np.ndarray, phenotype: Phenotype, target) -> np.ndarray:
