@@ -133,15 +133,17 @@ class Morphs:
 @dataclass(frozen=True, eq=False)
 class MorphDrive:
     """Blendshape weights from a rig's DOFs: ``w = clip(rising · max(d, 0) + falling ·
-    max(−d, 0), 0, 1)`` with *rising* and *falling* (k, n_dofs) per radian, so a DOF
-    can move one blendshape one way and another the other (a brow's raise and drop)."""
+    max(−d, 0), 0, limits)`` with *rising* and *falling* (k, n_dofs) per radian, so a DOF
+    can move one blendshape one way and another the other (a brow's raise and drop);
+    *limits* (k,) the weight each blendshape may reach (1: its target; more extrapolates)."""
 
     names: tuple[str, ...]
     rising: np.ndarray
     falling: np.ndarray
+    limits: np.ndarray
 
     def weights(self, dofs_rad: np.ndarray) -> np.ndarray:
         """Return the blendshape weights (n_frames, k) of DOF vectors (n_frames, n_dofs)."""
         dofs = np.atleast_2d(dofs_rad)
         raw = np.maximum(dofs, 0.0) @ self.rising.T + np.maximum(-dofs, 0.0) @ self.falling.T
-        return np.clip(raw, 0.0, 1.0)
+        return np.clip(raw, 0.0, self.limits)

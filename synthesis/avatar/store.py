@@ -24,7 +24,7 @@ MESH_LIBRARIES = ("numpy", "scipy", "scikit-image", "trimesh", "fast-simplificat
 _FIELDS = ("vertices_m", "faces", "colors_rgb", "normals")
 _OPTIONAL_FIELDS = ("edge_m", "across_rgb")
 _MORPH_FIELDS = ("names", "vertices", "offsets_m", "normal_offsets")
-_DRIVE_FIELDS = ("names", "rising", "falling")
+_DRIVE_FIELDS = ("names", "rising", "falling", "limits")
 # Rig fields an avatar's build may set from its mesh (the human's eyes): kept with it.
 _RIG_FIELDS = ("eye_centre_m",)
 

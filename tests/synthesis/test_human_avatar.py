@@ -9,7 +9,7 @@ import pytest
 
 from synthesis.avatar.human import assets
 from synthesis.avatar.human.build import build_human, human_avatar
-from synthesis.avatar.human.face import CHANNELS, morph_drive
+from synthesis.avatar.human.face import CHANNELS, LIMITS, morph_drive
 from synthesis.avatar.human.fit import DIGITS, digit_joints
 from synthesis.avatar.human.hand import human_hand_avatar
 from synthesis.avatar.human.phenotype import PRESETS, Phenotype, shaped_vertices
@@ -86,7 +86,11 @@ def test_every_face_channel_drives_blendshapes_the_pack_has():
     for expression, degrees in EXPRESSIONS.items():
         weights = drive.weights(BodyModel().from_degrees(degrees))[0]
         assert (weights > 0.2).any() or expression == "neutral", expression
-        assert weights.max() <= 1.0
+        assert (weights <= drive.limits).all()
+    # Only the brows go past their targets, and no further than LIMITS says.
+    raised = drive.weights(BodyModel().from_degrees(EXPRESSIONS["brow raise"]))[0]
+    beyond = {name for name, w in zip(drive.names, raised, strict=True) if w > 1.0}
+    assert beyond == set(LIMITS) and max(raised) <= 1.6
 
 
 def _moved_mm(avatar, degrees, part: int, vertices) -> np.ndarray:

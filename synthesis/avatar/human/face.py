@@ -31,8 +31,8 @@ CHANNELS = MappingProxyType(
     {
         # Brows: the inner brows rise with either side, the outer with their own;
         # a brow drawn down and squeezed toward the nose is ARKit's browDown.
-        "browInnerUp": _shared("brow_raise", 1, 7.0),
-        **_both("browOuterUp", "brow_raise", 1, 7.0),
+        "browInnerUp": _shared("brow_raise", 1, 4.0),
+        **_both("browOuterUp", "brow_raise", 1, 4.0),
         **{
             f"browDown{s.title()}": (
                 (f"{s}_brow_raise", -1, 5.0, 1.0),
@@ -68,6 +68,12 @@ CHANNELS = MappingProxyType(
 )
 
 
+# Weights past the target a blendshape may reach. The pack's brow raise lifts the brows
+# about 1 px at the 640×480 signing view, under the simple avatar's 2 px; the brows carry
+# questions (seed 003 §4), so a raise goes 1.6 times as far.
+LIMITS = MappingProxyType({"browInnerUp": 1.6, "browOuterUpRight": 1.6, "browOuterUpLeft": 1.6})
+
+
 def morph_drive(dof_names: list[str]) -> MorphDrive:
     """Return the drive of :data:`CHANNELS` for a rig with these DOFs."""
     names = tuple(CHANNELS)
@@ -77,4 +83,5 @@ def morph_drive(dof_names: list[str]) -> MorphDrive:
         for dof, sign, full_deg, share in entries:
             matrix = rising if sign > 0 else falling
             matrix[row, dof_names.index(dof)] += share / np.radians(full_deg)
-    return MorphDrive(names, rising, falling)
+    limits = np.array([LIMITS.get(name, 1.0) for name in names])
+    return MorphDrive(names, rising, falling, limits)
