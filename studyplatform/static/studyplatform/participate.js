@@ -422,10 +422,13 @@
       if (left !== null) { state += (state ? ". " : "") + left + " of " + replayLimit + " plays left"; }
       if (state !== announced) { count.textContent = announced = state; }
     }
+    // A play from the start counts once; toggle knows it started one, for the "play" event
+    // can come late on a busy machine, when the clip has already moved past its start.
+    let fromStart = false;
     function toggle() {
       if (!video.paused && !video.ended) { video.pause(); return; }
-      if (video.ended || video.currentTime === 0 || replayLimit !== null) { video.currentTime = 0; }
-      video.play().catch(function (error) { log("error", clip, video.currentTime, {message: String(error)}); });
+      if (video.ended || video.currentTime === 0 || replayLimit !== null) { video.currentTime = 0; fromStart = true; }
+      video.play().catch(function (error) { fromStart = false; log("error", clip, video.currentTime, {message: String(error)}); });
     }
     function seek(to) {
       if (replayLimit !== null || !isFinite(video.duration)) { return; }
@@ -447,7 +450,9 @@
       fill.style.width = video.duration ? (100 * video.currentTime / video.duration) + "%" : "0";
     });
     video.addEventListener("play", function () {
-      if (video.currentTime < 0.05) {
+      const started = fromStart || video.currentTime < 0.05;
+      fromStart = false;
+      if (started) {
         plays += 1;
         if (replayLimit !== null && plays > replayLimit) { video.pause(); plays -= 1; refresh(); return; }
       }
