@@ -99,7 +99,7 @@ def clothing_colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad
     vertex drew those triangles' ragged edges along the neckline and the wrists).
     """
     names = model.skeleton.names
-    dominant = weights.joints[np.arange(len(vertices_m)), np.argmax(weights.weights, axis=1)]
+    dominant = weights.main_joints()
     clothed = np.array([any(name.endswith(c) for c in CLOTHED) for name in names])[dominant]
     # Signed distance (m) into the skin from the edge of the top: negative under cloth.
     into_skin = np.where(clothed, -np.inf, np.inf)

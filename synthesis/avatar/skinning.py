@@ -23,6 +23,10 @@ class SkinWeights:
     joints: np.ndarray
     weights: np.ndarray
 
+    def main_joints(self) -> np.ndarray:
+        """Return each vertex's joint of largest weight (n,)."""
+        return self.joints[np.arange(len(self.joints)), np.argmax(self.weights, axis=1)]
+
     def matrix(self, n_joints: int) -> sparse.csr_matrix:
         """Return the weights as a sparse (n_vertices, n_joints) matrix."""
         n = len(self.joints)
@@ -52,13 +56,17 @@ def skin_weights(
         scores[:, column] = np.minimum(
             scores[:, column], primitive.relative_axis_distance(vertices_m)
         )
-    raw = (scores + 0.05) ** -power
-    keep = min(MAX_BONES, len(owners))
-    top = np.argsort(-raw, axis=1)[:, :keep]
-    weights = np.take_along_axis(raw, top, axis=1)
-    weights /= weights.sum(axis=1, keepdims=True)
+    top, weights = strongest_weights((scores + 0.05) ** -power)
     joints = np.array([joint_index[name] for name in owners])[top]
     return SkinWeights(joints=joints.astype(np.intp), weights=weights)
+
+
+def strongest_weights(dense: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return each vertex's :data:`MAX_BONES` largest weights of *dense* (n, columns):
+    their columns and the weights, normalised to sum to one."""
+    top = np.argsort(-dense, axis=1)[:, :MAX_BONES]
+    weights = np.take_along_axis(dense, top, axis=1)
+    return top, weights / weights.sum(axis=1, keepdims=True)
 
 
 def skin_transforms(pose: Pose, bind: Pose) -> np.ndarray:

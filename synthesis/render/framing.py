@@ -28,9 +28,7 @@ __all__ = ["HAND_JOINTS", "Framing", "hand_vertices", "measure_framing", "projec
 def _owned(avatar: Avatar, wanted) -> list[np.ndarray]:
     """Return, per part, which vertices (n,) are owned most by a joint that *wanted* takes."""
     taken = np.array([wanted(name) for name in avatar.rig.skeleton.names], dtype=bool)
-    return [taken[part.weights.joints[np.arange(len(part.weights.joints)),
-                                      part.weights.weights.argmax(axis=1)]]
-            for part in avatar.parts]  # fmt: skip
+    return [taken[part.weights.main_joints()] for part in avatar.parts]
 
 
 def _is_hand(name: str) -> bool:
@@ -144,8 +142,6 @@ def face_vertices(avatar: Avatar) -> list[np.ndarray]:
         return _owned(avatar, lambda name: name in FACE_JOINT_NAMES)
     head = _owned(avatar, lambda name: name == "head")
     names = avatar.rig.skeleton.names
-    if "right_eye" not in names:
-        return [np.zeros_like(mask) for mask in head]
     bind = avatar.bind_pose.positions_m[0]
     eyes = (bind[names.index("right_eye")] + bind[names.index("left_eye")]) / 2
     return [mask & (part.vertices_m[:, 1] < eyes[1] + FOREHEAD_ABOVE_EYES_M)

@@ -36,18 +36,24 @@ def _fail(status: int, when=lambda body: True):
     return handle
 
 
+def _consent_and_give_a_name(page, live_server, study) -> Participant:
+    """Take *study*'s consent and type a name on its first page; return the participant."""
+    page.goto(f"{live_server.url}/s/{study.slug}/")
+    page.get_by_role("button", name="Continue (I agree to take part)").click()
+    _wait_ready(page)
+    participant = Participant.objects.get()
+    page.locator('input[name="q-name"]').fill("Ann")
+    page.locator('input[name="q-name"]').dispatch_event("change")
+    return participant
+
+
 def test_the_page_survives_server_errors(page, live_server, fingerspelling, clips_dir, one_clip):
     _with_clips(fingerspelling, one_clip, clips_dir)
     page.allowed_errors = [r"status of 500", r"HTTP 500"]
     # The second page's page_shown event fails on every try; the first page's answers too.
     page.route("**/events/", _fail(500, when=lambda body: POISON in body))
     page.route("**/answer/", _fail(500))
-    page.goto(f"{live_server.url}/s/{fingerspelling.slug}/")
-    page.get_by_role("button", name="Continue (I agree to take part)").click()
-    _wait_ready(page)
-    participant = Participant.objects.get()
-    page.locator('input[name="q-name"]').fill("Ann")
-    page.locator('input[name="q-name"]').dispatch_event("change")
+    participant = _consent_and_give_a_name(page, live_server, fingerspelling)
     page.get_by_text("Not saved yet (server error)").wait_for()
     # Five server errors (0.5 + 1 + 2 + 4 s of backoff), then the answer waits for Next.
     page.get_by_text("it is sent again when you go on").wait_for(timeout=20_000)
@@ -99,12 +105,7 @@ def test_a_save_still_on_its_way_never_lands_over_the_answer_next_carried(
         return save(participant, trial, question, answer)
 
     monkeypatch.setattr(participate, "do_save_response", slow_first_age)
-    page.goto(f"{live_server.url}/s/{fingerspelling.slug}/")
-    page.get_by_role("button", name="Continue (I agree to take part)").click()
-    _wait_ready(page)
-    participant = Participant.objects.get()
-    page.locator('input[name="q-name"]').fill("Ann")
-    page.locator('input[name="q-name"]').dispatch_event("change")
+    participant = _consent_and_give_a_name(page, live_server, fingerspelling)
     page.locator('input[name="q-asl-fluency"][value="1"]').check()
     page.get_by_text("Answer saved.").wait_for()
     page.locator('input[name="q-age"][value="3"]').check()

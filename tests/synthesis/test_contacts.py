@@ -23,9 +23,7 @@ NEAR_M = 0.015
 
 def _owners(avatar) -> np.ndarray:
     """Return the joint that moves each skin vertex most, by name."""
-    weights = avatar.parts[0].weights
-    main = weights.joints[np.arange(len(weights.joints)), np.argmax(weights.weights, axis=1)]
-    return np.asarray(avatar.rig.skeleton.names)[main]
+    return np.asarray(avatar.rig.skeleton.names)[avatar.parts[0].weights.main_joints()]
 
 
 def deepest_inside_mm(avatar, motion: np.ndarray) -> float:

@@ -18,6 +18,7 @@ from synthesis.avatar.human.fit import (
     correspondence,
     digit_joints,
     fit_bind_dofs,
+    joint_points,
     palm_frame,
 )
 from synthesis.avatar.human.parts import sphere_fit
@@ -32,7 +33,7 @@ from synthesis.avatar.human.warp import (
     frame_affine,
     segment_affine,
 )
-from synthesis.avatar.skinning import MAX_BONES, SkinWeights
+from synthesis.avatar.skinning import SkinWeights, strongest_weights
 from synthesis.rigs.body import SIDES, BodyModel
 
 # The mesh is cut this far below the pelvis (the signing view never shows the legs).
@@ -94,12 +95,6 @@ def quad_triangles(quads: np.ndarray, kept: np.ndarray) -> np.ndarray:
     return np.concatenate([whole[:, [0, 1, 2]], whole[:, [0, 2, 3]]])
 
 
-def _top_weights(dense: np.ndarray) -> SkinWeights:
-    top = np.argsort(-dense, axis=1)[:, :MAX_BONES]
-    values = np.take_along_axis(dense, top, axis=1)
-    return SkinWeights(top.astype(np.intp), values / values.sum(axis=1, keepdims=True))
-
-
 def skin_weights(table: dict, vertices_mh: np.ndarray, rig: BodyModel, matches: dict,
                  engine: dict) -> SkinWeights:  # fmt: skip
     """Return the engine joints' weights: MakeHuman's, each bone's to the joint that
@@ -135,7 +130,7 @@ def skin_weights(table: dict, vertices_mh: np.ndarray, rig: BodyModel, matches: 
             own = np.clip(1.0 - after - previous, 0.0, 1.0)
             dense[rows, names.index(joint)] += on_digit[rows] * own
             previous = previous + own
-    return _top_weights(dense)
+    return SkinWeights(*strongest_weights(dense))
 
 
 def _transforms(skeleton, matches, engine: dict) -> tuple[dict, Affine]:
@@ -169,8 +164,7 @@ def _transforms(skeleton, matches, engine: dict) -> tuple[dict, Affine]:
                               (("lowerarm01", "lowerarm02"), ("elbow", "wrist"))):  # fmt: skip
             segment = segment_affine(arm[p + a], arm[p + b], engine[p + a], engine[p + b], across)
             transforms.update({bone + s: segment for bone in bones})
-        points = {**arm, **{k: v for joints in match.digit_points.values()
-                            for k, v in joints.items()}}  # fmt: skip
+        points = joint_points(match)
         names = [p + n for n in ("wrist", "index_mcp", "pinky_mcp", "middle_mcp")]
         frame_mh = palm_frame(*(points[n] for n in names), side)
         frame_e = palm_frame(*(engine[n] for n in names), side)

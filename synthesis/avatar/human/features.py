@@ -20,6 +20,7 @@ from synthesis.avatar.human.parts import brow_distance, eyeball, hair_distance, 
 from synthesis.avatar.model import NAIL_RGB, SkinnedPart, merge_parts, rigid_part
 from synthesis.avatar.skinning import Morphs, SkinWeights
 from synthesis.rigs.body import SIDES, BodyModel
+from synthesis.rigs.rig import MIRROR_X
 from synthesis.skeleton.rotations import quat_to_matrix
 
 HAIR_RGB = (0.055, 0.045, 0.04)
@@ -115,9 +116,8 @@ def nail_radii(rig: BodyModel, bind_dofs_rad: np.ndarray, skin: SkinnedPart,
     """Return each digit's depth (m) from its last bone to the back of its skin, halfway
     along the bone: where :func:`hand_nails` lays the nail."""
     pose = rig.pose(bind_dofs_rad)
-    owner = skin.weights.joints[np.arange(len(skin.vertices_m)),
-                                np.argmax(skin.weights.weights, axis=1)]  # fmt: skip
-    mirror = np.diag([-1.0, 1.0, 1.0]) if side == "left" else np.eye(3)
+    owner = skin.weights.main_joints()
+    mirror = MIRROR_X if side == "left" else np.eye(3)
     radii = {}
     for digit in DIGITS:
         joints = digit_joints(digit)

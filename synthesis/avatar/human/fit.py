@@ -21,6 +21,7 @@ from scipy.optimize import least_squares
 
 from synthesis.avatar.human.skeleton import SIDE_SUFFIX, MakeHumanSkeleton
 from synthesis.rigs.body import SIDES, BodyModel
+from synthesis.rigs.landmarks import LANDMARK_JOINTS
 
 DIGITS = {"thumb": 1, "index": 2, "middle": 3, "ring": 4, "pinky": 5}
 
@@ -31,19 +32,26 @@ def unit(vectors: np.ndarray) -> np.ndarray:
 
 
 def digit_joints(digit: str) -> tuple[str, ...]:
-    """Return a digit's engine joints from its base to its tip (without the side)."""
-    if digit == "thumb":
-        return ("thumb_cmc", "thumb_mcp", "thumb_ip", "thumb_tip")
-    return tuple(f"{digit}_{joint}" for joint in ("mcp", "pip", "dip", "tip"))
+    """Return a digit's engine joints from its base to its tip (without the side): its
+    four MediaPipe landmarks' joints."""
+    start = 1 + 4 * list(DIGITS).index(digit)
+    return LANDMARK_JOINTS[start : start + 4]
+
+
+def _bone_skin(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict, bone: str):
+    """Return a bone's head (3,), unit axis (3,) and its skin's offsets from the head
+    (the vertices it weighs over one half)."""
+    head = skeleton.head(bone)
+    axis = unit(skeleton.tail(bone) - head)
+    owned = np.array([index for index, weight in weights[bone] if weight > 0.5])
+    return head, axis, vertices_m[owned] - head
 
 
 def fingertip(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict,
               bone: str) -> np.ndarray:  # fmt: skip
     """Return a digit's tip: the farthest point of its distal bone's skin along the bone."""
-    head, tail = skeleton.head(bone), skeleton.tail(bone)
-    axis = unit(tail - head)
-    owned = np.array([index for index, weight in weights[bone] if weight > 0.5])
-    return head + axis * float(((vertices_m[owned] - head) @ axis).max())
+    head, axis, offsets = _bone_skin(skeleton, vertices_m, weights, bone)
+    return head + axis * float((offsets @ axis).max())
 
 
 def cross_section_centre(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict,
@@ -51,10 +59,7 @@ def cross_section_centre(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, we
     """Return how far (3,) the middle of a bone's skin lies from the bone, across it: the
     centre of the skin's extent (5th to 95th percentile) along its two principal
     directions across the bone (a finger's pad has more vertices than its back)."""
-    head, tail = skeleton.head(bone), skeleton.tail(bone)
-    axis = unit(tail - head)
-    owned = np.array([index for index, weight in weights[bone] if weight > 0.5])
-    offsets = vertices_m[owned] - head
+    _, axis, offsets = _bone_skin(skeleton, vertices_m, weights, bone)
     across = offsets - np.outer(offsets @ axis, axis)
     _, _, directions = np.linalg.svd(across - across.mean(axis=0), full_matrices=False)
     spread = across @ directions[:2].T
@@ -65,8 +70,7 @@ def cross_section_centre(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, we
 def along_chain(points: np.ndarray, shares) -> np.ndarray:
     """Return the points at *shares* (0 at the first point, 1 at the last) of a polyline's
     length."""
-    lengths = np.linalg.norm(np.diff(points, axis=0), axis=1)
-    at = np.concatenate([[0.0], np.cumsum(lengths)]) / lengths.sum()
+    at = chain_shares(points)
     return np.column_stack([np.interp(shares, at, points[:, k]) for k in range(3)])
 
 
@@ -123,7 +127,7 @@ def palm_frame(wrist, index_mcp, pinky_mcp, middle_mcp, side: str) -> np.ndarray
     return np.column_stack([np.cross(toward, normal), toward, normal])
 
 
-def _points(match: Correspondence, side: str) -> dict:
+def joint_points(match: Correspondence) -> dict:
     """Return every engine joint of the side with its MakeHuman point."""
     points = dict(match.arm)
     for joints in match.digit_points.values():
@@ -171,7 +175,7 @@ def fit_bind_dofs(rig: BodyModel, matches: dict) -> np.ndarray:
 
     for side in SIDES:
         p, match = side + "_", matches[side]
-        points = _points(match, side)
+        points = joint_points(match)
         mh_palm = palm_frame(points[p + "wrist"], points[p + "index_mcp"],
                              points[p + "pinky_mcp"], points[p + "middle_mcp"], side)  # fmt: skip
         arm_dofs = [

@@ -42,7 +42,7 @@ def _hand_part(body: Avatar, side: str, model: HandModel, move: np.ndarray) -> S
                for n in model.skeleton.names if p + n in names}  # fmt: skip
     to_hand[names.index(p + "elbow")] = model.skeleton.index("forearm")
     to_hand[names.index(p + "shoulder")] = model.skeleton.index("forearm")
-    top = skin.weights.joints[np.arange(len(skin.vertices_m)), skin.weights.weights.argmax(axis=1)]
+    top = skin.weights.main_joints()
     bind = body.bind_pose.positions_m[0]
     elbow, shoulder = bind[names.index(p + "elbow")], bind[names.index(p + "shoulder")]
     up = (shoulder - elbow) / np.linalg.norm(shoulder - elbow)

@@ -16,6 +16,7 @@ uniformly about the eyes, which land on the engine's.
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.interpolate import interp1d
 from scipy.spatial.transform import Rotation
 
 from synthesis.avatar.human.fit import DIGITS, Correspondence, along_chain, chain_shares, unit
@@ -65,12 +66,8 @@ class TrunkWarp:
 
     def __call__(self, vertices_m: np.ndarray) -> np.ndarray:
         y = vertices_m[:, 1]
-        slopes = np.diff(self.levels_e) / np.diff(self.levels_mh)
-        below = self.levels_e[0] + (y - self.levels_mh[0]) * slopes[0]
-        above = self.levels_e[-1] + (y - self.levels_mh[-1]) * slopes[-1]
-        height = np.where(y < self.levels_mh[0], below,
-                          np.where(y > self.levels_mh[-1], above,
-                                   np.interp(y, self.levels_mh, self.levels_e)))  # fmt: skip
+        # Heights beyond the levels go on along the end segments.
+        height = interp1d(self.levels_mh, self.levels_e, fill_value="extrapolate")(y)
         across = np.interp(y, self.levels_mh, self.across)
         shift = np.interp(y, self.levels_mh, self.shift)
         return np.column_stack([vertices_m[:, 0] * across, height,
