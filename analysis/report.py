@@ -39,6 +39,7 @@ from analysis.tidy import (
     label_conditions,
     label_simulated,
     simulated_conditions,
+    uploaded_conditions,
     with_simulated_labels,
 )
 
@@ -107,6 +108,7 @@ def _design(frame: pd.DataFrame) -> dict[str, Any]:
         "practice_items": sorted(set(frame["item"]) - set(tested["item"]) - {""}),
         "questions": sorted(set(frame.loc[frame["kind"] == "rating", "question"]) - {""}),
         "simulated_conditions": simulated_conditions(frame),
+        "uploaded_conditions": uploaded_conditions(frame),
     }
 
 

@@ -53,9 +53,14 @@ SIGNED_COLUMNS = ("video_sha256", "video_url")
 # analysis names conditions by them, and keeps the keys in *_key columns.
 LABEL_COLUMNS = {"condition_a": "condition_a_label", "condition_b": "condition_b_label"}
 KEY_COLUMNS = {"condition_a": "condition_a_key", "condition_b": "condition_b_key"}
+# Where each clip as shown came from ("rendered" by the engine or "uploaded" by the
+# researcher) and the SHA-256 of the file participants were sent.
+SOURCE_COLUMNS = ("condition_a_source", "condition_b_source", "clip1_sha256", "clip2_sha256")
+UPLOADED = "uploaded"
 OPTIONAL_COLUMNS = (
     "target",
     "condition_simulated",
+    *SOURCE_COLUMNS,
     *LABEL_COLUMNS.values(),
     *KEY_COLUMNS.values(),
     *QUALITY_COLUMNS,
@@ -149,6 +154,16 @@ def simulated_conditions(frame: pd.DataFrame) -> list[str]:
     if "condition_simulated" not in frame.columns:
         return []
     return sorted({c for cell in frame["condition_simulated"] for c in split_flags(cell)})
+
+
+def uploaded_conditions(frame: pd.DataFrame) -> list[str]:
+    """Return the conditions whose clips the source columns say were uploaded, sorted."""
+    found = set()
+    for column in ("condition_a", "condition_b"):
+        source = f"{column}_source"
+        if source in frame.columns:
+            found.update(frame.loc[frame[source].eq(UPLOADED), column])
+    return sorted(found - {""})
 
 
 def condition_labels(frame: pd.DataFrame) -> dict[str, str]:

@@ -70,16 +70,26 @@ def generate(entries: list[Entry], directory: Path, progress=None) -> tuple[list
     return done, rendered
 
 
-def manifest_dict(entries: list[Entry], study: str = "") -> dict:
-    """Return the manifest of *entries* as JSON-ready data."""
-    return {"format": FORMAT, "version": FORMAT_VERSION, "study": study,
+def manifest_dict(
+    entries: list[Entry], study: str = "", uploaded: list[dict] | None = None
+) -> dict:
+    """Return the manifest of *entries* as JSON-ready data.
+
+    *uploaded* lists clips a study brings rather than renders (their files' names,
+    SHA-256s and facts); they cannot be rendered again, so reading a manifest skips them.
+    """
+    data = {"format": FORMAT, "version": FORMAT_VERSION, "study": study,
             "clips": [entry.to_dict() for entry in entries]}  # fmt: skip
+    if uploaded is not None:
+        data["uploaded"] = uploaded
+    return data
 
 
-def write_manifest(entries: list[Entry], path: Path, study: str = "") -> Path:
+def write_manifest(entries: list[Entry], path: Path, study: str = "",
+                   uploaded: list[dict] | None = None) -> Path:  # fmt: skip
     """Write the manifest as indented JSON, atomically (temporary file, then rename)."""
     path = Path(path)
-    data = manifest_dict(entries, study)
+    data = manifest_dict(entries, study, uploaded)
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(dir=path.parent, suffix=".json.part")
     with os.fdopen(handle, "w", encoding="utf-8") as out:

@@ -2,15 +2,16 @@
 
 The format is versioned (``format``/``version`` keys) and refers to objects by their
 keys, never by database ids, so a file moves between installations. Stimuli are not
-part of a definition: they are rendered again from it. ASL prompt videos and each
-word's recording in use are referenced by their media file names.
+part of a definition: they are rendered again from it. ASL prompt videos, each word's
+recording in use and the clips of uploaded conditions are referenced by their media
+file names.
 :func:`studyplatform.actions.do_import_study` writes a definition to the database.
 """
 
 from typing import Any
 
 from studyplatform.lib.recordings import current_recording
-from studyplatform.models import Study
+from studyplatform.models import Study, UploadedClip
 
 FORMAT = "signstudy.study"
 VERSION = 1
@@ -42,7 +43,9 @@ STUDY_FIELDS = (
     "unique_completion_codes",
     "design",
 )
-CONDITION_FIELDS = ("key", "label", "description", "is_simulated", "parameters", "position")
+CONDITION_FIELDS = (
+    "key", "label", "description", "source", "is_simulated", "parameters", "position",
+)  # fmt: skip
 ITEM_FIELDS = ("key", "kind", "text", "target_text", "is_practice", "parameters", "position")
 QUESTION_FIELDS = (
     "key",
@@ -74,6 +77,11 @@ TRIAL_REFERENCES = ("block", "item", "condition_a", "condition_b")
 ASL_VIDEO_FIELDS = ("field_name", "transcript", "credit")
 RECORDING_FIELDS = ("mirrored", "one_hand", "quality", "sha256")
 RECORDING_FILES = ("upload", "motion", "sheet")
+UPLOAD_FIELDS = (
+    "original_name", "source_sha256", "sha256", "source_codec", "converted",
+    "duration_ms", "frame_count", "frame_rate", "width", "height", "size_bytes",
+)  # fmt: skip
+UPLOAD_FILES = ("video", "poster")
 # Fields a definition leaves out on purpose, with why (tests/studyplatform/
 # test_exchange.py checks that every field is exported or listed here).
 LEFT_OUT = {
@@ -102,6 +110,11 @@ LEFT_OUT = {
         "progress_percent": "as status",
         "error": "only ready recordings are exported",
         "created_at": "set when the recording is imported",
+    },
+    "UploadedClip": {
+        "condition": "exported as the condition's key",
+        "item": "exported as the item's key",
+        "uploaded_at": "set when the clip is imported",
     },
 }
 
@@ -190,6 +203,17 @@ def export_study(study: Study) -> dict[str, Any]:
             }
             for item, recording in recordings
             if recording is not None
+        ],
+        "uploaded_clips": [
+            {
+                "condition": clip.condition.key,
+                "item": clip.item.key,
+                **_values(clip, UPLOAD_FIELDS),
+                **{name: getattr(clip, name).name for name in UPLOAD_FILES},
+            }
+            for clip in UploadedClip.objects.filter(condition__study=study).select_related(
+                "condition", "item"
+            )
         ],
     }
 

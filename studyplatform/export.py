@@ -17,11 +17,11 @@ from collections import defaultdict
 from collections.abc import Iterator
 
 from analysis import REQUIRED_COLUMNS
-from analysis.tidy import LABEL_COLUMNS, OPTIONAL_COLUMNS, SIGNED_COLUMNS
+from analysis.tidy import LABEL_COLUMNS, OPTIONAL_COLUMNS, SIGNED_COLUMNS, SOURCE_COLUMNS
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.lib.quality import QUALITY_COLUMNS, page_orders, quality_cells, study_quality
 from studyplatform.lib.signed import signed_cells
-from studyplatform.models import Block, Participant, Question, Response, Study, Trial
+from studyplatform.models import Block, Participant, Question, Response, Stimulus, Study, Trial
 from studyplatform.questions import QUESTION_TYPES
 
 # Kinds whose answers describe the participant: exported as participant columns.
@@ -97,11 +97,17 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
     columns = [*REQUIRED_COLUMNS, "target", *LABEL_COLUMNS.values(), "condition_simulated",
-               *QUALITY_COLUMNS, *SIGNED_COLUMNS, *attribute_columns]  # fmt: skip
+               *SOURCE_COLUMNS, *QUALITY_COLUMNS, *SIGNED_COLUMNS, *attribute_columns]  # fmt: skip
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
     conditions = {condition.key: condition for condition in study.conditions.all()}
+    files = dict(
+        ((condition, item), sha256)
+        for condition, item, sha256 in Stimulus.objects.filter(
+            condition__study=study, status=Stimulus.Status.READY
+        ).values_list("condition__key", "item_id", "sha256")
+    )
     quality = study_quality(study)
     orders: dict[int, dict[str, str]] = {}  # each participant's schedule, read once
 
@@ -111,6 +117,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             if response.question.type.export_kind is None:
                 continue  # demographic answers are participant columns
             row = _row(study, response, conditions, participant.pk in failed)
+            row.update(_source_cells(row, response.trial, conditions, files))
             if participant.pk not in orders:
                 orders[participant.pk] = page_orders(participant)
             row.update(quality_cells(participant, response.trial,
@@ -158,6 +165,17 @@ def _row(study: Study, response: Response, conditions: dict, failed: bool) -> di
             key for key in dict.fromkeys((clip1, clip2)) if key in simulated
         ),
     }
+
+
+def _source_cells(row: dict, trial: Trial, conditions: dict, files: dict) -> dict[str, str]:
+    """Return where each clip of the row came from and the SHA-256 of its file."""
+    cells = {}
+    for column, number in (("condition_a", 1), ("condition_b", 2)):
+        condition = conditions.get(row[column])
+        cells[f"{column}_source"] = condition.source if condition is not None else ""
+        key = (row[column], trial.item_id)
+        cells[f"clip{number}_sha256"] = files.get(key, "") if condition is not None else ""
+    return cells
 
 
 def _flags(participant: Participant, trial: Trial, failed_attention: bool) -> list[str]:

@@ -108,13 +108,14 @@ def safe_name(name: str, kind: MediaKind) -> str:
     return str(path.with_name(stem + kind.suffix))
 
 
-def _ffmpeg(path: Path, *arguments: str) -> subprocess.CompletedProcess | None:
+def _ffmpeg(path: Path, *arguments: str,
+            timeout_s: float = DECODE_TIMEOUT_S) -> subprocess.CompletedProcess | None:  # fmt: skip
     import imageio_ffmpeg
 
     command = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-v", "error", "-i", str(path),
                "-map", "0:v:0", *arguments, "-f", "null", "-"]  # fmt: skip
     try:
-        return subprocess.run(command, capture_output=True, timeout=DECODE_TIMEOUT_S)
+        return subprocess.run(command, capture_output=True, timeout=timeout_s)
     except subprocess.TimeoutExpired:
         return None
 
@@ -166,13 +167,14 @@ def stored_video(upload, kind: MediaKind):
         yield handle, digest.hexdigest()
 
 
-def decoded_duration_s(path: Path) -> float | None:
-    """Decode the whole video; return its length in seconds, None if any of it is broken.
+def decoded_length(path: Path, timeout_s: float = DECODE_TIMEOUT_S) -> tuple[float, int] | None:
+    """Decode the whole video; return its length in seconds and frames, None if any of it
+    is broken.
 
     A recording cut short (its first third, say) still opens and shows a first frame;
     only decoding to the end finds that it ends before its data does.
     """
-    done = _ffmpeg(path, "-progress", "pipe:1", "-nostats")
+    done = _ffmpeg(path, "-progress", "pipe:1", "-nostats", timeout_s=timeout_s)
     complaints = [] if done is None else [
         line for line in done.stderr.decode(errors="replace").splitlines()
         if line.strip() and MUXER_TIMESTAMP_NOTE not in line
@@ -182,13 +184,18 @@ def decoded_duration_s(path: Path) -> float | None:
         why = "timed out" if done is None else "; ".join(complaints)[-600:]
         logger.warning("%s does not decode to its end: %s", path.name, why)
         return None
-    times = [line.split(b"=", 1)[1] for line in done.stdout.splitlines()
-             if line.startswith(b"out_time_us=")]  # fmt: skip
+    progress = dict(line.split(b"=", 1) for line in done.stdout.splitlines() if b"=" in line)
     try:
-        duration_s = int(times[-1]) / 1e6
-    except (IndexError, ValueError):  # "N/A": no frame came out
+        duration_s, frames = int(progress[b"out_time_us"]) / 1e6, int(progress[b"frame"])
+    except (KeyError, ValueError):  # "N/A": no frame came out
         return None
-    return duration_s if duration_s > 0 else None
+    return (duration_s, frames) if duration_s > 0 and frames > 0 else None
+
+
+def decoded_duration_s(path: Path) -> float | None:
+    """Decode the whole video; return its length in seconds, None if any of it is broken."""
+    length = decoded_length(path)
+    return None if length is None else length[0]
 
 
 def image_is_whole(file) -> bool:

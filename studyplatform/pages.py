@@ -120,7 +120,7 @@ def _page_clips(participant: Participant, trial: Trial, asks: bool) -> tuple[Pag
     ready = Stimulus.objects.filter(
         item_id=trial.item_id, condition__in=conditions, status=Stimulus.Status.READY
     )
-    stimuli = {stimulus.condition_id: stimulus for stimulus in ready.order_by()}
+    stimuli = {s.condition_id: s for s in ready.select_related("upload").order_by()}
     single = "Clip" if asks else "Example clip"
     return tuple(
         _clip(number, f"Clip {number}" if len(conditions) == 2 else single, stimuli.get(c.pk))
@@ -135,8 +135,8 @@ def _clip(number: int, label: str, stimulus: Stimulus | None) -> PageClip:
     return PageClip(
         number=number,
         label=label,
-        video_url=stimulus.video.url if stimulus.video else "",
-        poster_url=stimulus.poster.url if stimulus.poster else "",
+        video_url=stimulus.video_url,
+        poster_url=stimulus.poster_url,
         width=stimulus.width or 640,
         height=stimulus.height or 480,
     )

@@ -46,7 +46,8 @@ def render_many(stimulus_ids, workers: int, report=None) -> list[str]:
     from studyplatform.models import Stimulus
 
     pending = (Stimulus.objects.filter(pk__in=list(stimulus_ids))
-               .exclude(status=Stimulus.Status.READY).values_list("pk", "parameters"))  # fmt: skip
+               .exclude(status=Stimulus.Status.READY)
+               .exclude(condition__source="uploaded").values_list("pk", "parameters"))  # fmt: skip
     order = [pk for pk, _ in sorted(pending, key=lambda row: -expected_cost(row[1]))]
     statuses = []
     if workers <= 1 or len(order) <= 1:

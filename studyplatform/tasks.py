@@ -34,6 +34,8 @@ def render_now(stimulus_id: int) -> str:
         return "missing"
     if stimulus.status == Stimulus.Status.READY and stimulus.video:
         return stimulus.status
+    if stimulus.condition.is_uploaded:
+        return stimulus.status  # the researcher's file, never rendered
     do_start_rendering(stimulus)
     try:
         spec = ClipSpec.from_dict(stimulus.parameters)

@@ -27,6 +27,7 @@ urlpatterns = [
         name="participant_answer_video",
     ),
     path("private/<path:path>", views.private_media, name="private_media"),
+    path("clips/<path:path>", views.uploaded_clip, name="uploaded_clip"),
     # Browsers ask for /favicon.ico on pages that name no icon (e.g. file downloads).
     path("favicon.ico", views.favicon),
 ]

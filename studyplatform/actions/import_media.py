@@ -18,6 +18,7 @@ class StudyImportError(ValueError):
 # What each media name of a definition must be, by content.
 ASL_VIDEO, ASL_POSTER = ("video",), ("image",)
 RECORDING_KINDS = {"upload": ("video", "motion"), "motion": ("motion",), "sheet": ("image",)}
+UPLOAD_KINDS = {"video": ("video",), "poster": ("image",)}
 
 
 class ImportedMedia:

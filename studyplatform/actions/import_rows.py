@@ -14,6 +14,7 @@ from studyplatform.actions.import_media import (
     ASL_POSTER,
     ASL_VIDEO,
     RECORDING_KINDS,
+    UPLOAD_KINDS,
     ImportedMedia,
     StudyImportError,
 )
@@ -28,6 +29,7 @@ from studyplatform.models import (
     Recording,
     Study,
     Trial,
+    UploadedClip,
 )
 
 
@@ -153,7 +155,8 @@ def import_rows(data: dict, study: Study, batches: Batches, media: ImportedMedia
     trials = _import_trials(data, study, save, tables, questions)
     targets = {"block": blocks, "trial": trials, "question": questions, "answeroption": options}
     warnings = _import_asl_videos(data, study, save, media, targets)
-    return warnings + _import_recordings(data, save, media, items)
+    warnings += _import_recordings(data, save, media, items)
+    return warnings + _import_uploaded_clips(data, save, media, conditions, items)
 
 
 def _import_questions(data: dict, study: Study, save) -> tuple[dict, dict]:
@@ -269,4 +272,31 @@ def _import_recordings(data: dict, save, media: ImportedMedia, items: dict) -> l
         recording = Recording(item=item, status=Recording.Status.READY,
                               progress_percent=100, **found, **values)  # fmt: skip
         save(recording, where)
+    return warnings
+
+
+def _import_uploaded_clips(data: dict, save, media: ImportedMedia, conditions: dict,
+                           items: dict) -> list[str]:  # fmt: skip
+    """Create the uploaded conditions' clips whose files came; return what was left out."""
+    warnings = []
+    for index, row in enumerate(_rows(data, "uploaded_clips")):
+        where = f"uploaded_clips[{index}]"
+        values = pick(row, ("condition", "item", *exchange.UPLOAD_FIELDS, *exchange.UPLOAD_FILES),
+                      where, UploadedClip)  # fmt: skip
+        condition = _lookup(conditions, values.pop("condition", None), "condition",
+                            f"{where}.condition")  # fmt: skip
+        item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
+        if condition is None or item is None or not condition.is_uploaded:
+            raise StudyImportError(f"{where}: clips belong to an item in a condition of "
+                                   "uploaded clips.")  # fmt: skip
+        named = {name: values.pop(name, "") or "" for name in exchange.UPLOAD_FILES}
+        found = {name: media.resolve(file_name, "uploads", UPLOAD_KINDS[name],
+                                     "an uploaded clip's", f"{where}.{name}")
+                 for name, file_name in named.items()}  # fmt: skip
+        missing = [name for name in exchange.UPLOAD_FILES if not found[name]]
+        if missing:
+            warnings.append(f"{where}: {missing[0]} file {named[missing[0]]!r} of "
+                            f"{condition.key} × {item.key} is not in media; left out.")  # fmt: skip
+            continue
+        save(UploadedClip(condition=condition, item=item, **found, **values), where)
     return warnings

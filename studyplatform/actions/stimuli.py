@@ -26,7 +26,7 @@ from studyplatform.lib.stimuli import (
     group_identical,
     needed_pairs,
 )
-from studyplatform.models import Stimulus, Study
+from studyplatform.models import Stimulus, Study, UploadedClip
 
 
 @dataclass(frozen=True)
@@ -37,6 +37,7 @@ class GenerationResult:
     queued: int
     ready: int
     stimulus_ids: tuple[int, ...]
+    missing: int = 0  # clips of uploaded conditions not uploaded yet
 
 
 class RerenderRefused(ClipError):
@@ -118,10 +119,19 @@ def do_generate_stimuli(
     *rerender_open*; otherwise :class:`RerenderRefused` names them and nothing changes.
     """
     queued, ready, ids, changed = [], 0, [], []
-    hashed = []
+    hashed, missing = [], 0
     refuse_changes = _in_field(study) and not rerender_open
+    uploads = {(u.condition_id, u.item_id): u
+               for u in UploadedClip.objects.filter(condition__study=study)}  # fmt: skip
     with transaction.atomic():
         for condition, item in needed_pairs(study):
+            if condition.is_uploaded:
+                stimulus = _record_upload(condition, item, uploads.get((condition.pk, item.pk)))
+                hashed.append((condition, item, stimulus.content_hash or f"missing-{stimulus.pk}"))
+                missing += stimulus.status == Stimulus.Status.MISSING
+                ready += stimulus.status == Stimulus.Status.READY
+                ids.append(stimulus.pk)
+                continue
             spec = _clip_spec(condition, item)
             content_hash = spec.content_hash()
             hashed.append((condition, item, content_hash))
@@ -144,13 +154,49 @@ def do_generate_stimuli(
             _refuse_changes_in_the_field(study, changed)
         if enqueue and queued:
             transaction.on_commit(lambda: dispatch_renders(queued, background=background))
-    return GenerationResult(len(ids), len(queued), ready, tuple(ids))
+    return GenerationResult(len(ids), len(queued), ready, tuple(ids), missing)
+
+
+def _record_upload(condition, item, clip: UploadedClip | None) -> Stimulus:
+    """Record the clip of an uploaded condition: ready from its file, or missing."""
+    if clip is not None:
+        return record_uploaded_stimulus(clip)
+    stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
+    stimulus = stimulus or Stimulus(condition=condition, item=item)
+    stimulus.status, stimulus.error = Stimulus.Status.MISSING, ""
+    stimulus.content_hash = stimulus.sha256 = ""
+    stimulus.upload = None
+    stimulus.save()
+    return stimulus
+
+
+def record_uploaded_stimulus(clip: UploadedClip) -> Stimulus:
+    """Make *clip* the ready clip of its item in its condition; return that stimulus.
+
+    Its content hash is the file's SHA-256: two conditions showing the same file are
+    identical clips (the guard of :func:`do_generate_stimuli`).
+    """
+    stimulus = Stimulus.objects.filter(condition=clip.condition_id, item=clip.item_id).first()
+    stimulus = stimulus or Stimulus(condition=clip.condition, item=clip.item)
+    stimulus.upload = clip
+    stimulus.content_hash = stimulus.sha256 = clip.sha256
+    stimulus.parameters = {"source": "uploaded", "file": clip.original_name}
+    stimulus.engine_version = ""
+    stimulus.video.name = stimulus.poster.name = ""
+    for fact in ("duration_ms", "frame_count", "width", "height", "size_bytes"):
+        setattr(stimulus, fact, getattr(clip, fact))
+    stimulus.status, stimulus.error = Stimulus.Status.READY, ""
+    stimulus.rendered_at = clip.uploaded_at or timezone.now()
+    stimulus.save()
+    return stimulus
 
 
 def do_retry_stimuli(stimuli, background: bool = False) -> int:
-    """Queue failed (or stuck) clips again; return how many."""
+    """Queue failed (or stuck) clips again; return how many (uploaded ones are not
+    rendered: they wait for their file)."""
     with transaction.atomic():
-        pks = [s.pk for s in stimuli if s.status != Stimulus.Status.READY]
+        pks = [s.pk for s in stimuli
+               if s.status != Stimulus.Status.READY and not s.condition.is_uploaded]  # fmt: skip
         Stimulus.objects.filter(pk__in=pks).update(status=Stimulus.Status.PENDING, error="")
         if pks:
             transaction.on_commit(lambda: dispatch_renders(pks, background=background))

@@ -10,6 +10,7 @@ from stimuli.plan import Design, DesignError, DesignSpec
 from studyplatform.actions.design import DesignRejected, do_build_design
 from studyplatform.actions.versions import do_create_study_version
 from studyplatform.lib.design import ANSWER_S, INFO_PAGE_S, summarize_design
+from studyplatform.lib.uploads import mismatched_pairs
 from studyplatform.models import Question, Study
 
 BUILDER_QUESTION_KINDS = (
@@ -178,4 +179,5 @@ class StudyDesignMixin:
         return self._page(
             request, "design.html", f"Design of “{study.title}”", study=study, form=form,
             summary=summary, can_build=can_build, answer_s=ANSWER_S, info_page_s=INFO_PAGE_S,
+            mismatched=mismatched_pairs(study),
         )  # fmt: skip

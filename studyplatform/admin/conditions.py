@@ -73,7 +73,8 @@ class ConditionForm(forms.ModelForm):
 
     class Meta:
         model = Condition
-        fields = ("study", "position", "key", "label", "description", "is_simulated", "parameters")
+        fields = ("study", "position", "key", "label", "description", "source", "is_simulated",
+                  "parameters")  # fmt: skip
         labels = {"parameters": "Other parameters (JSON)"}
         help_texts = {
             "parameters": (
@@ -122,8 +123,8 @@ def condition_form(kinds) -> type[ConditionForm]:
 
 @admin.register(Condition)
 class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
-    list_display = ("label", "key", "study", "is_simulated", "compares")
-    list_filter = (("study", OwnStudyFilter), "is_simulated")
+    list_display = ("label", "key", "study", "source", "is_simulated", "compares")
+    list_filter = (("study", OwnStudyFilter), "source", "is_simulated")
     search_fields = ("key", "label")
     readonly_fields = ("compares",)
 
@@ -132,7 +133,8 @@ class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
         return super().get_form(request, obj, **kwargs)
 
     def get_fieldsets(self, request: HttpRequest, obj: Condition | None = None):
-        main = ("study", "position", "key", "label", "description", "is_simulated", "compares")
+        main = ("study", "position", "key", "label", "description", "source", "is_simulated",
+                "compares")  # fmt: skip
         fieldsets = [(None, {"fields": main})]
         for title, parameters in technique_groups(condition_item_kinds(obj)):
             fieldsets.append((title, {"fields": [PREFIX + p.name for p in parameters]}))

@@ -16,6 +16,7 @@ from studyplatform.lib.stimuli import (
     needed_pairs,
     stimuli_progress,
     study_manifest,
+    uploaded_manifest,
 )
 from studyplatform.models import Study
 
@@ -57,8 +58,7 @@ class StudyGenerateMixin:
             confirmed = request.POST.get("allow_identical") == "1"
             result, refusal = self._generate(request, study, confirmed)
             if result is not None:
-                messages.success(request, f"{result.total} clips: {result.queued} being "
-                                 f"rendered, {result.ready} already rendered.")  # fmt: skip
+                messages.success(request, _generated(result))
                 return redirect(reverse("admin:studyplatform_study_stimuli", args=[study.pk]))
             if refusal is None:
                 return redirect(reverse("admin:studyplatform_study_generate", args=[study.pk]))
@@ -83,8 +83,8 @@ class StudyGenerateMixin:
     def stimuli_manifest_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
         """Download the study's stimulus manifest (every clip's spec, facts and checksum)."""
         study = self._get_visible_study(request, object_id)
-        response = JsonResponse(manifest_dict(study_manifest(study), study.slug),
-                                json_dumps_params={"indent": 1, "ensure_ascii": False})  # fmt: skip
+        manifest = manifest_dict(study_manifest(study), study.slug, uploaded_manifest(study))
+        response = JsonResponse(manifest, json_dumps_params={"indent": 1, "ensure_ascii": False})
         response["Content-Disposition"] = f'attachment; filename="{study.slug}-stimuli.json"'
         return response
 
@@ -107,12 +107,19 @@ class StudyGenerateMixin:
             messages.success(
                 request,
                 format_html(
-                    "“{}”: {} clips, {} being rendered, {} already rendered. "
-                    "<a href='{}'>Progress</a>",
-                    study.title, result.total, result.queued, result.ready,
+                    "“{}”: {} <a href='{}'>Progress</a>", study.title, _generated(result),
                     reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
                 ),
             )  # fmt: skip
         if len(studies) == 1 and started:
             return redirect(reverse("admin:studyplatform_study_stimuli", args=[started[0].pk]))
         return None
+
+
+def _generated(result) -> str:
+    """Say what generation did: clips queued, ready, and uploads still missing."""
+    text = f"{result.total} clips: {result.queued} being rendered, {result.ready} ready."
+    if result.missing:
+        text += (f" {result.missing} of the uploaded conditions' clips are not uploaded yet "
+                 "(Uploaded clips page).")  # fmt: skip
+    return text

@@ -43,10 +43,10 @@ class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
 
     @admin.display(description="clip")
     def player(self, stimulus: Stimulus) -> str:
-        if not stimulus.video:
-            return "Not rendered yet."
+        if not stimulus.video_url:
+            return "Not uploaded yet." if stimulus.condition.is_uploaded else "Not rendered yet."
         return format_html(
             '<video src="{}" poster="{}" controls preload="metadata" width="480"></video>',
-            stimulus.video.url,
-            stimulus.poster.url if stimulus.poster else "",
+            stimulus.video_url,
+            stimulus.poster_url,
         )

@@ -25,6 +25,7 @@ from studyplatform.admin.prompts import AslVideoInline, StudyAslMixin
 from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.admin.roster import StudyRosterMixin
+from studyplatform.admin.uploads import StudyUploadsMixin
 from studyplatform.asl import study_prompts
 from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.stimuli import describe_identical, identical_clips
@@ -44,7 +45,7 @@ class ConditionInline(DesignLockMixin, StudyInline):
     formfield_overrides = COMPACT_TEXT
     model = Condition
     # The techniques are set field by field on each condition's page (its change link).
-    fields = ("position", "key", "label", "is_simulated", "compares")
+    fields = ("position", "key", "label", "source", "is_simulated", "compares")
     readonly_fields = ("compares",)
     verbose_name_plural = "conditions (open one to set its techniques field by field)"
 
@@ -98,7 +99,8 @@ def _definition_json(study: Study) -> str:
 
 @admin.register(Study)
 class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyResultsMixin,
-                 StudyPowerMixin, StudyAslMixin, StudyRecordingsMixin, StudyScopedMixin,
+                 StudyPowerMixin, StudyAslMixin, StudyRecordingsMixin, StudyUploadsMixin,
+                 StudyScopedMixin,
                  admin.ModelAdmin):  # fmt: skip
     study_path = ""
     form = StudyForm
@@ -275,7 +277,7 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
         ]
         return (own + self.generate_urls() + self.design_urls() + self.roster_urls()
                 + self.results_urls()
-                + self.power_urls() + self.asl_urls() + self.recordings_urls()
+                + self.power_urls() + self.asl_urls() + self.recordings_urls() + self.uploads_urls()
                 + super().get_urls())  # fmt: skip
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:

@@ -17,7 +17,7 @@ from typing import IO, Any
 from django.core.files.storage import default_storage
 
 from studyplatform.lib import strict_json
-from studyplatform.models import Recording, Study
+from studyplatform.models import Recording, Study, UploadedClip
 
 DEFINITION = "study.json"
 FILES = "files/"
@@ -34,8 +34,9 @@ class BundleRejected(ValueError):
 
 
 def storage_of(folder: str):
-    """Return the storage that keeps files of media *folder* ("asl" or "recordings")."""
-    if folder == "recordings":
+    """Return the storage that keeps files of media *folder* ("asl", "recordings" or
+    "uploads")."""
+    if folder in ("recordings", "uploads"):
         return Recording._meta.get_field("upload").storage  # private
     return default_storage
 
@@ -53,18 +54,24 @@ def definition_files(definition: dict[str, Any]) -> set[str]:
     for row in _list(definition.get("recordings")):
         if isinstance(row, dict):
             names.update(row.get(key) for key in ("upload", "motion", "sheet"))
+    for row in _list(definition.get("uploaded_clips")):
+        if isinstance(row, dict):
+            names.update(row.get(key) for key in ("video", "poster"))
     return {name for name in names if isinstance(name, str) and name}
 
 
 def owned_files(owner) -> set[str]:
     """Return the media names the studies of *owner* refer to (theirs to reuse)."""
-    from studyplatform.exchange import RECORDING_FILES, study_asl_videos
+    from studyplatform.exchange import RECORDING_FILES, UPLOAD_FILES, study_asl_videos
 
     names: set[str] = set()
     for study in Study.objects.filter(owner=owner):
         for video in study_asl_videos(study):
             names.update((video.video.name, video.poster.name))
     for row in Recording.objects.filter(item__study__owner=owner).values_list(*RECORDING_FILES):
+        names.update(row)
+    uploads = UploadedClip.objects.filter(condition__study__owner=owner)
+    for row in uploads.values_list(*UPLOAD_FILES):
         names.update(row)
     return {name for name in names if name}
 

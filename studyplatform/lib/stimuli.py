@@ -6,7 +6,7 @@ from pathlib import Path
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
 from studyplatform.lib.recordings import with_item_recording
-from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
+from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial, UploadedClip
 from synthesis.techniques import ClipRequest
 
 # Rendered clips live in MEDIA_ROOT/stimuli, named by their content hash: one file per
@@ -90,6 +90,7 @@ def stimuli_progress(study: Study) -> dict:
         "total": total,
         "done": done,
         "failed": counts[Stimulus.Status.FAILED],
+        "missing": counts[Stimulus.Status.MISSING],
         "pending": counts[Stimulus.Status.PENDING] + counts[Stimulus.Status.RENDERING],
         "percent": round(100 * done / total) if total else 0,
         "failures": failures,
@@ -100,9 +101,11 @@ def study_manifest(study: Study) -> list[Entry]:
     """Return the manifest entries of the study's clips: every rendered clip's spec and facts.
 
     Clips not rendered yet appear with their spec only, so the manifest still renders them.
+    Uploaded clips have no spec: :func:`uploaded_manifest` lists them.
     """
     entries = []
-    stimuli = Stimulus.objects.filter(condition__study=study).select_related("condition", "item")
+    stimuli = Stimulus.objects.filter(condition__study=study, condition__source="rendered")
+    stimuli = stimuli.select_related("condition", "item")
     for stimulus in stimuli.order_by("item__position", "condition__position", "pk"):
         clip = None
         if stimulus.status == Stimulus.Status.READY and stimulus.video:
@@ -115,6 +118,28 @@ def study_manifest(study: Study) -> list[Entry]:
         label = f"{stimulus.condition.key} × {stimulus.item.key}"
         entries.append(Entry(label, ClipSpec.from_dict(stimulus.parameters), clip))
     return entries
+
+
+def uploaded_manifest(study: Study) -> list[dict]:
+    """Return the study's uploaded clips: condition, item, file names, SHA-256s and facts."""
+    clips = UploadedClip.objects.filter(condition__study=study).select_related("condition", "item")
+    return [
+        {
+            "label": f"{clip.condition.key} × {clip.item.key}",
+            "file": clip.original_name,
+            "sha256": clip.sha256,
+            "source_sha256": clip.source_sha256,
+            "converted": clip.converted,
+            "video": clip.video.name,
+            "duration_ms": clip.duration_ms,
+            "frame_count": clip.frame_count,
+            "frame_rate": clip.frame_rate,
+            "width": clip.width,
+            "height": clip.height,
+            "size_bytes": clip.size_bytes,
+        }
+        for clip in clips.order_by("item__position", "condition__position")
+    ]
 
 
 def group_identical(clips) -> list[tuple[Item, list[Condition]]]:
@@ -138,10 +163,22 @@ def group_identical(clips) -> list[tuple[Item, list[Condition]]]:
 def hashed_pairs(pairs: list[tuple[Condition, Item]]) -> list[tuple[Condition, Item, str]]:
     """Return each (condition, item) of *pairs* with its clip's content hash.
 
-    A specification that cannot be made is left out: generation names its error.
+    An uploaded clip's hash is its file's SHA-256; one not uploaded yet, and a
+    specification that cannot be made, are left out (generation names them).
     """
+    uploaded = {(c.pk, i.pk) for c, i in pairs if c.is_uploaded}
+    files = {
+        (condition, item): sha256
+        for condition, item, sha256 in UploadedClip.objects.filter(
+            condition__in={c for c, _ in uploaded}
+        ).values_list("condition_id", "item_id", "sha256")
+    }
     clips = []
     for condition, item in pairs:
+        if condition.is_uploaded:
+            if (condition.pk, item.pk) in files:
+                clips.append((condition, item, files[condition.pk, item.pk]))
+            continue
         try:
             clips.append((condition, item, clip_spec(condition, item).content_hash()))
         except ClipError:

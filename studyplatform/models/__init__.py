@@ -11,7 +11,7 @@ from studyplatform.models.prompts import PARTICIPANT_FACING_FIELDS, AslVideo, Si
 from studyplatform.models.recordings import Recording
 from studyplatform.models.responses import MediaEvent, Response
 from studyplatform.models.scope import STUDY_PATHS
-from studyplatform.models.stimuli import Stimulus
+from studyplatform.models.stimuli import Stimulus, UploadedClip
 from studyplatform.models.studies import Condition, Item, Study
 from studyplatform.models.withdrawals import Withdrawal
 
@@ -33,6 +33,7 @@ __all__ = [
     "Stimulus",
     "Study",
     "Trial",
+    "UploadedClip",
     "Withdrawal",
     "new_participant_token",
     "new_randomization_seed",

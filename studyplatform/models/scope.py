@@ -12,6 +12,7 @@ STUDY_PATHS: dict[str, str] = {
     "trial": "study",
     "stimulus": "condition__study",
     "recording": "item__study",
+    "uploadedclip": "condition__study",
     "participant": "study",
     "personalanswer": "participant__study",
     "response": "participant__study",

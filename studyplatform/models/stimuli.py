@@ -1,8 +1,53 @@
-"""Record the rendered clips of a study and the parameters that produced them."""
+"""Record a study's clips: rendered ones with the parameters that produced them, and
+the files researchers upload for conditions whose clips they bring."""
 
 from django.db import models
+from django.urls import reverse
 
 from studyplatform.models.studies import Condition, Item
+from studyplatform.storage import private_storage
+
+
+class UploadedClip(models.Model):
+    """A researcher's video of one item in a condition of uploaded clips.
+
+    Stored in private media under its SHA-256 as a browser plays it (H.264 MP4 with
+    faststart, or WebM), with a poster frame; served to participants only while its
+    study takes participants (:func:`studyplatform.views.uploaded_clip`).
+    """
+
+    condition = models.ForeignKey(Condition, on_delete=models.CASCADE, related_name="uploads")
+    item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="uploads")
+    video = models.FileField(upload_to="uploads/", storage=private_storage)
+    poster = models.FileField(upload_to="uploads/", storage=private_storage)
+    original_name = models.CharField(max_length=255, help_text="The file's name as uploaded.")
+    source_sha256 = models.CharField(
+        "SHA-256 of the file as uploaded", max_length=64,
+        help_text="Differs from the stored file's when it was converted for browsers.",
+    )  # fmt: skip
+    sha256 = models.CharField("SHA-256 of the stored video", max_length=64, db_index=True)
+    source_codec = models.CharField(max_length=40, blank=True)
+    converted = models.CharField(
+        max_length=20, blank=True,
+        help_text="How the upload was made playable: '' kept as it came, 'remuxed' "
+        "(frames copied into a browser's container), 'transcoded' (re-encoded as H.264).",
+    )  # fmt: skip
+    duration_ms = models.PositiveIntegerField()
+    frame_count = models.PositiveIntegerField()
+    frame_rate = models.FloatField()
+    width = models.PositiveSmallIntegerField()
+    height = models.PositiveSmallIntegerField()
+    size_bytes = models.PositiveBigIntegerField()
+    uploaded_at = models.DateTimeField(auto_now=True)
+
+    class Meta:
+        ordering = ["condition", "item__position", "pk"]
+        constraints = [
+            models.UniqueConstraint(fields=["condition", "item"], name="one_upload_per_clip")
+        ]
+
+    def __str__(self) -> str:
+        return f"{self.item.key} · {self.condition}: {self.original_name}"
 
 
 class Stimulus(models.Model):
@@ -13,6 +58,7 @@ class Stimulus(models.Model):
         RENDERING = "rendering", "Rendering"
         READY = "ready", "Ready"
         FAILED = "failed", "Failed"
+        MISSING = "missing", "Not uploaded yet"
 
     condition = models.ForeignKey(Condition, on_delete=models.CASCADE, related_name="stimuli")
     item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="stimuli")
@@ -38,6 +84,10 @@ class Stimulus(models.Model):
     height = models.PositiveSmallIntegerField(null=True, blank=True)
     size_bytes = models.PositiveBigIntegerField(null=True, blank=True)
     sha256 = models.CharField("SHA-256 of the video file", max_length=64, blank=True)
+    upload = models.ForeignKey(
+        UploadedClip, on_delete=models.SET_NULL, null=True, blank=True, related_name="+",
+        help_text="The uploaded file this clip is (conditions of uploaded clips only).",
+    )  # fmt: skip
     created_at = models.DateTimeField(auto_now_add=True)
     rendered_at = models.DateTimeField(null=True, blank=True)
 
@@ -48,3 +98,17 @@ class Stimulus(models.Model):
 
     def __str__(self) -> str:
         return f"{self.item.key} · {self.condition}"
+
+    @property
+    def video_url(self) -> str:
+        """Return where browsers fetch the clip ("" before it exists)."""
+        if self.upload is not None:
+            return reverse("uploaded_clip", args=[self.upload.video.name])
+        return self.video.url if self.video else ""
+
+    @property
+    def poster_url(self) -> str:
+        """Return where browsers fetch the clip's poster frame ("" if it has none)."""
+        if self.upload is not None:
+            return reverse("uploaded_clip", args=[self.upload.poster.name])
+        return self.poster.url if self.poster else ""

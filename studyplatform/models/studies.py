@@ -7,6 +7,7 @@ from functools import cached_property
 
 from django.conf import settings
 from django.contrib.contenttypes.fields import GenericRelation
+from django.core.exceptions import ValidationError
 from django.core.validators import MinValueValidator
 from django.db import models
 
@@ -272,7 +273,12 @@ def check_unlocked(study: Study | None) -> None:
 
 
 class Condition(models.Model):
-    """One animation technique compared in a study (e.g. the Variable timing model)."""
+    """One animation technique compared in a study (e.g. the Variable timing model), or
+    a set of clips the researcher brings (a filmed signer, another lab's animation)."""
+
+    class Source(models.TextChoices):
+        RENDERED = "rendered", "Rendered by the engine"
+        UPLOADED = "uploaded", "Uploaded clips (one video per item)"
 
     study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="conditions")
     key = models.SlugField(max_length=40, help_text="Name used in exported data, e.g. 'variable'.")
@@ -284,6 +290,15 @@ class Condition(models.Model):
             "A simulated stand-in (e.g. a simulated reference performance instead of a "
             "motion capture recording); labelled 'simulated' everywhere it appears."
         ),
+    )
+    source = models.CharField(
+        "clips",
+        max_length=10,
+        choices=Source.choices,
+        default=Source.RENDERED,
+        help_text="Rendered: the engine renders each item with this condition's settings. "
+        "Uploaded: you upload one video per item (MP4, WebM or MOV) on the study's "
+        "Uploaded clips page; the condition has no settings.",
     )
     parameters = models.JSONField(
         default=dict,
@@ -306,9 +321,22 @@ class Condition(models.Model):
     def __str__(self) -> str:
         return f"{self.label} (simulated)" if self.is_simulated else self.label
 
+    @property
+    def is_uploaded(self) -> bool:
+        """Return whether the condition's clips are uploaded files, not rendered."""
+        return self.source == self.Source.UPLOADED
+
     def clean(self) -> None:
         check_unlocked(self.study if self.study_id else None)
-        check_condition(self)
+        if not self.is_uploaded:
+            check_condition(self)
+        elif self.parameters:
+            raise ValidationError(
+                {
+                    "parameters": "A condition of uploaded clips renders nothing: leave its "
+                    "settings empty (they would change nothing participants see)."
+                }
+            )
 
 
 class Item(models.Model):

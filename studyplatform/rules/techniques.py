@@ -64,6 +64,9 @@ def describe_condition(condition) -> str:
     """Return what a saved condition compares, in plain words ("—" for a new one)."""
     if condition is None or condition.pk is None:
         return "—"
+    if getattr(condition, "is_uploaded", False):
+        count = condition.uploads.count()
+        return f"Uploaded clips ({count} uploaded; none rendered)"
     return "; ".join(
         describe_parameters(as_checked(condition.parameters or {}), condition_item_kinds(condition))
     )

@@ -1,7 +1,7 @@
 """Participant-facing and public views of the platform."""
 
 from studyplatform.views.home import favicon, home
-from studyplatform.views.media import media, participant_answer_video, private_media
+from studyplatform.views.media import media, participant_answer_video, private_media, uploaded_clip
 from studyplatform.views.participate import (
     done,
     log_events,
@@ -27,4 +27,5 @@ __all__ = [
     "set_language",
     "study_welcome",
     "upload_signed_answer",
+    "uploaded_clip",
 ]

@@ -23,13 +23,16 @@ from django.views.decorators.http import require_safe
 from studyplatform import exchange
 from studyplatform.admin.permissions import owned_studies
 from studyplatform.media_types import MEDIA_CSP, SERVED
-from studyplatform.models import Recording, Response
+from studyplatform.models import Recording, Response, Study, UploadedClip
 from studyplatform.storage import PRIVATE_STORAGE
 from studyplatform.views.files import file_response
 
 PUBLIC_CACHE = {"stimuli": "public, max-age=31536000, immutable"}
 PUBLIC_CACHE_DEFAULT = "public, max-age=86400"
 PRIVATE_CACHE = "private, no-store"
+# An uploaded clip is named by its content, but may stop being served when its study
+# closes: browsers keep it for a day, and no shared cache keeps it.
+UPLOADED_CACHE = "private, max-age=86400"
 
 
 def _existing_file(root, name: str) -> Path:
@@ -61,17 +64,17 @@ def media(request: HttpRequest, path: str) -> HttpResponse:
     return _as_media(file_response(request, found, cache_control=cache), found)
 
 
-def _private_file(request: HttpRequest, name: str) -> HttpResponse:
+def _private_file(request: HttpRequest, name: str, cache: str = PRIVATE_CACHE) -> HttpResponse:
     path = _existing_file(PRIVATE_STORAGE.location, name)
     header = settings.SIGNSTUDY_SENDFILE_HEADER
     if not header:
-        return _as_media(file_response(request, path, cache_control=PRIVATE_CACHE), path)
+        return _as_media(file_response(request, path, cache_control=cache), path)
     response = HttpResponse()  # the web server sends the body, its length and ranges
     if header.lower() == "x-accel-redirect":
         response[header] = settings.SIGNSTUDY_SENDFILE_PREFIX.rstrip("/") + "/" + name
     else:
         response[header] = str(path)
-    response["Cache-Control"] = PRIVATE_CACHE
+    response["Cache-Control"] = cache
     return _as_media(response, path)
 
 
@@ -110,3 +113,23 @@ def participant_answer_video(request: HttpRequest, token: str, response: int) ->
     if found is None:
         raise Http404("No such answer.")
     return _private_file(request, found)
+
+
+@require_safe
+def uploaded_clip(request: HttpRequest, path: str) -> HttpResponse:
+    """Send an uploaded clip (or its poster) of a study that takes participants, or to
+    a researcher of its study; to anyone else it does not exist.
+
+    A researcher's unpublished material (a filmed signer, say) stays private until the
+    study is in pilot or open; then it is served like a rendered clip, with ranges.
+    """
+    names_it = Q(video=path) | Q(poster=path)
+    clips = UploadedClip.objects.filter(names_it)
+    taking = (Study.Status.PILOT, Study.Status.OPEN)
+    if clips.filter(condition__study__status__in=taking).exists():
+        return _private_file(request, path, cache=UPLOADED_CACHE)
+    user = request.user
+    staff = user.is_authenticated and user.is_active and user.is_staff
+    if staff and clips.filter(condition__study__in=owned_studies(request)).exists():
+        return _private_file(request, path)
+    raise Http404("No such file.")

@@ -94,7 +94,7 @@ def test_preview_shows_every_page_in_order(alice_client, fingerspelling):
     # Numbered as participants see them: consent and thank-you are not counted.
     assert "Page 53 of 53" in page.text and "Page 54" not in page.text
     assert "Which animation is the most similar to actual fingerspelling" in page.text
-    assert "Clip not rendered yet" in page.text
+    assert "Clip not ready yet" in page.text
     assert "simulated" in page.text
 
 

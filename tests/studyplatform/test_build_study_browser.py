@@ -112,7 +112,7 @@ def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_report
     expect(page.locator("#stimuli-failed")).to_have_text("0")
     # Issue 35: at 100 % the page says so and what comes next; "being rendered" goes.
     expect(page.locator("#stimuli-done")).to_be_visible()
-    expect(page.locator("#stimuli-done")).to_contain_text("Every clip is rendered")
+    expect(page.locator("#stimuli-done")).to_contain_text("Every clip is ready")
     expect(page.locator(".messagelist")).not_to_contain_text("being rendered")
     page.screenshot(path=SCREENSHOTS / "admin-stimuli-progress.png")
 

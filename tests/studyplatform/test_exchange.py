@@ -300,6 +300,7 @@ def test_every_model_field_is_exported_or_left_out_on_purpose():
         "Trial": (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"),
         "AslVideo": (*exchange.ASL_VIDEO_FIELDS, "video", "poster"),
         "Recording": (*exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
+        "UploadedClip": (*exchange.UPLOAD_FIELDS, *exchange.UPLOAD_FILES),
     }
     assert set(exported) == set(exchange.LEFT_OUT)
     for name, fields in exported.items():

@@ -9,7 +9,7 @@ from django.core.management.base import BaseCommand, CommandError
 from stimuli.clips import ClipError
 from stimuli.manifest import generate, read_manifest, write_manifest
 from studyplatform.actions.stimuli import do_generate_stimuli
-from studyplatform.lib.stimuli import SUBDIRECTORY, study_manifest
+from studyplatform.lib.stimuli import SUBDIRECTORY, study_manifest, uploaded_manifest
 from studyplatform.models import Stimulus, Study
 
 
@@ -71,7 +71,8 @@ class Command(BaseCommand):
             raise CommandError(str(error)) from None
         failures = self._report(found, results, time.perf_counter() - started)
         if options["manifest"] is not None:
-            path = write_manifest(study_manifest(found[0]), options["manifest"], found[0].slug)
+            path = write_manifest(study_manifest(found[0]), options["manifest"], found[0].slug,
+                                  uploaded_manifest(found[0]))  # fmt: skip
             self.stdout.write(f"manifest written to {path}")
         if failures:
             raise CommandError(f"{failures} clip(s) failed; retry them from the admin.")
@@ -94,9 +95,10 @@ class Command(BaseCommand):
             for stimulus in failed:
                 self.stderr.write(f"  failed: {stimulus} — {stimulus.error}")
             failures += failed.count()
+            missing = f", {result.missing} not uploaded yet" if result.missing else ""
             self.stdout.write(
                 f"{study.slug}: {result.total} clips, {result.queued} rendered, {result.ready} "
-                f"already there, {failed.count()} failed ({seconds:.1f} s)"
+                f"already there, {failed.count()} failed{missing} ({seconds:.1f} s)"
             )
         return failures
 

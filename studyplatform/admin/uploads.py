@@ -1,0 +1,85 @@
+"""Add the study's "Uploaded clips" page: each item's clip in each uploaded condition,
+uploaded one by one or as a zip with a manifest."""
+
+from django.contrib import messages
+from django.core.exceptions import PermissionDenied, ValidationError
+from django.http import HttpRequest, HttpResponse
+from django.shortcuts import redirect
+from django.urls import path
+
+from studyplatform.actions.clips import do_import_clips, do_remove_uploaded_clip, do_upload_clip
+from studyplatform.lib.uploads import mismatched_pairs, uploads_overview
+from studyplatform.models import UploadedClip
+
+CONVERTED = {
+    "remuxed": " (rewrapped for browsers)",
+    "transcoded": " (converted to H.264 for browsers)",
+}
+
+
+class StudyUploadsMixin:
+    """Add the study's Uploaded clips page."""
+
+    def uploads_urls(self):
+        return [
+            path(
+                "<path:object_id>/uploads/",
+                self.admin_site.admin_view(self.uploads_view),
+                name="studyplatform_study_uploads",
+            ),
+        ]
+
+    def uploads_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
+        """List the items' uploaded clips; a POST uploads one, a zip of many, or removes one."""
+        study = self._get_visible_study(request, object_id)
+        if request.method == "POST":
+            if not self.has_change_permission(request, study):
+                raise PermissionDenied
+            try:
+                done = self._upload(request, study)
+            except ValidationError as error:
+                messages.error(request, f"Nothing saved: {error.messages[0]}")
+            else:
+                messages.success(request, done)
+            return redirect(request.path)
+        conditions, rows = uploads_overview(study)
+        return self._page(request, "uploads.html", f"Uploaded clips of “{study.title}”",
+                          study=study, conditions=conditions, rows=rows,
+                          mismatched=mismatched_pairs(study),
+                          can_change=self.has_change_permission(request, study)
+                          and not study.design_locked)  # fmt: skip
+
+    def _upload(self, request: HttpRequest, study) -> str:
+        """Carry out the page's POST; return what was done (ValidationError if nothing)."""
+        if "remove" in request.POST:
+            clip = UploadedClip.objects.filter(
+                pk=_number(request.POST["remove"]), condition__study=study
+            ).first()
+            if clip is None:
+                raise ValidationError("No such clip in this study.")
+            do_remove_uploaded_clip(clip)
+            return f"Clip of {clip.item.key} in {clip.condition.key} removed."
+        if "archive" in request.FILES:
+            archive = request.FILES["archive"]
+            clips = do_import_clips(study, archive)
+            return (
+                f"{len(clips)} clip{'' if len(clips) == 1 else 's'} uploaded from {archive.name}."
+            )
+        condition = study.conditions.filter(pk=_number(request.POST.get("condition"))).first()
+        item = study.items.filter(pk=_number(request.POST.get("item"))).first()
+        if condition is None or item is None:
+            raise ValidationError("That condition or item is not part of the study.")
+        upload = request.FILES.get("clip")
+        if upload is None:
+            raise ValidationError("Choose a video file (MP4, WebM or MOV).")
+        clip = do_upload_clip(condition, item, upload)
+        how = CONVERTED.get(clip.converted, "")
+        return (f"Clip of {item.key} in {condition.key} saved{how}: {clip.width}×{clip.height}, "
+                f"{clip.duration_ms / 1000:.2f} s, {clip.frame_rate:g} fps.")  # fmt: skip
+
+
+def _number(value) -> int:
+    try:
+        return int(value)
+    except (TypeError, ValueError):
+        return 0
