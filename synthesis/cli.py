@@ -88,7 +88,7 @@ def _spell(args: argparse.Namespace) -> int:
         args.seed = args.simulate
     request = _request(args, "word", args.word, **values)
     build = build_motion(request)
-    export_motion(build, request, args.export_pose, args.export_bvh)
+    export_motion(build, request, args.export_pose, args.export_bvh, args.export_glb)
     if args.timing_only:
         if build.timing is None:
             _ = build.performance.extraction  # raises ExtractionError naming why
@@ -108,7 +108,7 @@ def _spell(args: argparse.Namespace) -> int:
 def _sentence(args: argparse.Namespace) -> int:
     request = _request(args, "sentence", args.text)
     build = build_motion(request)
-    export_motion(build, request, args.export_pose, args.export_bvh)
+    export_motion(build, request, args.export_pose, args.export_bvh, args.export_glb)
     if args.plot is not None:
         from synthesis.signing.sentence_plots import torso_angles_figure
 
@@ -213,6 +213,9 @@ def parser() -> argparse.ArgumentParser:
                              help="also write the motion as .pose landmarks")  # fmt: skip
         command.add_argument("--export-bvh", type=Path, metavar="FILE.bvh",
                              help="also write the motion as BVH")  # fmt: skip
+        command.add_argument("--export-glb", type=Path, metavar="FILE.glb",
+                             help="also write the avatar, its motion, face and camera as "
+                             "glTF binary (Blender, Unity, three.js)")  # fmt: skip
 
     pose = rendering("render-pose", "render one letter's handshape to a PNG")
     pose.add_argument("--letter", required=True)

@@ -10,8 +10,15 @@ from synthesis.techniques import avatar_and_camera
 from synthesis.terminal import frame_progress as _progress
 
 
-def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None) -> None:
-    """Write a clip's motion as .pose landmarks (*pose_path*) and as BVH (*bvh_path*)."""
+def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None,
+                  glb_path: Path | None = None) -> None:  # fmt: skip
+    """Write a clip's motion as .pose landmarks (*pose_path*), as BVH (*bvh_path*) and
+    with the avatar and camera as GLB (*glb_path*)."""
+    if glb_path is not None:
+        from synthesis.interchange import request_glb
+
+        Path(glb_path).write_bytes(request_glb(request, build))
+        print(f"wrote {glb_path}")
     if pose_path is None and bvh_path is None:
         return
     import numpy as np

@@ -153,3 +153,34 @@ def _nearest_mapped(parents: np.ndarray, joint: int, pairs: dict) -> list[int]:
         found += [c for c in children if c in pairs]
         frontier = [c for c in children if c not in pairs]
     return found
+
+
+def bone_direction_errors_deg(
+    motion: Motion, pose: Pose, rig: Rig, mapping: JointMapping | None = None
+) -> dict[str, np.ndarray]:
+    """Return, per mapped bone, the angle (degrees, per frame) between its direction in
+    the retargeted *pose* and in the source *motion*.
+
+    A bone runs from a mapped joint to each nearest mapped descendant (so the rig's and
+    the source's joints in between need not match); bones of zero length in the source
+    (CMU's Neck sits on Spine1) have no direction and are left out.
+    """
+    mapping = mapping or detect_mapping(motion.skeleton)
+    target = rig.skeleton
+    pairs = {
+        target.index(t): motion.skeleton.index(s) for s, t in target_names(mapping, rig).items()
+    }
+    source = forward_kinematics(motion)
+    names = motion.skeleton.names
+    errors = {}
+    for j, s in pairs.items():
+        for c in _nearest_mapped(target.parents, j, pairs):
+            wanted = source.positions_m[:, pairs[c]] - source.positions_m[:, s]
+            got = pose.positions_m[:, c] - pose.positions_m[:, j]
+            length = np.linalg.norm(wanted, axis=1)
+            if length.min() < 1e-6:
+                continue
+            cosine = np.sum(wanted * got, axis=1) / length / np.linalg.norm(got, axis=1)
+            angle_deg = np.degrees(np.arccos(np.clip(cosine, -1.0, 1.0)))
+            errors[f"{names[s]}→{names[pairs[c]]}"] = angle_deg
+    return errors

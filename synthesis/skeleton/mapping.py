@@ -1,6 +1,7 @@
 """Joint-name mapping: recognise third-party skeletons and name their joints our way.
 
-Motion capture arrives from Vicon Blade, Xsens MVN, Rokoko, Mixamo and Blender, each with
+Motion capture arrives from Vicon Blade, Xsens MVN, Rokoko, Mixamo, Blender and the CMU
+database's BVH conversions, each with
 its own joint names (spec 01 "Motion data"). A table maps each convention's names to the
 engine's canonical names: the upper-body model's (``spine_lower``, ``right_shoulder``,
 ``right_index_pip``…), which for one hand alone drop the side (``index_pip``). Names are
@@ -76,6 +77,14 @@ def _tables() -> dict[str, dict[str, str]]:
     for side, cap, short in (("right", "Right", "R"), ("left", "Left", "L")):
         for convention, names in _side_names(side, cap, short).items():
             trunk[convention].update(names)
+    # The CMU database's ASF/AMC converted to BVH: HumanIK's arms, but a spine of
+    # LowerBack, Spine, Spine1 and a neck of Neck (on Spine1, zero length) and Neck1.
+    trunk["cmu"] = {
+        "hips": "Hips", "spine_lower": "LowerBack", "spine_middle": "Spine",
+        "spine_upper": "Spine1", "neck": "Neck1", "head": "Head",
+        **{k: v for k, v in trunk["humanik"].items() if k.endswith(
+            ("clavicle", "shoulder", "elbow", "wrist"))},
+    }  # fmt: skip
     # Our own BVH files use the canonical names themselves; a hand alone drops the side.
     trunk["signstudy"] = {name: name for name in trunk["humanik"]}
     trunk["signstudy-hand"] = {

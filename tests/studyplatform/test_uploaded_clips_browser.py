@@ -112,6 +112,15 @@ def test_a_study_mixing_uploaded_and_rendered_clips_is_built_taken_and_analysed(
     assert set(Stimulus.objects.filter(condition__study=study).values_list("status", flat=True)) \
         == {"ready"}  # fmt: skip
 
+    # Motion out: the rendered clip's page offers what participants saw as GLB and BVH.
+    rendered = Stimulus.objects.get(condition__key="avatar", item__key="CAT")
+    page.goto(f"{url}/admin/studyplatform/stimulus/{rendered.pk}/change/")
+    with page.expect_download() as download:
+        page.get_by_role("link", name="GLB: avatar, motion, face and camera").click()
+    glb = Path(download.value.path()).read_bytes()
+    assert glb[:4] == b"glTF" and download.value.suggested_filename.endswith(".glb")
+    page.screenshot(path=SCREENSHOTS / "admin-stimulus-motion.png")
+
     sources = {}
 
     def answer(page, key: str, number: int) -> int:

@@ -1,0 +1,18 @@
+"""Exchange clips with other tools: motion and avatar out as glTF (GLB) and BVH."""
+
+from synthesis.interchange.clip import request_bvh, request_glb
+from synthesis.interchange.glb import (
+    avatar_glb,
+    distinct_weights,
+    inverse_bind_matrices,
+    local_transforms,
+)
+
+__all__ = [
+    "avatar_glb",
+    "distinct_weights",
+    "inverse_bind_matrices",
+    "local_transforms",
+    "request_bvh",
+    "request_glb",
+]

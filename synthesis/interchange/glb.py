@@ -1,0 +1,270 @@
+"""Write a clip as glTF 2.0 binary (GLB): the skinned avatar, its motion and the camera.
+
+What Blender, Unity or three.js open is what the renderer drew: each skinned part is a
+mesh with the engine's bind-pose vertices, normals, colours and four bone weights a
+vertex; its joints are nodes whose inverse bind matrices are the engine's ``B⁻¹``; the
+animation keys every joint's local rotation and translation at every frame (linear
+interpolation, so a player between frames blends as the engine would resample); the
+face's blendshapes are morph targets (sparse: only the vertices they move) whose
+weights are keyed per frame. glTF shares the engine's frame (metres, +Y up, the signer
+facing +Z) and its scalar-last quaternions, so nothing is converted. Skinned that way
+(glTF 2.0 §3.7.3), a frame's vertices are the engine's to float32 precision
+(tests/synthesis/test_glb.py). The camera that filmed the clip is a camera node,
+keyed per frame when it follows the hand.
+"""
+
+import numpy as np
+import pygltflib as gl
+
+from synthesis.render.scene import CameraPath, CameraPreset, look_at
+from synthesis.skeleton.kinematics import Pose
+from synthesis.skeleton.rotations import quat_multiply, quat_rotate
+
+FLOAT, UINT16, UINT32 = gl.FLOAT, gl.UNSIGNED_SHORT, gl.UNSIGNED_INT
+_TYPES = {1: gl.SCALAR, 3: gl.VEC3, 4: gl.VEC4, 16: gl.MAT4}
+_DTYPES = {FLOAT: np.float32, UINT16: np.uint16, UINT32: np.uint32}
+
+
+def _conjugate(q: np.ndarray) -> np.ndarray:
+    return q * np.array([-1.0, -1.0, -1.0, 1.0])
+
+
+def local_transforms(parents: np.ndarray, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
+    """Return each joint's rotation and translation in its parent's frame, (…, n, 4) and
+    (…, n, 3), from global transforms: the inverse of forward kinematics."""
+    q, p = np.asarray(pose.quaternions, float), np.asarray(pose.positions_m, float)
+    inner = parents >= 0
+    local_q, local_t = q.copy(), p.copy()
+    parent_q = _conjugate(q[..., parents[inner], :])
+    local_q[..., inner, :] = quat_multiply(parent_q, q[..., inner, :])
+    local_t[..., inner, :] = quat_rotate(parent_q, p[..., inner, :] - p[..., parents[inner], :])
+    # One hemisphere from frame to frame: linear interpolation between keys must not
+    # take the long way round.
+    flip = np.sum(local_q[1:] * local_q[:-1], axis=-1) < 0 if local_q.ndim == 3 else None
+    if flip is not None:
+        signs = np.cumprod(np.where(flip, -1.0, 1.0), axis=0)
+        local_q[1:] *= signs[..., None]
+    return local_q, local_t
+
+
+def inverse_bind_matrices(bind: Pose) -> np.ndarray:
+    """Return the inverse of each joint's bind-pose global transform, (n, 4, 4)."""
+    from synthesis.skeleton.rotations import quat_to_matrix
+
+    rotations = quat_to_matrix(np.asarray(bind.quaternions, float)[0])
+    positions = np.asarray(bind.positions_m, float)[0]
+    inverse = np.zeros((len(positions), 4, 4))
+    inverse[:, :3, :3] = np.swapaxes(rotations, -1, -2)
+    inverse[:, :3, 3] = -np.einsum("nij,nj->ni", inverse[:, :3, :3], positions)
+    inverse[:, 3, 3] = 1.0
+    return inverse
+
+
+class _Buffer:
+    """The GLB's one binary buffer, its views and accessors, built as data is added."""
+
+    def __init__(self, gltf: gl.GLTF2):
+        self.gltf, self.chunks, self.length = gltf, [], 0
+
+    def add(self, data: np.ndarray, component: int, target: int | None = None,
+            bounds: bool = False) -> int:  # fmt: skip
+        """Add *data* (count, width) as an accessor; return its index."""
+        data = np.ascontiguousarray(data, dtype=_DTYPES[component])
+        data = data.reshape(len(data), -1)
+        view = self._view(data.tobytes(), target)
+        accessor = gl.Accessor(bufferView=view, componentType=component, count=len(data),
+                               type=_TYPES[data.shape[1]])  # fmt: skip
+        if bounds:
+            accessor.min = data.min(axis=0).astype(float).tolist()
+            accessor.max = data.max(axis=0).astype(float).tolist()
+        self.gltf.accessors.append(accessor)
+        return len(self.gltf.accessors) - 1
+
+    def add_sparse(self, count: int, rows: np.ndarray, values: np.ndarray) -> int:
+        """Add a VEC3 float accessor of *count* zeros but *values* at *rows*."""
+        rows = np.ascontiguousarray(rows, dtype=np.uint32)
+        values = np.ascontiguousarray(values, dtype=np.float32)
+        sparse = gl.Sparse(
+            count=len(rows),
+            indices=gl.AccessorSparseIndices(bufferView=self._view(rows.tobytes()),
+                                             componentType=UINT32),
+            values=gl.AccessorSparseValues(bufferView=self._view(values.tobytes())),
+        )  # fmt: skip
+        accessor = gl.Accessor(componentType=FLOAT, count=count, type=gl.VEC3, sparse=sparse,
+                               min=values.min(axis=0).astype(float).tolist(),
+                               max=values.max(axis=0).astype(float).tolist())  # fmt: skip
+        accessor.byteOffset = None  # no buffer view: all zeros but the sparse values
+        # Bounds of a morph target include the zeros of the vertices it leaves alone.
+        accessor.min = np.minimum(accessor.min, 0.0).tolist()
+        accessor.max = np.maximum(accessor.max, 0.0).tolist()
+        self.gltf.accessors.append(accessor)
+        return len(self.gltf.accessors) - 1
+
+    def _view(self, data: bytes, target: int | None = None) -> int:
+        padding = (-self.length) % 4
+        if padding:
+            self.chunks.append(b"\x00" * padding)
+            self.length += padding
+        view = gl.BufferView(buffer=0, byteOffset=self.length, byteLength=len(data))
+        if target is not None:
+            view.target = target
+        self.gltf.bufferViews.append(view)
+        self.chunks.append(data)
+        self.length += len(data)
+        return len(self.gltf.bufferViews) - 1
+
+    def finish(self) -> bytes:
+        data = b"".join(self.chunks)
+        self.gltf.buffers = [gl.Buffer(byteLength=len(data))]
+        return data
+
+
+def _joint_nodes(gltf: gl.GLTF2, skeleton, bind_q: np.ndarray, bind_t: np.ndarray) -> list[int]:
+    """Add a node per joint at its bind-pose local transform; return the root nodes."""
+    parents = skeleton.parents
+    first = len(gltf.nodes)
+    bind_q = bind_q / np.linalg.norm(bind_q, axis=-1, keepdims=True)
+    for index, joint in enumerate(skeleton.joints):
+        gltf.nodes.append(gl.Node(name=joint.name, rotation=np.clip(bind_q[index], -1, 1).tolist(),
+                                  translation=bind_t[index].tolist()))  # fmt: skip
+    for index, parent in enumerate(parents):
+        if parent >= 0:
+            gltf.nodes[first + parent].children.append(first + index)
+    return [first + index for index, parent in enumerate(parents) if parent < 0]
+
+
+def distinct_weights(skin, n_joints: int) -> tuple[np.ndarray, np.ndarray]:
+    """Return a skin's bones and weights (n, 4) with each bone once a vertex and joint 0
+    in the unused slots, as glTF requires (§3.7.3.1); the engine lets a rigid part list
+    its one bone in every slot."""
+    matrix = skin.matrix(n_joints).tocsr()
+    matrix.sum_duplicates()
+    matrix.eliminate_zeros()
+    counts = np.diff(matrix.indptr)
+    rows = np.repeat(np.arange(len(counts)), counts)
+    slots = np.arange(len(rows)) - np.repeat(matrix.indptr[:-1], counts)
+    joints = np.zeros((len(counts), 4), dtype=np.intp)
+    weights = np.zeros((len(counts), 4))
+    joints[rows, slots], weights[rows, slots] = matrix.indices, matrix.data
+    return joints, weights
+
+
+def _part_mesh(gltf: gl.GLTF2, buffer: _Buffer, part, material: int, n_joints: int) -> int:
+    """Add one skinned part as a mesh (its blendshapes as sparse targets); return it."""
+    joints, weights = distinct_weights(part.weights, n_joints)
+    attributes = gl.Attributes(
+        POSITION=buffer.add(part.vertices_m, FLOAT, gl.ARRAY_BUFFER, bounds=True),
+        NORMAL=buffer.add(part.normals, FLOAT, gl.ARRAY_BUFFER),
+        COLOR_0=buffer.add(np.clip(part.vertex_rgb(), 0.0, 1.0), FLOAT, gl.ARRAY_BUFFER),
+        JOINTS_0=buffer.add(joints, UINT16, gl.ARRAY_BUFFER),
+        WEIGHTS_0=buffer.add(weights, FLOAT, gl.ARRAY_BUFFER),
+    )
+    primitive = gl.Primitive(
+        attributes=attributes, material=material,
+        indices=buffer.add(np.asarray(part.faces).reshape(-1, 1), UINT32,
+                           gl.ELEMENT_ARRAY_BUFFER),
+    )  # fmt: skip
+    mesh = gl.Mesh(name=part.name, primitives=[primitive])
+    if part.morphs is not None:
+        count = len(part.vertices_m)
+        for k, _ in enumerate(part.morphs.names):
+            primitive.targets.append({
+                "POSITION": buffer.add_sparse(count, part.morphs.vertices,
+                                              part.morphs.offsets_m[k]),
+                "NORMAL": buffer.add_sparse(count, part.morphs.vertices,
+                                            part.morphs.normal_offsets[k]),
+            })  # fmt: skip
+        mesh.weights = [0.0] * len(part.morphs.names)
+        mesh.extras = {"targetNames": list(part.morphs.names)}
+    gltf.meshes.append(mesh)
+    return len(gltf.meshes) - 1
+
+
+def _camera_node(gltf: gl.GLTF2, camera, width: int, height: int) -> tuple[int, np.ndarray]:
+    """Add the camera; return its node and its transforms (frames, 4, 4)."""
+    gltf.cameras.append(gl.Camera(
+        type="perspective", name=camera.name,
+        perspective=gl.Perspective(yfov=float(np.radians(camera.yfov_deg)),
+                                   aspectRatio=width / height, znear=0.01, zfar=100.0),
+    ))  # fmt: skip
+    if isinstance(camera, CameraPath):
+        poses = np.stack([look_at(e, t) for e, t in zip(camera.eye_m, camera.target_m,
+                                                        strict=True)])  # fmt: skip
+    else:
+        poses = camera.pose()[None]
+    from scipy.spatial.transform import Rotation
+
+    node = gl.Node(name=camera.name, camera=len(gltf.cameras) - 1,
+                   translation=poses[0, :3, 3].tolist(),
+                   rotation=Rotation.from_matrix(poses[0, :3, :3]).as_quat().tolist())  # fmt: skip
+    gltf.nodes.append(node)
+    return len(gltf.nodes) - 1, poses
+
+
+def _key(gltf, buffer, times: int, node: int, path: str, values: np.ndarray) -> None:
+    animation = gltf.animations[0]
+    animation.samplers.append(gl.AnimationSampler(input=times, interpolation="LINEAR",
+                                                  output=buffer.add(values, FLOAT)))  # fmt: skip
+    animation.channels.append(gl.AnimationChannel(
+        sampler=len(animation.samplers) - 1,
+        target=gl.AnimationChannelTarget(node=node, path=path),
+    ))  # fmt: skip
+
+
+def avatar_glb(
+    avatar, pose: Pose, rate_hz: float, morph_weights: np.ndarray | None = None,
+    camera: CameraPreset | CameraPath | None = None, width: int = 640, height: int = 480,
+    name: str = "clip", extras: dict | None = None,
+) -> bytes:  # fmt: skip
+    """Return a GLB of *avatar* moving through *pose* (global transforms, one per frame)
+    at *rate_hz*, its blendshapes at *morph_weights* (frames, the drive's names), filmed
+    by *camera*; *extras* (JSON data) is kept in the asset's extras.
+    """
+    from scipy.spatial.transform import Rotation
+
+    skeleton = avatar.rig.skeleton
+    parents = np.asarray(skeleton.parents)
+    n_frames = len(pose.quaternions)
+    gltf = gl.GLTF2(asset=gl.Asset(generator="SignStudy synthesis", version="2.0"))
+    gltf.asset.extras = extras or {}
+    gltf.animations.append(gl.Animation(name=name))
+    buffer = _Buffer(gltf)
+    bind_q, bind_t = local_transforms(parents, avatar.bind_pose)
+    roots = _joint_nodes(gltf, skeleton, bind_q[0], bind_t[0])
+    joints = list(range(roots[0], roots[0] + len(skeleton.joints)))
+    gltf.skins.append(gl.Skin(name=avatar.name, joints=joints, skeleton=roots[0],
+                              inverseBindMatrices=buffer.add(
+                                  np.swapaxes(inverse_bind_matrices(avatar.bind_pose), 1, 2)
+                                  .reshape(len(joints), 16), FLOAT)))  # fmt: skip
+    gltf.materials.append(gl.Material(
+        name="skin and clothes (vertex colours)", doubleSided=False,
+        pbrMetallicRoughness=gl.PbrMetallicRoughness(baseColorFactor=[1, 1, 1, 1],
+                                                     metallicFactor=0.0, roughnessFactor=0.7),
+    ))  # fmt: skip
+    names = () if avatar.drive is None else avatar.drive.names
+    scene_nodes = list(roots)
+    times = buffer.add(np.arange(n_frames, dtype=np.float64)[:, None] / rate_hz, FLOAT,
+                       bounds=True)  # fmt: skip
+    for part in avatar.parts:
+        mesh = _part_mesh(gltf, buffer, part, 0, len(joints))
+        gltf.nodes.append(gl.Node(name=part.name, mesh=mesh, skin=0))
+        scene_nodes.append(len(gltf.nodes) - 1)
+        if part.morphs is not None and morph_weights is not None:
+            columns = [names.index(n) for n in part.morphs.names]
+            _key(gltf, buffer, times, scene_nodes[-1], "weights",
+                 np.asarray(morph_weights)[:, columns].reshape(-1, 1))  # fmt: skip
+    local_q, local_t = local_transforms(parents, pose)
+    for index, node in enumerate(joints):
+        _key(gltf, buffer, times, node, "rotation", local_q[:, index])
+        _key(gltf, buffer, times, node, "translation", local_t[:, index])
+    if camera is not None:
+        node, poses = _camera_node(gltf, camera, width, height)
+        scene_nodes.append(node)
+        if len(poses) > 1:
+            _key(gltf, buffer, times, node, "translation", poses[:, :3, 3])
+            _key(gltf, buffer, times, node, "rotation",
+                 Rotation.from_matrix(poses[:, :3, :3]).as_quat())  # fmt: skip
+    gltf.scenes.append(gl.Scene(name=name, nodes=scene_nodes))
+    gltf.scene = 0
+    gltf.set_binary_blob(buffer.finish())
+    return b"".join(gltf.save_to_bytes())
