@@ -93,7 +93,11 @@ LEFT_OUT = {
         "updated_at": "set when the study is saved",
         "signed_templates": "a researcher's own library; a copy keeps those its owner may use",
     },
-    "Condition": {"study": "the definition is the study's"},
+    "Condition": {
+        "study": "the definition is the study's",
+        "avatar": "a researcher's own library (as signed templates): a copy films with the "
+        "built-in signer unless its owner attaches an avatar of theirs",
+    },
     "Item": {"study": "the definition is the study's"},
     "Question": {"study": "the definition is the study's"},
     "AnswerOption": {"question": "options are nested in their question"},

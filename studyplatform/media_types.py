@@ -33,7 +33,7 @@ class MediaKind:
 
     suffix: str
     content_type: str
-    family: str  # "video", "image" or "motion"
+    family: str  # "video", "image", "motion" or "model"
 
     @property
     def inline(self) -> bool:
@@ -48,11 +48,12 @@ JPEG = MediaKind(".jpg", "image/jpeg", "image")
 WEBP = MediaKind(".webp", "image/webp", "image")
 POSE = MediaKind(".pose", "application/octet-stream", "motion")
 BVH = MediaKind(".bvh", "application/octet-stream", "motion")
+GLB = MediaKind(".glb", "model/gltf-binary", "model")  # glTF 2.0 binary, VRM too
 
 # What may be served, by the extension a stored file has. Files kept from before names
 # followed content (.mov, .m4v, .jpeg uploads) are served as the container they claimed,
 # which a browser only ever plays or shows: with nosniff it never reads them as a page.
-SERVED = {kind.suffix: kind for kind in (WEBM, MP4, PNG, JPEG, WEBP, POSE, BVH)}
+SERVED = {kind.suffix: kind for kind in (WEBM, MP4, PNG, JPEG, WEBP, POSE, BVH, GLB)}
 SERVED.update({".mov": MP4, ".m4v": MP4, ".jpeg": JPEG})
 
 # The policy of every media response: nothing in it runs, even a file a browser renders
@@ -77,6 +78,8 @@ def sniff(head: bytes) -> MediaKind | None:
     """Return the kind of a file from its first bytes (at least 16), None if it is none."""
     if head.startswith(EBML_MAGIC):
         return WEBM
+    if head.startswith(b"glTF"):
+        return GLB
     if head[4:8] == b"ftyp":
         return MP4  # MP4, QuickTime and M4V: browsers play the ISO family as video/mp4
     if head.startswith(b"\x89PNG\r\n\x1a\n"):

@@ -19,6 +19,7 @@ RESEARCHER_PERMISSIONS: dict[str, tuple[str, ...]] = {
     "aslvideo": ("add", "change", "delete", "view"),
     "signedtemplate": ("add", "change", "delete", "view"),
     "recording": ("add", "delete", "view"),
+    "avatar": ("add", "change", "delete", "view"),
     "participant": ("delete", "view"),
     "personalanswer": ("view",),
     "response": ("view",),

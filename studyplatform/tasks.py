@@ -16,6 +16,7 @@ from studyplatform.models import Stimulus
 from studyplatform.queue import (
     APPLY_RETENTION,
     CLEAN_ABANDONED_UPLOADS,
+    PREPARE_AVATAR,
     PREPARE_RECORDING,
     RENDER_STIMULUS,
 )
@@ -151,3 +152,26 @@ def apply_retention() -> int:
 
     result = do_apply_retention()
     return result.personal_answers + result.videos + result.recruitment_ids
+
+
+def prepare_avatar_now(avatar_id: int) -> str:
+    """Render an uploaded avatar's preview stills in this process; return its status."""
+    from studyplatform.actions.avatars import do_fail_avatar_previews, do_finish_avatar_previews
+    from studyplatform.models import Avatar
+    from synthesis.interchange.previews import avatar_stills
+
+    avatar = Avatar.objects.filter(pk=avatar_id).first()
+    if avatar is None:
+        return "missing"
+    try:
+        stills = avatar_stills(avatar.file.path)
+    except Exception as error:  # any failure is recorded on the avatar, for the admin
+        return do_fail_avatar_previews(avatar, error)
+    do_finish_avatar_previews(avatar, stills)
+    return Avatar.Status.READY
+
+
+@shared_task(name=PREPARE_AVATAR, acks_late=True, reject_on_worker_lost=True)
+def prepare_avatar(avatar_id: int) -> str:
+    """Render an avatar's preview stills (Celery job)."""
+    return prepare_avatar_now(avatar_id)

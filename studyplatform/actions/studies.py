@@ -104,9 +104,9 @@ def _discard(study: Study, stored: list) -> None:
 def do_duplicate_study(study: Study, *, owner) -> Study:
     """Copy *study*'s definition into a new draft study owned by *owner*.
 
-    The copy keeps the signed templates attached to *study* that *owner* may attach
-    (their own; any, for a superuser): a definition file leaves them out, since they
-    belong to a researcher's library, not to the study.
+    The copy keeps the signed templates attached to *study* and the conditions' avatars
+    that *owner* may use (their own; any, for a superuser): a definition file leaves
+    them out, since they belong to a researcher's library, not to the study.
     """
     definition = exchange.export_study(study)
     with transaction.atomic():
@@ -123,4 +123,12 @@ def do_duplicate_study(study: Study, *, owner) -> Study:
         if not owner.is_superuser:
             templates = templates.filter(owner=owner)
         result.study.signed_templates.set(templates)
+        _keep_avatars(study, result.study, owner)
     return result.study
+
+
+def _keep_avatars(study: Study, copy: Study, owner) -> None:
+    """Film the copy's conditions with the original's avatars that *owner* may use."""
+    for condition in study.conditions.exclude(avatar=None).select_related("avatar"):
+        if owner.is_superuser or condition.avatar.owner_id == owner.pk:
+            copy.conditions.filter(key=condition.key).update(avatar=condition.avatar)

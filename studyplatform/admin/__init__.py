@@ -3,6 +3,7 @@
 from django.contrib import admin
 
 from studyplatform.admin import (  # noqa: F401
+    avatars,
     conditions,
     design,
     participants,

@@ -22,6 +22,7 @@ from studyplatform.rules import (
 from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS, Parameter
 
 PREFIX = "technique_"
+ADMIN_HIDDEN = frozenset({"avatar_file"})
 # A condition is filmed like the others of its item; the seed is the item's (shared
 # performance), so it is set on items, not here.
 FILMING = tuple(p for p in REQUEST_PARAMETERS if p.name != "seed")
@@ -61,7 +62,10 @@ def technique_groups(kinds) -> list[tuple[str, tuple[Parameter, ...]]]:
             title = (
                 f"{technique.label} ({technique.source})" if technique.source else technique.label
             )
-            groups.append((title, technique.parameters))
+            # An imported avatar is chosen from the researcher's Avatars (the condition's
+            # avatar field), not typed as a path.
+            shown = tuple(p for p in technique.parameters if p.name not in ADMIN_HIDDEN)
+            groups.append((title, shown))
     groups.append(("Filming", FILMING))
     return groups
 
@@ -73,8 +77,8 @@ class ConditionForm(forms.ModelForm):
 
     class Meta:
         model = Condition
-        fields = ("study", "position", "key", "label", "description", "source", "is_simulated",
-                  "parameters")  # fmt: skip
+        fields = ("study", "position", "key", "label", "description", "source", "avatar",
+                  "is_simulated", "parameters")  # fmt: skip
         labels = {"parameters": "Other parameters (JSON)"}
         help_texts = {
             "parameters": (
@@ -133,8 +137,8 @@ class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
         return super().get_form(request, obj, **kwargs)
 
     def get_fieldsets(self, request: HttpRequest, obj: Condition | None = None):
-        main = ("study", "position", "key", "label", "description", "source", "is_simulated",
-                "compares")  # fmt: skip
+        main = ("study", "position", "key", "label", "description", "source", "avatar",
+                "is_simulated", "compares")  # fmt: skip
         fieldsets = [(None, {"fields": main})]
         for title, parameters in technique_groups(condition_item_kinds(obj)):
             fieldsets.append((title, {"fields": [PREFIX + p.name for p in parameters]}))
@@ -144,3 +148,10 @@ class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
     @admin.display(description="What it compares")
     def compares(self, obj: Condition) -> str:
         return describe_condition(obj)
+
+    def formfield_for_foreignkey(self, db_field, request: HttpRequest, **kwargs):
+        if db_field.name == "avatar" and not request.user.is_superuser:
+            from studyplatform.models import Avatar
+
+            kwargs["queryset"] = Avatar.objects.filter(owner=request.user)
+        return super().formfield_for_foreignkey(db_field, request, **kwargs)

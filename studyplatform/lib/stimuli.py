@@ -27,11 +27,15 @@ def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     The condition's parameters override the item's. The seed is the item's (its
     parameters' ``seed``, else a checksum of its key), so all conditions of an item share
     one performance and one noise. A word's recording, where it has one, is the
-    performance of the conditions that retime a capture (:mod:`studyplatform.lib.recordings`).
+    performance of the conditions that retime a capture (:mod:`studyplatform.lib.recordings`);
+    a condition's own avatar is its file (the avatar technique's ``avatar_file``).
     """
     parameters = {**(item.parameters or {}), **(condition.parameters or {})}
     parameters.setdefault("seed", zlib.crc32(item.key.encode()))
     parameters = with_item_recording(parameters, item, condition.key)
+    if condition.avatar_id is not None:
+        # The file's content, not its path, names the clip (ClipSpec hashes files).
+        parameters["avatar_file"] = condition.avatar.file.path
     return ClipSpec.from_request(ClipRequest.from_parameters(item.kind, item.text, parameters))
 
 

@@ -1,5 +1,6 @@
 """Expose the study platform's models."""
 
+from studyplatform.models.avatars import Avatar
 from studyplatform.models.design import AnswerOption, Block, Question, Trial, trial_question_kinds
 from studyplatform.models.participants import (
     Participant,
@@ -20,6 +21,7 @@ __all__ = [
     "STUDY_PATHS",
     "AnswerOption",
     "AslVideo",
+    "Avatar",
     "Block",
     "Condition",
     "Item",

@@ -300,6 +300,16 @@ class Condition(models.Model):
         "Uploaded: you upload one video per item (MP4, WebM or MOV) on the study's "
         "Uploaded clips page; the condition has no settings.",
     )
+    avatar = models.ForeignKey(
+        "studyplatform.Avatar",
+        on_delete=models.PROTECT,
+        null=True,
+        blank=True,
+        related_name="conditions",
+        help_text="Film this condition's clips with your own avatar (Avatars in the menu) "
+        "instead of the built-in signer; the avatar settings below then stay at their "
+        "defaults.",
+    )
     parameters = models.JSONField(
         default=dict,
         blank=True,
@@ -328,6 +338,8 @@ class Condition(models.Model):
 
     def clean(self) -> None:
         check_unlocked(self.study if self.study_id else None)
+        if self.is_uploaded and self.avatar_id is not None:
+            raise ValidationError({"avatar": "Uploaded clips are not filmed with an avatar."})
         if not self.is_uploaded:
             check_condition(self)
         elif self.parameters:

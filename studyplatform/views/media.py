@@ -23,7 +23,7 @@ from django.views.decorators.http import require_safe
 from studyplatform import exchange
 from studyplatform.admin.permissions import owned_studies
 from studyplatform.media_types import MEDIA_CSP, SERVED
-from studyplatform.models import Recording, Response, Study, UploadedClip
+from studyplatform.models import Avatar, Recording, Response, Study, UploadedClip
 from studyplatform.storage import PRIVATE_STORAGE
 from studyplatform.views.files import file_response
 
@@ -85,7 +85,13 @@ def _may_open(request: HttpRequest, name: str) -> bool:
     if Response.objects.filter(video=name, participant__study__in=studies).exists():
         return True
     names_it = Q.create([(field, name) for field in exchange.RECORDING_FILES], connector=Q.OR)
-    return Recording.objects.filter(names_it, item__study__in=studies).exists()
+    if Recording.objects.filter(names_it, item__study__in=studies).exists():
+        return True
+    # A researcher's avatar (its file and preview stills) is theirs alone.
+    avatars = Avatar.objects.all() if request.user.is_superuser else \
+        Avatar.objects.filter(owner=request.user)  # fmt: skip
+    files = ("file", "still_rest", "still_letter", "still_face")
+    return avatars.filter(Q.create([(f, name) for f in files], connector=Q.OR)).exists()
 
 
 @require_safe

@@ -31,6 +31,7 @@ class Look:
     body: str = DEFAULT_PRESET
     skin_tone: str = DEFAULT_SKIN_TONE
     raw: tuple[tuple[str, float], ...] = ()
+    file: str = ""  # a glTF or VRM avatar that films the clip instead (issue 37)
 
     def __post_init__(self) -> None:
         if self.avatar not in AVATARS:
@@ -58,6 +59,10 @@ class Look:
 
 def avatar_for(view: str, side: str, look: Look = Look()):
     """Return the avatar of *view* ("hand" or "upper-body") for the signer's *side* hand."""
+    if look.file:
+        from synthesis.avatar.imported.load import imported_avatar
+
+        return imported_avatar(look.file, view, side, avatar_for(view, side, Look()))
     if look.avatar == "simple":
         if view == "hand":
             from synthesis.avatar.hand_mesh import hand_avatar

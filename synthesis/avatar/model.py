@@ -136,7 +136,8 @@ class Avatar:
 
     Parts with blendshapes (``morphs``) take their weights from the rig's DOFs through
     *drive* (the face's channels); posed from joint transforms alone they keep their
-    bind shape.
+    bind shape. The bind pose is the rig's at *bind_dofs_rad*, or *bind* for an avatar
+    imported with its own (:mod:`synthesis.avatar.imported.humanoid`).
     """
 
     name: str
@@ -144,11 +145,12 @@ class Avatar:
     bind_dofs_rad: np.ndarray
     parts: tuple[SkinnedPart, ...]
     drive: MorphDrive | None = None
+    bind: Pose | None = None  # an imported avatar's own bind pose, not one of the rig's
 
     @cached_property
     def bind_pose(self) -> Pose:
         """Return the joints' global transforms at the bind pose (one frame)."""
-        return self.rig.pose(self.bind_dofs_rad)
+        return self.bind if self.bind is not None else self.rig.pose(self.bind_dofs_rad)
 
     @cached_property
     def _weight_matrices(self) -> list[sparse.csr_matrix]:

@@ -22,9 +22,14 @@ class SkinWeights:
 
     joints: np.ndarray
     weights: np.ndarray
+    main: np.ndarray | None = None  # each vertex's main joint, where a file says it
 
     def main_joints(self) -> np.ndarray:
-        """Return each vertex's joint of largest weight (n,)."""
+        """Return each vertex's joint of largest weight (n,): the slot of largest weight
+        (a joint listed in two slots counts by one of them), or *main* where given (an
+        imported engine avatar keeps the engine's, which framing follows)."""
+        if self.main is not None:
+            return self.main
         return self.joints[np.arange(len(self.joints)), np.argmax(self.weights, axis=1)]
 
     def matrix(self, n_joints: int) -> sparse.csr_matrix:

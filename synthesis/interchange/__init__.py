@@ -1,4 +1,5 @@
-"""Exchange clips with other tools: motion and avatar out as glTF (GLB) and BVH."""
+"""Exchange clips with other tools: motion and avatar out as glTF (GLB) and BVH, preview
+stills of an imported avatar (reading avatars in: :mod:`synthesis.avatar.imported`)."""
 
 from synthesis.interchange.clip import request_bvh, request_glb
 from synthesis.interchange.glb import (

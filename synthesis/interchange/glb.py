@@ -16,6 +16,7 @@ keyed per frame when it follows the hand.
 import numpy as np
 import pygltflib as gl
 
+from synthesis.avatar.imported.gltf_read import COLOR_ACROSS, COLOR_INSIDE, EDGE, MAIN_JOINT
 from synthesis.render.scene import CameraPath, CameraPreset, look_at
 from synthesis.skeleton.kinematics import Pose
 from synthesis.skeleton.rotations import quat_multiply, quat_rotate
@@ -60,7 +61,7 @@ def inverse_bind_matrices(bind: Pose) -> np.ndarray:
     return inverse
 
 
-class _Buffer:
+class BufferBuilder:
     """The GLB's one binary buffer, its views and accessors, built as data is added."""
 
     def __init__(self, gltf: gl.GLTF2):
@@ -149,7 +150,7 @@ def distinct_weights(skin, n_joints: int) -> tuple[np.ndarray, np.ndarray]:
     return joints, weights
 
 
-def _part_mesh(gltf: gl.GLTF2, buffer: _Buffer, part, material: int, n_joints: int) -> int:
+def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joints: int) -> int:
     """Add one skinned part as a mesh (its blendshapes as sparse targets); return it."""
     joints, weights = distinct_weights(part.weights, n_joints)
     attributes = gl.Attributes(
@@ -164,7 +165,16 @@ def _part_mesh(gltf: gl.GLTF2, buffer: _Buffer, part, material: int, n_joints: i
         indices=buffer.add(np.asarray(part.faces).reshape(-1, 1), UINT32,
                            gl.ELEMENT_ARRAY_BUFFER),
     )  # fmt: skip
-    mesh = gl.Mesh(name=part.name, primitives=[primitive])
+    # What only the engine draws, for an import of this file to look the same: a colour
+    # edge through triangles (a neckline, a cuff) and parts that cast no shadow.
+    if part.edge_m is not None:
+        setattr(attributes, EDGE, buffer.add(part.edge_m.reshape(-1, 1), FLOAT, gl.ARRAY_BUFFER))
+        setattr(attributes, COLOR_INSIDE, buffer.add(part.colors_rgb, FLOAT, gl.ARRAY_BUFFER))
+        setattr(attributes, COLOR_ACROSS, buffer.add(part.across_rgb, FLOAT, gl.ARRAY_BUFFER))
+    setattr(attributes, MAIN_JOINT, buffer.add(part.weights.main_joints().reshape(-1, 1),
+                                               FLOAT, gl.ARRAY_BUFFER))  # fmt: skip
+    mesh = gl.Mesh(name=part.name, primitives=[primitive],
+                   extras={"signstudy": {"casts_shadow": bool(part.casts_shadow)}})  # fmt: skip
     if part.morphs is not None:
         count = len(part.vertices_m)
         for k, _ in enumerate(part.morphs.names):
@@ -175,7 +185,7 @@ def _part_mesh(gltf: gl.GLTF2, buffer: _Buffer, part, material: int, n_joints: i
                                             part.morphs.normal_offsets[k]),
             })  # fmt: skip
         mesh.weights = [0.0] * len(part.morphs.names)
-        mesh.extras = {"targetNames": list(part.morphs.names)}
+        mesh.extras["targetNames"] = list(part.morphs.names)
     gltf.meshes.append(mesh)
     return len(gltf.meshes) - 1
 
@@ -228,7 +238,7 @@ def avatar_glb(
     gltf = gl.GLTF2(asset=gl.Asset(generator="SignStudy synthesis", version="2.0"))
     gltf.asset.extras = extras or {}
     gltf.animations.append(gl.Animation(name=name))
-    buffer = _Buffer(gltf)
+    buffer = BufferBuilder(gltf)
     bind_q, bind_t = local_transforms(parents, avatar.bind_pose)
     roots = _joint_nodes(gltf, skeleton, bind_q[0], bind_t[0])
     joints = list(range(roots[0], roots[0] + len(skeleton.joints)))

@@ -85,36 +85,52 @@ def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> P
         raise ValueError(
             f"No joint of this {mapping.convention} skeleton maps onto the {rig.kind} model."
         )
-    source = forward_kinematics(motion)
     rest_values = np.zeros((1, source_skeleton.channel_count))
     source_rest = forward_kinematics(Motion(source_skeleton, rest_values, 1.0))
+    return transfer_pose(forward_kinematics(motion), source_rest, source_skeleton.parents,
+                         pairs, target.parents, rig.pose(rig.neutral()))  # fmt: skip
+
+
+def transfer_pose(source: Pose, source_rest: Pose, source_parents: np.ndarray,
+                  pairs: dict[int, int], parents: np.ndarray, rest: Pose) -> Pose:  # fmt: skip
+    """Return a skeleton's global transforms (n_frames, …) following *source*'s.
+
+    *pairs* maps each target joint to its source joint; *source_rest* and *rest* (one
+    frame each) are the poses in which the two skeletons stand alike once each mapped
+    limb is turned onto the source's (:func:`_alignment`). A mapped joint turns from its
+    rest as the source joint turns from the source's rest; an unmapped one keeps its
+    rest turn relative to its parent; bone lengths stay the target's, and the root
+    travels as the source's root does, scaled by the two skeletons' heights.
+    """
     source_rest_q = source_rest.quaternions[0]
     source_rest_p = source_rest.positions_m[0]
-    neutral = rig.pose(rig.neutral())
-    neutral_q, neutral_p = neutral.quaternions[0], neutral.positions_m[0]
-    local_rest = rig.local_quaternions(rig.neutral())
-    offsets = target.offsets * target.metres_per_unit
-    parents = target.parents
+    rest_q, rest_p = rest.quaternions[0], rest.positions_m[0]
+    inner = parents >= 0
+    parent_q = _conjugate(rest_q[parents[inner]])
+    local_rest = rest_q.copy()
+    local_rest[inner] = quat_multiply(parent_q, rest_q[inner])
+    offsets = np.zeros_like(rest_p)
+    offsets[inner] = quat_rotate(parent_q, rest_p[inner] - rest_p[parents[inner]])
 
-    n_frames = motion.n_frames
-    rotations = np.empty((n_frames, len(target), 4))
-    positions = np.empty((n_frames, len(target), 3))
-    scale = _height(neutral_p) / max(_height(source_rest_p), 1e-9)
-    for j in range(len(target)):
+    n_frames = len(source.quaternions)
+    rotations = np.empty((n_frames, len(parents), 4))
+    positions = np.empty((n_frames, len(parents), 3))
+    scale = _height(rest_p) / max(_height(source_rest_p), 1e-9)
+    for j in range(len(parents)):
         parent = parents[j]
         if j in pairs:
             s = pairs[j]
-            align = _alignment(j, s, pairs, parents, neutral_p, source_rest_p)
+            align = _alignment(j, s, pairs, parents, rest_p, source_rest_p)
             delta = quat_multiply(source.quaternions[:, s], _conjugate(source_rest_q[s]))
-            rotations[:, j] = quat_multiply(delta, quat_multiply(align, neutral_q[j]))
+            rotations[:, j] = quat_multiply(delta, quat_multiply(align, rest_q[j]))
         elif parent < 0:
-            rotations[:, j] = neutral_q[j]
+            rotations[:, j] = rest_q[j]
         else:
             rotations[:, j] = quat_multiply(rotations[:, parent], local_rest[j])
         if parent < 0:
-            positions[:, j] = neutral_p[j]
+            positions[:, j] = rest_p[j]
             root_source = pairs.get(j)
-            if root_source is not None and source_skeleton.parents[root_source] < 0:
+            if root_source is not None and source_parents[root_source] < 0:
                 travel = source.positions_m[:, root_source] - source.positions_m[:1, root_source]
                 positions[:, j] += travel * scale
         else:

@@ -30,15 +30,29 @@ def _raw(values) -> tuple[tuple[str, float], ...]:
 
 
 def _look(values) -> Look:
-    return Look(values["avatar"], values["body"], values["skin_tone"], _raw(values))
+    return Look(values["avatar"], values["body"], values["skin_tone"], _raw(values),
+                values["avatar_file"])  # fmt: skip
 
 
 def _apply(build: Build) -> Build:
-    return build.but(look=_look(build.request.parameters))
+    look = _look(build.request.parameters)
+    if look.file and build.request.kind == WORD.name:
+        from synthesis.avatar.imported.gltf_read import GltfError
+        from synthesis.avatar.imported.load import check_fingers
+
+        try:
+            check_fingers(look.file, build.request.side)
+        except GltfError as error:
+            raise ClipError(str(error)) from None
+    return build.but(look=look)
 
 
 def _check(values) -> None:
     raw = _raw(values)
+    if values["avatar_file"] and (values["avatar"] != "human" or values["body"] != DEFAULT_PRESET
+                                  or values["skin_tone"] != DEFAULT_SKIN_TONE or raw):  # fmt: skip
+        raise ClipError("avatar_file films the clip with its own avatar: leave avatar, body, "
+                        "skin_tone and the macro values at their defaults.")  # fmt: skip
     if values["avatar"] == "simple" and (
         values["body"] != DEFAULT_PRESET or values["skin_tone"] != DEFAULT_SKIN_TONE or raw
     ):
@@ -51,6 +65,8 @@ def _check(values) -> None:
 
 
 def _summary(values) -> str:
+    if values["avatar_file"]:
+        return f"imported avatar {values['avatar_file'].rsplit('/', 1)[-1]}"
     if values["avatar"] == "simple":
         return "simple avatar"
     body = values["body"]
@@ -101,6 +117,15 @@ TECHNIQUE = Technique(
         _macro("weight", "0 lightest … 1 heaviest build"),
         _macro("height", "0 shortest … 1 tallest (the rig keeps its size: proportions change)"),
         _macro("proportions", "0 uncommon … 1 idealised proportions"),
+        Parameter(
+            "avatar_file",
+            "file",
+            "",
+            "A humanoid glTF 2.0 or VRM avatar (.glb/.vrm) that films the clip instead of "
+            "the built-in signers: its bones are mapped to the engine's and the motion "
+            "retargeted onto them, its ARKit morph targets or VRM expressions play the "
+            "face. Its SHA-256 is part of the clip's hash.",
+        ),
     ),
     source="issue 36",
     order=90,

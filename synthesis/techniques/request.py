@@ -186,7 +186,12 @@ def avatar_and_camera(view: str, side: str, look=None, width: int = 640, height:
     avatar = avatar_for(view, side, look or Look())
     if view == "hand":
         return avatar, hand_close_up(side)
-    return avatar, signing_view(side, width, height)
+    camera = signing_view(side, width, height)
+    if look is not None and look.file:
+        from synthesis.avatar.imported.load import fitted_camera
+
+        camera = fitted_camera(camera, avatar)
+    return avatar, camera
 
 
 def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int,

@@ -1,0 +1,149 @@
+"""Researchers' own avatars: upload a GLB or VRM, see what the engine makes of it
+(bones, fingers, face channels, preview stills), and map the bones it did not know."""
+
+import json
+
+from django import forms
+from django.contrib import admin, messages
+from django.db.models import Count
+from django.http import HttpRequest
+from django.urls import reverse
+from django.utils.html import format_html, format_html_join
+
+from studyplatform.actions.avatars import (
+    check_avatar_file,
+    check_bone_mapping,
+    do_map_avatar_bones,
+    do_upload_avatar,
+)
+from studyplatform.models import Avatar
+
+
+class AvatarForm(forms.ModelForm):
+    """Upload an avatar (a new one) or edit its description and bone mapping."""
+
+    upload = forms.FileField(
+        required=False, label="GLB or VRM file",
+        help_text="A humanoid glTF 2.0 binary (.glb) or VRM (.vrm): a skeleton with skin "
+        "weights; finger bones to fingerspell; ARKit-named morph targets or VRM "
+        "expressions for the face. At most 200 MB.",
+    )  # fmt: skip
+
+    class Meta:
+        model = Avatar
+        fields = ("name", "licence", "source", "bone_mapping")
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.fields["name"].required = False
+        if self.instance.pk is None:
+            self.fields["upload"].required = True
+            self.fields.pop("bone_mapping", None)
+
+    def clean_upload(self):
+        upload = self.cleaned_data.get("upload")
+        if upload is not None:
+            check_avatar_file(upload)  # AvatarRejected is the field's error
+        return upload
+
+    def clean_bone_mapping(self):
+        value = self.cleaned_data.get("bone_mapping") or {}
+        check_bone_mapping(self.instance, value)
+        return value
+
+
+@admin.register(Avatar)
+class AvatarAdmin(admin.ModelAdmin):
+    """A researcher's avatars; each sees and uses only their own."""
+
+    form = AvatarForm
+    list_display = ("name", "licence", "status", "fingers", "face", "condition_count")
+    list_filter = ("status",)
+    search_fields = ("name", "source")
+    readonly_fields = ("stills", "findings", "status", "error", "sha256", "original_name")
+
+    def get_fieldsets(self, request: HttpRequest, obj=None):
+        if obj is None:
+            return [(None, {"fields": ("upload", "name", "licence", "source")})]
+        return [
+            (None, {"fields": ("stills", "name", "licence", "source", "status", "error")}),
+            ("What the engine found", {"fields": ("findings", "bone_mapping")}),
+            ("File", {"fields": ("original_name", "sha256")}),
+        ]
+
+    def get_queryset(self, request: HttpRequest):
+        queryset = super().get_queryset(request).annotate(_conditions=Count("conditions"))
+        return queryset if request.user.is_superuser else queryset.filter(owner=request.user)
+
+    def _own(self, request: HttpRequest, obj) -> bool:
+        return obj is None or request.user.is_superuser or obj.owner_id == request.user.pk
+
+    def has_view_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_view_permission(request, obj) and self._own(request, obj)
+
+    def has_change_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_change_permission(request, obj) and self._own(request, obj)
+
+    def has_delete_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_delete_permission(request, obj) and self._own(request, obj)
+
+    def save_model(self, request: HttpRequest, obj: Avatar, form, change: bool) -> None:
+        """Store a new upload through its action; save a new mapping into the file."""
+        data = form.cleaned_data
+        if not change:
+            created = do_upload_avatar(request.user, data["upload"], data.get("name") or "",
+                                       data["licence"], data.get("source") or "")  # fmt: skip
+            obj.pk, obj.file = created.pk, created.file
+            return
+        stored = Avatar.objects.get(pk=obj.pk)
+        super().save_model(request, obj, form, change)
+        if (data.get("bone_mapping") or {}) != (stored.bone_mapping or {}):
+            do_map_avatar_bones(obj, data["bone_mapping"])
+            messages.info(request, "The mapping is saved in the file; clips filmed with the "
+                          "avatar will be rendered again.")  # fmt: skip
+
+    @admin.display(description="fingerspells")
+    def fingers(self, avatar: Avatar) -> bool:
+        return avatar.fingerspells
+
+    @admin.display(description="face channels")
+    def face(self, avatar: Avatar) -> int:
+        return len(avatar.report.get("face_channels", []))
+
+    @admin.display(description="conditions", ordering="_conditions")
+    def condition_count(self, avatar: Avatar) -> int:
+        return avatar._conditions
+
+    @admin.display(description="previews")
+    def stills(self, avatar: Avatar) -> str:
+        if avatar.status != Avatar.Status.READY:
+            return "Being rendered; reload the page." if avatar.status == "preparing" else "—"
+        return format_html_join(
+            " ", '<figure style="display:inline-block;margin:0 8px 0 0"><img src="{}" '
+            'width="240" alt="{}"><figcaption>{}</figcaption></figure>',
+            ((reverse("private_media", args=[field.name]), label, label)
+             for field, label in ((avatar.still_rest, "at rest"),
+                                  (avatar.still_letter, "the letter B"),
+                                  (avatar.still_face, "brows raised (a question)"))),
+        )  # fmt: skip
+
+    @admin.display(description="bones and face")
+    def findings(self, avatar: Avatar) -> str:
+        report = avatar.report or {}
+        missing = report.get("missing_fingers") or {}
+        hands = "; ".join(
+            f"{side} hand: {'all finger bones' if not names else 'lacks ' + ', '.join(names)}"
+            for side, names in missing.items()
+        )
+        channels = report.get("face_channels") or []
+        face = (f"plays {len(channels)} channels ({', '.join(channels[:8])}"
+                f"{'…' if len(channels) > 8 else ''})" if channels else
+                "no morph target the face channels drive (ARKit names or VRM expressions): "
+                "non-manual signals are not shown")  # fmt: skip
+        return format_html(
+            "{} of {} joints mapped to the engine's; not mapped: {}.<br>{}.<br>Face: {}.<br>"
+            "Height {} m.<br><details><summary>The mapping</summary><pre>{}</pre></details>",
+            len(report.get("mapped", {})), report.get("joints", 0),
+            ", ".join(report.get("unmapped", [])) or "none", hands, face,
+            report.get("height_m"), json.dumps(report.get("mapped", {}), indent=1),
+        )  # fmt: skip

@@ -1,0 +1,69 @@
+"""Keep researchers' own avatars: humanoid glTF 2.0 / VRM files that film conditions."""
+
+from django.conf import settings
+from django.db import models
+
+from studyplatform.storage import private_storage
+
+
+class Avatar(models.Model):
+    """A humanoid avatar a researcher uploaded (GLB or VRM), with what the engine makes
+    of it: its bones mapped to the engine's, the face channels it plays, preview stills.
+
+    A condition filmed with it renders the engine's motion retargeted onto it; the
+    file's SHA-256 is part of each clip's hash, so a new mapping (saved in the file)
+    renders new clips.
+    """
+
+    class Status(models.TextChoices):
+        PREPARING = "preparing", "Rendering previews"
+        READY = "ready", "Ready"
+        FAILED = "failed", "Failed"
+
+    owner = models.ForeignKey(
+        settings.AUTH_USER_MODEL, on_delete=models.PROTECT, related_name="avatars"
+    )
+    name = models.CharField(max_length=100)
+    file = models.FileField(
+        upload_to="avatars/", storage=private_storage,
+        help_text="The avatar as stored: the upload with the bone mapping saved in it.",
+    )  # fmt: skip
+    sha256 = models.CharField("SHA-256 of the file", max_length=64, db_index=True)
+    original_name = models.CharField(max_length=255, blank=True)
+    licence = models.CharField(
+        max_length=200,
+        help_text="Under what terms you may show it, e.g. 'CC0', 'CC BY 4.0', 'VRoid "
+        "Hub: avatar use allowed'. Reports of studies that use it name it.",
+    )
+    source = models.CharField(
+        max_length=300, blank=True, help_text="Where it comes from: a URL, its author."
+    )
+    bone_mapping = models.JSONField(
+        default=dict, blank=True,
+        help_text="Your own mapping, avatar joint → engine joint, for joints the engine "
+        "does not recognise (an empty engine joint unmaps one). Saved in the file.",
+    )  # fmt: skip
+    report = models.JSONField(
+        default=dict, blank=True,
+        help_text="What the engine found: joints mapped and not, finger bones missing, "
+        "face channels it plays, height.",
+    )  # fmt: skip
+    still_rest = models.FileField(upload_to="avatars/", storage=private_storage, blank=True)
+    still_letter = models.FileField(upload_to="avatars/", storage=private_storage, blank=True)
+    still_face = models.FileField(upload_to="avatars/", storage=private_storage, blank=True)
+    status = models.CharField(
+        max_length=10, choices=Status.choices, default=Status.PREPARING, db_index=True
+    )
+    error = models.TextField(blank=True)
+    created_at = models.DateTimeField(auto_now_add=True)
+
+    class Meta:
+        ordering = ["owner", "name", "pk"]
+
+    def __str__(self) -> str:
+        return self.name
+
+    @property
+    def fingerspells(self) -> bool:
+        """Return whether its right hand has every bone fingerspelling moves."""
+        return not (self.report.get("missing_fingers") or {}).get("right")
