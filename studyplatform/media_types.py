@@ -49,11 +49,12 @@ WEBP = MediaKind(".webp", "image/webp", "image")
 POSE = MediaKind(".pose", "application/octet-stream", "motion")
 BVH = MediaKind(".bvh", "application/octet-stream", "motion")
 GLB = MediaKind(".glb", "model/gltf-binary", "model")  # glTF 2.0 binary, VRM too
+FBX = MediaKind(".fbx", "application/octet-stream", "motion")  # read through assimp
 
 # What may be served, by the extension a stored file has. Files kept from before names
 # followed content (.mov, .m4v, .jpeg uploads) are served as the container they claimed,
 # which a browser only ever plays or shows: with nosniff it never reads them as a page.
-SERVED = {kind.suffix: kind for kind in (WEBM, MP4, PNG, JPEG, WEBP, POSE, BVH, GLB)}
+SERVED = {kind.suffix: kind for kind in (WEBM, MP4, PNG, JPEG, WEBP, POSE, BVH, GLB, FBX)}
 SERVED.update({".mov": MP4, ".m4v": MP4, ".jpeg": JPEG})
 
 # The policy of every media response: nothing in it runs, even a file a browser renders
@@ -80,6 +81,8 @@ def sniff(head: bytes) -> MediaKind | None:
         return WEBM
     if head.startswith(b"glTF"):
         return GLB
+    if head.startswith(b"Kaydara FBX Binary") or head.lstrip().startswith(b"; FBX"):
+        return FBX
     if head[4:8] == b"ftyp":
         return MP4  # MP4, QuickTime and M4V: browsers play the ISO family as video/mp4
     if head.startswith(b"\x89PNG\r\n\x1a\n"):

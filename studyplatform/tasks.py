@@ -72,13 +72,14 @@ def prepare_now(recording_id: int) -> str:
     if recording.status == Recording.Status.READY:
         return recording.status
     try:
-        quality, pose, sheet = _prepare(recording, do_report_capture_progress)
+        quality, pose, sheet, bvh = _prepare(recording, do_report_capture_progress)
     except (ValueError, OSError) as error:  # the engine's errors name the problem
         return do_fail_recording(recording, error)
-    return do_finish_recording(recording, quality, pose, sheet)
+    return do_finish_recording(recording, quality, pose, sheet, bvh)
 
 
-def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | None]:
+def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | None,
+                                                  bytes | None]:  # fmt: skip
     from studyplatform.lib.recordings import retimes_recordings
     from synthesis.capture import captured_hand, format_pose, read_pose
     from synthesis.skeleton.bvh import read_bvh
@@ -86,7 +87,7 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
 
     item, path = recording.item, Path(recording.upload.path)
     side = (item.parameters or {}).get("side", "right")
-    pose = None
+    pose = bvh = None
     if recording.is_video:
         from synthesis.capture.video import capture_hands, expected_frames
 
@@ -102,6 +103,14 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
         pose = format_pose(landmarks)
     elif path.suffix.lower() == ".pose":
         landmarks = read_pose(path)
+    elif path.suffix.lower() in (".fbx", ".glb"):  # converted to BVH: what clips read
+        from synthesis.avatar.imported.motion import read_motion_file
+        from synthesis.skeleton.bvh import format_bvh
+
+        landmarks = None
+        motion = read_motion_file(path)
+        bvh = format_bvh(motion).encode()
+        quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
     else:
         landmarks = None
         motion = read_bvh(path)
@@ -117,7 +126,7 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
     performance = Performance.from_motion(motion, item.text, side)
     if retimes_recordings(item.study):
         quality["holds_found"] = len(performance.extraction.timing.letters)
-    return quality, pose, sheet
+    return quality, pose, sheet, bvh
 
 
 def _contact_sheet(hand, video: Path) -> bytes | None:

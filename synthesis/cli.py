@@ -128,15 +128,12 @@ def _sentence(args: argparse.Namespace) -> int:
 
 
 def _render_bvh(args: argparse.Namespace) -> int:
+    from synthesis.avatar.imported.motion import read_motion_file
     from synthesis.render.clip import render_clip
     from synthesis.rigs.retarget import retarget
-    from synthesis.skeleton.bvh import read_bvh
     from synthesis.skeleton.mapping import detect_mapping
-    from synthesis.skeleton.retime import resample
 
-    motion = read_bvh(args.file)
-    if args.rate and abs(motion.rate_hz - args.rate) > 1e-9:
-        motion = resample(motion, args.rate)
+    motion = read_motion_file(args.file, args.rate)
     mapping = detect_mapping(motion.skeleton)
     view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
     side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
@@ -285,7 +282,8 @@ def parser() -> argparse.ArgumentParser:
     clip_options(pose_file)
     pose_file.set_defaults(run=render_pose_file_command)
 
-    bvh = rendering("render-bvh", "render a BVH motion to an MP4", view=None)
+    bvh = rendering("render-bvh", "render a BVH, glTF/GLB or (through assimp) FBX motion "
+                    "to an MP4", view=None)  # fmt: skip
     bvh.add_argument("file", type=Path)
     bvh.add_argument("--rate", type=float, default=None, help="resample to this frame rate")
     clip_options(bvh)

@@ -17,7 +17,11 @@ class StudyImportError(ValueError):
 
 # What each media name of a definition must be, by content.
 ASL_VIDEO, ASL_POSTER = ("video",), ("image",)
-RECORDING_KINDS = {"upload": ("video", "motion"), "motion": ("motion",), "sheet": ("image",)}
+RECORDING_KINDS = {
+    "upload": ("video", "motion", "model"),
+    "motion": ("motion",),
+    "sheet": ("image",),
+}
 UPLOAD_KINDS = {"video": ("video",), "poster": ("image",)}
 
 

@@ -15,7 +15,15 @@ from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
-from studyplatform.media_types import POSE, MediaKind, MediaRejected, check_upload, stored_video
+from studyplatform.media_types import (
+    FBX,
+    GLB,
+    POSE,
+    MediaKind,
+    MediaRejected,
+    check_upload,
+    stored_video,
+)
 from studyplatform.models import Item, Recording, Study
 from studyplatform.queue import PREPARE_RECORDING, queue_job_on_commit
 
@@ -27,10 +35,14 @@ class RecordingRejected(ValidationError):
 
 
 def check_motion_file(name: str, data: bytes, kind: MediaKind) -> None:
-    """Raise RecordingRejected if a .pose or BVH file (by content: *kind*) does not parse."""
+    """Raise RecordingRejected if a .pose, BVH, FBX or glTF file (by content: *kind*) does
+    not read as motion."""
     from synthesis.capture import PoseFileError, parse_pose
     from synthesis.skeleton.bvh import BvhError, parse_bvh
 
+    if kind in (FBX, GLB):
+        converted_motion(name, data, kind)
+        return
     try:
         if kind is POSE:
             recording = parse_pose(data, name)
@@ -42,6 +54,23 @@ def check_motion_file(name: str, data: bytes, kind: MediaKind) -> None:
         raise RecordingRejected(f"“{name}” is not a BVH text file.") from None
     except (PoseFileError, BvhError) as error:
         raise RecordingRejected(str(error)) from None
+
+
+def converted_motion(name: str, data: bytes, kind: MediaKind):
+    """Return the motion of an FBX (through assimp) or glTF file as a BVH-like Motion;
+    RecordingRejected names what is wrong."""
+    import tempfile
+    from pathlib import Path
+
+    from synthesis.avatar.imported.motion import read_motion_file
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"motion{kind.suffix}"
+        path.write_bytes(data)
+        try:
+            return read_motion_file(path)
+        except ValueError as error:  # GltfError, a skeleton read as no motion
+            raise RecordingRejected(f"“{name}”: {error}") from None
 
 
 def do_attach_recording(item: Item, upload, mirrored: bool = False,
@@ -62,13 +91,13 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
     if upload.size > MAX_RECORDING_BYTES:
         raise RecordingRejected("The recording is larger than 300 MB.")
     try:
-        kind = check_upload(upload, ("video", "motion"), f"“{name}”")
+        kind = check_upload(upload, ("video", "motion", "model"), f"“{name}”")
     except MediaRejected:
         raise RecordingRejected(
-            f"“{name}” is not a recording: upload a video (MP4, WebM, MOV), a .pose file "
-            "or a BVH file (judged by its content)."
+            f"“{name}” is not a recording: upload a video (MP4, WebM, MOV), a .pose file, "
+            "a BVH, FBX or glTF (GLB) motion (judged by its content)."
         ) from None
-    if kind.family == "motion":
+    if kind.family in ("motion", "model"):
         upload.seek(0)
         check_motion_file(name, upload.read(), kind)
         digest = hashlib.sha256()
@@ -108,9 +137,9 @@ def do_fail_recording(recording: Recording, error: Exception) -> str:
 
 
 def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None = None,
-                        sheet: bytes | None = None) -> str:  # fmt: skip
+                        sheet: bytes | None = None, bvh: bytes | None = None) -> str:  # fmt: skip
     """Mark the recording ready, with its captured landmarks (*pose*) and contact sheet
-    (*sheet*, PNG) for a video.
+    (*sheet*, PNG) for a video, or an FBX's or glTF's motion as BVH (*bvh*).
 
     Older recordings of the item are removed with their files, and the study's stand-in
     conditions are relabelled (:func:`do_relabel_stand_ins`).
@@ -120,6 +149,8 @@ def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None 
         stem = recording.upload.name.rsplit("/", 1)[-1].rsplit(".", 1)[0]
         if pose is not None:
             recording.motion.save(f"{stem}.pose", ContentFile(pose), save=False)
+        elif bvh is not None:
+            recording.motion.save(f"{stem}.bvh", ContentFile(bvh), save=False)
         else:
             recording.motion.name = recording.upload.name
         if sheet is not None:

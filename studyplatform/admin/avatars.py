@@ -16,6 +16,7 @@ from studyplatform.actions.avatars import (
     do_map_avatar_bones,
     do_upload_avatar,
 )
+from studyplatform.admin.permissions import OwnedMixin
 from studyplatform.models import Avatar
 
 
@@ -53,7 +54,7 @@ class AvatarForm(forms.ModelForm):
 
 
 @admin.register(Avatar)
-class AvatarAdmin(admin.ModelAdmin):
+class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
     """A researcher's avatars; each sees and uses only their own."""
 
     form = AvatarForm
@@ -74,18 +75,6 @@ class AvatarAdmin(admin.ModelAdmin):
     def get_queryset(self, request: HttpRequest):
         queryset = super().get_queryset(request).annotate(_conditions=Count("conditions"))
         return queryset if request.user.is_superuser else queryset.filter(owner=request.user)
-
-    def _own(self, request: HttpRequest, obj) -> bool:
-        return obj is None or request.user.is_superuser or obj.owner_id == request.user.pk
-
-    def has_view_permission(self, request: HttpRequest, obj=None) -> bool:
-        return super().has_view_permission(request, obj) and self._own(request, obj)
-
-    def has_change_permission(self, request: HttpRequest, obj=None) -> bool:
-        return super().has_change_permission(request, obj) and self._own(request, obj)
-
-    def has_delete_permission(self, request: HttpRequest, obj=None) -> bool:
-        return super().has_delete_permission(request, obj) and self._own(request, obj)
 
     def save_model(self, request: HttpRequest, obj: Avatar, form, change: bool) -> None:
         """Store a new upload through its action; save a new mapping into the file."""

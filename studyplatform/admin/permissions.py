@@ -144,3 +144,20 @@ class DesignLockMixin:
 
     def has_delete_permission(self, request: HttpRequest, obj: Model | None = None) -> bool:
         return super().has_delete_permission(request, obj) and not self._design_locked(obj)
+
+
+class OwnedMixin:
+    """Limit a researcher's library (signed templates, avatars) to its owner's rows:
+    listed, viewed, changed and deleted by them alone (a superuser sees all)."""
+
+    def _own(self, request: HttpRequest, obj) -> bool:
+        return obj is None or request.user.is_superuser or obj.owner_id == request.user.pk
+
+    def has_view_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_view_permission(request, obj) and self._own(request, obj)
+
+    def has_change_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_change_permission(request, obj) and self._own(request, obj)
+
+    def has_delete_permission(self, request: HttpRequest, obj=None) -> bool:
+        return super().has_delete_permission(request, obj) and self._own(request, obj)

@@ -10,6 +10,7 @@ from django.shortcuts import redirect
 from django.urls import path
 
 from studyplatform.actions.prompts import do_attach_asl_video
+from studyplatform.admin.permissions import OwnedMixin
 from studyplatform.asl import study_prompts
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo, SignedTemplate
 
@@ -92,7 +93,7 @@ def _missing_file():
 
 
 @admin.register(SignedTemplate)
-class SignedTemplateAdmin(admin.ModelAdmin):
+class SignedTemplateAdmin(OwnedMixin, admin.ModelAdmin):
     """A researcher's reusable signed texts; each sees and attaches only their own."""
 
     list_display = ("name", "kind", "study_count", "created_at")
@@ -111,15 +112,3 @@ class SignedTemplateAdmin(admin.ModelAdmin):
         if not change:
             obj.owner = request.user
         super().save_model(request, obj, form, change)
-
-    def _own(self, request: HttpRequest, obj) -> bool:
-        return obj is None or request.user.is_superuser or obj.owner_id == request.user.pk
-
-    def has_view_permission(self, request: HttpRequest, obj=None) -> bool:
-        return super().has_view_permission(request, obj) and self._own(request, obj)
-
-    def has_change_permission(self, request: HttpRequest, obj=None) -> bool:
-        return super().has_change_permission(request, obj) and self._own(request, obj)
-
-    def has_delete_permission(self, request: HttpRequest, obj=None) -> bool:
-        return super().has_delete_permission(request, obj) and self._own(request, obj)

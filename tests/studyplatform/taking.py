@@ -86,3 +86,21 @@ def download_report(page, url: str, study):
     with page.expect_download() as download:
         page.get_by_role("link", name="report (zip)").click()
     return zipfile.ZipFile(io.BytesIO(Path(download.value.path()).read_bytes()))
+
+
+def check_pair_wins(archive, study, participant, clicked: dict) -> dict:
+    """Assert the report's pairs.csv counts, by condition label, the clips *participant*
+    clicked (*clicked*: trial key → clip position); return its row."""
+    import csv
+    import io
+
+    from studyplatform.lib import presented_conditions
+    from studyplatform.models import Trial
+
+    (pairs,) = list(csv.DictReader(io.StringIO(archive.read("report/pairs.csv").decode())))
+    wins = {c.label: 0 for c in study.conditions.all()}
+    for key, position in clicked.items():
+        trial = Trial.objects.get(study=study, key=key)
+        wins[presented_conditions(participant, trial)[position - 1].label] += 1
+    assert {pairs["a"]: int(pairs["a_wins"]), pairs["b"]: int(pairs["b_wins"])} == wins
+    return pairs

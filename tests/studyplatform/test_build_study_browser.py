@@ -7,7 +7,6 @@ downloaded from the results page counts exactly what was clicked. No code or JSO
 edited anywhere.
 """
 
-import csv
 import io
 import os
 import zipfile
@@ -16,9 +15,8 @@ from pathlib import Path
 import pytest
 from playwright.sync_api import expect
 
-from studyplatform.lib import presented_conditions
-from studyplatform.models import Condition, Participant, Stimulus, Study, Trial
-from tests.studyplatform.taking import take_study
+from studyplatform.models import Condition, Participant, Stimulus, Study
+from tests.studyplatform.taking import check_pair_wins, take_study
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
 
@@ -134,13 +132,8 @@ def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_report
     with page.expect_download() as download:
         page.get_by_role("link", name="report (zip)").click()
     archive = zipfile.ZipFile(io.BytesIO(Path(download.value.path()).read_bytes()))
-    (pairs,) = list(csv.DictReader(io.StringIO(archive.read("report/pairs.csv").decode())))
     # The report names conditions by their labels.
-    wins = {c.label: 0 for c in study.conditions.all()}
-    for key, position in clicked.items():
-        trial = Trial.objects.get(study=study, key=key)
-        wins[presented_conditions(participant, trial)[position - 1].label] += 1
-    assert {pairs["a"]: int(pairs["a_wins"]), pairs["b"]: int(pairs["b_wins"])} == wins
+    pairs = check_pair_wins(archive, study, participant, clicked)
     assert int(pairs["n"]) == 2
 
     # Issue 35 (5): a new version renders none of the clips it shares with this one

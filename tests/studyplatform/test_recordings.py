@@ -7,6 +7,8 @@ back with MediaPipe.
 """
 
 import re
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -30,6 +32,7 @@ from synthesis.capture import format_pose, from_hand_motion
 from synthesis.fingerspelling.spelling import spell
 from synthesis.rigs.hand import HandModel
 from synthesis.skeleton.bvh import format_bvh
+from synthesis.techniques import ClipRequest
 from synthesis.timing import simulate_recording
 from tests.conftest import as_draft, tiny_webm
 
@@ -304,3 +307,25 @@ def test_a_tampered_recording_in_a_definition_is_refused_by_name(
     with pytest.raises(StudyImportError, match=re.escape(message)):
         do_import_study(exported, owner=alice, slug="elsewhere")
     assert not fingerspelling.__class__.objects.filter(slug="elsewhere").exists()
+
+
+@pytest.mark.skipif(shutil.which("assimp") is None, reason="assimp-utils is not installed")
+def test_glb_and_fbx_motion_come_in_as_bvh(fingerspelling, django_capture_on_commit_callbacks,
+                                          tmp_path):  # fmt: skip
+    # A word's motion exported by the engine as GLB comes back as a BVH recording; the
+    # FBX of assimp's test models reads (through assimp) but its skeleton is no hand.
+    from synthesis.interchange import request_glb
+
+    item = fingerspelling.items.filter(kind=Item.Kind.WORD).first()
+    request = ClipRequest.from_parameters("word", item.text, {"rate_hz": 30.0, "view": "hand"})
+    glb = SimpleUploadedFile(f"{item.key}.glb", request_glb(request))
+    recording = _attach(item, glb, django_capture_on_commit_callbacks)
+    assert recording.status == Recording.Status.READY, recording.error
+    assert recording.upload.name.endswith(".glb") and recording.motion.name.endswith(".bvh")
+    assert recording.quality["frames"] > 10
+    fbx = Path("/usr/share/assimp/models/FBX/animation_with_skeleton.fbx")
+    if fbx.is_file():
+        upload = SimpleUploadedFile("bones.fbx", fbx.read_bytes())
+        failed = _attach(item, upload, django_capture_on_commit_callbacks)
+        assert failed.status == Recording.Status.FAILED
+        assert "Cannot map this skeleton's joints" in failed.error

@@ -16,9 +16,13 @@ from pathlib import Path
 import pytest
 from playwright.sync_api import expect
 
-from studyplatform.lib import presented_conditions
 from studyplatform.models import Condition, Stimulus, Study, Trial, UploadedClip
-from tests.studyplatform.taking import download_report, generate_and_open, take_study
+from tests.studyplatform.taking import (
+    check_pair_wins,
+    download_report,
+    generate_and_open,
+    take_study,
+)
 from tests.studyplatform.test_uploaded_clips import make_video
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
@@ -156,11 +160,6 @@ def test_a_study_mixing_uploaded_and_rendered_clips_is_built_taken_and_analysed(
 
     # The report analyses both conditions and says which clips were uploaded.
     archive = download_report(page, url, study)
-    (pairs,) = list(csv.DictReader(io.StringIO(archive.read("report/pairs.csv").decode())))
-    wins = {c.label: 0 for c in study.conditions.all()}
-    for key, position in clicked.items():
-        trial = Trial.objects.get(study=study, key=key)
-        wins[presented_conditions(participant, trial)[position - 1].label] += 1
-    assert {pairs["a"]: int(pairs["a_wins"]), pairs["b"]: int(pairs["b_wins"])} == wins
+    check_pair_wins(archive, study, participant, clicked)
     report = archive.read("report/report.html").decode()
     assert "Uploaded clips:" in report and "Filmed signer" in report

@@ -1,15 +1,19 @@
-"""Test third-party BVH retargeted onto the engine's body (issue 37): CMU clips from
+"""Test third-party motion retargeted onto the engine's body (issue 37): CMU clips from
 Debian's assimp-testmodels (/usr/share/assimp/models/BVH, subject 1's 01_01 and 01_03,
-CMU Graphics Lab Motion Capture Database), their bones' directions kept.
+CMU Graphics Lab Motion Capture Database), their bones' directions kept; the same
+through assimp's converter; the package's FBX read through assimp.
 
 scripts/system-packages.txt installs the package; without it these tests say so and skip.
 """
 
+import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from synthesis.avatar.imported.gltf_read import GltfError
+from synthesis.avatar.imported.motion import assimp_to_glb, read_gltf_motion, read_motion_file
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.retarget import bone_direction_errors_deg, retarget
 from synthesis.skeleton.bvh import BvhError, read_bvh
@@ -44,3 +48,42 @@ def test_a_bvh_whose_frame_count_is_wrong_is_refused_naming_it():
     # Boxing_Toes.bvh says "Frames: 3069" above 3070 frame lines.
     with pytest.raises(BvhError, match="'Frames: 3069' but the file has 3070 frame lines"):
         read_bvh(MODELS / "BVH" / "Boxing_Toes.bvh")
+
+
+needs_assimp = pytest.mark.skipif(
+    shutil.which("assimp") is None,
+    reason="Debian's assimp-utils is not installed (scripts/system-packages.txt)",
+)
+
+
+@needs_models
+@needs_assimp
+def test_motion_through_assimp_retargets_as_the_bvh_itself():
+    # assimp reads the CMU BVH and writes glTF; read back as motion, the body moves as
+    # when the BVH is read directly.
+    source = MODELS / "BVH" / "01_01.bvh"
+    direct = resample(read_bvh(source), 30.0)
+    converted = read_gltf_motion(assimp_to_glb(source), "01_01.glb", 30.0)
+    body = BodyModel("right")
+    a, b = retarget(direct, body), retarget(converted, body)
+    n = min(direct.n_frames, converted.n_frames)
+    names = body.skeleton.names
+    for joint, child in (("right_elbow", "right_wrist"), ("left_shoulder", "left_elbow"),
+                         ("spine_middle", "spine_upper")):  # fmt: skip
+        ours = a.positions_m[:n, names.index(child)] - a.positions_m[:n, names.index(joint)]
+        theirs = b.positions_m[:n, names.index(child)] - b.positions_m[:n, names.index(joint)]
+        cosine = np.sum(ours * theirs, axis=1) / np.linalg.norm(ours, axis=1) / \
+            np.linalg.norm(theirs, axis=1)  # fmt: skip
+        assert np.degrees(np.arccos(np.clip(cosine, -1, 1))).max() < 0.05, joint
+
+
+@needs_models
+@needs_assimp
+def test_an_fbx_goes_in_through_assimp_and_a_skeleton_that_is_no_humanoid_is_named():
+    motion = read_motion_file(MODELS / "FBX" / "animation_with_skeleton.fbx")
+    assert motion.n_frames == 21 and motion.rate_hz == pytest.approx(24.0)
+    assert {"Bone", "Bone.001", "Bone.013"} <= set(motion.skeleton.names)
+    with pytest.raises(ValueError, match=r"Cannot map this skeleton's joints \(.*Bone"):
+        detect_mapping(motion.skeleton)
+    with pytest.raises(GltfError, match="assimp cannot read"):
+        read_motion_file(MODELS / "FBX" / "transparentTest.fbx")  # no animation: none to read

@@ -1,0 +1,197 @@
+"""Read third-party motion: a glTF animation, or FBX (and the other formats Debian's
+assimp reads) converted to glTF by assimp's command line, as a BVH-like Motion.
+
+The skeleton is the skin's joints (else the animated nodes and their ancestors); each
+joint's local rotation at each frame comes from the animation, sampled at a fixed rate
+(linear keys slerped, step keys held, cubic-spline keys at their values), as Euler
+angles in BVH's ZXY order; its offset is its rest translation. What lies above the
+skeleton's root in the node tree (an FBX's unit scale and its Z-up turn) is folded into
+the root, so the motion is in metres, Y up, as the engine's. The motion then goes to
+:func:`synthesis.rigs.retarget.retarget` as a BVH file's would.
+"""
+
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial.transform import Rotation, Slerp
+
+from synthesis.avatar.imported.gltf_read import GltfError, Reader, load
+from synthesis.skeleton.motion import Motion
+from synthesis.skeleton.skeleton import Joint, Skeleton
+
+ASSIMP_TIMEOUT_S = 300
+GLTF_SUFFIXES = (".glb", ".gltf", ".vrm")
+# What assimp 5 reads that motion comes in (its command line converts them to glTF).
+ASSIMP_SUFFIXES = (".fbx", ".dae", ".x", ".ms3d", ".b3d", ".smd")
+DEFAULT_RATE_HZ = 30.0
+ROOT_CHANNELS = ("Xposition", "Yposition", "Zposition", "Zrotation", "Xrotation", "Yrotation")
+JOINT_CHANNELS = ("Zrotation", "Xrotation", "Yrotation")
+
+
+def assimp_to_glb(path: str | Path) -> bytes:
+    """Return the file at *path* converted to GLB by assimp's command line (Debian's
+    ``assimp-utils``); GltfError names what went wrong."""
+    command = shutil.which("assimp")
+    if command is None:
+        raise GltfError("assimp is not installed (Debian's assimp-utils; make install adds "
+                        "it): FBX and the other formats it reads cannot come in.")  # fmt: skip
+    with tempfile.TemporaryDirectory() as folder:
+        out = Path(folder) / "converted.glb"
+        try:
+            done = subprocess.run([command, "export", str(path), str(out), "-fglb2"],
+                                  capture_output=True, timeout=ASSIMP_TIMEOUT_S)  # fmt: skip
+        except subprocess.TimeoutExpired:
+            raise GltfError(
+                f"assimp took over {ASSIMP_TIMEOUT_S} s on {Path(path).name}."
+            ) from None
+        if done.returncode != 0 or not out.is_file():
+            why = (done.stderr or done.stdout).decode(errors="replace").strip().splitlines()
+            raise GltfError(f"assimp cannot read {Path(path).name}: "
+                            f"{why[-1] if why else 'no reason given'}.")  # fmt: skip
+        return out.read_bytes()
+
+
+def _joints(reader: Reader) -> list[int]:
+    """Return the skeleton's nodes: the first skin's joints and every node the animation
+    turns or moves (assimp hangs a BVH's root on a mesh node, outside the skin), with the
+    nodes between two of them."""
+    gltf = reader.gltf
+    members = {c.target.node for a in gltf.animations for c in a.channels
+               if c.target.path in ("rotation", "translation")}  # fmt: skip
+    if gltf.skins:
+        members |= set(gltf.skins[0].joints)
+    between = set()
+    for node in members:
+        path, up = [], reader.parent.get(node)
+        while up is not None and up not in members:
+            path.append(up)
+            up = reader.parent.get(up)
+        if up is not None:
+            between.update(path)
+    return sorted(members | between)
+
+
+def _tracks(reader: Reader, animation) -> dict:
+    """Return each animated (node, path)'s key times, values and interpolation."""
+    tracks = {}
+    for channel in animation.channels:
+        sampler = animation.samplers[channel.sampler]
+        times = reader.read(sampler.input)[:, 0]
+        values = reader.read(sampler.output)
+        interpolation = sampler.interpolation or "LINEAR"
+        if interpolation == "CUBICSPLINE":  # in-tangent, value, out-tangent per key
+            values = values.reshape(len(times), 3, -1)[:, 1]
+        tracks[(channel.target.node, channel.target.path)] = (times, values, interpolation)
+    return tracks
+
+
+def _sample(track, times: np.ndarray, rotation: bool) -> np.ndarray:
+    keys, values, interpolation = track
+    if len(keys) == 1:
+        return np.repeat(values[:1], len(times), axis=0)
+    clipped = np.clip(times, keys[0], keys[-1])
+    if interpolation == "STEP":
+        return values[np.clip(np.searchsorted(keys, clipped, side="right") - 1, 0, None)]
+    if rotation:
+        return Slerp(keys, Rotation.from_quat(values))(clipped).as_quat()
+    return np.column_stack([np.interp(clipped, keys, values[:, k]) for k in range(values.shape[1])])
+
+
+def _rate(tracks: dict, rate_hz: float | None) -> tuple[np.ndarray, float]:
+    """Return the frame times to sample and their rate (the keys' own rate, at most
+    120 Hz, when *rate_hz* is None)."""
+    keys = np.unique(np.concatenate([t[0] for t in tracks.values()]))
+    steps = np.diff(keys)
+    if rate_hz is None:
+        shortest = steps[steps > 1e-6].min() if (steps > 1e-6).any() else 1 / DEFAULT_RATE_HZ
+        rate_hz = float(min(120.0, max(1.0, round(1.0 / shortest))))
+    return np.arange(keys[0], keys[-1] + 0.5 / rate_hz, 1.0 / rate_hz), rate_hz
+
+
+def _parents_first(reader: Reader, nodes: list[int]) -> list[int]:
+    """Return *nodes* ordered so that each comes after its parent, as BVH lists joints."""
+    members, order = set(nodes), []
+    for node in nodes:
+        chain, up = [], node
+        while up is not None and up in members and up not in order and up not in chain:
+            chain.append(up)
+            up = reader.parent.get(up)
+        order.extend(reversed(chain))
+    return order
+
+
+def _local(tracks: dict, node, n, times: np.ndarray) -> tuple[np.ndarray, Rotation]:
+    """Return a node's local translations and rotations at *times* (its rest where the
+    animation leaves it)."""
+    frames = len(times)
+    if (node, "translation") in tracks:
+        translation = _sample(tracks[(node, "translation")], times, False)
+    else:
+        rest = n.translation if n.translation is not None else (0, 0, 0)
+        translation = np.repeat(np.asarray(rest, float)[None], frames, axis=0)
+    if (node, "rotation") in tracks:
+        quaternions = _sample(tracks[(node, "rotation")], times, True)
+    else:
+        rest = n.rotation if n.rotation is not None else (0, 0, 0, 1)
+        quaternions = np.repeat(np.asarray(rest, float)[None], frames, axis=0)
+    return translation, Rotation.from_quat(quaternions)
+
+
+def read_gltf_motion(data: bytes, source: str = "the file",
+                     rate_hz: float | None = None) -> Motion:  # fmt: skip
+    """Return the first animation of glTF *data* as a Motion sampled at *rate_hz*
+    (the keys' own rate, at most 120 Hz, when None)."""
+    gltf, buffers = load(data, source)
+    reader = Reader(gltf, buffers, source)
+    if not gltf.animations:
+        raise GltfError(f"{source} has no animation: there is no motion to bring in.")
+    nodes = _parents_first(reader, _joints(reader))
+    if not nodes:
+        raise GltfError(f"{source}'s animation moves no skeleton.")
+    tracks = _tracks(reader, gltf.animations[0])
+    times, rate_hz = _rate(tracks, rate_hz)
+    joints, columns, scale = [], [], 1.0
+    for index, node in enumerate(nodes):
+        parent = reader.parent.get(node)
+        parent_index = nodes.index(parent) if parent in nodes else -1
+        translation, rotation = _local(tracks, node, gltf.nodes[node], times)
+        if parent_index < 0:  # fold what lies above the skeleton into its root
+            above = reader.world_matrix(parent) if parent is not None else np.eye(4)
+            scale = float(np.cbrt(abs(np.linalg.det(above[:3, :3])))) or 1.0
+            turn = Rotation.from_matrix(above[:3, :3] / scale)
+            translation = turn.apply(translation) * scale + above[:3, 3]
+            rotation = turn * rotation
+            channels = ROOT_CHANNELS
+            columns.append(np.column_stack([translation, rotation.as_euler("ZXY", degrees=True)]))
+            offset = translation[0]
+        else:
+            channels = JOINT_CHANNELS
+            columns.append(rotation.as_euler("ZXY", degrees=True))
+            offset = translation[0] * scale
+        name = gltf.nodes[node].name or f"joint_{index}"
+        unique = name if all(j.name != name for j in joints) else f"{name}_{index}"
+        joints.append(Joint(unique, parent_index, tuple(float(v) for v in offset), channels))
+    skeleton = Skeleton(tuple(joints), length_unit="m")
+    return Motion(skeleton, np.concatenate(columns, axis=1), 1.0 / rate_hz)
+
+
+def read_motion_file(path: str | Path, rate_hz: float | None = None) -> Motion:
+    """Return the motion of a BVH, glTF/GLB/VRM, or (through assimp) FBX file at *path*."""
+    from synthesis.skeleton.bvh import read_bvh
+    from synthesis.skeleton.retime import resample
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".bvh":
+        motion = read_bvh(path)
+        return resample(motion, rate_hz) if rate_hz and abs(motion.rate_hz - rate_hz) > 1e-9 \
+            else motion  # fmt: skip
+    if suffix in GLTF_SUFFIXES:
+        return read_gltf_motion(path.read_bytes(), path.name, rate_hz)
+    if suffix in ASSIMP_SUFFIXES:
+        return read_gltf_motion(assimp_to_glb(path), path.name, rate_hz)
+    raise GltfError(f"{path.name}: motion comes in as BVH, glTF/GLB/VRM or, through assimp, "
+                    f"{', '.join(s.lstrip('.').upper() for s in ASSIMP_SUFFIXES)}.")  # fmt: skip
