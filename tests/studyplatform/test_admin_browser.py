@@ -134,6 +134,28 @@ def test_a_word_is_recorded_with_the_camera_and_a_file_uploaded(
     expect(page.locator("#recordings-summary")).to_contain_text("1 of 9")
     page.screenshot(path=SCREENSHOTS / "admin-recordings.png")
 
+    # Motion from other tools (issue 37): a word's glTF motion comes in (as BVH), and
+    # an FBX goes in through assimp, its skeleton refused by name (it is no hand).
+    from synthesis.interchange import request_glb
+    from synthesis.techniques import ClipRequest
+
+    words = [i.key for i in study.items.filter(kind="word") if i.key not in ("HEAVEN", "GUITAR")]
+    glb = tmp_path / f"{words[0]}.glb"
+    request = ClipRequest.from_parameters("word", words[0], {"rate_hz": 30.0, "view": "hand"})
+    glb.write_bytes(request_glb(request))
+    row = page.locator("tr", has=page.get_by_role("rowheader", name=words[0]))
+    row.get_by_label("File").set_input_files(str(glb))
+    row.get_by_role("button", name="Upload").click()
+    expect(page.locator("#recordings-summary")).to_contain_text("2 of 9", timeout=60_000)
+    fbx = Path("/usr/share/assimp/models/FBX/animation_with_skeleton.fbx")
+    if fbx.is_file():
+        row = page.locator("tr", has=page.get_by_role("rowheader", name=words[1]))
+        row.get_by_label("File").set_input_files(str(fbx))
+        row.get_by_role("button", name="Upload").click()
+        expect(row.locator(".errornote")).to_contain_text("Cannot map this skeleton",
+                                                           timeout=60_000)  # fmt: skip
+    page.screenshot(path=SCREENSHOTS / "admin-recordings-motion.png", full_page=True)
+
 
 @pytest.mark.parametrize("status", ["draft", "open"])
 def test_the_study_page_fits_a_1400_px_window(browser, live_server, researcher, status):

@@ -62,10 +62,13 @@ def _box(centre: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
     return centre + half * corners, faces
 
 
-def humanoid_glb(fingers: bool = True, vrm: bool = False, skin: bool = True,
-                 morphs: tuple[str, ...] = ()) -> bytes:  # fmt: skip
+def humanoid_glb(
+    fingers: bool = True, vrm: bool = False, skin: bool = True,
+    morphs: tuple[str, ...] = (), expressions: dict | None = None,
+) -> bytes:  # fmt: skip
     """Return a T-posed humanoid as GLB (VRM 1.0 with *vrm*), a box skinned to each bone;
-    *morphs* names morph targets that lift the head box; without *skin*, no skin at all."""
+    *morphs* names morph targets that lift the head box; *expressions* (VRM preset →
+    morph target index) binds VRM expressions to them; without *skin*, no skin at all."""
     joints = bones(fingers)
     names = [j[0] for j in joints]
     positions = {name: np.asarray(position, float) for name, _, position, _ in joints}
@@ -122,6 +125,11 @@ def humanoid_glb(fingers: bool = True, vrm: bool = False, skin: bool = True,
                      "licenseUrl": "https://vrm.dev/licenses/1.0/"},
             "humanoid": {"humanBones": {vrm_name: {"node": index}
                                         for index, (_, _, _, vrm_name) in enumerate(joints)}},
+            "expressions": {"preset": {
+                name: {"morphTargetBinds": [{"node": len(gltf.nodes) - 1, "index": index,
+                                             "weight": 1.0}]}
+                for name, index in (expressions or {}).items()
+            }},
         }}  # fmt: skip
     gltf.set_binary_blob(buffer.finish())
     return b"".join(gltf.save_to_bytes())

@@ -81,6 +81,22 @@ def test_a_plain_glb_with_arkit_names_plays_them_too(tmp_path):
     assert avatar.drive.names == ("browInnerUp",)  # a name the face does not drive: left out
 
 
+def test_vrm_expressions_play_the_face_channels_they_stand_for(tmp_path):
+    path = tmp_path / "tiny.vrm"
+    path.write_bytes(humanoid_glb(vrm=True, morphs=("Fcl_EYE_Close", "Fcl_MTH_A", "Other"),
+                                  expressions={"blink": 0, "aa": 1}))  # fmt: skip
+    avatar = avatar_for("upper-body", "right", Look(file=str(path)))
+    assert set(avatar.drive.names) == {"eyeBlinkLeft", "jawOpen"}  # blink, aa
+    rig = avatar.rig.engine
+    closed = rig.neutral().copy()
+    closed[[rig.dof_names.index(f"{side}_upper_lid_close") for side in ("left", "right")]] = 1.0
+    weights = avatar.drive.weights(np.stack([rig.neutral(), closed]))
+    blink = list(avatar.drive.names).index("eyeBlinkLeft")
+    assert weights[0, blink] == 0 and weights[1, blink] > 0.5  # the face's blink closes it
+    rest, shut = avatar.deform(np.stack([rig.neutral(), closed]))[0][0]
+    assert np.abs(shut - rest).max() > 0.01  # the head's box moves by the bound target
+
+
 @pytest.mark.parametrize("vrm", [False, True])
 def test_a_humanoid_follows_the_engines_arms(tmp_path, vrm):
     path = tmp_path / ("tiny.vrm" if vrm else "tiny.glb")

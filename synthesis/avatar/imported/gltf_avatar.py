@@ -12,7 +12,7 @@ which faces −Z, is turned to face +Z as glTF and the engine do.
 """
 
 import io
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -272,15 +272,17 @@ def read_gltf_avatar(data: bytes, source: str = "the file") -> ImportedAvatar:
     for k, node in enumerate(order):
         name = gltf.nodes[node].name or f"joint_{k}"
         names.append(name if name not in names else f"{name}_{k}")
-    meshes = []
+    meshes, nodes_of = [], []
     for node in skinned:
         if gltf.nodes[node].skin != skin_index:
             continue
         for number, primitive in enumerate(gltf.meshes[gltf.nodes[node].mesh].primitives):
             if (primitive.mode if primitive.mode is not None else TRIANGLES) == TRIANGLES:
                 meshes.append(_mesh(reader, node, primitive, number, skin_to_order, turn))
+                nodes_of.append(node)
     if not meshes:
         raise GltfError(f"{source}'s skinned meshes have no triangles.")
+    meshes = _with_expressions(gltf, meshes, nodes_of)
     scene_name = gltf.scenes[0].name if gltf.scenes else None
     avatar = ImportedAvatar(
         name=str(meta.get("name") or meta.get("title") or scene_name or "avatar"),
@@ -321,3 +323,66 @@ def with_bone_mapping(data: bytes, bones: dict[str, str], source: str = "the fil
     if gltf.buffers and gltf.buffers[0].uri is None:
         gltf.set_binary_blob(buffers[0])
     return b"".join(gltf.save_to_bytes())
+
+
+# VRM's preset expressions, as the engine's face drives them: the ARKit blendshape whose
+# channel each stands for (VRM 1.0 names; 0.x's presets are read under the same names).
+VRM_EXPRESSIONS = {
+    "blink": "eyeBlinkLeft", "blinkLeft": "eyeBlinkLeft", "blinkRight": "eyeBlinkRight",
+    "aa": "jawOpen", "ou": "mouthPucker", "oh": "mouthFunnel", "ee": "mouthStretchLeft",
+    "ih": "mouthSmileRight", "happy": "mouthSmileLeft", "angry": "browDownLeft",
+    "sad": "mouthFrownLeft", "surprised": "browInnerUp", "lookUp": "eyeLookUpLeft",
+    "lookDown": "eyeLookDownLeft", "lookLeft": "eyeLookOutLeft", "lookRight": "eyeLookInLeft",
+}  # fmt: skip
+_VRM0_PRESETS = {"a": "aa", "i": "ih", "u": "ou", "e": "ee", "o": "oh", "joy": "happy",
+                 "sorrow": "sad", "fun": "happy", "blink_l": "blinkLeft",
+                 "blink_r": "blinkRight", "lookup": "lookUp", "lookdown": "lookDown",
+                 "lookleft": "lookLeft", "lookright": "lookRight"}  # fmt: skip
+
+
+def _expression_binds(gltf) -> dict[str, list[tuple[int, int, float]]]:
+    """Return each VRM preset expression's morph target binds: (node or mesh, target
+    index, weight 0–1); keys are VRM 1.0 names, values' first item a node (1.0) or a
+    mesh (0.x, marked by a negative number: −1 − mesh)."""
+    extensions = gltf.extensions or {}
+    binds: dict[str, list[tuple[int, int, float]]] = {}
+    if "VRMC_vrm" in extensions:
+        preset = (extensions["VRMC_vrm"].get("expressions") or {}).get("preset") or {}
+        for name, expression in preset.items():
+            binds[name] = [(b.get("node"), b.get("index"), float(b.get("weight", 1.0)))
+                           for b in expression.get("morphTargetBinds") or []]  # fmt: skip
+    elif "VRM" in extensions:
+        groups = (extensions["VRM"].get("blendShapeMaster") or {}).get("blendShapeGroups")
+        for group in groups or []:
+            preset = str(group.get("presetName") or "").lower()
+            name = _VRM0_PRESETS.get(preset, preset)
+            binds[name] = [(-1 - b.get("mesh"), b.get("index"), float(b.get("weight", 100)) / 100)
+                           for b in group.get("binds") or []]  # fmt: skip
+    return binds
+
+
+def _with_expressions(gltf, meshes: list, nodes: list[int]) -> list:
+    """Return *meshes* with each VRM preset expression as a blendshape named by the
+    ARKit shape the face drives for it (where the file has no such target itself)."""
+    binds = _expression_binds(gltf)
+    if not binds:
+        return meshes
+    out = []
+    for mesh, node in zip(meshes, nodes, strict=True):
+        names = list(mesh.targets)
+        targets, normals = dict(mesh.targets), dict(mesh.target_normals)
+        mesh_index = gltf.nodes[node].mesh
+        for expression, bound in binds.items():
+            arkit = VRM_EXPRESSIONS.get(expression)
+            if arkit is None or arkit in targets:
+                continue
+            offsets = np.zeros_like(mesh.vertices_m)
+            for where, index, weight in bound:
+                mine = where == node if where is not None and where >= 0 else \
+                    where is not None and -1 - where == mesh_index  # fmt: skip
+                if mine and index is not None and 0 <= index < len(names):
+                    offsets += weight * mesh.targets[names[index]]
+            if np.abs(offsets).max(initial=0.0) > 0:
+                targets[arkit] = offsets
+        out.append(replace(mesh, targets=targets, target_normals=normals))
+    return out
