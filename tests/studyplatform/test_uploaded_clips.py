@@ -5,6 +5,7 @@ takes participants, exported with their source and checksum; bad uploads store n
 Every video here is made by ffmpeg (imageio-ffmpeg's) from its test pattern.
 """
 
+import functools
 import hashlib
 import io
 import subprocess
@@ -31,6 +32,7 @@ from tests.conftest import as_draft, tiny_webm
 pytestmark = pytest.mark.django_db
 
 
+@functools.lru_cache(maxsize=64)  # the same pattern is asked for by many tests
 def make_video(codec: str = "libx264", size: str = "320x240", seconds: float = 2.0,
                container: str = "mp4", faststart: bool = True) -> bytes:  # fmt: skip
     """Return a test-pattern video made by ffmpeg."""
