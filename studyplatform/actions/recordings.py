@@ -26,6 +26,7 @@ from studyplatform.media_types import (
 )
 from studyplatform.models import Item, Recording, Study
 from studyplatform.queue import PREPARE_RECORDING, queue_job_on_commit
+from studyplatform.storage import PRIVATE_STORAGE
 
 MAX_RECORDING_BYTES = 300 * 1024 * 1024
 
@@ -129,10 +130,14 @@ def do_report_capture_progress(recording: Recording, percent: int) -> None:
 
 
 def do_fail_recording(recording: Recording, error: Exception) -> str:
-    """Record why the recording cannot be used; return its status."""
-    Recording.objects.filter(pk=recording.pk).update(
-        status=Recording.Status.FAILED, error=str(error)
-    )
+    """Record why the recording cannot be used; return its status.
+
+    The engine names the file it read by its path; the researcher sees it by its name in
+    media, not where the server keeps it.
+    """
+    message = str(error).replace(str(PRIVATE_STORAGE.location).rstrip("/") + "/", "")
+    Recording.objects.filter(pk=recording.pk).update(status=Recording.Status.FAILED,
+                                                     error=message)  # fmt: skip
     return Recording.Status.FAILED
 
 

@@ -124,6 +124,8 @@ def test_a_word_is_recorded_with_the_camera_and_a_file_uploaded(
     page.wait_for_timeout(1500)
     row.get_by_role("button", name="Stop and save").click()
     expect(row.locator(".errornote")).to_contain_text("no hand was found", timeout=60_000)
+    # Named as it is in media, not by where the server keeps it.
+    assert row.locator(".errornote").text_content().strip().startswith("recordings/")
     motion, _ = simulate_recording("HEAVEN", np.random.default_rng(1), rate_hz=30.0)
     bvh = tmp_path / "HEAVEN.bvh"
     bvh.write_text(format_bvh(motion))
