@@ -17,7 +17,7 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from synthesis.identity import engine_digest
+from synthesis.identity import engine_digest, file_sha256
 from synthesis.techniques import ClipError, ClipRequest, render_request
 
 __all__ = [
@@ -85,15 +85,6 @@ class RenderedClip:
     height: int
     size_bytes: int
     sha256: str
-
-
-def file_sha256(path: Path) -> str:
-    """Return the SHA-256 of a file's bytes."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as handle:
-        for block in iter(lambda: handle.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
 
 
 def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:

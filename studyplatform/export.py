@@ -102,12 +102,9 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
     conditions = {condition.key: condition for condition in study.conditions.all()}
-    files = dict(
-        ((condition, item), sha256)
-        for condition, item, sha256 in Stimulus.objects.filter(
-            condition__study=study, status=Stimulus.Status.READY
-        ).values_list("condition__key", "item_id", "sha256")
-    )
+    ready = Stimulus.objects.filter(condition__study=study, status=Stimulus.Status.READY)
+    files = {(key, item): sha256 for key, item, sha256
+             in ready.values_list("condition__key", "item_id", "sha256")}  # fmt: skip
     quality = study_quality(study)
     orders: dict[int, dict[str, str]] = {}  # each participant's schedule, read once
 
@@ -173,8 +170,7 @@ def _source_cells(row: dict, trial: Trial, conditions: dict, files: dict) -> dic
     for column, number in (("condition_a", 1), ("condition_b", 2)):
         condition = conditions.get(row[column])
         cells[f"{column}_source"] = condition.source if condition is not None else ""
-        key = (row[column], trial.item_id)
-        cells[f"clip{number}_sha256"] = files.get(key, "") if condition is not None else ""
+        cells[f"clip{number}_sha256"] = files.get((row[column], trial.item_id), "")
     return cells
 
 

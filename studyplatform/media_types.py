@@ -132,9 +132,9 @@ def decodes_as_video(path: Path) -> bool:
     return done is not None and done.returncode == 0
 
 
-def remux_webm(source: Path, target: Path) -> bool:
-    """Copy a WebM's frames into *target* with a duration and a seek index; return whether
-    ffmpeg wrote it.
+def remux_webm(source: Path, target: Path, video_only: bool = False) -> bool:
+    """Copy a WebM's frames (its first video stream alone with *video_only*) into
+    *target* with a duration and a seek index; return whether ffmpeg wrote it.
 
     A browser's MediaRecorder writes WebM as a live stream, without its length or cues,
     so a player shows 0:00 and cannot seek; remuxing (streams copied, nothing
@@ -143,7 +143,8 @@ def remux_webm(source: Path, target: Path) -> bool:
     import imageio_ffmpeg
 
     command = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-v", "error", "-y",
-               "-i", str(source), "-map", "0", "-c", "copy", "-fflags", "+bitexact",
+               "-i", str(source), "-map", "0:v:0" if video_only else "0", "-c", "copy",
+               "-fflags", "+bitexact",
                "-f", "webm", str(target)]  # fmt: skip
     try:
         done = subprocess.run(command, capture_output=True, timeout=DECODE_TIMEOUT_S)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from stimuli.clips import file_sha256
-from studyplatform.media_types import MP4, WEBM, MediaRejected, decoded_length, sniff
+from studyplatform.media_types import MP4, WEBM, MediaRejected, decoded_length, remux_webm, sniff
 
 MAX_CLIP_BYTES = 500 * 1024**2
 MAX_CLIP_S = 600.0
@@ -105,8 +105,7 @@ def _playable(source: Path, folder: Path, suffix: str, facts: dict) -> tuple[Pat
     codec, pixels = facts["codec"], facts["pix_fmt"]
     if suffix == WEBM.suffix and codec in WEBM_CODECS:
         target = folder / "clip.webm"
-        if _run("-i", str(source), "-map", "0:v:0", "-c", "copy", "-fflags", "+bitexact",
-                "-f", "webm", str(target)):  # fmt: skip
+        if remux_webm(source, target, video_only=True):
             same = file_sha256(target) == file_sha256(source)
             return (source, suffix, "") if same else (target, suffix, "remuxed")
     h264 = codec == "h264" and pixels in H264_PIXELS

@@ -21,9 +21,9 @@ from django.core.files import File
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.actions.stimuli import record_uploaded_stimulus
+from studyplatform.actions.stimuli import record_missing_stimulus, record_uploaded_stimulus
 from studyplatform.media_types import MediaRejected
-from studyplatform.models import Condition, Item, Stimulus, Study, UploadedClip
+from studyplatform.models import Condition, Item, Study, UploadedClip
 from studyplatform.models.studies import check_unlocked
 from studyplatform.storage import PRIVATE_STORAGE
 from studyplatform.video_files import MAX_CLIP_BYTES, PreparedClip, copy_upload, prepare_clip
@@ -242,7 +242,5 @@ def do_remove_uploaded_clip(clip: UploadedClip) -> None:
     with transaction.atomic():
         names = (clip.video.name, clip.poster.name)
         clip.delete()
-        Stimulus.objects.filter(condition=clip.condition, item=clip.item).update(
-            status=Stimulus.Status.MISSING, error="", content_hash="", sha256=""
-        )
+        record_missing_stimulus(clip.condition, clip.item)
         delete_unused_files_on_commit(PRIVATE_STORAGE, names)

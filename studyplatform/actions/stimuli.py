@@ -161,6 +161,11 @@ def _record_upload(condition, item, clip: UploadedClip | None) -> Stimulus:
     """Record the clip of an uploaded condition: ready from its file, or missing."""
     if clip is not None:
         return record_uploaded_stimulus(clip)
+    return record_missing_stimulus(condition, item)
+
+
+def record_missing_stimulus(condition, item) -> Stimulus:
+    """Record that the item's clip in an uploaded condition has no file (yet)."""
     stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
     stimulus = stimulus or Stimulus(condition=condition, item=item)
     stimulus.status, stimulus.error = Stimulus.Status.MISSING, ""

@@ -6,14 +6,12 @@ from synthesis.interchange.glb import (
     avatar_glb,
     distinct_weights,
     inverse_bind_matrices,
-    local_transforms,
 )
 
 __all__ = [
     "avatar_glb",
     "distinct_weights",
     "inverse_bind_matrices",
-    "local_transforms",
     "request_bvh",
     "request_glb",
 ]

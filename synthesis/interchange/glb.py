@@ -15,43 +15,30 @@ keyed per frame when it follows the hand.
 
 import numpy as np
 import pygltflib as gl
+from scipy.spatial.transform import Rotation
 
 from synthesis.avatar.imported.gltf_read import COLOR_ACROSS, COLOR_INSIDE, EDGE, MAIN_JOINT
 from synthesis.render.scene import CameraPath, CameraPreset, look_at
-from synthesis.skeleton.kinematics import Pose
-from synthesis.skeleton.rotations import quat_multiply, quat_rotate
+from synthesis.skeleton.kinematics import Pose, local_transforms
+from synthesis.skeleton.rotations import quat_to_matrix
 
 FLOAT, UINT16, UINT32 = gl.FLOAT, gl.UNSIGNED_SHORT, gl.UNSIGNED_INT
 _TYPES = {1: gl.SCALAR, 3: gl.VEC3, 4: gl.VEC4, 16: gl.MAT4}
 _DTYPES = {FLOAT: np.float32, UINT16: np.uint16, UINT32: np.uint32}
 
 
-def _conjugate(q: np.ndarray) -> np.ndarray:
-    return q * np.array([-1.0, -1.0, -1.0, 1.0])
-
-
-def local_transforms(parents: np.ndarray, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
-    """Return each joint's rotation and translation in its parent's frame, (…, n, 4) and
-    (…, n, 3), from global transforms: the inverse of forward kinematics."""
-    q, p = np.asarray(pose.quaternions, float), np.asarray(pose.positions_m, float)
-    inner = parents >= 0
-    local_q, local_t = q.copy(), p.copy()
-    parent_q = _conjugate(q[..., parents[inner], :])
-    local_q[..., inner, :] = quat_multiply(parent_q, q[..., inner, :])
-    local_t[..., inner, :] = quat_rotate(parent_q, p[..., inner, :] - p[..., parents[inner], :])
-    # One hemisphere from frame to frame: linear interpolation between keys must not
-    # take the long way round.
-    flip = np.sum(local_q[1:] * local_q[:-1], axis=-1) < 0 if local_q.ndim == 3 else None
-    if flip is not None:
-        signs = np.cumprod(np.where(flip, -1.0, 1.0), axis=0)
-        local_q[1:] *= signs[..., None]
-    return local_q, local_t
+def continuous(quaternions: np.ndarray) -> np.ndarray:
+    """Return keyed quaternions (n_frames, …, 4) each in the hemisphere of the frame
+    before, so that interpolating between keys never takes the long way round."""
+    flip = np.sum(quaternions[1:] * quaternions[:-1], axis=-1) < 0
+    signs = np.cumprod(np.where(flip, -1.0, 1.0), axis=0)
+    out = quaternions.copy()
+    out[1:] *= signs[..., None]
+    return out
 
 
 def inverse_bind_matrices(bind: Pose) -> np.ndarray:
     """Return the inverse of each joint's bind-pose global transform, (n, 4, 4)."""
-    from synthesis.skeleton.rotations import quat_to_matrix
-
     rotations = quat_to_matrix(np.asarray(bind.quaternions, float)[0])
     positions = np.asarray(bind.positions_m, float)[0]
     inverse = np.zeros((len(positions), 4, 4))
@@ -202,8 +189,6 @@ def _camera_node(gltf: gl.GLTF2, camera, width: int, height: int) -> tuple[int, 
                                                         strict=True)])  # fmt: skip
     else:
         poses = camera.pose()[None]
-    from scipy.spatial.transform import Rotation
-
     node = gl.Node(name=camera.name, camera=len(gltf.cameras) - 1,
                    translation=poses[0, :3, 3].tolist(),
                    rotation=Rotation.from_matrix(poses[0, :3, :3]).as_quat().tolist())  # fmt: skip
@@ -230,8 +215,6 @@ def avatar_glb(
     at *rate_hz*, its blendshapes at *morph_weights* (frames, the drive's names), filmed
     by *camera*; *extras* (JSON data) is kept in the asset's extras.
     """
-    from scipy.spatial.transform import Rotation
-
     skeleton = avatar.rig.skeleton
     parents = np.asarray(skeleton.parents)
     n_frames = len(pose.quaternions)
@@ -264,6 +247,7 @@ def avatar_glb(
             _key(gltf, buffer, times, scene_nodes[-1], "weights",
                  np.asarray(morph_weights)[:, columns].reshape(-1, 1))  # fmt: skip
     local_q, local_t = local_transforms(parents, pose)
+    local_q = continuous(local_q)
     for index, node in enumerate(joints):
         _key(gltf, buffer, times, node, "rotation", local_q[:, index])
         _key(gltf, buffer, times, node, "translation", local_t[:, index])

@@ -11,14 +11,10 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from synthesis.rigs.rig import Rig
-from synthesis.skeleton.kinematics import Pose, forward_kinematics
+from synthesis.skeleton.kinematics import Pose, forward_kinematics, local_transforms
 from synthesis.skeleton.mapping import JointMapping, detect_mapping
 from synthesis.skeleton.motion import Motion
-from synthesis.skeleton.rotations import quat_multiply, quat_rotate
-
-
-def _conjugate(q: np.ndarray) -> np.ndarray:
-    return q * np.array([-1.0, -1.0, -1.0, 1.0])
+from synthesis.skeleton.rotations import quat_conjugate, quat_multiply, quat_rotate
 
 
 def _between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -105,12 +101,7 @@ def transfer_pose(source: Pose, source_rest: Pose, source_parents: np.ndarray,
     source_rest_q = source_rest.quaternions[0]
     source_rest_p = source_rest.positions_m[0]
     rest_q, rest_p = rest.quaternions[0], rest.positions_m[0]
-    inner = parents >= 0
-    parent_q = _conjugate(rest_q[parents[inner]])
-    local_rest = rest_q.copy()
-    local_rest[inner] = quat_multiply(parent_q, rest_q[inner])
-    offsets = np.zeros_like(rest_p)
-    offsets[inner] = quat_rotate(parent_q, rest_p[inner] - rest_p[parents[inner]])
+    local_rest, offsets = (values[0] for values in local_transforms(parents, rest))
 
     n_frames = len(source.quaternions)
     rotations = np.empty((n_frames, len(parents), 4))
@@ -121,7 +112,7 @@ def transfer_pose(source: Pose, source_rest: Pose, source_parents: np.ndarray,
         if j in pairs:
             s = pairs[j]
             align = _alignment(j, s, pairs, parents, rest_p, source_rest_p)
-            delta = quat_multiply(source.quaternions[:, s], _conjugate(source_rest_q[s]))
+            delta = quat_multiply(source.quaternions[:, s], quat_conjugate(source_rest_q[s]))
             rotations[:, j] = quat_multiply(delta, quat_multiply(align, rest_q[j]))
         elif parent < 0:
             rotations[:, j] = rest_q[j]

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from synthesis.skeleton.motion import Motion
-from synthesis.skeleton.rotations import quat_multiply, quat_rotate, quat_to_matrix
+from synthesis.skeleton.rotations import quat_conjugate, quat_multiply, quat_rotate, quat_to_matrix
 from synthesis.skeleton.skeleton import Skeleton
 
 
@@ -58,6 +58,19 @@ def forward_kinematics_arrays(
                 parent_rotations, local_t[inner]
             )
     return Pose(quaternions=np.swapaxes(rotations, 0, 1), positions_m=np.swapaxes(positions, 0, 1))
+
+
+def local_transforms(parents: np.ndarray, pose: Pose) -> tuple[np.ndarray, np.ndarray]:
+    """Return each joint's rotation and translation in its parent's frame, (…, n, 4) and
+    (…, n, 3), from global ones: the inverse of :func:`forward_kinematics_arrays` (a
+    root's are its global ones)."""
+    q, p = np.asarray(pose.quaternions, float), np.asarray(pose.positions_m, float)
+    inner = parents >= 0
+    local_q, local_t = q.copy(), p.copy()
+    parent_q = quat_conjugate(q[..., parents[inner], :])
+    local_q[..., inner, :] = quat_multiply(parent_q, q[..., inner, :])
+    local_t[..., inner, :] = quat_rotate(parent_q, p[..., inner, :] - p[..., parents[inner], :])
+    return local_q, local_t
 
 
 def forward_kinematics(motion: Motion) -> Pose:

@@ -46,6 +46,11 @@ def quat_from_euler(angles_rad: np.ndarray, order: str) -> np.ndarray:
     return np.stack(parts, axis=-1)
 
 
+def quat_conjugate(q: np.ndarray) -> np.ndarray:
+    """Return the conjugate (the inverse, for unit quaternions) of quaternions (..., 4)."""
+    return np.asarray(q) * np.array([-1.0, -1.0, -1.0, 1.0])
+
+
 def quat_multiply(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Return the Hamilton product a ⊗ b (the rotation b, then a), shapes broadcast."""
     ax, ay, az, aw = np.moveaxis(np.asarray(a), -1, 0)

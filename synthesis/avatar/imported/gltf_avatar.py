@@ -340,24 +340,25 @@ _VRM0_PRESETS = {"a": "aa", "i": "ih", "u": "ou", "e": "ee", "o": "oh", "joy": "
                  "lookleft": "lookLeft", "lookright": "lookRight"}  # fmt: skip
 
 
-def _expression_binds(gltf) -> dict[str, list[tuple[int, int, float]]]:
-    """Return each VRM preset expression's morph target binds: (node or mesh, target
-    index, weight 0–1); keys are VRM 1.0 names, values' first item a node (1.0) or a
-    mesh (0.x, marked by a negative number: −1 − mesh)."""
+def _expression_binds(gltf) -> dict[str, list[tuple[tuple[str, int], int, float]]]:
+    """Return each VRM preset expression's morph target binds by VRM 1.0 name: (what
+    holds the target, its index, weight 0–1), the holder ("node", n) in VRM 1.0 and
+    ("mesh", m) in 0.x."""
     extensions = gltf.extensions or {}
-    binds: dict[str, list[tuple[int, int, float]]] = {}
+    binds = {}
     if "VRMC_vrm" in extensions:
         preset = (extensions["VRMC_vrm"].get("expressions") or {}).get("preset") or {}
         for name, expression in preset.items():
-            binds[name] = [(b.get("node"), b.get("index"), float(b.get("weight", 1.0)))
+            binds[name] = [(("node", b.get("node")), b.get("index"), float(b.get("weight", 1.0)))
                            for b in expression.get("morphTargetBinds") or []]  # fmt: skip
     elif "VRM" in extensions:
         groups = (extensions["VRM"].get("blendShapeMaster") or {}).get("blendShapeGroups")
         for group in groups or []:
             preset = str(group.get("presetName") or "").lower()
-            name = _VRM0_PRESETS.get(preset, preset)
-            binds[name] = [(-1 - b.get("mesh"), b.get("index"), float(b.get("weight", 100)) / 100)
-                           for b in group.get("binds") or []]  # fmt: skip
+            binds[_VRM0_PRESETS.get(preset, preset)] = [
+                (("mesh", b.get("mesh")), b.get("index"), float(b.get("weight", 100)) / 100)
+                for b in group.get("binds") or []
+            ]
     return binds
 
 
@@ -369,20 +370,17 @@ def _with_expressions(gltf, meshes: list, nodes: list[int]) -> list:
         return meshes
     out = []
     for mesh, node in zip(meshes, nodes, strict=True):
-        names = list(mesh.targets)
-        targets, normals = dict(mesh.targets), dict(mesh.target_normals)
-        mesh_index = gltf.nodes[node].mesh
+        names, targets = list(mesh.targets), dict(mesh.targets)
+        holders = {("node", node), ("mesh", gltf.nodes[node].mesh)}
         for expression, bound in binds.items():
             arkit = VRM_EXPRESSIONS.get(expression)
             if arkit is None or arkit in targets:
                 continue
             offsets = np.zeros_like(mesh.vertices_m)
-            for where, index, weight in bound:
-                mine = where == node if where is not None and where >= 0 else \
-                    where is not None and -1 - where == mesh_index  # fmt: skip
-                if mine and index is not None and 0 <= index < len(names):
+            for holder, index, weight in bound:
+                if holder in holders and index is not None and 0 <= index < len(names):
                     offsets += weight * mesh.targets[names[index]]
             if np.abs(offsets).max(initial=0.0) > 0:
                 targets[arkit] = offsets
-        out.append(replace(mesh, targets=targets, target_normals=normals))
+        out.append(replace(mesh, targets=targets))
     return out

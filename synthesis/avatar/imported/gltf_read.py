@@ -10,6 +10,7 @@ import struct
 
 import numpy as np
 import pygltflib as gl
+from scipy.spatial.transform import Rotation
 
 COMPONENTS = {
     5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32,
@@ -122,8 +123,6 @@ class Reader:
 
     def local_matrix(self, node: int) -> np.ndarray:
         """Return a node's transform relative to its parent (4, 4)."""
-        from scipy.spatial.transform import Rotation
-
         n = self.gltf.nodes[node]
         if n.matrix is not None and len(n.matrix) == 16:
             return np.asarray(n.matrix, float).reshape(4, 4).T  # column-major

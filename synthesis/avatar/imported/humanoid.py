@@ -3,12 +3,13 @@
 An imported avatar's joints are named to the engine's canonical joints by, in order:
 its VRM humanoid bones (``VRMC_vrm``/``VRM``), the engine's own names (an avatar the
 engine exported), then the naming conventions :func:`synthesis.skeleton.mapping.
-detect_mapping` knows (Mixamo/HumanIK, Xsens, Blender, CMU), then a researcher's own
-*overrides*. The engine poses its rig as always; :class:`ImportedRig` turns each pose
-onto the imported skeleton (:func:`synthesis.rigs.retarget.transfer_pose`: rest poses
-aligned limb by limb, each mapped bone turning as the engine's does, bone lengths the
-avatar's), and the face's channels play the avatar's morph targets that share the
-engine's blendshape names (ARKit) or stand for them (VRM expressions).
+detect_mapping` knows (Mixamo/HumanIK, Xsens, Blender, CMU), then the researcher's own
+mapping saved in the file (``asset.extras.signstudy``). The engine poses its rig as
+always; :class:`ImportedRig` turns each pose onto the imported skeleton
+(:func:`synthesis.rigs.retarget.transfer_pose`: rest poses aligned limb by limb, each
+mapped bone turning as the engine's does, bone lengths the avatar's), and the face's
+channels play the avatar's morph targets that share the engine's blendshape names
+(ARKit) or stand for them (VRM expressions).
 """
 
 from dataclasses import dataclass
@@ -20,7 +21,7 @@ from synthesis.avatar.imported.gltf_read import GltfError
 from synthesis.avatar.model import Avatar, SkinnedPart
 from synthesis.avatar.skinning import MorphDrive, Morphs, SkinWeights
 from synthesis.rigs.retarget import transfer_pose
-from synthesis.skeleton.kinematics import Pose
+from synthesis.skeleton.kinematics import Pose, local_transforms
 from synthesis.skeleton.mapping import detect_mapping
 from synthesis.skeleton.skeleton import Joint, Skeleton
 
@@ -64,23 +65,16 @@ def finger_joints(side: str) -> tuple[str, ...]:
 
 def _skeleton(avatar: ImportedAvatar) -> Skeleton:
     """Return the avatar's skeleton with offsets from its bind pose (metres)."""
-    from synthesis.skeleton.rotations import quat_rotate
-
-    q, p = avatar.bind.quaternions[0], avatar.bind.positions_m[0]
+    offsets = local_transforms(avatar.parents, avatar.bind)[1][0]
     joints = []
-    for index, (name, parent) in enumerate(zip(avatar.joint_names, avatar.parents, strict=True)):
-        if parent < 0:
-            offset, channels = p[index], ("Xposition", "Yposition", "Zposition")
-        else:
-            inverse = q[parent] * np.array([-1.0, -1.0, -1.0, 1.0])
-            offset, channels = quat_rotate(inverse, p[index] - p[parent]), ()
+    for name, parent, offset in zip(avatar.joint_names, avatar.parents, offsets, strict=True):
+        channels = ("Xposition", "Yposition", "Zposition") if parent < 0 else ()
         joints.append(Joint(name, int(parent), tuple(float(v) for v in offset),
                             (*channels, "Zrotation", "Xrotation", "Yrotation")))  # fmt: skip
     return Skeleton(tuple(joints), length_unit="m")
 
 
-def bone_mapping(avatar: ImportedAvatar, engine_names, overrides: dict | None = None
-                 ) -> dict[str, str]:  # fmt: skip
+def bone_mapping(avatar: ImportedAvatar, engine_names) -> dict[str, str]:
     """Return the avatar's joint → engine joint names (see the module's order)."""
     engine_names = set(engine_names)
     mapping: dict[str, str] = {}
@@ -96,7 +90,6 @@ def bone_mapping(avatar: ImportedAvatar, engine_names, overrides: dict | None = 
                 found = {}
             mapping = {**found, **mapping}
     mapping.update(avatar.bones)
-    mapping.update(overrides or {})
     return {joint: engine for joint, engine in mapping.items() if engine}
 
 
@@ -146,8 +139,7 @@ def _morphs(mesh, drive_names: tuple[str, ...]) -> Morphs | None:
 
 
 def engine_avatar(imported: ImportedAvatar, engine_rig, engine_rest: Pose,
-                  drive: MorphDrive | None, side: str = "right",
-                  overrides: dict | None = None) -> Avatar:  # fmt: skip
+                  drive: MorphDrive | None, side: str = "right") -> Avatar:  # fmt: skip
     """Return the engine avatar of *imported*, driven by *engine_rig*'s DOFs.
 
     *engine_rest* is the engine's pose the avatar's bind pose is aligned to (the
@@ -156,7 +148,7 @@ def engine_avatar(imported: ImportedAvatar, engine_rig, engine_rest: Pose,
     joints map onto the engine's.
     """
     engine_names = set(engine_rig.skeleton.names)
-    mapping = bone_mapping(imported, engine_names, overrides)
+    mapping = bone_mapping(imported, engine_names)
     skeleton = _skeleton(imported)
     index = {name: k for k, name in enumerate(imported.joint_names)}
     pairs = {}
@@ -187,10 +179,9 @@ def engine_avatar(imported: ImportedAvatar, engine_rig, engine_rest: Pose,
     return Avatar(imported.name, rig, engine_rig.neutral(), parts, drive, bind=imported.bind)
 
 
-def missing_joints(imported: ImportedAvatar, engine_rig, side: str,
-                   overrides: dict | None = None) -> list[str]:  # fmt: skip
-    """Return the engine joints fingerspelling needs that the avatar does not map."""
-    mapping = bone_mapping(imported, engine_rig.skeleton.names, overrides)
+def missing_joints(mapping: dict[str, str], side: str) -> list[str]:
+    """Return the engine joints fingerspelling needs that *mapping* (the avatar's
+    :func:`bone_mapping`) leaves out (a hand rig's names drop the side)."""
     mapped = set(mapping.values())
     return [joint for joint in finger_joints(side) if joint not in mapped
             and joint.removeprefix(f"{side}_") not in mapped]  # fmt: skip
@@ -205,9 +196,7 @@ def describe_avatar(imported: ImportedAvatar, engine_rig, drive: MorphDrive | No
         "joints": len(imported.joint_names),
         "mapped": {joint: mapping[joint] for joint in imported.joint_names if joint in mapping},
         "unmapped": [joint for joint in imported.joint_names if joint not in mapping],
-        "missing_fingers": {
-            side: missing_joints(imported, engine_rig, side) for side in ("right", "left")
-        },
+        "missing_fingers": {side: missing_joints(mapping, side) for side in ("right", "left")},
         "face_channels": [name for name in imported.morph_names if name in names],
         "morph_targets": len(imported.morph_names),
         "height_m": round(imported.height_m, 3),

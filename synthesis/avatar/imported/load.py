@@ -2,29 +2,20 @@
 is filmed with when its ``avatar_file`` is set (:func:`synthesis.avatar.looks.avatar_for`)."""
 
 import functools
-import hashlib
 from pathlib import Path
 
 import numpy as np
 
 from synthesis.avatar.imported.gltf_avatar import read_gltf_avatar
 from synthesis.avatar.imported.gltf_read import GltfError
-from synthesis.avatar.imported.humanoid import engine_avatar, missing_joints
+from synthesis.avatar.imported.humanoid import bone_mapping, engine_avatar, missing_joints
+from synthesis.identity import file_sha256
 
 
 @functools.lru_cache(maxsize=8)
 def _imported(sha256: str, path: str):
     del sha256  # the cache key: the same path with new content reads again
     return read_gltf_avatar(Path(path).read_bytes(), Path(path).name)
-
-
-def file_sha256(path: str | Path) -> str:
-    """Return the SHA-256 of the file at *path*."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as handle:
-        for block in iter(lambda: handle.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
 
 
 _AVATARS: dict[tuple[str, str, str, str], object] = {}
@@ -68,7 +59,8 @@ def check_fingers(path: str | Path, side: str) -> None:
     from synthesis.rigs.body import BodyModel
 
     sha256, path = _existing(path)
-    missing = missing_joints(_imported(sha256, path), BodyModel(side), side)
+    imported = _imported(sha256, path)
+    missing = missing_joints(bone_mapping(imported, BodyModel(side).skeleton.names), side)
     if missing:
         raise GltfError(f"{Path(path).name} has no {', '.join(missing[:4])}"
                         f"{' …' if len(missing) > 4 else ''} bone: its {side} hand cannot "
