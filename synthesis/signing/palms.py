@@ -1,9 +1,11 @@
-"""Check the palms of a sentence's keys against their signs' definitions.
+"""Check a sentence's solved keys against their signs' definitions: palms and wrists.
 
-A sign's key says which way the palm faces (``palm: forward``, ``in``, a vector); the arm
-is solved by IK toward it, within the wrist's and forearm's limits. This reports, per
-key and hand, how far the solved palm faces from the one asked for, so that a sign the
-body cannot turn as written is found (issue 36: letters seen edge-on).
+A sign's key says which way the palm faces (``palm: forward``, ``in``, a vector) and
+where the wrist is (``at``); the arm is solved by IK toward both, within the wrist's and
+forearm's limits, and gives up position for turn where it cannot have both. This
+reports, per key and hand, how far the solved palm faces from the one asked for and how
+far the solved wrist is from its place, so that a sign the body cannot make as written is
+found (issue 36: letters seen edge-on; BROTHER's hand 13 cm beside the forehead).
 """
 
 from dataclasses import dataclass
@@ -30,11 +32,7 @@ class PalmError:
 def palm_errors(text: str, library: SignLibrary | None = None,
                 spine: bool = True) -> list[PalmError]:  # fmt: skip
     """Return every key's palm error for the glosses of *text* (right-handed)."""
-    library = library or default_library()
-    keys, _ = timeline(parse_glosses(text), library)
-    solver = KeySolver(BodyModel("right"), SpineParams())
-    automated = solver.automated(keys) if spine else np.zeros((len(keys), len(solver.names)))
-    pose = solver.body.pose(solver.keys(keys, automated))
+    keys, solver, pose = _solved(text, library, spine)
     errors = []
     for side in ("right", "left"):
         wrist = solver.body.skeleton.index(f"{side}_wrist")
@@ -44,3 +42,34 @@ def palm_errors(text: str, library: SignLibrary | None = None,
             cosine = np.clip(normal @ wanted / np.linalg.norm(wanted), -1.0, 1.0)
             errors.append(PalmError(key.ms, side, float(np.degrees(np.arccos(cosine)))))
     return errors
+
+
+@dataclass(frozen=True)
+class ReachError:
+    """One hand in one key: the key's time (ms), the hand, and the distance (m) between
+    the wrist's place the key asked for and where the solved arm puts it."""
+
+    ms: float
+    side: str
+    miss_m: float
+
+
+def reach_errors(text: str, library: SignLibrary | None = None,
+                 spine: bool = True) -> list[ReachError]:  # fmt: skip
+    """Return every key's wrist miss for the glosses of *text* (right-handed)."""
+    keys, solver, pose = _solved(text, library, spine)
+    errors = []
+    for side in ("right", "left"):
+        wrists = pose.positions_m[:, solver.body.skeleton.index(f"{side}_wrist")]
+        for key, wrist in zip(keys, wrists, strict=True):
+            miss = np.linalg.norm(wrist - solver.world(key.hands[side].at_m))
+            errors.append(ReachError(key.ms, side, float(miss)))
+    return errors
+
+
+def _solved(text: str, library: SignLibrary | None, spine: bool):
+    """Return the keys of *text*, their solver and the solved pose of every key."""
+    keys, _ = timeline(parse_glosses(text), library or default_library())
+    solver = KeySolver(BodyModel("right"), SpineParams())
+    automated = solver.automated(keys) if spine else np.zeros((len(keys), len(solver.names)))
+    return keys, solver, solver.body.pose(solver.keys(keys, automated))
