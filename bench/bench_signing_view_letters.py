@@ -13,7 +13,9 @@ its 21 landmarks. The landmarks are classified among spoken-to-signed's human le
   depth, then turned and projected as the human recording of that letter shows its
   hand (synthesis.capture.fidelity.seen_as, as bench_alphabet_fidelity.py does with our
   alphabet's own DOFs, which score 20 of 26 there);
-- fitted in the image plane, then seen as humans see (the human letters' own pipeline).
+- fitted in the image plane, then seen as humans see (the human letters' own pipeline);
+
+and, for scale, the alphabet's own DOFs seen as humans see, with no render or detector.
 
 Look-alikes (G/Q, K/P, H/U, I/J) count as one. Target: hand found 26/26, at least 20 of
 26 read right.
@@ -92,8 +94,12 @@ def main() -> int:
     not_found = f" (not {''.join(missing)})" if missing else ""
     print(f"{arguments.avatar} avatar, signing view {width}×{height}: hand found in "
           f"{len(views) - len(missing)} of {len(views)}{not_found}")  # fmt: skip
+    # The reading with no detector at all, for scale: what the renders could reach if
+    # MediaPipe read them perfectly (tests/synthesis/test_fidelity.py pins it at 20).
+    alphabet = {k: seen_as(model, letter_pose(k, "right"), views[k]) for k in views}
     ways = {"as seen": seen, "fitted, seen as humans see": fitted,
-            "fitted in the image plane, seen as humans see": planar}  # fmt: skip
+            "fitted in the image plane, seen as humans see": planar,
+            "our alphabet's DOFs, no render or detector, seen as humans see": alphabet}  # fmt: skip
     for name, candidates in ways.items():
         score = score_handshapes(candidates, human)
         wrong = ", ".join(f"{k}→{v}" for k, v in score.taken.items() if k not in score.agreeing)

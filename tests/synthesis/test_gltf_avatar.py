@@ -40,21 +40,36 @@ def _frames(path) -> np.ndarray:
 def test_the_engines_avatar_exported_and_imported_films_the_same_pixels(
     tmp_path, renderable, kind, text, view
 ):
+    """The renderer's frames are compared, not the MP4s': two near-identical inputs
+    encode differently around moving edges, and the story's sentence crossed the old
+    MP4 tolerance (0.1 % of pixels off by > 8) when its motion's noise changed."""
+    from synthesis.render.renderer import Renderer
+    from synthesis.techniques.request import filming
+
+    def frames(request, build) -> np.ndarray:
+        word = request.text if request.kind == "word" else None
+        avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
+                                 request.width, request.height, word, build.look)  # fmt: skip
+        with Renderer(avatar, camera, width=request.width, height=request.height) as renderer:
+            return np.stack([renderer.frame(dofs) for dofs in build.motion]).astype(int)
+
     request = ClipRequest.from_parameters(kind, text, {**SMALL, "view": view})
     build = build_motion(request)
     glb = tmp_path / "signer.glb"
     glb.write_bytes(request_glb(request, build))
     imported = ClipRequest.from_parameters(kind, text, {**SMALL, "view": view,
                                                         "avatar_file": str(glb)})  # fmt: skip
-    render_request(request, tmp_path / "builtin.mp4", build=build)
-    render_request(imported, tmp_path / "imported.mp4")
-    builtin, read_back = _frames(tmp_path / "builtin.mp4"), _frames(tmp_path / "imported.mp4")
+    imported_build = build_motion(imported)
+    builtin, read_back = frames(request, build), frames(imported, imported_build)
     assert builtin.shape == read_back.shape
     difference = np.abs(builtin - read_back).max(axis=-1)
-    # Stated tolerance: a mean under 0.1 of a level, under 0.1 % of pixels off by > 8 of
-    # 255 (float32 in the file, the video codec's rounding).
-    assert difference.mean() < 0.1, difference.mean()
-    assert (difference > 8).mean() < 0.001, (difference > 8).mean()
+    # Stated tolerance: float32 in the file moves a silhouette pixel here and there.
+    # Measured at 320×240: mean 0.0001 of a level, no pixel off by more than 22.
+    assert difference.mean() < 0.01, difference.mean()
+    assert (difference > 8).mean() < 1e-4, (difference > 8).mean()
+    # And the imported avatar's clip is made as any other.
+    render_request(imported, tmp_path / "imported.mp4", build=imported_build)
+    assert _frames(tmp_path / "imported.mp4").shape[:3] == builtin.shape[:3]
 
 
 def test_a_glbs_arkit_morph_targets_play_the_face_channels(tmp_path):
