@@ -49,9 +49,10 @@ def test_a_rendered_hand_is_captured_and_fitted_back(clip):
     error_deg = np.degrees(np.abs(hand.fit.dofs_rad[:n, fingers] - truth[:n, fingers]))
     # Measured: median 9.2° on this short clip of two fist letters (A, E), whose occluded
     # fingertips MediaPipe guesses, at 480×360 on the machine of 2026-11; 10.9–11.9° at
-    # 400×300 to 640×480 on the AMD EPYC of 2026-12-05 (11.9° at this size), where the
-    # same pinned MediaPipe reads the same frames differently. Over the 8 study words
-    # 7.7°, under the 8° target (bench/bench_capture.py).
+    # 400×300 to 640×480 on the machine of 2026-12-05 (an AMD EPYC; 11.9° at this size)
+    # with the same pinned packages: its renders or MediaPipe's arithmetic differ, which
+    # was not pinned down. Over the 8 study words 7.7°, under the 8° target
+    # (bench/bench_capture.py).
     assert np.median(error_deg) < 14
     assert hand.quality(recording)["residual_mm_median"] < 15
 
