@@ -21,16 +21,16 @@ pytest.importorskip(
 
 @pytest.fixture(scope="module")
 def clip(tmp_path_factory):
-    """Render ABLE in the Constant timing: known DOFs per frame (30 fps, 640×480, the
-    studies' clip size).
+    """Render ABLE in the Constant timing: known DOFs per frame (30 fps, 480×360).
 
-    At 480×360, on the machine of 2026-12-05, MediaPipe's landmarks jump three frames
-    into the L's hold and the hold fit took the jump for the hand leaving (L held 33 ms
-    of 243); at 400×300, 440×330, 520×390, 560×420 and 640×480 every hold came back
-    within 95 ms but the last (see below).
+    On the simple avatar's hand, whose figures these are: this tests the capture
+    pipeline. MediaPipe reads the human signer's close-up hand worse (on the machine of
+    2026-12-05, median finger error 10.9° against 9.5° here; L's hold read as 33 ms of
+    243 and E's 630 of 800; bench/bench_capture.py --avatar human: 9.9° over the study
+    words against the simple hand's 7.6°), an open point of issue 36.
     """
-    request = ClipRequest("word", "ABLE", {"timing": "constant"}, rate_hz=30, width=640,
-                          height=480)  # fmt: skip
+    request = ClipRequest("word", "ABLE", {"timing": "constant", "avatar": "simple"},
+                          rate_hz=30, width=480, height=360)  # fmt: skip
     build = build_motion(request)
     path = tmp_path_factory.mktemp("capture") / "able.mp4"
     render_request(request, path, build=build)
@@ -47,13 +47,11 @@ def test_a_rendered_hand_is_captured_and_fitted_back(clip):
                if "flexion" in n and not n.startswith(("thumb", "wrist"))]  # fmt: skip
     n = min(len(truth), len(hand.fit.dofs_rad))
     error_deg = np.degrees(np.abs(hand.fit.dofs_rad[:n, fingers] - truth[:n, fingers]))
-    # Measured: median 9.2° on this short clip of two fist letters (A, E), whose occluded
-    # fingertips MediaPipe guesses, at 480×360 on the machine of 2026-11; 10.9–11.9° at
-    # 400×300 to 640×480 on the machine of 2026-12-05 (an AMD EPYC; 11.9° at this size)
-    # with the same pinned packages: its renders or MediaPipe's arithmetic differ, which
-    # was not pinned down. Over the 8 study words 7.7°, under the issue's 8° target
-    # (bench/bench_capture.py).
-    assert np.median(error_deg) < 14
+    # Measured: median 9.2° (9.5° on the machine of 2026-12-05) on this short clip of
+    # two fist letters (A, E), whose occluded fingertips MediaPipe guesses; over the 8
+    # study words 7.7° (7.6°), under the issue's 8° target (bench/bench_capture.py
+    # --avatar simple).
+    assert np.median(error_deg) < 12
     assert hand.quality(recording)["residual_mm_median"] < 15
 
 
@@ -65,12 +63,8 @@ def test_capture_on_the_command_line_writes_pose_bvh_report_and_timing(clip, tmp
     printed = capsys.readouterr().out
     timing = json.loads(printed[printed.index("{") :])
     assert timing["word"] == "ABLE" and len(timing["hold_ms"]) == 4
-    # Constant timing: 243 ms holds, the last 800 ms; captured within 150 ms, the last
-    # within 7 frames: MediaPipe reads the fingers curling into E's fist late (its
-    # hold came back 617–635 ms at four of five sizes; the extractor on the true
-    # motion gives 800).
-    assert np.allclose(timing["hold_ms"][:3], [243, 243, 243], atol=150)
-    assert abs(timing["hold_ms"][3] - 800) <= 7 * 1000 / 30
+    # Constant timing: 243 ms holds, the last 800 ms; captured within 150 ms.
+    assert np.allclose(timing["hold_ms"], [243, 243, 243, 800], atol=150)
     assert read_pose(pose).n_frames > 60 and bvh.stat().st_size > 0
     quality = json.loads((report / "quality.json").read_text())
     assert quality["hands_found"]["right"] > 0.9 and (report / "quality.png").exists()
