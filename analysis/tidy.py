@@ -304,7 +304,9 @@ def split_flags(flags: str) -> list[str]:
 
 def analysed(frame: pd.DataFrame) -> pd.Series:
     """Return a mask of the rows analyses use: not practice, not attention checks."""
-    return ~frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
+    # astype: mapping no rows gives a str column, which pandas 4 will not combine with &.
+    flagged = frame["flags"].map(lambda cell: any(f in ROW_FLAGS for f in split_flags(cell)))
+    return ~flagged.astype(bool)
 
 
 def read_responses(path_or_file: str | Path | IO[str]) -> pd.DataFrame:

@@ -62,3 +62,16 @@ def test_practice_rows_are_not_summarized():
     table.loc[0, "flags"] = "practice"
     (summary,) = summarize_ratings(table)
     assert summary.n == 2
+
+
+def test_a_table_without_rows_selects_no_ratings_and_warns_of_nothing():
+    """Mapping no rows' flags gave a str column, which pandas warned (and pandas 4 will
+    refuse) to combine with the kind's mask."""
+    import warnings
+
+    from analysis.ratings import rating_rows
+
+    empty = pd.DataFrame({column: pd.Series([], dtype=str) for column in COLUMNS})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert rating_rows(empty).empty
