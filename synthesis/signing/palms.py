@@ -20,56 +20,32 @@ from synthesis.skeleton.rotations import quat_to_matrix
 
 
 @dataclass(frozen=True)
-class PalmError:
-    """One hand in one key: the key's time (ms), the hand, and the angle (degrees)
-    between the palm it asked for and the palm the solved arm shows."""
+class KeyMiss:
+    """One hand in one key: the key's time (ms), the hand, the angle (degrees) between
+    the palm it asked for and the palm the solved arm shows, and the distance (m)
+    between the wrist's place it asked for and where the solved arm puts it."""
 
     ms: float
     side: str
     angle_deg: float
-
-
-def palm_errors(text: str, library: SignLibrary | None = None,
-                spine: bool = True) -> list[PalmError]:  # fmt: skip
-    """Return every key's palm error for the glosses of *text* (right-handed)."""
-    keys, solver, pose = _solved(text, library, spine)
-    errors = []
-    for side in ("right", "left"):
-        wrist = solver.body.skeleton.index(f"{side}_wrist")
-        normals = quat_to_matrix(pose.quaternions[:, wrist])[:, :, 2]
-        for key, normal in zip(keys, normals, strict=True):
-            wanted = TORSO_TO_WORLD @ key.hands[side].palm
-            cosine = np.clip(normal @ wanted / np.linalg.norm(wanted), -1.0, 1.0)
-            errors.append(PalmError(key.ms, side, float(np.degrees(np.arccos(cosine)))))
-    return errors
-
-
-@dataclass(frozen=True)
-class ReachError:
-    """One hand in one key: the key's time (ms), the hand, and the distance (m) between
-    the wrist's place the key asked for and where the solved arm puts it."""
-
-    ms: float
-    side: str
     miss_m: float
 
 
-def reach_errors(text: str, library: SignLibrary | None = None,
-                 spine: bool = True) -> list[ReachError]:  # fmt: skip
-    """Return every key's wrist miss for the glosses of *text* (right-handed)."""
-    keys, solver, pose = _solved(text, library, spine)
-    errors = []
-    for side in ("right", "left"):
-        wrists = pose.positions_m[:, solver.body.skeleton.index(f"{side}_wrist")]
-        for key, wrist in zip(keys, wrists, strict=True):
-            miss = np.linalg.norm(wrist - solver.world(key.hands[side].at_m))
-            errors.append(ReachError(key.ms, side, float(miss)))
-    return errors
-
-
-def _solved(text: str, library: SignLibrary | None, spine: bool):
-    """Return the keys of *text*, their solver and the solved pose of every key."""
+def key_misses(text: str, library: SignLibrary | None = None,
+               spine: bool = True) -> list[KeyMiss]:  # fmt: skip
+    """Return every key's palm and wrist misses for the glosses of *text* (right-handed)."""
     keys, _ = timeline(parse_glosses(text), library or default_library())
     solver = KeySolver(BodyModel("right"), SpineParams())
     automated = solver.automated(keys) if spine else np.zeros((len(keys), len(solver.names)))
-    return keys, solver, solver.body.pose(solver.keys(keys, automated))
+    pose = solver.body.pose(solver.keys(keys, automated))
+    misses = []
+    for side in ("right", "left"):
+        wrist = solver.body.skeleton.index(f"{side}_wrist")
+        normals = quat_to_matrix(pose.quaternions[:, wrist])[:, :, 2]
+        for key, normal, place in zip(keys, normals, pose.positions_m[:, wrist], strict=True):
+            wanted = TORSO_TO_WORLD @ key.hands[side].palm
+            cosine = np.clip(normal @ wanted / np.linalg.norm(wanted), -1.0, 1.0)
+            miss = np.linalg.norm(place - solver.world(key.hands[side].at_m))
+            misses.append(KeyMiss(key.ms, side, float(np.degrees(np.arccos(cosine))),
+                                  float(miss)))  # fmt: skip
+    return misses

@@ -139,9 +139,9 @@ def test_every_demo_sentence_turns_its_palms_as_its_signs_say():
     from studyplatform.demo.signed import SPINE_PROMPTS
     from studyplatform.demo.transitions import SIGN_PAIRS
     from synthesis.signing.nonmanual import parse_spans
-    from synthesis.signing.palms import palm_errors
+    from synthesis.signing.palms import key_misses
 
     for text in [text for _, text in SIGN_PAIRS] + [gloss for *_, gloss in SPINE_PROMPTS]:
         for spine in (True, False):
-            worst = max(palm_errors(parse_spans(text)[0], spine=spine), key=lambda e: e.angle_deg)
+            worst = max(key_misses(parse_spans(text)[0], spine=spine), key=lambda e: e.angle_deg)
             assert worst.angle_deg <= 30.0, (text, spine, worst)

@@ -18,23 +18,17 @@ def _imported(sha256: str, path: str):
     return read_gltf_avatar(Path(path).read_bytes(), Path(path).name)
 
 
-_AVATARS: dict[tuple[str, str, str, str], object] = {}
-
-
+@functools.lru_cache(maxsize=8)
 def _avatar(sha256: str, path: str, view: str, side: str, builtin):
-    """Return the engine avatar of the file (made once a process per file and view).
+    """Return the engine avatar of the file (made once a process per file, view and
+    built-in avatar, which hashes by identity: the built-in ones are made once a process).
 
     *builtin* is the engine's own signer of the view: its rig's DOFs drive the import,
     its bind pose is what the import's is aligned to, its face drive plays the
     blendshapes they share.
     """
-    key = (sha256, path, view, side)
-    if key not in _AVATARS:
-        if len(_AVATARS) >= 8:
-            _AVATARS.pop(next(iter(_AVATARS)))
-        _AVATARS[key] = engine_avatar(_imported(sha256, path), builtin.rig, builtin.bind_pose,
-                                      builtin.drive, side)  # fmt: skip
-    return _AVATARS[key]
+    return engine_avatar(_imported(sha256, path), builtin.rig, builtin.bind_pose,
+                         builtin.drive, side)  # fmt: skip
 
 
 def _existing(path: str | Path) -> tuple[str, str]:
