@@ -11,5 +11,6 @@ class StudyPlatformConfig(AppConfig):
     default_auto_field = "django.db.models.BigAutoField"
 
     def ready(self) -> None:
-        """Connect the signal handlers: researcher permissions, known sign-in devices."""
-        from studyplatform import signals, signin  # noqa: F401
+        """Connect the signal handlers (researcher permissions, known sign-in devices) and
+        register the system checks."""
+        from studyplatform import checks, signals, signin  # noqa: F401

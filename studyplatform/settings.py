@@ -7,7 +7,8 @@ configuration at all:
   (``var/signstudy.sqlite3``, WAL mode) when unset.
 - ``SIGNSTUDY_DEBUG``: ``1`` to turn debug mode on; off otherwise.
 - ``SIGNSTUDY_SECRET_KEY``: the secret key; when unset, one is generated into
-  ``var/secret_key`` on first run and reused afterwards (never committed).
+  ``var/secret_key`` on first run and reused afterwards (never committed);
+  ``SIGNSTUDY_SECRET_KEY_FALLBACKS``: old keys still accepted while rotating.
 - ``SIGNSTUDY_ALLOWED_HOSTS``: comma-separated host names (default: localhost names).
 - ``SIGNSTUDY_VAR_DIR``: where local state lives (database, media, static, key).
 - ``SIGNSTUDY_PRIVATE_MEDIA_ROOT``: where personal files live (default ``var/private``);
@@ -69,6 +70,13 @@ DEBUG = _env_flag("SIGNSTUDY_DEBUG")
 SECRET_KEY = os.environ.get("SIGNSTUDY_SECRET_KEY") or _load_or_create_secret_key(
     VAR_DIR / "secret_key"
 )
+# Keys being retired (comma-separated): what they signed still reads while sessions
+# and links move to the new key (docs/deployment.md, "Rotating the secret key").
+SECRET_KEY_FALLBACKS = [
+    key.strip()
+    for key in os.environ.get("SIGNSTUDY_SECRET_KEY_FALLBACKS", "").split(",")
+    if key.strip()
+]
 ALLOWED_HOSTS = [
     host.strip()
     for host in os.environ.get("SIGNSTUDY_ALLOWED_HOSTS", "localhost,127.0.0.1,[::1]").split(",")

@@ -7,7 +7,10 @@ django-axes counts failed sign-ins; its rules here (settings ``AXES_*``):
   with many addresses gets no more tries than one with one;
 - **by address**: as many failures from one address, whatever user names, lock it;
 - **known devices**: a browser that has signed in as a user before carries a signed
-  cookie naming that user (:data:`DEVICE_COOKIE`). For it that user's lock does not apply,
+  cookie naming that user and a random token (:data:`DEVICE_COOKIE`), whose SHA-256 the
+  server keeps (:class:`~studyplatform.models.KnownDevice`); a cookie without its row,
+  however well signed, is no device (issue 51: with a leaked secret key, forged cookies
+  let wrong passwords through uncounted). For a known device that user's lock does not apply,
   so an attacker who locks an account locks out nobody who has signed in before; a device
   that fails as often as the limit loses that standing until its cool-off ends.
   A new browser of a locked account waits for the cool-off, or an administrator runs
@@ -19,7 +22,9 @@ header nobody configured is never believed (issue 33: ten failures sent through 
 locked the real admin out, and a spoofed header chose whom to lock).
 """
 
+import hashlib
 import secrets
+from datetime import timedelta
 
 from django.conf import settings
 from django.contrib.auth.signals import user_logged_in, user_login_failed
@@ -27,6 +32,9 @@ from django.core import signing
 from django.core.cache import cache
 from django.dispatch import receiver
 from django.http import HttpRequest
+from django.utils import timezone
+
+from studyplatform.models import KnownDevice
 
 DEVICE_COOKIE = "signstudy_device"
 DEVICE_SALT = "studyplatform.signin.device"
@@ -66,13 +74,28 @@ def _device_failures_key(device_id: str) -> str:
     return f"signstudy:device-failures:{device_id}"
 
 
+def _token_sha256(token: str) -> str:
+    return hashlib.sha256(token.encode()).hexdigest()
+
+
+def _recent_devices():
+    since = timezone.now() - timedelta(seconds=DEVICE_MAX_AGE_S)
+    return KnownDevice.objects.filter(created_at__gte=since)
+
+
 def is_known_device(request: HttpRequest, credentials=None) -> bool:
     """Return whether the request comes from a device that signed in as this user before,
     and has not failed as often as the limit since (axes' whitelist: never locked)."""
     device = _device(request)
     if device is None or device[0] != _username(credentials) or not device[0]:
         return False
-    return cache.get(_device_failures_key(device[1]), 0) < settings.AXES_FAILURE_LIMIT
+    if cache.get(_device_failures_key(device[1]), 0) >= settings.AXES_FAILURE_LIMIT:
+        return False
+    return (
+        _recent_devices()
+        .filter(user__username=device[0], token_sha256=_token_sha256(device[1]))
+        .exists()
+    )
 
 
 @receiver(user_login_failed)
@@ -95,8 +118,12 @@ def remember_device(sender, request=None, user=None, **kwargs) -> None:
     """Mark the browser that just signed in as a known device of *user*."""
     if request is None or user is None:
         return
-    value = signing.dumps({"u": user.get_username(), "d": secrets.token_urlsafe(16)},
-                          salt=DEVICE_SALT)  # fmt: skip
+    token = secrets.token_urlsafe(24)
+    KnownDevice.objects.create(user=user, token_sha256=_token_sha256(token))
+    # Devices past their age are no longer known: drop them as a new one comes.
+    old = timezone.now() - timedelta(seconds=DEVICE_MAX_AGE_S)
+    KnownDevice.objects.filter(user=user, created_at__lt=old).delete()
+    value = signing.dumps({"u": user.get_username(), "d": token}, salt=DEVICE_SALT)
     request.signstudy_device_cookie = value
 
 

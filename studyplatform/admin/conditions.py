@@ -17,6 +17,7 @@ from studyplatform.models import Condition
 from studyplatform.rules import (
     condition_item_kinds,
     describe_condition,
+    file_help,
     supported_kinds,
 )
 from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS, Parameter
@@ -42,7 +43,7 @@ def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
             help_text=help_text, **common,
         )  # fmt: skip
     if parameter.type == "file":
-        help_text += " A path on the rendering machine; empty: none."
+        help_text += f" {file_help(parameter.name)}"
         return forms.CharField(required=False, help_text=help_text, **common)
     field = forms.IntegerField if parameter.type == "int" else forms.FloatField
     default = parameter.label_of(parameter.default)  # with its units

@@ -2,6 +2,7 @@
 
 from studyplatform.models.avatars import Avatar
 from studyplatform.models.design import AnswerOption, Block, Question, Trial, trial_question_kinds
+from studyplatform.models.devices import KnownDevice
 from studyplatform.models.participants import (
     Participant,
     PersonalAnswer,
@@ -25,6 +26,7 @@ __all__ = [
     "Block",
     "Condition",
     "Item",
+    "KnownDevice",
     "MediaEvent",
     "Participant",
     "PersonalAnswer",

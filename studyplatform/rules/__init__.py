@@ -4,6 +4,7 @@ Floors (docs/architecture.md): rules and questions ← models ← lib ← action
 views, admin; :mod:`tests.test_architecture` finds any import circle.
 """
 
+from studyplatform.rules.files import FILE_SOURCES, check_files, file_help, resolve_files
 from studyplatform.rules.techniques import (
     check_condition,
     check_item,
@@ -15,11 +16,15 @@ from studyplatform.rules.techniques import (
 )
 
 __all__ = [
+    "FILE_SOURCES",
     "check_condition",
+    "check_files",
     "check_item",
     "check_parameters",
     "condition_item_kinds",
     "describe_condition",
     "describe_parameters",
+    "file_help",
+    "resolve_files",
     "supported_kinds",
 ]

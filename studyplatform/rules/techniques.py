@@ -12,6 +12,7 @@ from typing import Any
 
 from django.core.exceptions import ValidationError
 
+from studyplatform.rules.files import check_files
 from synthesis.techniques import (
     FIELDS,
     REGISTRY,
@@ -82,6 +83,12 @@ def check_condition(condition) -> None:
         check_parameters(as_checked(condition.parameters or {}), condition_item_kinds(condition))
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None
+    check_files(condition.parameters, _study_owner(condition))
+
+
+def _study_owner(row):
+    """Return the owner of *row*'s study (None for a row not in a study yet)."""
+    return row.study.owner if row.study_id is not None else None
 
 
 def check_item(item) -> None:
@@ -98,6 +105,7 @@ def check_item(item) -> None:
         validate_parameters(item.kind, item.parameters or {})
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None
+    check_files(item.parameters, _study_owner(item))
     if item.study_id is None:
         return
     for condition in item.study.conditions.all():

@@ -2,7 +2,9 @@
 
 Reading then writing then reading gives bit-identical values: numbers are written in
 their shortest exact decimal form. Every problem in a file raises :class:`BvhError`
-naming the file and line. End Sites become joints named ``<parent>_End``.
+naming the file and line, never quoting what the file holds beyond the grammar's own
+words (a file named by mistake, a server's key say, must not come back in an error:
+issue 51). End Sites become joints named ``<parent>_End``.
 """
 
 import io
@@ -16,6 +18,19 @@ from synthesis.skeleton.skeleton import CHANNEL_NAMES, Joint, Skeleton, guess_le
 
 MAX_DEPTH = 256
 _CHANNEL_LOOKUP = {name.lower(): name for name in CHANNEL_NAMES}
+_KEYWORDS = {"HIERARCHY", "ROOT", "JOINT", "OFFSET", "CHANNELS", "END SITE", "MOTION", "{", "}"}
+
+
+def _described(token: str) -> str:
+    """Return *token* as an error may show it: the grammar's own words quoted, anything
+    else only by its kind and length."""
+    if token.upper() in _KEYWORDS or token.lower() in _CHANNEL_LOOKUP:
+        return repr(token)
+    try:
+        float(token)
+    except ValueError:
+        return f"other text ({len(token)} character{'s' if len(token) != 1 else ''})"
+    return "a number"
 
 
 class BvhError(ValueError):
@@ -69,7 +84,7 @@ class _Tokens:
         if line is None:
             raise self.error(None, f"file ends early; expected {expected or 'more'}")
         if expected is not None and token.upper() != expected:
-            raise self.error(line, f"expected {expected}, found {token!r}")
+            raise self.error(line, f"expected {expected}, found {_described(token)}")
         self.position += 1
         return token, line
 
@@ -78,9 +93,9 @@ class _Tokens:
         try:
             value = float(token)
         except ValueError:
-            raise self.error(line, f"{what} {token!r} is not a number") from None
+            raise self.error(line, f"{what}: {_described(token)} is not a number") from None
         if not math.isfinite(value):
-            raise self.error(line, f"{what} must be finite, found {token!r}")
+            raise self.error(line, f"{what} must be finite")
         return value
 
 
@@ -88,18 +103,20 @@ def _parse_channels(tokens: _Tokens, name: str) -> tuple[str, ...]:
     """Parse a CHANNELS list (its keyword already taken): the count, then the names."""
     count_token, count_line = tokens.take()
     if not count_token.isdigit():
-        raise tokens.error(count_line, f"channel count {count_token!r} is not a whole number")
+        raise tokens.error(
+            count_line, f"channel count: {_described(count_token)} is not a whole number"
+        )
     found = []
     for _ in range(int(count_token)):
         channel, channel_line = tokens.take()
         if channel.lower() not in _CHANNEL_LOOKUP:
             raise tokens.error(
                 channel_line,
-                f"unknown channel {channel!r} (expected {', '.join(CHANNEL_NAMES)})",
+                f"unknown channel {_described(channel)} (expected {', '.join(CHANNEL_NAMES)})",
             )
         found.append(_CHANNEL_LOOKUP[channel.lower()])
     if len(set(found)) != len(found):
-        raise tokens.error(count_line, f"joint {name!r} lists a channel twice")
+        raise tokens.error(count_line, "the joint lists a channel twice")
     return tuple(found)
 
 
@@ -125,7 +142,7 @@ def _parse_joint(
     if not name or name == "{":
         raise tokens.error(line, f"{keyword} needs a name")
     if any(joint.name == name for joint in joints):
-        raise tokens.error(line, f"a second joint is named {name!r}")
+        raise tokens.error(line, "a second joint has a name already taken")
     tokens.take("{")
     tokens.take("OFFSET")
     offset = tuple(tokens.number("OFFSET value") for _ in range(3))
@@ -134,7 +151,7 @@ def _parse_joint(
         tokens.take()
         channels = _parse_channels(tokens, name)
     elif keyword == "ROOT":
-        raise tokens.error(tokens.peek()[1], f"ROOT {name!r} needs CHANNELS")
+        raise tokens.error(tokens.peek()[1], "the ROOT needs CHANNELS")
     index = len(joints)
     joints.append(Joint(name, parent, offset, channels))
     while True:
@@ -150,15 +167,17 @@ def _parse_joint(
             tokens.take()
             _parse_end_site(tokens, joints, index, name)
         elif token_line is None:
-            raise tokens.error(None, f"file ends inside joint {name!r}; expected '}}'")
+            raise tokens.error(None, f"file ends inside the joint of line {line}; expected '}}'")
         else:
-            raise tokens.error(token_line, f"expected JOINT, End Site or '}}', found {token!r}")
+            raise tokens.error(
+                token_line, f"expected JOINT, End Site or '}}', found {_described(token)}"
+            )
 
 
 def _header_value(line: str, keyword: str, number: int, source: str) -> str:
     head, _, value = line.partition(":")
     if " ".join(head.split()).upper() != keyword.upper():
-        raise BvhError(f"{source}, line {number}: expected '{keyword}:', found {line.strip()!r}.")
+        raise BvhError(f"{source}, line {number}: expected '{keyword}:'.")
     return value.strip()
 
 
@@ -190,7 +209,7 @@ def _unreadable_values(rows, values, n_channels: int, source: str) -> BvhError:
             try:
                 float(word)
             except ValueError:
-                return BvhError(f"{source}, line {number}: {word!r} is not a number.")
+                return BvhError(f"{source}, line {number}: {_described(word)} is not a number.")
     if values is not None and np.isnan(values).any():
         row = int(np.flatnonzero(np.isnan(values).any(axis=1))[0])
         return BvhError(f"{source}, line {rows[row][0]}: values must be finite numbers.")
@@ -237,16 +256,12 @@ def _motion_header(lines: list[str], motion_line: int, source: str) -> tuple[int
     (frames_line, frames_text), (time_line, time_text) = header
     frames_value = _header_value(frames_text, "Frames", frames_line, source)
     if not frames_value.isdigit():
-        raise BvhError(
-            f"{source}, line {frames_line}: frame count {frames_value!r} is not a whole number."
-        )
+        raise BvhError(f"{source}, line {frames_line}: the frame count is not a whole number.")
     time_value = _header_value(time_text, "Frame Time", time_line, source)
     try:
         frame_time = float(time_value)
     except ValueError:
-        raise BvhError(
-            f"{source}, line {time_line}: frame time {time_value!r} is not a number."
-        ) from None
+        raise BvhError(f"{source}, line {time_line}: the frame time is not a number.") from None
     if not (math.isfinite(frame_time) and frame_time > 0):
         raise BvhError(f"{source}, line {time_line}: frame time must be positive.")
     return int(frames_value), frame_time, time_line

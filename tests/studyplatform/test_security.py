@@ -79,6 +79,40 @@ def test_a_locked_account_still_opens_on_a_browser_that_signed_in_before(alice, 
     assert _from(stranger, "10.0.0.7", "alice", "pw-alice").status_code == 429
 
 
+def test_a_device_cookie_forged_with_the_secret_key_bypasses_nothing(alice, settings):
+    """Issue 51: with the key (read through a file parameter) an attacker signed "known
+    device" cookies and 14 wrong passwords went uncounted. A device is the server's record
+    now: a well-signed cookie without one counts every failure and opens no lock."""
+    from django.core import signing
+    from django.test import Client
+
+    from studyplatform.models import KnownDevice
+    from studyplatform.signin import DEVICE_COOKIE, DEVICE_SALT
+
+    forger = Client()
+    forged = signing.dumps({"u": "alice", "d": "guessed-token"}, salt=DEVICE_SALT)
+    for attempt in range(14):
+        forger.cookies[DEVICE_COOKIE] = forged
+        answer = _from(forger, "10.0.2.1", "alice", f"wrong-{attempt}")
+        if attempt >= settings.AXES_FAILURE_LIMIT:
+            assert answer.status_code == 429, attempt
+    forger.cookies[DEVICE_COOKIE] = forged
+    assert _from(forger, "10.0.2.1", "alice", "pw-alice").status_code == 429
+    assert not KnownDevice.objects.exists()
+    # The owner's real device, recorded at a sign-in before the attack, still opens.
+    owner = Client()
+    AccessAttempt.objects.all().delete()
+    assert _from(owner, "10.0.2.9", "alice", "pw-alice").status_code == 302
+    assert KnownDevice.objects.filter(user=alice).count() == 1
+    device = owner.cookies[DEVICE_COOKIE].value
+    for _ in range(12):
+        forger.cookies[DEVICE_COOKIE] = forged
+        _from(forger, "10.0.2.1", "alice", "wrong")
+    owner.logout()
+    owner.cookies[DEVICE_COOKIE] = device
+    assert _from(owner, "10.0.2.9", "alice", "pw-alice").status_code == 302
+
+
 def test_the_client_address_comes_from_a_proxy_only_when_it_is_trusted(rf, settings):
     from studyplatform.signin import client_address
 

@@ -85,22 +85,31 @@ def test_empty_and_long_clips_round_trip():
         (lambda t: t.replace("HIERARCHY", "HIERARCHIES"), r"line 1: expected HIERARCHY"),
         (
             lambda t: t.replace("OFFSET 0.00 8.00 0.00", "OFFSET 0.00 eight 0.00"),
-            r"line 8: OFFSET value 'eight' is not a number",
+            r"line 8: OFFSET value: other text \(5 characters\) is not a number",
         ),
         (
             lambda t: t.replace("CHANNELS 3 Zrotation", "CHANNELS 3 Wrotation", 1),
-            r"line 9: unknown channel 'Wrotation'",
+            r"line 9: unknown channel other text \(9 characters\)",
         ),
-        (lambda t: t.replace("JOINT LeftArm", "JOINT Chest"), r"line 10: a second joint is named"),
+        (
+            lambda t: t.replace("JOINT LeftArm", "JOINT Chest"),
+            r"line 10: a second joint has a name already taken",
+        ),
         (lambda t: t.replace("Frames: 2", "Frames: 3"), r"'Frames: 3' but the file has 2 frame"),
         (
             lambda t: t.replace("Frame Time: 0.05", "Frame Time: -1"),
             r"line 43: frame time must be positive",
         ),
         (lambda t: t.replace("-135.00", "nan"), r"line 45: values must be finite"),
-        (lambda t: t.replace("-135.00", "x"), r"line 45: 'x' is not a number"),
+        (
+            lambda t: t.replace("-135.00", "x"),
+            r"line 45: other text \(1 character\) is not a number",
+        ),
         (lambda t: t.split("MOTION")[0], r"end of file: MOTION section missing"),
-        (lambda t: t[: t.index("JOINT RightArm")], r"end of file: file ends inside joint 'Hips'"),
+        (
+            lambda t: t[: t.index("JOINT RightArm")],
+            r"end of file: file ends inside the joint of line 2",
+        ),
         (lambda t: "", r"end of file: file ends early; expected HIERARCHY"),
     ],
 )
