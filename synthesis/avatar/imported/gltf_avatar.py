@@ -20,10 +20,12 @@ from scipy.spatial.transform import Rotation
 from synthesis.avatar.imported.gltf_read import (
     COLOR_ACROSS,
     COLOR_INSIDE,
+    DAMAGE,
     EDGE,
     MAIN_JOINT,
     GltfError,
     Reader,
+    damaged,
     load,
 )
 from synthesis.skeleton.kinematics import Pose
@@ -80,14 +82,10 @@ class ImportedAvatar:
 
 def _skin_order(reader: Reader, joints: list[int]) -> tuple[list[int], np.ndarray]:
     """Return the skin's joints parents first and each one's parent (index, −1 for roots)."""
-    members = set(joints)
+    nearest = reader.nearest_ancestors(set(joints))
 
     def parent_of(node: int) -> int | None:
-        while node in reader.parent:
-            node = reader.parent[node]
-            if node in members:
-                return node
-        return None
+        return nearest[node]
 
     children: dict[int | None, list[int]] = {}
     for node in joints:
@@ -229,20 +227,41 @@ def _mesh(reader: Reader, node: int, primitive, number: int, skin_to_order: np.n
     )  # fmt: skip
 
 
+def _object(value, what: str) -> dict:
+    """Return *value*, a JSON object of a VRM extension (absent: empty); GltfError
+    naming *what* when it is anything else."""
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise GltfError(f"The VRM {what} is not an object.")
+    return value
+
+
+def _list(value, what: str) -> list:
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        raise GltfError(f"The VRM {what} is not a list.")
+    return value
+
+
 def _vrm(gltf) -> tuple[dict, dict, bool]:
     """Return a VRM file's humanoid bones (VRM name → node), meta, and whether it is
-    VRM 0.x (facing −Z); empty for plain glTF."""
-    extensions = gltf.extensions or {}
+    VRM 0.x (facing −Z); empty for plain glTF. GltfError names a malformed part."""
+    extensions = _object(gltf.extensions, "extensions")
     if "VRMC_vrm" in extensions:
-        vrm = extensions["VRMC_vrm"]
-        bones = {name: bone.get("node") for name, bone in
-                 ((vrm.get("humanoid") or {}).get("humanBones") or {}).items()}  # fmt: skip
-        return bones, dict(vrm.get("meta") or {}), False
+        vrm = _object(extensions["VRMC_vrm"], "extension VRMC_vrm")
+        humanoid = _object(vrm.get("humanoid"), "humanoid")
+        entries = _object(humanoid.get("humanBones"), "humanBones").items()
+        bones = {str(name): _object(bone, f"bone {name}").get("node") for name, bone in entries}
+        return bones, dict(_object(vrm.get("meta"), "meta")), False
     if "VRM" in extensions:
-        vrm = extensions["VRM"]
-        bones = {bone.get("bone"): bone.get("node")
-                 for bone in (vrm.get("humanoid") or {}).get("humanBones") or []}  # fmt: skip
-        return bones, dict(vrm.get("meta") or {}), True
+        vrm = _object(extensions["VRM"], "extension VRM")
+        humanoid = _object(vrm.get("humanoid"), "humanoid")
+        listed = _list(humanoid.get("humanBones"), "humanBones")
+        entries = [_object(bone, "humanBones entry") for bone in listed]
+        bones = {str(bone.get("bone")): bone.get("node") for bone in entries}
+        return bones, dict(_object(vrm.get("meta"), "meta")), True
     return {}, {}, False
 
 
@@ -252,6 +271,15 @@ def read_gltf_avatar(data: bytes, source: str = "the file") -> ImportedAvatar:
     Raise GltfError naming the problem: not glTF 2.0, truncated, no skin (no skeleton
     or weights), no triangles, a unit other than metres.
     """
+    try:
+        return _read_avatar(data, source)
+    except GltfError:
+        raise
+    except DAMAGE as error:
+        raise damaged(source, "avatar", error) from None
+
+
+def _read_avatar(data: bytes, source: str) -> ImportedAvatar:
     gltf, buffers = load(data, source)
     reader = Reader(gltf, buffers, source)
     if not gltf.skins:
@@ -266,7 +294,8 @@ def read_gltf_avatar(data: bytes, source: str = "the file") -> ImportedAvatar:
     humanoid_nodes, meta, faces_back = _vrm(gltf)
     turn = np.diag([-1.0, 1.0, -1.0, 1.0]) if faces_back else np.eye(4)
     order, parents = _skin_order(reader, list(skin.joints))
-    skin_to_order = np.array([order.index(node) for node in skin.joints], dtype=np.intp)
+    position = {node: k for k, node in enumerate(order)}
+    skin_to_order = np.array([position[node] for node in skin.joints], dtype=np.intp)
     bind = _bind_pose(reader, skin, order, turn)
     names = []
     for k, node in enumerate(order):
@@ -287,8 +316,8 @@ def read_gltf_avatar(data: bytes, source: str = "the file") -> ImportedAvatar:
     avatar = ImportedAvatar(
         name=str(meta.get("name") or meta.get("title") or scene_name or "avatar"),
         joint_names=tuple(names), parents=parents, bind=bind, meshes=tuple(meshes),
-        humanoid={bone: names[order.index(node)] for bone, node in humanoid_nodes.items()
-                  if node in order},
+        humanoid={bone: names[position[node]] for bone, node in humanoid_nodes.items()
+                  if isinstance(node, int) and node in position},
         meta=meta, bones=_saved_bones(gltf),
     )  # fmt: skip
     low, high = HEIGHT_RANGE_M
@@ -340,24 +369,38 @@ _VRM0_PRESETS = {"a": "aa", "i": "ih", "u": "ou", "e": "ee", "o": "oh", "joy": "
                  "lookleft": "lookLeft", "lookright": "lookRight"}  # fmt: skip
 
 
+def _weight(bind: dict, default: float) -> float:
+    weight = bind.get("weight", default)
+    if isinstance(weight, bool) or not isinstance(weight, int | float) or not np.isfinite(weight):
+        raise GltfError("A VRM expression's weight is not a number.")
+    return float(weight)
+
+
 def _expression_binds(gltf) -> dict[str, list[tuple[tuple[str, int], int, float]]]:
     """Return each VRM preset expression's morph target binds by VRM 1.0 name: (what
     holds the target, its index, weight 0–1), the holder ("node", n) in VRM 1.0 and
-    ("mesh", m) in 0.x."""
-    extensions = gltf.extensions or {}
+    ("mesh", m) in 0.x. GltfError names a malformed part."""
+    extensions = _object(gltf.extensions, "extensions")
     binds = {}
     if "VRMC_vrm" in extensions:
-        preset = (extensions["VRMC_vrm"].get("expressions") or {}).get("preset") or {}
-        for name, expression in preset.items():
-            binds[name] = [(("node", b.get("node")), b.get("index"), float(b.get("weight", 1.0)))
-                           for b in expression.get("morphTargetBinds") or []]  # fmt: skip
+        vrm = _object(extensions["VRMC_vrm"], "extension VRMC_vrm")
+        expressions = _object(vrm.get("expressions"), "expressions")
+        for name, expression in _object(expressions.get("preset"), "preset").items():
+            expression = _object(expression, f"expression {name}")
+            bound = _list(expression.get("morphTargetBinds"), "morphTargetBinds")
+            binds[str(name)] = [
+                (("node", bind.get("node")), bind.get("index"), _weight(bind, 1.0))
+                for bind in (_object(b, "morphTargetBind") for b in bound)
+            ]
     elif "VRM" in extensions:
-        groups = (extensions["VRM"].get("blendShapeMaster") or {}).get("blendShapeGroups")
-        for group in groups or []:
+        vrm = _object(extensions["VRM"], "extension VRM")
+        master = _object(vrm.get("blendShapeMaster"), "blendShapeMaster")
+        for group in _list(master.get("blendShapeGroups"), "blendShapeGroups"):
+            group = _object(group, "blendShapeGroup")
             preset = str(group.get("presetName") or "").lower()
             binds[_VRM0_PRESETS.get(preset, preset)] = [
-                (("mesh", b.get("mesh")), b.get("index"), float(b.get("weight", 100)) / 100)
-                for b in group.get("binds") or []
+                (("mesh", bind.get("mesh")), bind.get("index"), _weight(bind, 100) / 100)
+                for bind in (_object(b, "bind") for b in _list(group.get("binds"), "binds"))
             ]
     return binds
 
@@ -378,7 +421,8 @@ def _with_expressions(gltf, meshes: list, nodes: list[int]) -> list:
                 continue
             offsets = np.zeros_like(mesh.vertices_m)
             for holder, index, weight in bound:
-                if holder in holders and index is not None and 0 <= index < len(names):
+                usable = isinstance(holder[1], int) and isinstance(index, int)
+                if usable and holder in holders and 0 <= index < len(names):
                     offsets += weight * mesh.targets[names[index]]
             if np.abs(offsets).max(initial=0.0) > 0:
                 targets[arkit] = offsets

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
-from synthesis.avatar.imported.gltf_read import GltfError, Reader, load
+from synthesis.avatar.imported.gltf_read import DAMAGE, GltfError, Reader, damaged, load
 from synthesis.skeleton.motion import Motion
 from synthesis.skeleton.skeleton import Joint, Skeleton
 
@@ -27,6 +27,9 @@ GLTF_SUFFIXES = (".glb", ".gltf", ".vrm")
 # What assimp 5 reads that motion comes in (its command line converts them to glTF).
 ASSIMP_SUFFIXES = (".fbx", ".dae", ".x", ".ms3d", ".b3d", ".smd")
 DEFAULT_RATE_HZ = 30.0
+# The longest motion brought in, as the longest uploaded clip (a hostile file's keys
+# from 0 to 10¹² s once asked for petabytes of frames).
+MAX_DURATION_S = 600.0
 ROOT_CHANNELS = ("Xposition", "Yposition", "Zposition", "Zrotation", "Xrotation", "Yrotation")
 JOINT_CHANNELS = ("Zrotation", "Xrotation", "Yrotation")
 
@@ -63,14 +66,16 @@ def _joints(reader: Reader) -> list[int]:
                if c.target.path in ("rotation", "translation")}  # fmt: skip
     if gltf.skins:
         members |= set(gltf.skins[0].joints)
+    nearest = reader.nearest_ancestors(members)
     between = set()
     for node in members:
-        path, up = [], reader.parent.get(node)
-        while up is not None and up not in members:
-            path.append(up)
+        up = reader.parent.get(node)
+        # The nodes on the way up to the nearest member, where there is one.
+        while up is not None and up not in members and nearest[node] is not None:
+            if up in between:
+                break  # the rest of the way up is in already
+            between.add(up)
             up = reader.parent.get(up)
-        if up is not None:
-            between.update(path)
     return sorted(members | between)
 
 
@@ -82,7 +87,20 @@ def _tracks(reader: Reader, animation) -> dict:
         times = reader.read(sampler.input)[:, 0]
         values = reader.read(sampler.output)
         interpolation = sampler.interpolation or "LINEAR"
-        if interpolation == "CUBICSPLINE":  # in-tangent, value, out-tangent per key
+        per_key = 3 if interpolation == "CUBICSPLINE" else 1  # in-tangent, value, out-tangent
+        if not len(times) or len(values) != per_key * len(times):
+            raise GltfError(
+                f"{reader.source}: an animation sampler has {len(values)} values for "
+                f"{len(times)} keys."
+            )
+        if not np.isfinite(times).all() or (np.diff(times) < 0).any():
+            raise GltfError(f"{reader.source}: an animation's key times are not increasing.")
+        if times[-1] - times[0] > MAX_DURATION_S:
+            raise GltfError(
+                f"{reader.source}: the animation lasts {times[-1] - times[0]:.0f} s; motion "
+                f"comes in up to {MAX_DURATION_S:.0f} s."
+            )
+        if per_key == 3:
             values = values.reshape(len(times), 3, -1)[:, 1]
         tracks[(channel.target.node, channel.target.path)] = (times, values, interpolation)
     return tracks
@@ -113,13 +131,14 @@ def _rate(tracks: dict, rate_hz: float | None) -> tuple[np.ndarray, float]:
 
 def _parents_first(reader: Reader, nodes: list[int]) -> list[int]:
     """Return *nodes* ordered so that each comes after its parent, as BVH lists joints."""
-    members, order = set(nodes), []
+    members, order, placed = set(nodes), [], set()
     for node in nodes:
         chain, up = [], node
-        while up is not None and up in members and up not in order and up not in chain:
+        while up is not None and up in members and up not in placed:
             chain.append(up)
             up = reader.parent.get(up)
         order.extend(reversed(chain))
+        placed.update(chain)
     return order
 
 
@@ -144,6 +163,15 @@ def read_gltf_motion(data: bytes, source: str = "the file",
                      rate_hz: float | None = None) -> Motion:  # fmt: skip
     """Return the first animation of glTF *data* as a Motion sampled at *rate_hz*
     (the keys' own rate, at most 120 Hz, when None)."""
+    try:
+        return _read_motion(data, source, rate_hz)
+    except GltfError:
+        raise
+    except DAMAGE as error:  # keys scipy cannot turn (zero quaternions, wrong widths), …
+        raise damaged(source, "animation", error) from None
+
+
+def _read_motion(data: bytes, source: str, rate_hz: float | None) -> Motion:
     gltf, buffers = load(data, source)
     reader = Reader(gltf, buffers, source)
     if not gltf.animations:
@@ -153,10 +181,20 @@ def read_gltf_motion(data: bytes, source: str = "the file",
         raise GltfError(f"{source}'s animation moves no skeleton.")
     tracks = _tracks(reader, gltf.animations[0])
     times, rate_hz = _rate(tracks, rate_hz)
+    return _sampled(reader, nodes, tracks, times, rate_hz)
+
+
+def _sampled(
+    reader: Reader, nodes: list[int], tracks: dict, times: np.ndarray, rate_hz: float
+) -> Motion:
+    """Return the skeleton of *nodes* moved by *tracks* at *times* as a Motion."""
+    gltf = reader.gltf
     joints, columns, scale = [], [], 1.0
+    position = {node: k for k, node in enumerate(nodes)}
+    names: set[str] = set()
     for index, node in enumerate(nodes):
         parent = reader.parent.get(node)
-        parent_index = nodes.index(parent) if parent in nodes else -1
+        parent_index = position.get(parent, -1)
         translation, rotation = _local(tracks, node, gltf.nodes[node], times)
         if parent_index < 0:  # fold what lies above the skeleton into its root
             above = reader.world_matrix(parent) if parent is not None else np.eye(4)
@@ -172,7 +210,8 @@ def read_gltf_motion(data: bytes, source: str = "the file",
             columns.append(rotation.as_euler("ZXY", degrees=True))
             offset = translation[0] * scale
         name = gltf.nodes[node].name or f"joint_{index}"
-        unique = name if all(j.name != name for j in joints) else f"{name}_{index}"
+        unique = name if name not in names else f"{name}_{index}"
+        names.add(unique)
         joints.append(Joint(unique, parent_index, tuple(float(v) for v in offset), channels))
     skeleton = Skeleton(tuple(joints), length_unit="m")
     return Motion(skeleton, np.concatenate(columns, axis=1), 1.0 / rate_hz)
