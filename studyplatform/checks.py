@@ -31,3 +31,20 @@ def check_file_sources(app_configs=None, **kwargs) -> list[checks.CheckMessage]:
                     )
                 )
     return errors
+
+
+@checks.register(deploy=True)
+def check_confinement(app_configs=None, **kwargs) -> list[checks.CheckMessage]:
+    """Warn where the kernel cannot keep confined parsers from the service's files."""
+    from studyplatform.confine.jail import landlock_abi
+
+    if landlock_abi() > 0:
+        return []
+    return [
+        checks.Warning(
+            "This kernel has no Landlock: confined parsers of uploaded files keep their "
+            "memory, CPU, time and network limits but can read what the service can.",
+            hint="Run on Linux 5.13 or newer with Landlock enabled (lsm=landlock,…).",
+            id="studyplatform.W001",
+        )
+    ]

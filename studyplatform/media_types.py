@@ -114,16 +114,13 @@ def safe_name(name: str, kind: MediaKind) -> str:
     return str(path.with_name(stem + kind.suffix))
 
 
-def _ffmpeg(path: Path, *arguments: str,
-            timeout_s: float = DECODE_TIMEOUT_S) -> subprocess.CompletedProcess | None:  # fmt: skip
-    import imageio_ffmpeg
+def _ffmpeg(
+    path: Path, *arguments: str, timeout_s: float = DECODE_TIMEOUT_S
+) -> subprocess.CompletedProcess | None:
+    from studyplatform.confine.ffmpeg import run_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-v", "error", "-i", str(path),
-               "-map", "0:v:0", *arguments, "-f", "null", "-"]  # fmt: skip
-    try:
-        return subprocess.run(command, capture_output=True, timeout=timeout_s)
-    except subprocess.TimeoutExpired:
-        return None
+    decode = ["-v", "error", "-i", str(path), "-map", "0:v:0", *arguments, "-f", "null", "-"]
+    return run_ffmpeg(*decode, read=[path], timeout_s=timeout_s)
 
 
 def decodes_as_video(path: Path) -> bool:
@@ -140,17 +137,15 @@ def remux_webm(source: Path, target: Path, video_only: bool = False) -> bool:
     so a player shows 0:00 and cannot seek; remuxing (streams copied, nothing
     re-encoded, bit-exact headers) writes both.
     """
-    import imageio_ffmpeg
+    from studyplatform.confine.ffmpeg import run_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-v", "error", "-y",
-               "-i", str(source), "-map", "0:v:0" if video_only else "0", "-c", "copy",
-               "-fflags", "+bitexact",
-               "-f", "webm", str(target)]  # fmt: skip
-    try:
-        done = subprocess.run(command, capture_output=True, timeout=DECODE_TIMEOUT_S)
-    except subprocess.TimeoutExpired:
+    streams = "0:v:0" if video_only else "0"
+    copy = ["-v", "error", "-y", "-i", str(source), "-map", streams, "-c", "copy"]
+    copy += ["-fflags", "+bitexact", "-f", "webm", str(target)]
+    done = run_ffmpeg(*copy, read=[source], write=[target.parent], timeout_s=DECODE_TIMEOUT_S)
+    if done is None or done.returncode != 0:
         return False
-    return done.returncode == 0 and target.is_file() and target.stat().st_size > 0
+    return target.is_file() and target.stat().st_size > 0
 
 
 @contextmanager

@@ -104,12 +104,16 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
     elif path.suffix.lower() == ".pose":
         landmarks = read_pose(path)
     elif path.suffix.lower() in (".fbx", ".glb"):  # converted to BVH: what clips read
-        from synthesis.avatar.imported.motion import read_motion_file
-        from synthesis.skeleton.bvh import format_bvh
+        from studyplatform.confine import ConfinedError, run_task
+        from synthesis.skeleton.bvh import parse_bvh
 
         landmarks = None
-        motion = read_motion_file(path)
-        bvh = format_bvh(motion).encode()
+        try:  # assimp and the glTF reader run confined, as on upload
+            read = run_task("motion", path.read_bytes(), path.name, path.suffix.lower())
+        except ConfinedError as error:
+            raise ValueError(str(error)) from None
+        bvh = read["bvh"].encode()
+        motion = parse_bvh(read["bvh"], path.name)
         quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
     else:
         landmarks = None

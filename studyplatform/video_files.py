@@ -12,7 +12,6 @@ poster. Nothing here touches the database.
 
 import shutil
 import struct
-import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,14 +52,11 @@ class PreparedClip:
 
 def _stream_facts(path: Path, what: str) -> dict:
     """Return ffmpeg's description of the file's first video stream."""
-    import imageio_ffmpeg
+    from studyplatform.confine.ffmpeg import stream_facts
 
-    try:
-        frames = imageio_ffmpeg.read_frames(str(path))
-        facts = next(frames)
-        frames.close()
-    except (OSError, RuntimeError, StopIteration):
-        raise MediaRejected(f"{what} does not decode as a video.") from None
+    facts = stream_facts(path)
+    if facts is None:
+        raise MediaRejected(f"{what} does not decode as a video.")
     # ffmpeg's own words, as imageio-ffmpeg reads them: "vp8," or "yuv420p(tv, progressive)".
     facts["codec"] = str(facts.get("codec", "")).split(",")[0].strip()
     facts["pix_fmt"] = str(facts.get("pix_fmt", "")).split("(")[0].strip()
@@ -89,15 +85,14 @@ def _is_quicktime(path: Path) -> bool:
         return handle.read(12)[8:12] == b"qt  "
 
 
-def _run(*arguments: str) -> bool:
-    import imageio_ffmpeg
+def _run(*arguments: str, source: Path, folder: Path) -> bool:
+    """Run ffmpeg reading *source* and writing into *folder*; return whether it did."""
+    from studyplatform.confine.ffmpeg import run_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-v", "error", "-y", *arguments]
-    try:
-        done = subprocess.run(command, capture_output=True, timeout=CONVERT_TIMEOUT_S)
-    except subprocess.TimeoutExpired:
-        return False
-    return done.returncode == 0
+    done = run_ffmpeg(
+        "-v", "error", "-y", *arguments, read=[source], write=[folder], timeout_s=CONVERT_TIMEOUT_S
+    )
+    return done is not None and done.returncode == 0
 
 
 def _playable(source: Path, folder: Path, suffix: str, facts: dict) -> tuple[Path, str, str]:
@@ -112,11 +107,14 @@ def _playable(source: Path, folder: Path, suffix: str, facts: dict) -> tuple[Pat
     if h264 and suffix == MP4.suffix and _index_first(source) and not _is_quicktime(source):
         return source, MP4.suffix, ""
     target = folder / "clip.mp4"
-    if h264 and _run("-i", str(source), "-map", "0:v:0", "-c", "copy",
-                     "-movflags", "+faststart", "-f", "mp4", str(target)):  # fmt: skip
+    into = ["-movflags", "+faststart", "-f", "mp4", str(target)]
+    if h264 and _run(
+        "-i", str(source), "-map", "0:v:0", "-c", "copy", *into, source=source, folder=folder
+    ):
         return target, MP4.suffix, "remuxed"
-    if _run("-i", str(source), "-map", "0:v:0", *H264_ARGUMENTS,
-            "-movflags", "+faststart", "-f", "mp4", str(target)):  # fmt: skip
+    if _run(
+        "-i", str(source), "-map", "0:v:0", *H264_ARGUMENTS, *into, source=source, folder=folder
+    ):
         return target, MP4.suffix, "transcoded"
     raise MediaRejected("could not be converted to a video browsers play.")
 
@@ -152,7 +150,17 @@ def prepare_clip(source: Path, folder: Path, what: str) -> PreparedClip:
         length = decoded_length(video, timeout_s=CONVERT_TIMEOUT_S) or length
         width, height = _stream_facts(video, what).get("size", (width, height))
     poster = folder / "poster.png"
-    if not _run("-i", str(video), "-map", "0:v:0", "-frames:v", "1", str(poster)):
+    if not _run(
+        "-i",
+        str(video),
+        "-map",
+        "0:v:0",
+        "-frames:v",
+        "1",
+        str(poster),
+        source=video,
+        folder=folder,
+    ):
         raise MediaRejected(f"{what}: no first frame could be read for its poster.")
     duration_s, frames = length
     frame_rate = float(facts.get("fps") or frames / duration_s)

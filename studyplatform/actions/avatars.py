@@ -1,11 +1,15 @@
 """Take researchers' own avatars: check a GLB/VRM upload, store it, map its bones, and
 render its preview stills in the background."""
 
+import base64
+import json
+
 from django.core.exceptions import ValidationError
 from django.core.files.base import ContentFile
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
+from studyplatform.confine import ConfinedError, run_task
 from studyplatform.models import Avatar
 from studyplatform.queue import PREPARE_AVATAR, queue_job_on_commit
 from studyplatform.storage import PRIVATE_STORAGE
@@ -19,19 +23,12 @@ class AvatarRejected(ValidationError):
 
 
 def _inspected(data: bytes, name: str) -> dict:
-    """Return the engine's report on avatar *data*; AvatarRejected names what is wrong."""
-    from synthesis.avatar.imported.gltf_avatar import read_gltf_avatar
-    from synthesis.avatar.imported.gltf_read import GltfError
-    from synthesis.avatar.imported.humanoid import describe_avatar, engine_avatar
-    from synthesis.avatar.looks import Look, avatar_for
-
+    """Return the engine's report on avatar *data*, read confined
+    (:mod:`studyplatform.confine`); AvatarRejected names what is wrong."""
     try:
-        imported = read_gltf_avatar(data, f"“{name}”")
-        builtin = avatar_for("upper-body", "right", Look())
-        engine_avatar(imported, builtin.rig, builtin.bind_pose, builtin.drive)  # maps enough
-    except GltfError as error:
+        return run_task("avatar", data, name)
+    except ConfinedError as error:
         raise AvatarRejected(str(error)) from None
-    return describe_avatar(imported, builtin.rig, builtin.drive)
 
 
 def _store(avatar: Avatar, data: bytes) -> None:
@@ -103,17 +100,14 @@ def do_map_avatar_bones(avatar: Avatar, bones: dict[str, str]) -> Avatar:
     """Save *bones* (avatar joint → engine joint, "" to unmap) in the avatar's file and
     report; the file's new SHA-256 renders new clips. AvatarRejected names a joint the
     avatar or the engine does not have."""
-    from synthesis.avatar.imported.gltf_avatar import with_bone_mapping
-    from synthesis.avatar.imported.gltf_read import GltfError
-
     check_bone_mapping(avatar, bones)
     with avatar.file.open("rb") as handle:
         data = handle.read()
     try:
-        data = with_bone_mapping(data, bones, avatar.original_name)
-    except GltfError as error:
+        mapped = run_task("mapped_avatar", data, avatar.original_name, json.dumps(bones))
+    except ConfinedError as error:
         raise AvatarRejected(str(error)) from None
-    report = _inspected(data, avatar.original_name)
+    data, report = base64.b64decode(mapped["data"]), mapped["report"]
     with transaction.atomic():
         avatar.bone_mapping, avatar.report = bones, report
         _store(avatar, data)

@@ -56,7 +56,7 @@ class ImportedMedia:
                     kind = check_upload(content, families, f"{name!r}")
                 except MediaRejected as error:
                     raise StudyImportError(f"{where}: {error.messages[0]}") from None
-                if kind.family == "motion":
+                if kind.family in ("motion", "model"):  # BVH, .pose, FBX; glTF (issue 51)
                     try:
                         check_motion_file(name, content.read(), kind)
                     except ValidationError as error:

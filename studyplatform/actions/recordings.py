@@ -14,11 +14,9 @@ from django.core.files.base import ContentFile
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
+from studyplatform.confine import ConfinedError, run_task
 from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
 from studyplatform.media_types import (
-    FBX,
-    GLB,
-    POSE,
     MediaKind,
     MediaRejected,
     check_upload,
@@ -35,43 +33,15 @@ class RecordingRejected(ValidationError):
     """An upload that cannot be a recording of the item; nothing was stored."""
 
 
-def check_motion_file(name: str, data: bytes, kind: MediaKind) -> None:
-    """Raise RecordingRejected if a .pose, BVH, FBX or glTF file (by content: *kind*) does
-    not read as motion."""
-    from synthesis.capture import PoseFileError, parse_pose
-    from synthesis.skeleton.bvh import BvhError, parse_bvh
-
-    if kind in (FBX, GLB):
-        converted_motion(name, data, kind)
-        return
+def check_motion_file(name: str, data: bytes, kind: MediaKind) -> dict:
+    """Return what a .pose, BVH, FBX or glTF file (by content: *kind*) holds as motion
+    (frames, rate, and for FBX and glTF the motion as BVH), read confined
+    (:mod:`studyplatform.confine`); RecordingRejected names what is wrong, or the limit
+    the file hit."""
     try:
-        if kind is POSE:
-            recording = parse_pose(data, name)
-            if not any(recording.found_hands().values()):
-                raise PoseFileError(f"{name}: no hand in any frame.")
-        else:
-            parse_bvh(data.decode("utf-8"), name)
-    except UnicodeDecodeError:
-        raise RecordingRejected(f"“{name}” is not a BVH text file.") from None
-    except (PoseFileError, BvhError) as error:
+        return run_task("motion", data, f"“{name}”", kind.suffix)
+    except ConfinedError as error:
         raise RecordingRejected(str(error)) from None
-
-
-def converted_motion(name: str, data: bytes, kind: MediaKind):
-    """Return the motion of an FBX (through assimp) or glTF file as a BVH-like Motion;
-    RecordingRejected names what is wrong."""
-    import tempfile
-    from pathlib import Path
-
-    from synthesis.avatar.imported.motion import read_motion_file
-
-    with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / f"motion{kind.suffix}"
-        path.write_bytes(data)
-        try:
-            return read_motion_file(path)
-        except ValueError as error:  # GltfError, a skeleton read as no motion
-            raise RecordingRejected(f"“{name}”: {error}") from None
 
 
 def do_attach_recording(item: Item, upload, mirrored: bool = False,

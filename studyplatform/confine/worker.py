@@ -1,0 +1,91 @@
+"""Parse one untrusted file in a confined process: the engine's readers, nothing else.
+
+Run by path under the jail (:mod:`studyplatform.confine.runner`), never imported by the
+platform: ``python worker.py TASK NAME [ARGUMENT]`` with the file's bytes on standard
+input. It writes one JSON object to standard output: ``{"result": …}``, or
+``{"rejected": message}`` naming what is wrong with the file. It imports the engine
+(synthesis) and never Django, so it holds no setting, key or connection.
+"""
+
+import base64
+import json
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def avatar_report(data: bytes, name: str, _: str) -> dict:
+    """Return the engine's report on an avatar: joints mapped, fingers, face channels."""
+    from synthesis.avatar.imported.gltf_avatar import read_gltf_avatar
+    from synthesis.avatar.imported.humanoid import describe_avatar, engine_avatar
+    from synthesis.avatar.looks import Look, avatar_for
+
+    imported = read_gltf_avatar(data, f"“{name}”")
+    builtin = avatar_for("upper-body", "right", Look())
+    engine_avatar(imported, builtin.rig, builtin.bind_pose, builtin.drive)  # maps enough
+    return describe_avatar(imported, builtin.rig, builtin.drive)
+
+
+def mapped_avatar(data: bytes, name: str, bones: str) -> dict:
+    """Return the avatar with a bone mapping saved in it (base64) and its new report."""
+    from synthesis.avatar.imported.gltf_avatar import with_bone_mapping
+
+    mapped = with_bone_mapping(data, json.loads(bones), name)
+    return {"data": base64.b64encode(mapped).decode(), "report": avatar_report(mapped, name, "")}
+
+
+def motion(data: bytes, name: str, suffix: str) -> dict:
+    """Check a recording's motion (.pose, BVH, glTF, FBX); return its frame count, rate,
+    and for glTF and FBX the motion as BVH text (what clips read)."""
+    from synthesis.capture import PoseFileError, parse_pose
+    from synthesis.skeleton.bvh import format_bvh, parse_bvh
+
+    if suffix == ".pose":
+        recording = parse_pose(data, name)
+        if not any(recording.found_hands().values()):
+            raise PoseFileError(f"{name}: no hand in any frame.")
+        return {"frames": recording.n_frames, "fps": recording.fps}
+    if suffix == ".bvh":
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            raise ValueError(f"“{name}” is not a BVH text file.") from None
+        parsed = parse_bvh(text, name)
+        return {"frames": parsed.n_frames, "fps": parsed.rate_hz}
+    from synthesis.avatar.imported.motion import read_motion_file
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"motion{suffix}"
+        path.write_bytes(data)
+        read = read_motion_file(path)
+    return {"frames": read.n_frames, "fps": read.rate_hz, "bvh": format_bvh(read)}
+
+
+TASKS = {"avatar": avatar_report, "mapped_avatar": mapped_avatar, "motion": motion}
+
+
+def main(argv: list[str]) -> None:
+    sys.path.insert(0, str(ROOT))
+    task, name = TASKS[argv[1]], argv[2]
+    argument = argv[3] if len(argv) > 3 else ""
+    data = sys.stdin.buffer.read()
+    try:
+        answer = {"result": task(data, name, argument)}
+    except MemoryError:
+        answer = {"rejected": f"{name} needs more memory than a file is given to be read."}
+    except RecursionError:
+        answer = {"rejected": f"{name} is nested too deeply to be read."}
+    except ValueError as error:  # the engine's readers name the problem (GltfError, …)
+        answer = {"rejected": str(error)}
+    except Exception as error:  # anything else a hostile file provokes is its damage
+        answer = {"rejected": f"{name} cannot be read: it is damaged ({type(error).__name__})."}
+    sys.stdout.write(json.dumps(answer))
+    sys.stdout.flush()
+    os._exit(0)  # no interpreter teardown: the answer is out
+
+
+if __name__ == "__main__":
+    main(sys.argv)
