@@ -1,6 +1,7 @@
 """Write a Report to disk: results.json, tables (CSV, LaTeX, Markdown), figures, HTML."""
 
 import json
+import re
 from pathlib import Path
 
 import pandas as pd
@@ -238,6 +239,21 @@ def _latex(frame: pd.DataFrame, name: str) -> str:
     return latex.strip() + "\n"
 
 
+# Characters that change what a Markdown table cell shows (CommonMark §2.4: any ASCII
+# punctuation may be backslash-escaped): a researcher's label such as "A | B" or
+# "<img onerror=…>" must stay text, not split a column, link or become HTML. Parentheses,
+# "#" and "+" mean nothing inside a cell without "[" before them or a line start.
+MARKDOWN_SPECIAL = re.compile(r"([\\`*_\[\]<>|~])")
+
+
+def markdown_text(value):
+    """Return *value* as Markdown shows it literally (text escaped, one line); other
+    values as they are."""
+    if not isinstance(value, str):
+        return value
+    return MARKDOWN_SPECIAL.sub(r"\\\1", " ".join(value.splitlines()))
+
+
 def write_report(
     report: Report, frame: pd.DataFrame, out_dir: str | Path, *, draw_figures: bool = True
 ) -> list[str]:
@@ -256,7 +272,7 @@ def write_report(
         table.to_csv(out / f"{name}.csv", index=False)
         (out / f"{name}.tex").write_text(_latex(table, name))
         # tabulate writes its missing value for None only, never for NaN.
-        cells = table.astype(object).where(table.notna(), None)
+        cells = table.astype(object).where(table.notna(), None).map(markdown_text)
         markdown = cells.to_markdown(index=False, floatfmt=".4g", missingval="–")
         (out / f"{name}.md").write_text(markdown + "\n")
         table_files[name] = table

@@ -265,12 +265,16 @@ def as_draft(*studies) -> None:
         study.save(update_fields=["status"])
 
 
-def pytest_collection_modifyitems(items) -> None:
+def pytest_collection_modifyitems(config, items) -> None:
     """Mark the platform's tests ``database`` (only they touch one), and those that drive
     Chromium ``browser`` and ``slow``: scripts/test.sh runs the database tests on SQLite
-    and PostgreSQL, the Chromium ones once (on PostgreSQL when it answers)."""
+    and PostgreSQL, the Chromium ones once (on PostgreSQL when it answers). ``release``
+    tests run only when ``-m`` names them."""
     platform = Path(__file__).parent / "studyplatform"
+    at_length = "release" in (config.getoption("markexpr") or "")
     for item in items:
+        if "release" in item.keywords and not at_length:
+            item.add_marker(pytest.mark.skip(reason="a release check: run with -m release"))
         if platform in Path(item.path).parents:
             item.add_marker(pytest.mark.database)
         if "browser" in getattr(item, "fixturenames", ()):

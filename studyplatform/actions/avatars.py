@@ -76,6 +76,8 @@ def check_bone_mapping(avatar: Avatar, bones) -> None:
     engine = set(BodyModel("right").skeleton.names)
     known = set(avatar.report.get("mapped", {})) | set(avatar.report.get("unmapped", []))
     for joint, target in bones.items():
+        if not isinstance(target, str):
+            raise AvatarRejected(f"The mapping of {str(joint)[:60]!r} is not a joint name (text).")
         if joint not in known:
             raise AvatarRejected(f"The avatar has no joint {joint!r}.")
         if target and target not in engine:

@@ -22,6 +22,7 @@ from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.stimuli import record_missing_stimulus, record_uploaded_stimulus
+from studyplatform.lib.bundle import ENCRYPTED, UNREADABLE_ZIP
 from studyplatform.media_types import MediaRejected
 from studyplatform.models import Condition, Item, Study, UploadedClip
 from studyplatform.models.studies import check_unlocked
@@ -123,23 +124,34 @@ def _manifest_rows(archive: zipfile.ZipFile, member: zipfile.ZipInfo) -> list[di
         text = archive.read(member).decode("utf-8-sig")
     except UnicodeDecodeError:
         raise ClipUploadRejected(f"{member.filename} is not UTF-8 text.") from None
+    try:
+        return _parsed_manifest(member.filename, text)
+    except csv.Error as error:  # a field over the csv module's limit, a NUL, …
+        raise ClipUploadRejected(f"{member.filename} is not a readable CSV ({error}).") from None
+
+
+def _parsed_manifest(filename: str, text: str) -> list[dict[str, str]]:
     reader = csv.DictReader(io.StringIO(text))
     columns = [c.strip().lower() for c in reader.fieldnames or []]
     missing = [c for c in MANIFEST_COLUMNS if c not in columns]
     if missing:
         raise ClipUploadRejected(
-            f"{member.filename} has no {', '.join(missing)} column; it needs "
+            f"{filename} has no {', '.join(missing)} column; it needs "
             f"{','.join(MANIFEST_COLUMNS)} (one row per clip)."
         )
     reader.fieldnames = columns
     rows = [{k: (v or "").strip() for k, v in row.items() if k} for row in reader]
     if not rows:
-        raise ClipUploadRejected(f"{member.filename} names no clip.")
+        raise ClipUploadRejected(f"{filename} names no clip.")
     return rows
 
 
 def _check_member(member: zipfile.ZipInfo, where: str) -> None:
-    """Refuse a member that is too large or unpacks to far more than it packs."""
+    """Refuse a member that is encrypted, too large or unpacks to far more than it packs."""
+    if member.flag_bits & ENCRYPTED:
+        raise ClipUploadRejected(
+            f"{where}: {member.filename} is encrypted; zip it without a password."
+        )
     if member.file_size > MAX_CLIP_BYTES:
         raise ClipUploadRejected(
             f"{where}: {member.filename} unpacks to more than {MAX_CLIP_BYTES // 1024**2} MB."
@@ -226,7 +238,7 @@ def do_import_clips(study: Study, upload) -> list[UploadedClip]:
                     prepared.append(prepare_clip(source, place, row.member.filename))
                 except MediaRejected as error:
                     raise ClipUploadRejected(error.messages[0]) from None
-        except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, EOFError) as error:
+        except UNREADABLE_ZIP as error:
             raise ClipUploadRejected(f"The zip cannot be read: {error}.") from None
         with transaction.atomic():
             return [

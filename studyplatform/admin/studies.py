@@ -323,16 +323,14 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
         form = StudyImportForm(request.POST or None, request.FILES or None)
         if request.method == "POST" and form.is_valid():
             definition, files = form.cleaned_data["definition"]
-            original = (
-                (definition.get("study") or {}).get("title")
-                if isinstance(definition, dict)
-                else None
-            )
+            section = definition.get("study") if isinstance(definition, dict) else None
+            original = section.get("title") if isinstance(section, dict) else None
             # A definition carries no participants: it arrives as a draft to pilot and
             # open, and named apart from a study of the same title the researcher has.
-            mine = Study.objects.filter(owner=request.user, title=original)
             title = None
-            if isinstance(original, str) and mine.exists():  # the query runs only here
+            if isinstance(original, str) and (
+                Study.objects.filter(owner=request.user, title=original).exists()
+            ):
                 title = f"{original} (imported)"[:200]
             try:
                 result = do_import_study(

@@ -26,6 +26,19 @@ MAX_DEFINITION_BYTES = 5 * 1024**2  # as for a definition uploaded on its own
 MAX_MEMBER_BYTES = 300 * 1024**2  # the largest ASL video or recording an upload may be
 MAX_UNPACKED_BYTES = 1024**3  # larger than any study's prompts and recordings
 BLOCK_BYTES = 1 << 20
+# A member flagged encrypted (PKWARE APPNOTE 4.4.4, bit 0): zipfile asks for a password.
+ENCRYPTED = 0x1
+# What reading a damaged zip raises: bad headers, damaged deflate data (zlib.error), a
+# compression zipfile lacks (NotImplementedError), an encrypted member (RuntimeError).
+UNREADABLE_ZIP = (
+    zipfile.BadZipFile,
+    zipfile.LargeZipFile,
+    zlib.error,
+    EOFError,
+    NotImplementedError,
+    RuntimeError,
+    OSError,
+)
 SPOOL_BYTES = 8 << 20  # a member larger than this is unpacked to disk, not memory
 
 
@@ -125,7 +138,7 @@ class BundleFiles:
         copy = tempfile.SpooledTemporaryFile(SPOOL_BYTES)  # noqa: SIM115 (the caller closes it)
         try:
             digest = self._copy(name, copy)
-        except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as error:
+        except UNREADABLE_ZIP as error:
             copy.close()
             raise BundleRejected(f"a zip whose {name} cannot be unpacked ({error})") from None
         except BaseException:
@@ -172,7 +185,7 @@ def read_bundle(source) -> tuple[Any, BundleFiles]:
     try:
         with archive.open(DEFINITION) as member:
             text = member.read(MAX_DEFINITION_BYTES + 1)
-    except (zipfile.BadZipFile, zlib.error, EOFError, OSError) as error:
+    except UNREADABLE_ZIP as error:
         raise BundleRejected(f"a zip whose {DEFINITION} cannot be unpacked ({error})") from None
     if len(text) > MAX_DEFINITION_BYTES:
         raise BundleRejected(f"a zip whose {DEFINITION} is larger than "

@@ -1,6 +1,7 @@
 """Test the command line end to end, and that bad CSVs give one clear error line."""
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -159,3 +160,23 @@ def test_missing_and_non_csv_files(tmp_path):
     binary.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
     result = run("report", str(binary), "--out", str(tmp_path / "o"))
     assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1
+
+
+def test_markdown_tables_keep_a_hostile_label_as_text(tmp_path):
+    """Issue 51: condition labels went unescaped into the report's Markdown tables, so a
+    label could split a column or carry HTML into whatever renders the file."""
+    csv = tmp_path / "responses.csv"
+    rows = table_5_2_rows()
+    hostile = "Var | <img src=x onerror=alert(1)> [x](javascript:y)"
+    first = rows["condition_a"].iloc[0]
+    for column in ("condition_a", "condition_b", "chosen"):
+        rows[column] = rows[column].replace(first, hostile)
+    rows.to_csv(csv, index=False)
+    result = run("report", str(csv), "--out", str(tmp_path / "out"))
+    assert result.returncode == 0, result.stderr
+    for name in ("pairs.md", "conditions.md"):
+        lines = (tmp_path / "out" / name).read_text().splitlines()
+        header_columns = lines[0].count("|")
+        assert all(line.count("|") - line.count("\\|") == header_columns for line in lines)
+        text = "\n".join(lines)
+        assert not re.search(r"(?<!\\)[<\]]", text) and "\\<img" in text
