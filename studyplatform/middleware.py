@@ -65,3 +65,25 @@ class DatabaseUnavailableMiddleware:
                                 status=503)  # fmt: skip
         response["Retry-After"] = str(self.RETRY_AFTER_S)
         return response
+
+
+class RefusedFormMiddleware:
+    """Answer 400 to an admin form posted with errors, instead of 200.
+
+    The admin shows the form again with its errors either way; the status tells a
+    script, a proxy's log and the hostile-input harness that nothing was saved and why
+    (issue 51: untrusted input gets a clear 4xx naming the problem). Forms without an
+    error, and every GET, are untouched.
+    """
+
+    def __init__(self, get_response):
+        self.get_response = get_response
+
+    def __call__(self, request: HttpRequest):
+        return self.get_response(request)
+
+    def process_template_response(self, request: HttpRequest, response):
+        errors = (getattr(response, "context_data", None) or {}).get("errors")
+        if request.method == "POST" and response.status_code == 200 and errors:
+            response.status_code = 400
+        return response

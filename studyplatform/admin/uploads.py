@@ -3,7 +3,7 @@ uploaded one by one or as a zip with a manifest."""
 
 from django.contrib import messages
 from django.core.exceptions import PermissionDenied, ValidationError
-from django.http import HttpRequest, HttpResponse
+from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path
 
@@ -35,11 +35,16 @@ class StudyUploadsMixin:
         if request.method == "POST":
             if not self.has_change_permission(request, study):
                 raise PermissionDenied
+            wants_json = request.headers.get("Accept") == "application/json"
             try:
                 done = self._upload(request, study)
             except ValidationError as error:
+                if wants_json:
+                    return JsonResponse({"error": error.messages[0]}, status=400)
                 messages.error(request, f"Nothing saved: {error.messages[0]}")
             else:
+                if wants_json:
+                    return JsonResponse({"saved": done})
                 messages.success(request, done)
             return redirect(request.path)
         conditions, rows = uploads_overview(study)

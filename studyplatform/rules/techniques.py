@@ -118,6 +118,16 @@ def check_item(item) -> None:
             ) from None
 
 
+def _described(parameter, value) -> str:
+    """Return a filming field's value in words; one that its check refuses as not valid
+    (a form shown again with its errors describes what was posted)."""
+    name = parameter.name.replace("_", " ")
+    try:
+        return f"{name} {parameter.label_of(parameter.check(value))}"
+    except ClipError:
+        return f"{name}: not valid"
+
+
 def describe_parameters(parameters: Mapping[str, Any], kinds: Iterable[str]) -> list[str]:
     """Return what *parameters* make each technique do, in plain words.
 
@@ -136,9 +146,7 @@ def describe_parameters(parameters: Mapping[str, Any], kinds: Iterable[str]) -> 
             continue
         lines += [line for line in REGISTRY.describe(kind, techniques) if line not in lines]
     filming = [
-        f"{p.name.replace('_', ' ')} {p.label_of(parameters[p.name])}"
-        for p in REQUEST_PARAMETERS
-        if p.name in parameters
+        _described(p, parameters[p.name]) for p in REQUEST_PARAMETERS if p.name in parameters
     ]
     if filming:
         lines.append(f"Filming: {', '.join(filming)}")

@@ -76,7 +76,7 @@ class Attacker:
                             {"Content-Type": "application/x-www-form-urlencoded"})  # fmt: skip
 
     def post_file(self, path: str, fields: dict, name: str, filename: str,
-                  content: bytes) -> Answer:  # fmt: skip
+                  content: bytes, headers: dict | None = None) -> Answer:  # fmt: skip
         boundary = "----signstudy-attack-boundary"
         parts = []
         for key, value in {"csrfmiddlewaretoken": self.cookie("csrftoken") or "", **fields}.items():
@@ -87,7 +87,8 @@ class Attacker:
                      + content + b"\r\n")  # fmt: skip
         parts.append(f"--{boundary}--\r\n".encode())
         content_type = f"multipart/form-data; boundary={boundary}"
-        return self.request("POST", path, b"".join(parts), {"Content-Type": content_type})
+        headers = {"Content-Type": content_type, **(headers or {})}
+        return self.request("POST", path, b"".join(parts), headers)
 
     def sign_in(self, username: str, password: str) -> Answer:
         self.get("/admin/login/")

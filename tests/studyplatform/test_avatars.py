@@ -134,5 +134,5 @@ def test_the_admin_uploads_an_avatar_and_names_a_refusal(
         "upload": SimpleUploadedFile("bad.glb", humanoid_glb(skin=False)), "name": "Bad",
         "licence": "CC0",
     })  # fmt: skip
-    assert response.status_code == 200 and "has no skin" in response.text  # the form again
+    assert response.status_code == 400 and "has no skin" in response.text  # the form again
     assert Avatar.objects.count() == 1

@@ -233,7 +233,7 @@ def test_a_study_with_identical_clips_is_not_opened_unless_intended(same_twice, 
     data = {k: v for k, v in model_to_dict(same_twice, fields=form.fields).items() if v is not None}
     data.update({"status": "open", **_no_inline_changes()})
     response = client.post(url, data)
-    assert response.status_code == 200 and "identical clips intended" in response.content.decode()
+    assert response.status_code == 400 and "identical clips intended" in response.content.decode()
     same_twice.refresh_from_db()
     assert same_twice.status == "draft"
     data["allow_identical_clips"] = "on"

@@ -62,6 +62,9 @@ pytestmark = pytest.mark.django_db
 
 QUICK = int(os.environ.get("HOSTILE_EXAMPLES", "6"))
 MAX_PEAK_BYTES = 64 * 1024**2
+# The study's own upload pages answer a script in JSON: 400 naming the problem, or saved
+# (a browser's post is redirected back to the page with the message instead).
+JSON = {"Accept": "application/json"}
 STATUSES: dict[str, Counter] = defaultdict(Counter)  # by endpoint, for the summary
 WORST: dict[str, list[float]] = defaultdict(lambda: [0.0, 0.0])  # seconds, peak MB
 
@@ -230,7 +233,8 @@ def _send_recording(ctx: Ctx, named: tuple[str, bytes]):
     name, data = named
     word = ctx.words.items.filter(kind="word").first()
     url = reverse("admin:studyplatform_study_recordings", args=[ctx.words.pk])
-    return ctx.client.post(url, {"item": word.pk, "recording": SimpleUploadedFile(name, data)})
+    fields = {"item": word.pk, "recording": SimpleUploadedFile(name, data)}
+    return ctx.client.post(url, fields, headers=JSON)
 
 
 def _send_clip(ctx: Ctx, data: bytes):
@@ -238,7 +242,9 @@ def _send_clip(ctx: Ctx, data: bytes):
     item = ctx.spine.items.first()
     url = reverse("admin:studyplatform_study_uploads", args=[ctx.spine.pk])
     fields = {"condition": condition.pk, "item": item.pk}
-    return ctx.client.post(url, {**fields, "clip": SimpleUploadedFile("clip.mp4", data)})
+    return ctx.client.post(
+        url, {**fields, "clip": SimpleUploadedFile("clip.mp4", data)}, headers=JSON
+    )
 
 
 def _manifest(rows: list[list[str]]) -> bytes:
@@ -259,7 +265,7 @@ def _uploads_input(data: st.DataObject) -> bytes:
 
 def _send_clips_zip(ctx: Ctx, data: bytes):
     url = reverse("admin:studyplatform_study_uploads", args=[ctx.spine.pk])
-    return ctx.client.post(url, {"archive": SimpleUploadedFile("clips.zip", data)})
+    return ctx.client.post(url, {"archive": SimpleUploadedFile("clips.zip", data)}, headers=JSON)
 
 
 def _clips_zip_cases() -> tuple:
@@ -324,7 +330,7 @@ def _send_asl(ctx: Ctx, data: bytes):
         "field_name": "description",
         "video": SimpleUploadedFile("asl.webm", data),
     }
-    return ctx.client.post(url, fields)
+    return ctx.client.post(url, fields, headers=JSON)
 
 
 def _send_template(ctx: Ctx, data: bytes):

@@ -82,7 +82,7 @@ def test_the_form_refuses_a_bad_value_and_an_unknown_key(alice_client, fingerspe
     data = _post_data(form, technique_timing="mocap", technique_source="alphabet")
     data["study"] = fingerspelling.pk
     page = alice_client.post(_change_url(condition), data)
-    assert page.status_code == 200 and "timing &#x27;mocap&#x27; plays a performance" in (
+    assert page.status_code == 400 and "timing &#x27;mocap&#x27; plays a performance" in (
         page.content.decode()
     )
     data = _post_data(form, parameters='{"spin": false}')
