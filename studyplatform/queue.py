@@ -13,6 +13,7 @@ from django.db import transaction
 RENDER_STIMULUS = "studyplatform.render_stimulus"
 PREPARE_RECORDING = "studyplatform.prepare_recording"
 PREPARE_AVATAR = "studyplatform.prepare_avatar"
+PREPARE_CLIPS = "studyplatform.prepare_clips"
 CLEAN_ABANDONED_UPLOADS = "studyplatform.clean_abandoned_uploads"
 APPLY_RETENTION = "studyplatform.apply_retention"
 

@@ -17,6 +17,7 @@ from studyplatform.queue import (
     APPLY_RETENTION,
     CLEAN_ABANDONED_UPLOADS,
     PREPARE_AVATAR,
+    PREPARE_CLIPS,
     PREPARE_RECORDING,
     RENDER_STIMULUS,
 )
@@ -148,6 +149,25 @@ def _contact_sheet(hand, video: Path) -> bytes | None:
 def prepare_recording(recording_id: int) -> str:
     """Capture, fit and check one recording (Celery job)."""
     return prepare_now(recording_id)
+
+
+def prepare_clips_now(upload_id: int) -> str:
+    """Convert and store one clip upload (a video or a zip) in this process."""
+    from studyplatform.actions.clip_uploads import do_prepare_clip_upload
+    from studyplatform.models import ClipUpload
+
+    job = ClipUpload.objects.filter(pk=upload_id).select_related("study").first()
+    if job is None:
+        return "missing"
+    if job.status in (ClipUpload.Status.DONE, ClipUpload.Status.FAILED):
+        return job.status
+    return do_prepare_clip_upload(job)
+
+
+@shared_task(name=PREPARE_CLIPS, acks_late=True, reject_on_worker_lost=True)
+def prepare_clips(upload_id: int) -> str:
+    """Make an uploaded clip, or a zip of them, playable and store it (Celery job)."""
+    return prepare_clips_now(upload_id)
 
 
 @shared_task(name=CLEAN_ABANDONED_UPLOADS)

@@ -23,7 +23,7 @@ from django.db import transaction
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.stimuli import record_missing_stimulus, record_uploaded_stimulus
 from studyplatform.lib.bundle import ENCRYPTED, UNREADABLE_ZIP
-from studyplatform.media_types import MediaRejected
+from studyplatform.media_types import MediaRejected, sniff_file
 from studyplatform.models import Condition, Item, Study, UploadedClip
 from studyplatform.models.studies import check_unlocked
 from studyplatform.storage import PRIVATE_STORAGE
@@ -84,18 +84,30 @@ def _store(condition: Condition, item: Item, prepared: PreparedClip, name: str) 
     return clip
 
 
-def do_upload_clip(condition: Condition, item: Item, upload) -> UploadedClip:
-    """Store *upload* (a video file) as the clip of *item* in *condition*; return it.
-
-    Raise ClipUploadRejected for a condition that renders its clips, an item of
-    another study, a study whose clips participants may have seen, or a file that is
-    not a whole video of at most 500 MB, 10 minutes and 4096 pixels a side.
-    """
+def check_clip(condition: Condition, item: Item, upload) -> None:
+    """Raise ClipUploadRejected for a condition that renders its clips, an item of
+    another study, a study whose clips participants may have seen, a file over 500 MB
+    or one that is not a video by its content (what needs no decoding)."""
     _check_target(condition, item)
     check_unlocked(condition.study)
     name = getattr(upload, "name", "") or "clip"
     if (getattr(upload, "size", 0) or 0) > MAX_CLIP_BYTES:
         raise ClipUploadRejected(f"“{name}” is larger than {MAX_CLIP_BYTES // 1024**2} MB.")
+    kind = sniff_file(upload)
+    if kind is None or kind.family != "video":
+        raise ClipUploadRejected(
+            f"“{name}” is not a video (MP4, WebM or MOV), judged by its content."
+        )
+
+
+def do_upload_clip(condition: Condition, item: Item, upload) -> UploadedClip:
+    """Store *upload* (a video file) as the clip of *item* in *condition*; return it.
+
+    Raise ClipUploadRejected for what :func:`check_clip` refuses, or a file that is
+    not a whole video of at most 500 MB, 10 minutes and 4096 pixels a side.
+    """
+    check_clip(condition, item, upload)
+    name = getattr(upload, "name", "") or "clip"
     with tempfile.TemporaryDirectory() as folder:
         source = copy_upload(upload, Path(folder) / "upload")
         try:
@@ -214,12 +226,28 @@ def _unpack(archive: zipfile.ZipFile, member: zipfile.ZipInfo, target: Path) -> 
     return target
 
 
-def do_import_clips(study: Study, upload) -> list[UploadedClip]:
+def check_clips_zip(study: Study, upload) -> int:
+    """Return how many clips a zip's manifest names, each checked against the study and
+    the zip (what needs no decoding); ClipUploadRejected names the first problem."""
+    check_unlocked(study)
+    try:
+        archive = zipfile.ZipFile(upload)
+    except (zipfile.BadZipFile, OSError):
+        raise ClipUploadRejected("The file is not a zip archive.") from None
+    with archive:
+        try:
+            return len(_clip_rows(study, archive))
+        except UNREADABLE_ZIP as error:
+            raise ClipUploadRejected(f"The zip cannot be read: {error}.") from None
+
+
+def do_import_clips(study: Study, upload, progress=None) -> list[UploadedClip]:
     """Store every clip a zip's manifest names (``item,condition,file``); return them.
 
     All or nothing: a manifest naming an unknown item or condition, a rendered
     condition or a missing file, a file that is not a whole video, an oversized member
-    or a zip bomb raise ClipUploadRejected, and no clip is stored.
+    or a zip bomb raise ClipUploadRejected, and no clip is stored. *progress* is told
+    how many clips are converted as each one is.
     """
     check_unlocked(study)
     try:
@@ -231,6 +259,8 @@ def do_import_clips(study: Study, upload) -> list[UploadedClip]:
             rows = _clip_rows(study, archive)
             prepared = []
             for number, row in enumerate(rows):
+                if progress is not None:
+                    progress(number)
                 place = Path(folder) / str(number)
                 place.mkdir()
                 source = _unpack(archive, row.member, place / "upload")

@@ -7,14 +7,10 @@ from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path
 
-from studyplatform.actions.clips import do_import_clips, do_remove_uploaded_clip, do_upload_clip
-from studyplatform.lib.uploads import mismatched_pairs, uploads_overview
-from studyplatform.models import UploadedClip
-
-CONVERTED = {
-    "remuxed": " (rewrapped for browsers)",
-    "transcoded": " (converted to H.264 for browsers)",
-}
+from studyplatform.actions.clip_uploads import do_queue_clip, do_queue_clips_zip
+from studyplatform.actions.clips import do_remove_uploaded_clip
+from studyplatform.lib.uploads import mismatched_pairs, pending_uploads, uploads_overview
+from studyplatform.models import ClipUpload, UploadedClip
 
 
 class StudyUploadsMixin:
@@ -50,7 +46,7 @@ class StudyUploadsMixin:
         conditions, rows = uploads_overview(study)
         return self._page(request, "uploads.html", f"Uploaded clips of “{study.title}”",
                           study=study, conditions=conditions, rows=rows,
-                          mismatched=mismatched_pairs(study),
+                          mismatched=mismatched_pairs(study), pending=pending_uploads(study),
                           can_change=self.has_change_permission(request, study)
                           and not study.design_locked)  # fmt: skip
 
@@ -65,11 +61,7 @@ class StudyUploadsMixin:
             do_remove_uploaded_clip(clip)
             return f"Clip of {clip.item.key} in {clip.condition.key} removed."
         if "archive" in request.FILES:
-            archive = request.FILES["archive"]
-            clips = do_import_clips(study, archive)
-            return (
-                f"{len(clips)} clip{'' if len(clips) == 1 else 's'} uploaded from {archive.name}."
-            )
+            return self._outcome(do_queue_clips_zip(study, request.FILES["archive"]))
         condition = study.conditions.filter(pk=_number(request.POST.get("condition"))).first()
         item = study.items.filter(pk=_number(request.POST.get("item"))).first()
         if condition is None or item is None:
@@ -77,10 +69,21 @@ class StudyUploadsMixin:
         upload = request.FILES.get("clip")
         if upload is None:
             raise ValidationError("Choose a video file (MP4, WebM or MOV).")
-        clip = do_upload_clip(condition, item, upload)
-        how = CONVERTED.get(clip.converted, "")
-        return (f"Clip of {item.key} in {condition.key} saved{how}: {clip.width}×{clip.height}, "
-                f"{clip.duration_ms / 1000:.2f} s, {clip.frame_rate:g} fps.")  # fmt: skip
+        return self._outcome(do_queue_clip(condition, item, upload))
+
+    @staticmethod
+    def _outcome(job: ClipUpload) -> str:
+        """Return what became of a queued upload: its message once converted (at once
+        where jobs run in this process), else that it is converting."""
+        job.refresh_from_db()
+        if job.status == ClipUpload.Status.FAILED:
+            raise ValidationError(job.message)
+        if job.status == ClipUpload.Status.DONE:
+            return job.message
+        return (
+            f"{job.original_name} is being converted in the background; this page lists "
+            "it until it is saved."
+        )
 
 
 def _number(value) -> int:

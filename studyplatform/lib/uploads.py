@@ -1,10 +1,13 @@
 """Read a study's uploaded clips for the admin, and which compared clips do not match."""
 
 from dataclasses import dataclass
+from datetime import timedelta
 from itertools import combinations
 
+from django.utils import timezone
+
 from studyplatform.lib.stimuli import needed_pairs
-from studyplatform.models import Block, Stimulus, Study, Trial, UploadedClip
+from studyplatform.models import Block, ClipUpload, Stimulus, Study, Trial, UploadedClip
 
 # Clips compared side by side should differ in nothing but the technique: a longer
 # clip or a larger picture is a difference participants can see.
@@ -83,3 +86,11 @@ def mismatched_pairs(study: Study) -> list[str]:
             warnings.append(f"{where} differ in length by "
                             f"{100 * (longer / shorter - 1):.0f} % ({seconds}).")  # fmt: skip
     return warnings
+
+
+def pending_uploads(study: Study) -> list[ClipUpload]:
+    """Return the study's clip uploads still converting, and those refused in the last
+    day, newest first (the uploads page lists them)."""
+    recent = timezone.now() - timedelta(days=1)
+    uploads = study.clip_uploads.exclude(status=ClipUpload.Status.DONE)
+    return list(uploads.exclude(status=ClipUpload.Status.FAILED, created_at__lt=recent)[:20])

@@ -13,7 +13,7 @@ from studyplatform.models.prompts import PARTICIPANT_FACING_FIELDS, AslVideo, Si
 from studyplatform.models.recordings import Recording
 from studyplatform.models.responses import MediaEvent, Response
 from studyplatform.models.scope import STUDY_PATHS
-from studyplatform.models.stimuli import Stimulus, UploadedClip
+from studyplatform.models.stimuli import ClipUpload, Stimulus, UploadedClip
 from studyplatform.models.studies import Condition, Item, Study
 from studyplatform.models.withdrawals import Withdrawal
 
@@ -24,6 +24,7 @@ __all__ = [
     "AslVideo",
     "Avatar",
     "Block",
+    "ClipUpload",
     "Condition",
     "Item",
     "KnownDevice",

@@ -112,3 +112,49 @@ class Stimulus(models.Model):
         if self.upload is not None:
             return reverse("uploaded_clip", args=[self.upload.poster.name])
         return self.poster.url if self.poster else ""
+
+
+class ClipUpload(models.Model):
+    """A researcher's upload of clips being made playable in the background: one video
+    of an item in a condition, or a zip whose manifest names many.
+
+    The request checks what it can at once (the target, the size, that a video is a
+    video by its content, a zip's manifest and members) and keeps the file under
+    ``incoming/``; a job decodes and converts it (issue 51: a conversion held a web
+    request for as long as ffmpeg took, a zip's 2,000 clips one after another).
+    """
+
+    class Status(models.TextChoices):
+        QUEUED = "queued", "Waiting to be converted"
+        CONVERTING = "converting", "Converting"
+        DONE = "done", "Saved"
+        FAILED = "failed", "Nothing saved"
+
+    study = models.ForeignKey(
+        "studyplatform.Study", on_delete=models.CASCADE, related_name="clip_uploads"
+    )
+    condition = models.ForeignKey(
+        Condition, on_delete=models.CASCADE, null=True, blank=True, related_name="+"
+    )
+    item = models.ForeignKey(
+        Item, on_delete=models.CASCADE, null=True, blank=True, related_name="+"
+    )
+    incoming = models.CharField(max_length=100, help_text="The file's name under incoming/.")
+    original_name = models.CharField(max_length=255)
+    status = models.CharField(
+        max_length=10, choices=Status.choices, default=Status.QUEUED, db_index=True
+    )
+    done = models.PositiveIntegerField(default=0, help_text="Clips converted so far.")
+    total = models.PositiveIntegerField(default=1, help_text="Clips the upload holds.")
+    message = models.TextField(blank=True, help_text="What was saved, or why nothing was.")
+    created_at = models.DateTimeField(auto_now_add=True)
+
+    class Meta:
+        ordering = ["-created_at", "-pk"]
+
+    def __str__(self) -> str:
+        return f"{self.original_name} ({self.get_status_display().lower()})"
+
+    @property
+    def is_zip(self) -> bool:
+        return self.condition_id is None

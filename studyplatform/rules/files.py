@@ -80,10 +80,10 @@ def file_help(name: str) -> str:
 
 def _owned_row(source: FileSource, pk: int, owner):
     """Return the *source* row *pk* that *owner* may use, or None."""
-    model = apps.get_model("studyplatform", source.model)
-    rows = model.objects.filter(pk=pk, **source.ready).exclude(**{source.file_field: ""})
     if owner is None:
         return None
+    model = apps.get_model("studyplatform", source.model)
+    rows = model.objects.filter(pk=pk, **source.ready).exclude(**{source.file_field: ""})
     if not owner.is_superuser:
         rows = rows.filter(**{source.owner: owner})
     return rows.first()

@@ -15,6 +15,7 @@ from pathlib import Path
 import imageio_ffmpeg
 import pytest
 from django.core.files.uploadedfile import SimpleUploadedFile
+from django.urls import reverse
 
 from studyplatform.actions import do_duplicate_study, do_generate_stimuli
 from studyplatform.actions.clips import (
@@ -317,3 +318,82 @@ def test_an_uploaded_condition_takes_no_technique_settings(mixed):
     condition.parameters = {"spine": False}
     with pytest.raises(ValidationError, match="renders nothing"):
         condition.full_clean()
+
+
+# --- conversions in the background (issue 51) ------------------------------------------
+
+
+def test_an_upload_is_taken_at_once_and_converted_by_its_job(mixed, settings):
+    """The request keeps the file and queues a job; the clip exists once the job ran."""
+    from studyplatform.actions.clip_uploads import do_queue_clip, incoming_directory
+    from studyplatform.models import ClipUpload
+    from studyplatform.tasks import prepare_clips_now
+
+    job = do_queue_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
+                        upload(make_video(), "S1 filmed.mp4"))  # fmt: skip
+    assert job.status == ClipUpload.Status.QUEUED and not UploadedClip.objects.exists()
+    assert (incoming_directory() / job.incoming).is_file()
+    assert prepare_clips_now(job.pk) == ClipUpload.Status.DONE
+    job.refresh_from_db()
+    assert job.done == 1 and "Clip of S1 in spine-off saved" in job.message
+    assert UploadedClip.objects.get().original_name == "S1 filmed.mp4"
+    assert not (incoming_directory() / job.incoming).exists()
+    assert prepare_clips_now(job.pk) == ClipUpload.Status.DONE  # a second delivery: nothing
+
+
+def test_what_the_request_can_tell_is_refused_at_once_and_the_rest_by_the_job(mixed, settings):
+    from studyplatform.actions.clip_uploads import do_queue_clip, incoming_directory
+    from studyplatform.models import ClipUpload
+    from studyplatform.tasks import prepare_clips_now
+
+    off, item = _condition(mixed, "spine-off"), mixed.items.get(key="S1")
+    with pytest.raises(ClipUploadRejected, match="is not a video"):
+        do_queue_clip(off, item, upload(b"<html></html>", "page.mp4"))
+    assert not ClipUpload.objects.exists()
+    cut = make_video(seconds=2.0)[:-4000]  # a video by its content, cut short
+    job = do_queue_clip(off, item, upload(cut, "cut.mp4"))
+    assert prepare_clips_now(job.pk) == ClipUpload.Status.FAILED
+    job.refresh_from_db()
+    assert "does not decode to its end" in job.message
+    _nothing_stored(settings)
+    assert not any(incoming_directory().iterdir())
+
+
+def test_a_zip_job_reports_each_clip_and_stores_all_or_nothing(mixed, settings):
+    from studyplatform.actions.clip_uploads import do_queue_clips_zip
+    from studyplatform.models import ClipUpload
+    from studyplatform.tasks import prepare_clips_now
+
+    files = {f"S{n}.mp4": make_video(seconds=1.0) for n in range(1, 4)}
+    manifest = "item,condition,file\n" + "".join(f"S{n},spine-off,S{n}.mp4\n" for n in range(1, 4))
+    job = do_queue_clips_zip(mixed, _zip(files, manifest))
+    assert job.total == 3 and job.status == ClipUpload.Status.QUEUED
+    with pytest.raises(ClipUploadRejected, match="no item 'S9'"):
+        do_queue_clips_zip(mixed, _zip(files, manifest.replace("S3,", "S9,")))
+    assert prepare_clips_now(job.pk) == ClipUpload.Status.DONE
+    job.refresh_from_db()
+    assert job.done == 3 and UploadedClip.objects.count() == 3
+    files["S2.mp4"] = files["S2.mp4"][:-4000]
+    broken = do_queue_clips_zip(mixed, _zip(files, manifest))
+    before = sorted(UploadedClip.objects.values_list("pk", "sha256"))
+    assert prepare_clips_now(broken.pk) == ClipUpload.Status.FAILED
+    assert sorted(UploadedClip.objects.values_list("pk", "sha256")) == before
+
+
+@pytest.mark.django_db(transaction=True)
+def test_the_page_answers_a_script_with_the_jobs_outcome(mixed, client, bob):
+    """Where jobs run in the process (no broker: the job runs as the upload commits),
+    the answer carries the job's outcome; with a broker it says the upload is converting
+    (the page then lists it, as it lists a refused one)."""
+    client.force_login(bob)
+    url = reverse("admin:studyplatform_study_uploads", args=[mixed.pk])
+    fields = {"condition": _condition(mixed, "spine-off").pk, "item": mixed.items.get(key="S1").pk}
+    headers = {"Accept": "application/json"}
+    cut = upload(make_video(seconds=2.0)[:-4000], "cut.mp4")
+    refused = client.post(url, {**fields, "clip": cut}, headers=headers)
+    assert refused.status_code == 400 and "does not decode" in refused.json()["error"]
+    clip = upload(make_video(), "ok.mp4")
+    saved = client.post(url, {**fields, "clip": clip}, headers=headers)
+    assert saved.status_code == 200 and "saved" in saved.json()["saved"]
+    page = client.get(url).content.decode()
+    assert "cut.mp4" in page and "Nothing saved" in page  # the refused one, listed
