@@ -172,10 +172,13 @@ def prepare_clips(upload_id: int) -> str:
 
 @shared_task(name=CLEAN_ABANDONED_UPLOADS)
 def clean_abandoned_uploads() -> int:
-    """Delete unfinished signed-answer uploads older than the configured age (beat job)."""
+    """Delete unfinished signed-answer uploads, and clip uploads whose conversion was
+    lost, older than the configured age (beat job)."""
+    from studyplatform.actions.clip_uploads import do_fail_stale_clip_uploads
     from studyplatform.actions.uploads import do_remove_abandoned_uploads
 
-    return len(do_remove_abandoned_uploads(settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS))
+    hours = settings.SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS
+    return len(do_remove_abandoned_uploads(hours)) + do_fail_stale_clip_uploads(hours)
 
 
 @shared_task(name=APPLY_RETENTION)

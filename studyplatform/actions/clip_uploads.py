@@ -7,11 +7,13 @@ reporting each clip, so no web request waits for ffmpeg (issue 51).
 """
 
 import uuid
+from datetime import timedelta
 from pathlib import Path
 
 from django.conf import settings
 from django.core.files import File
 from django.db import transaction
+from django.utils import timezone
 
 from studyplatform.actions.clips import (
     ClipUploadRejected,
@@ -96,3 +98,18 @@ def do_prepare_clip_upload(job: ClipUpload) -> str:
         path.unlink(missing_ok=True)
     ClipUpload.objects.filter(pk=job.pk).update(status=status, done=done, message=message)
     return status
+
+
+def do_fail_stale_clip_uploads(max_age_hours: float) -> int:
+    """Mark uploads queued or converting for longer than *max_age_hours* as failed and
+    delete their kept files (a job lost with its broker or worker); return how many."""
+    old = timezone.now() - timedelta(hours=max_age_hours)
+    waiting = (ClipUpload.Status.QUEUED, ClipUpload.Status.CONVERTING)
+    stale = list(ClipUpload.objects.filter(status__in=waiting, created_at__lt=old))
+    for job in stale:
+        (incoming_directory() / job.incoming).unlink(missing_ok=True)
+    ClipUpload.objects.filter(pk__in=[job.pk for job in stale]).update(
+        status=ClipUpload.Status.FAILED,
+        message="It was not converted in time (the job was lost); upload it again.",
+    )
+    return len(stale)

@@ -75,8 +75,15 @@ class Attacker:
         return self.request("POST", path, body.encode(),
                             {"Content-Type": "application/x-www-form-urlencoded"})  # fmt: skip
 
-    def post_file(self, path: str, fields: dict, name: str, filename: str,
-                  content: bytes, headers: dict | None = None) -> Answer:  # fmt: skip
+    def post_file(
+        self,
+        path: str,
+        fields: dict,
+        name: str,
+        filename: str,
+        content: bytes,
+        headers: dict | None = None,
+    ) -> Answer:
         boundary = "----signstudy-attack-boundary"
         parts = []
         for key, value in {"csrfmiddlewaretoken": self.cookie("csrftoken") or "", **fields}.items():

@@ -62,7 +62,7 @@ def _database_url() -> str:
 
 
 @contextmanager
-def _worker(tmp_path: Path, media: Path):
+def _worker(tmp_path: Path, media: Path, private: Path | None = None):
     """Run a prefork Celery worker (one child) against the test database and Redis."""
     environment = {
         **os.environ,
@@ -70,6 +70,7 @@ def _worker(tmp_path: Path, media: Path):
         "SIGNSTUDY_VAR_DIR": str(tmp_path),
         "DATABASE_URL": _database_url(),
         "SIGNSTUDY_MEDIA_ROOT": str(media),
+        **({"SIGNSTUDY_PRIVATE_MEDIA_ROOT": str(private)} if private else {}),
     }
     log = open(tmp_path / "worker.log", "ab")  # noqa: SIM115 - closed below
     process = subprocess.Popen(
@@ -145,3 +146,23 @@ def test_a_worker_killed_mid_render_leaves_nothing_marked_done(
         _wait_for(lambda: _statuses(result.stimulus_ids) == ["ready", "ready"], 240,
                   "the killed job to be redone", log)  # fmt: skip
     assert "WorkerLostError" in log.read_text() or "lost" in log.read_text().lower()
+
+
+def test_a_real_worker_converts_an_uploaded_clip(broker, spine, settings, tmp_path):
+    """Issue 51: the upload's request only keeps the file; a worker converts it."""
+    from studyplatform.actions.clip_uploads import do_queue_clip
+    from studyplatform.models import ClipUpload, Condition, UploadedClip
+    from tests.conftest import as_draft
+    from tests.studyplatform.test_uploaded_clips import make_video, upload
+
+    as_draft(spine)
+    Condition.objects.filter(study=spine, key="spine-off").update(source="uploaded", parameters={})
+    private = Path(settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT)
+    off = spine.conditions.get(key="spine-off")
+    job = do_queue_clip(off, spine.items.get(key="S1"), upload(make_video(), "S1.mp4"))
+    assert not UploadedClip.objects.exists()  # the request converted nothing
+    with _worker(tmp_path, tmp_path / "media", private):
+        done = lambda: ClipUpload.objects.get(pk=job.pk).status == "done"  # noqa: E731
+        _wait_for(done, 120, "the clip to be converted", tmp_path / "worker.log")
+    clip = UploadedClip.objects.get()
+    assert (private / clip.video.name).stat().st_size == clip.size_bytes

@@ -329,8 +329,8 @@ def test_an_upload_is_taken_at_once_and_converted_by_its_job(mixed, settings):
     from studyplatform.models import ClipUpload
     from studyplatform.tasks import prepare_clips_now
 
-    job = do_queue_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
-                        upload(make_video(), "S1 filmed.mp4"))  # fmt: skip
+    off, item = _condition(mixed, "spine-off"), mixed.items.get(key="S1")
+    job = do_queue_clip(off, item, upload(make_video(), "S1 filmed.mp4"))
     assert job.status == ClipUpload.Status.QUEUED and not UploadedClip.objects.exists()
     assert (incoming_directory() / job.incoming).is_file()
     assert prepare_clips_now(job.pk) == ClipUpload.Status.DONE
@@ -397,3 +397,25 @@ def test_the_page_answers_a_script_with_the_jobs_outcome(mixed, client, bob):
     assert saved.status_code == 200 and "saved" in saved.json()["saved"]
     page = client.get(url).content.decode()
     assert "cut.mp4" in page and "Nothing saved" in page  # the refused one, listed
+
+
+def test_an_upload_whose_job_was_lost_is_failed_and_its_file_deleted(mixed, settings):
+    from datetime import timedelta
+
+    from django.utils import timezone
+
+    from studyplatform.actions.clip_uploads import (
+        do_fail_stale_clip_uploads,
+        do_queue_clip,
+        incoming_directory,
+    )
+    from studyplatform.models import ClipUpload
+
+    off, item = _condition(mixed, "spine-off"), mixed.items.get(key="S1")
+    job = do_queue_clip(off, item, upload(make_video(), "S1.mp4"))
+    assert do_fail_stale_clip_uploads(24) == 0
+    ClipUpload.objects.filter(pk=job.pk).update(created_at=timezone.now() - timedelta(days=2))
+    assert do_fail_stale_clip_uploads(24) == 1
+    job.refresh_from_db()
+    assert job.status == "failed" and "upload it again" in job.message
+    assert not (incoming_directory() / job.incoming).exists()
