@@ -79,29 +79,19 @@ def prepare_now(recording_id: int) -> str:
     return do_finish_recording(recording, quality, pose, sheet, bvh)
 
 
-def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | None,
-                                                  bytes | None]:  # fmt: skip
+def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | None, bytes | None]:
     from studyplatform.lib.recordings import retimes_recordings
-    from synthesis.capture import captured_hand, format_pose, read_pose
+    from synthesis.capture import captured_hand, parse_pose, read_pose
     from synthesis.skeleton.bvh import read_bvh
     from synthesis.timing.recordings import Recording as Performance
 
     item, path = recording.item, Path(recording.upload.path)
     side = (item.parameters or {}).get("side", "right")
     pose = bvh = None
+    sheet = None
     if recording.is_video:
-        from synthesis.capture.video import capture_hands, expected_frames
-
-        total = expected_frames(path) or 0
-        step = max(1, total // 20)
-
-        def progress(done: int) -> None:
-            if total and done % step == 0:
-                report_progress(recording, min(99, round(100 * done / total)))
-
-        landmarks = capture_hands(path, mirrored=recording.mirrored, progress=progress,
-                                  one_hand=side if recording.one_hand else None)  # fmt: skip
-        pose = format_pose(landmarks)
+        pose, sheet = _captured(recording, path, side, report_progress)
+        landmarks = parse_pose(pose, path.name)
     elif path.suffix.lower() == ".pose":
         landmarks = read_pose(path)
     elif path.suffix.lower() in (".fbx", ".glb"):  # converted to BVH: what clips read
@@ -120,12 +110,9 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
         landmarks = None
         motion = read_bvh(path)
         quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
-    sheet = None
     if landmarks is not None:
         hand = captured_hand(landmarks, side)
         motion, quality = hand.motion, hand.quality(landmarks)
-        if recording.is_video:
-            sheet = _contact_sheet(hand, path)
     # Conditions that retime the recording need its holds: a recording in which they
     # cannot be found (another word, say) fails now rather than when its clips render.
     performance = Performance.from_motion(motion, item.text, side)
@@ -134,15 +121,34 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
     return quality, pose, sheet, bvh
 
 
-def _contact_sheet(hand, video: Path) -> bytes | None:
-    """Return the capture's contact sheet (PNG bytes), or None where nothing renders."""
-    from synthesis.capture.contact import contact_sheet_png
-    from synthesis.render.backend import RenderUnavailable
+def _captured(recording, path: Path, side: str, report_progress) -> tuple[bytes, bytes | None]:
+    """Return a video recording's landmarks (.pose) and contact sheet (PNG or None),
+    captured confined: MediaPipe and the video's decoder read the researcher's file in
+    a child process with limits, no network and nothing else readable (issue 51)."""
+    import base64
+    import json
 
+    from studyplatform.confine import CAPTURE, ConfinedError, run_task
+
+    options = {
+        "suffix": path.suffix.lower(),
+        "mirrored": recording.mirrored,
+        "side": side,
+        "one_hand": side if recording.one_hand else None,
+    }
     try:
-        return contact_sheet_png(hand, video)
-    except RenderUnavailable:  # a worker without OpenGL still captures
-        return None
+        read = run_task(
+            "capture",
+            path.read_bytes(),
+            path.name,
+            json.dumps(options),
+            CAPTURE,
+            progress=lambda percent: report_progress(recording, percent),
+        )
+    except ConfinedError as error:
+        raise ValueError(str(error)) from None
+    sheet = base64.b64decode(read["sheet"]) if read["sheet"] else None
+    return base64.b64decode(read["pose"]), sheet
 
 
 @shared_task(name=PREPARE_RECORDING, acks_late=True, reject_on_worker_lost=True)

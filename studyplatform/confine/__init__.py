@@ -7,6 +7,7 @@ reached. See :mod:`studyplatform.confine.runner`.
 """
 
 from studyplatform.confine.runner import (
+    CAPTURE,
     MEDIA,
     PARSE,
     ConfinedError,
@@ -17,6 +18,7 @@ from studyplatform.confine.runner import (
 )
 
 __all__ = [
+    "CAPTURE",
     "MEDIA",
     "PARSE",
     "ConfinedError",

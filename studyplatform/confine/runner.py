@@ -16,6 +16,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -46,6 +47,7 @@ ENVIRONMENT = (
     "SIGNSTUDY_AVATAR_CACHE",
     "XDG_CACHE_HOME",
     "HOME",
+    "PYOPENGL_PLATFORM",
 )
 
 
@@ -66,6 +68,8 @@ class Limits:
 
 PARSE = Limits()  # reading one avatar or motion file
 MEDIA = Limits(memory_mb=3072, cpu_s=300, wall_s=330.0, file_mb=1024)  # ffmpeg on one video
+# MediaPipe's capture of one recording's video, its fit and contact sheet (a job's).
+CAPTURE = Limits(memory_mb=3072, cpu_s=1800, wall_s=1900.0, file_mb=1024)
 
 
 def _python_paths() -> list[str]:
@@ -103,17 +107,19 @@ def confined_run(
     write=(),
     limits: Limits = PARSE,
     stdin: bytes | None = None,
+    progress=None,
 ) -> subprocess.CompletedProcess:
     """Run *command* confined, reading only *read* (and the system's programs) and
     writing only *write*; return what it printed. Raise ConfinedError when it ran past
-    the wall clock or its CPU time, or was killed."""
+    the wall clock or its CPU time, or was killed. *progress*, if given, is told each
+    new percentage the command writes to ``$TMPDIR/progress`` (polled every second)."""
     with tempfile.TemporaryDirectory(prefix="signstudy-confined-") as scratch:
         policy = {
             "memory_bytes": limits.memory_mb * 1024**2,
             "cpu_s": limits.cpu_s,
             "file_bytes": limits.file_mb * 1024**2,
             "read": [*SYSTEM_READ, *_python_paths(), *map(str, read)],
-            "write": [scratch, *map(str, write)],
+            "write": [scratch, "/dev/null", *map(str, write)],
         }
         jailed = [sys.executable, "-I", str(JAIL), json.dumps(policy), "--", *map(str, command)]
         process = subprocess.Popen(
@@ -126,10 +132,7 @@ def confined_run(
             cwd=scratch,
         )
         try:
-            out, err = process.communicate(stdin, timeout=limits.wall_s)
-        except subprocess.TimeoutExpired:
-            _kill(process)
-            raise ConfinedError(f"took longer than {limits.wall_s:.0f} s") from None
+            out, err = _wait(process, stdin, limits.wall_s, Path(scratch) / "progress", progress)
         finally:
             _kill(process)
     if process.returncode in (-signal.SIGXCPU, -signal.SIGKILL):
@@ -137,6 +140,24 @@ def confined_run(
     if process.returncode < 0:
         raise ConfinedError(f"crashed ({signal.Signals(-process.returncode).name})")
     return subprocess.CompletedProcess(jailed, process.returncode, out, err)
+
+
+def _wait(process: subprocess.Popen, stdin, wall_s: float, reported: Path, progress):
+    """Return the process's output once it ends, telling *progress* what it reports;
+    ConfinedError past *wall_s*."""
+    deadline, last = time.monotonic() + wall_s, None
+    while True:
+        step = min(1.0, deadline - time.monotonic()) if progress else deadline - time.monotonic()
+        try:
+            return process.communicate(stdin, timeout=max(step, 0.01))
+        except subprocess.TimeoutExpired:
+            stdin = None  # written by the first call; a second call must not write again
+            if time.monotonic() >= deadline:
+                raise ConfinedError(f"took longer than {wall_s:.0f} s") from None
+        text = reported.read_text().strip() if reported.is_file() else ""
+        if text.isdigit() and text != last:
+            last = text
+            progress(int(text))
 
 
 def _kill(process: subprocess.Popen) -> None:
@@ -147,11 +168,19 @@ def _kill(process: subprocess.Popen) -> None:
         process.wait()
 
 
-def run_task(task: str, data: bytes, name: str, argument: str = "", limits: Limits = PARSE):
+def run_task(
+    task: str,
+    data: bytes,
+    name: str,
+    argument: str = "",
+    limits: Limits = PARSE,
+    progress=None,
+):
     """Return what the confined worker's *task* makes of *data* (a file called *name*);
-    ConfinedError names what is wrong with it, or the limit it hit."""
+    ConfinedError names what is wrong with it, or the limit it hit. *progress* is told
+    the percentages the task reports."""
     command = [sys.executable, "-I", str(WORKER), task, name, argument]
-    done = confined_run(command, read=_engine_read(), limits=limits, stdin=data)
+    done = confined_run(command, read=_engine_read(), limits=limits, stdin=data, progress=progress)
     try:
         answer = json.loads(done.stdout[: limits.output_mb * 1024**2])
     except ValueError:

@@ -64,7 +64,46 @@ def motion(data: bytes, name: str, suffix: str) -> dict:
     return {"frames": read.n_frames, "fps": read.rate_hz, "bvh": format_bvh(read)}
 
 
-TASKS = {"avatar": avatar_report, "mapped_avatar": mapped_avatar, "motion": motion}
+def video_capture(data: bytes, name: str, options: str) -> dict:
+    """Capture the hands in a recording's video (MediaPipe), fit the hand to them and
+    draw the contact sheet; return the landmarks (``.pose``) and the sheet (PNG, None
+    where nothing renders), base64. *options*: JSON of suffix, mirrored, one_hand, side."""
+    from synthesis.capture import captured_hand, format_pose
+    from synthesis.capture.contact import contact_sheet_png
+    from synthesis.capture.video import capture_hands, expected_frames
+    from synthesis.render.backend import RenderUnavailable
+
+    chosen = json.loads(options)
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"video{chosen['suffix']}"
+        path.write_bytes(data)
+        total = expected_frames(path) or 0
+        step = max(1, total // 20)
+
+        def report(done: int) -> None:  # read by the parent (runner.confined_run)
+            if total and done % step == 0:
+                percent = min(99, round(100 * done / total))
+                (Path(os.environ["TMPDIR"]) / "progress").write_text(str(percent))
+
+        landmarks = capture_hands(
+            path, mirrored=chosen["mirrored"], one_hand=chosen["one_hand"], progress=report
+        )
+        try:
+            sheet = contact_sheet_png(captured_hand(landmarks, chosen["side"]), path)
+        except RenderUnavailable:  # a machine without OpenGL still captures
+            sheet = None
+    return {
+        "pose": base64.b64encode(format_pose(landmarks)).decode(),
+        "sheet": base64.b64encode(sheet).decode() if sheet is not None else None,
+    }
+
+
+TASKS = {
+    "avatar": avatar_report,
+    "mapped_avatar": mapped_avatar,
+    "motion": motion,
+    "capture": video_capture,
+}
 
 
 def main(argv: list[str]) -> None:

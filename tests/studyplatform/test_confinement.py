@@ -122,3 +122,16 @@ def test_ffmpeg_opens_no_url_a_playlist_names(tmp_path):
     )
     done = run_ffmpeg("-v", "error", "-i", str(playlist), "-f", "null", "-", read=[playlist])
     assert done is None or done.returncode != 0
+
+
+def test_progress_a_confined_program_reports_reaches_the_caller():
+    """A capture reports its percentage through $TMPDIR/progress, polled each second."""
+    code = (
+        "import os, pathlib, time\n"
+        "for percent in (10, 60):\n"
+        "    pathlib.Path(os.environ['TMPDIR'], 'progress').write_text(str(percent))\n"
+        "    time.sleep(1.3)\n"
+    )
+    seen = []
+    _python(code, progress=seen.append)
+    assert seen == [10, 60]
