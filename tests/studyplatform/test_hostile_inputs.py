@@ -67,7 +67,7 @@ MAX_PEAK_BYTES = 64 * 1024**2
 JSON = {"Accept": "application/json"}
 STATUSES: dict[str, Counter] = defaultdict(Counter)  # by endpoint, for the summary
 WORST: dict[str, list[float]] = defaultdict(lambda: [0.0, 0.0])  # seconds, peak MB
-JOBS: Counter = Counter()  # the background jobs' outcomes, by status
+JOBS: Counter = Counter()  # the background jobs' outcomes in this entry, by status
 
 # --- finding the endpoints ---------------------------------------------------------------
 
@@ -247,9 +247,9 @@ def _then_jobs(response):
 
     for recording in Recording.objects.filter(status="capturing").exclude(upload=""):
         if not recording.is_video:  # MediaPipe's capture is the recordings tests' part
-            JOBS[prepare_now(recording.pk)] += 1
+            JOBS[f"recording {prepare_now(recording.pk)}"] += 1
     for job in ClipUpload.objects.filter(status="queued"):
-        JOBS[prepare_clips_now(job.pk)] += 1
+        JOBS[f"clip upload {prepare_clips_now(job.pk)}"] += 1
     return response
 
 
@@ -258,9 +258,8 @@ def _send_clip(ctx: Ctx, data: bytes):
     item = ctx.spine.items.first()
     url = reverse("admin:studyplatform_study_uploads", args=[ctx.spine.pk])
     fields = {"condition": condition.pk, "item": item.pk}
-    return ctx.client.post(
-        url, {**fields, "clip": SimpleUploadedFile("clip.mp4", data)}, headers=JSON
-    )
+    clip = SimpleUploadedFile("clip.mp4", data)
+    return _then_jobs(ctx.client.post(url, {**fields, "clip": clip}, headers=JSON))
 
 
 def _manifest(rows: list[list[str]]) -> bytes:
@@ -658,6 +657,7 @@ def _send(name: str, ctx: Ctx, entry: Entry, sent) -> None:
 
 def _run_entry(name: str, ctx: Ctx, examples: int) -> None:
     entry = HARNESS[name]
+    JOBS.clear()
     before = _victim_state(ctx.victim)
     for case in entry.cases():
         _send(name, ctx, entry, case)
@@ -678,7 +678,7 @@ def _run_entry(name: str, ctx: Ctx, examples: int) -> None:
     print(
         f"{name} ({entry.kind}): {sum(STATUSES[name].values())} inputs, "
         f"statuses {dict(sorted(STATUSES[name].items()))}, worst {WORST[name][0]:.2f} s, "
-        f"peak {WORST[name][1]:.1f} MB; background jobs so far {dict(sorted(JOBS.items()))}"
+        f"peak {WORST[name][1]:.1f} MB; background jobs {dict(sorted(JOBS.items()))}"
     )
 
 
