@@ -100,7 +100,7 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
 
         landmarks = None
         try:  # assimp and the glTF reader run confined, as on upload
-            read = run_task("motion", path.read_bytes(), path.name, path.suffix.lower())
+            read = run_task("motion", path.read_bytes(), recording.upload.name, path.suffix.lower())
         except ConfinedError as error:
             raise ValueError(str(error)) from None
         bvh = read["bvh"].encode()
@@ -140,7 +140,7 @@ def _captured(recording, path: Path, side: str, report_progress) -> tuple[bytes,
         read = run_task(
             "capture",
             path.read_bytes(),
-            path.name,
+            recording.upload.name,  # as the researcher sees it in media
             json.dumps(options),
             CAPTURE,
             progress=lambda percent: report_progress(recording, percent),

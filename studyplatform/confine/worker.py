@@ -8,6 +8,7 @@ input. It writes one JSON object to standard output: ``{"result": …}``, or
 """
 
 import base64
+import contextlib
 import json
 import os
 import sys
@@ -15,6 +16,16 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+
+
+@contextlib.contextmanager
+def _named(path: Path, name: str):
+    """Name the file in a reader's error by *name*, not by the worker's copy of it."""
+    try:
+        yield
+    except ValueError as error:
+        message = str(error).replace(str(path), name).replace(path.name, name)
+        raise ValueError(message) from None
 
 
 def avatar_report(data: bytes, name: str, _: str) -> dict:
@@ -60,7 +71,8 @@ def motion(data: bytes, name: str, suffix: str) -> dict:
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / f"motion{suffix}"
         path.write_bytes(data)
-        read = read_motion_file(path)
+        with _named(path, name):
+            read = read_motion_file(path)
     return {"frames": read.n_frames, "fps": read.rate_hz, "bvh": format_bvh(read)}
 
 
@@ -85,9 +97,10 @@ def video_capture(data: bytes, name: str, options: str) -> dict:
                 percent = min(99, round(100 * done / total))
                 (Path(os.environ["TMPDIR"]) / "progress").write_text(str(percent))
 
-        landmarks = capture_hands(
-            path, mirrored=chosen["mirrored"], one_hand=chosen["one_hand"], progress=report
-        )
+        with _named(path, name):
+            landmarks = capture_hands(
+                path, mirrored=chosen["mirrored"], one_hand=chosen["one_hand"], progress=report
+            )
         try:
             sheet = contact_sheet_png(captured_hand(landmarks, chosen["side"]), path)
         except RenderUnavailable:  # a machine without OpenGL still captures
