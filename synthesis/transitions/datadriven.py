@@ -47,8 +47,14 @@ def skewed_hermite(curve: StoredCurve, v0: float, v1: float, duration: float) ->
 def joined(curve: HermiteCurve, slope_in: float, slope_out: float) -> HermiteCurve:
     """Return *curve* with its end tangents turned to the signs' slopes (Eq. 3.16)."""
     t0, t1 = curve.t0.copy(), curve.t1.copy()
-    t0[0] = join_tangent(t0[0], slope_in)
-    t1[-1] = join_tangent(t1[-1], slope_out)
+    # Each end segment moves forward in time while its two tangents' time extents add up
+    # to at most three times its own (Fritsch–Carlson): the turned one gets what the
+    # other leaves.
+    first, last = np.diff(curve.points[:2, 0])[0], np.diff(curve.points[-2:, 0])[0]
+    room_in = max(0.0, 3.0 * first - max(curve.t1[0][0], 0.0))
+    room_out = max(0.0, 3.0 * last - max(curve.t0[-1][0], 0.0))
+    t0[0] = join_tangent(t0[0], slope_in, segment_frames=room_in)
+    t1[-1] = join_tangent(t1[-1], slope_out, segment_frames=room_out)
     return HermiteCurve(curve.points, t0, t1)
 
 

@@ -31,7 +31,10 @@ def window_tangent(values: np.ndarray, window: int) -> float | np.ndarray:
 
 
 def join_tangent(
-    tangent: np.ndarray, sign_slope: float, degrees_per_unit: float = DEGREES_PER_UNIT
+    tangent: np.ndarray,
+    sign_slope: float,
+    degrees_per_unit: float = DEGREES_PER_UNIT,
+    segment_frames: float | None = None,
 ) -> np.ndarray:
     """Return *tangent* [t_x, t_y] turned to the sign's slope and shortened (Eq. 3.16).
 
@@ -40,6 +43,13 @@ def join_tangent(
     lengths are taken on the curve as seed 001 plots it, frames across and degrees up:
     *t_y* and *sign_slope* are in the curve's unit (rad, rad per frame), times
     *degrees_per_unit* (1 measures them in that unit itself).
+
+    The turned tangent spans at most *segment_frames* in time: a steep tangent turned
+    flat keeps its length in that plane and could reach far past its segment, so the
+    curve ran backwards in time and the joint jumped (issue 53: 14 frames grew to 52 in a
+    12-frame gap, 7,240 °/s). A cubic Hermite segment moves forward in time throughout
+    while its two tangents' time extents add up to at most three times its own
+    (Fritsch & Carlson 1980), which is what the caller leaves here.
     """
     t_x, t_y = np.asarray(tangent, dtype=float)
     up = t_y * degrees_per_unit
@@ -47,6 +57,8 @@ def join_tangent(
     theta_sign = np.arctan2(sign_slope * degrees_per_unit, 1.0)
     turned = abs(theta_sign - theta)
     length = r * (np.pi - turned) / np.pi
+    if segment_frames is not None:
+        length = min(length, segment_frames / np.cos(theta_sign))  # cos > 0: |θ| < π/2
     return np.array([length * np.cos(theta_sign), length * np.sin(theta_sign) / degrees_per_unit])
 
 
