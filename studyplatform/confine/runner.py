@@ -201,7 +201,9 @@ def confinement_status() -> dict:
     not restricted) and whether the jail may take a network namespace."""
     from studyplatform.confine.jail import landlock_abi
 
-    done = confined_run(["/bin/sh", "-c", "cat /proc/net/dev 2>/dev/null | wc -l"])
-    # An empty namespace has only the loopback device: two header lines and lo.
-    isolated = done.returncode == 0 and done.stdout.strip() in (b"3", b"0")
+    # Landlock hides /proc/net, so ask the kernel for the interfaces: an empty
+    # namespace has only the loopback device.
+    code = "import socket; print(' '.join(name for _, name in socket.if_nameindex()))"
+    done = confined_run([sys.executable, "-I", "-c", code])
+    isolated = done.returncode == 0 and done.stdout.split() == [b"lo"]
     return {"landlock_abi": landlock_abi(), "network_namespace": isolated}

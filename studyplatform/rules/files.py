@@ -13,6 +13,7 @@ The objects are looked up through Django's app registry, so this rule, like the 
 imports no model.
 """
 
+import functools
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -59,6 +60,7 @@ FILE_SOURCES: dict[str, tuple[FileSource, ...]] = {
 REFERENCE = re.compile(r"(?P<kind>[a-z_]+):(?P<pk>[1-9][0-9]{0,17})")
 
 
+@functools.cache  # the registry is fixed once imported; every clip spec asks
 def file_parameters() -> dict[str, str]:
     """Return every technique parameter of type file, with the technique declaring it."""
     return {
