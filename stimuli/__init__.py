@@ -14,6 +14,7 @@ from stimuli.design import (
 )
 from stimuli.manifest import Entry, generate, read_manifest, write_manifest
 from stimuli.plan import Design, DesignError, DesignSpec, PlannedPage, plan_pages, summarize_pages
+from stimuli.quality import checked, quality_file, stored_quality
 
 __all__ = [
     "ClipError",
@@ -27,14 +28,17 @@ __all__ = [
     "all_ordered_pairs",
     "attention_checks",
     "balanced_pair_assignment",
+    "checked",
     "engine_digest",
     "generate",
     "latin_square",
     "plan_pages",
+    "quality_file",
     "read_manifest",
     "render",
     "rotate_for_participant",
     "shuffled",
+    "stored_quality",
     "summarize_pages",
     "write_manifest",
 ]

@@ -17,8 +17,9 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from stimuli.quality import checked
 from synthesis.identity import engine_digest, file_sha256
-from synthesis.techniques import ClipError, ClipRequest, render_request
+from synthesis.techniques import ClipError, ClipRequest, build_motion, render_request
 
 __all__ = [
     "ClipError",
@@ -90,10 +91,12 @@ class RenderedClip:
 def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
     """Render *spec* into *directory* as ``<hash>.mp4``, ``<hash>.png`` and ``<hash>.json``.
 
-    A clip already rendered there (by any study, version or database) is returned as it
-    is, never rendered again or overwritten (:func:`rendered`). The video is written
-    under a temporary name and moved into place (synthesis.render), so a crash leaves no
-    file that looks finished; the facts file is written last.
+    The motion's stimulus check is kept beside it (``<hash>.quality.json``,
+    :mod:`stimuli.quality`). A clip already rendered there (by any study, version or
+    database) is returned as it is, never rendered again or overwritten
+    (:func:`rendered`). The video is written under a temporary name and moved into
+    place (synthesis.render), so a crash leaves no file that looks finished; the facts
+    file is written last.
     """
     directory = Path(directory)
     name = spec.content_hash()
@@ -102,7 +105,9 @@ def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
         return found
     directory.mkdir(parents=True, exist_ok=True)
     video, poster, facts = clip_files(directory, name)
-    info = render_request(spec, video, poster=poster, progress=progress)
+    build = build_motion(spec)
+    checked(spec, directory, name, build)
+    info = render_request(spec, video, poster=poster, progress=progress, build=build)
     clip = RenderedClip(
         video, poster, round(info.duration_s * 1000), info.n_frames, info.width, info.height,
         video.stat().st_size, file_sha256(video),

@@ -18,6 +18,7 @@ from studyplatform.lib.stimuli import (
     study_manifest,
     uploaded_manifest,
 )
+from studyplatform.lib.stimulus_checks import stored_checks
 from studyplatform.models import Study
 
 
@@ -67,14 +68,16 @@ class StudyGenerateMixin:
         hashed = hashed_pairs(pairs)  # the page's two counts share the hashing
         return self._page(request, "generate.html", title, study=study, allowed=allowed,
                           identical=group_identical(hashed), clips=len(pairs),
-                          progress=stimuli_progress(study),
+                          progress=stimuli_progress(study), checks=stored_checks(hashed),
                           on_disk=clips_on_disk(hashed))  # fmt: skip
 
     def stimuli_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
-        """Show the study's clips being rendered: a live progress bar and the failures."""
+        """Show the study's clips being rendered: a live progress bar, the failures and
+        the stimulus check's warnings."""
         study = self._get_visible_study(request, object_id)
+        checks = stored_checks(hashed_pairs(needed_pairs(study)))
         return self._page(request, "stimuli.html", f"Stimuli of “{study.title}”", study=study,
-                          progress=stimuli_progress(study))  # fmt: skip
+                          progress=stimuli_progress(study), checks=checks)  # fmt: skip
 
     def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
         """Return the rendering progress as JSON, for the progress bar to poll."""

@@ -90,6 +90,14 @@ def project_px(camera: CameraPreset, points_m: np.ndarray, width: int, height: i
 
     Points behind the camera come out as NaN.
     """
+    return project_with_depth(camera, points_m, width, height)[0]
+
+
+def project_with_depth(
+    camera: CameraPreset, points_m: np.ndarray, width: int, height: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Return image coordinates (..., 2) in pixels and depths (...) in m along the view of
+    world points (..., 3); points behind the camera have NaN coordinates."""
     to_camera = np.linalg.inv(camera.pose())
     points = np.asarray(points_m, dtype=np.float64) @ to_camera[:3, :3].T + to_camera[:3, 3]
     depth = -points[..., 2]
@@ -97,7 +105,8 @@ def project_px(camera: CameraPreset, points_m: np.ndarray, width: int, height: i
         focal = 1.0 / np.tan(np.radians(camera.yfov_deg) / 2)
         x_ndc = np.where(depth > 0, points[..., 0] / depth * focal * height / width, np.nan)
         y_ndc = np.where(depth > 0, points[..., 1] / depth * focal, np.nan)
-    return np.stack([(x_ndc + 1) / 2 * width, (1 - y_ndc) / 2 * height], axis=-1)
+    pixels = np.stack([(x_ndc + 1) / 2 * width, (1 - y_ndc) / 2 * height], axis=-1)
+    return pixels, depth
 
 
 def portrait_lighting(target_m, distance_m: float) -> tuple[Light, ...]:

@@ -83,6 +83,7 @@ def _macro(name: str, help: str, minimum: float = 0.0) -> Parameter:
 
 TECHNIQUE = Technique(
     name="avatar",
+    chooses_content=True,
     label="Avatar",
     kinds=frozenset({WORD.name, *SIGNED}),
     parameters=(

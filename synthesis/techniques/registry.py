@@ -31,7 +31,10 @@ class Technique:
     ``prepare`` stage before the item kind makes the motion (choosing a performance, a
     timing, synthesis options), in the ``motion`` stage after it (changing the motion).
     *check* refuses combinations of values (it raises :class:`ClipError`). *order*
-    sorts the techniques of a stage.
+    sorts the techniques of a stage. *chooses_content* marks a technique that chooses
+    what is signed, by whom or when (a source, a timing, an avatar), not how the motion
+    is made between keys: the stimulus check's keyed reference keeps its values and
+    resets the others' (:mod:`synthesis.quality`).
     """
 
     name: str
@@ -44,6 +47,7 @@ class Technique:
     apply: Callable[[Any], Any] | None = None
     check: Callable[[Mapping[str, Any]], None] | None = None
     summary: Callable[[Mapping[str, Any]], str] | None = None
+    chooses_content: bool = False
 
     def describe(self, values: Mapping[str, Any]) -> str:
         """Return what this technique does with *values*, in plain words.

@@ -43,6 +43,7 @@ def _apply(build: Build) -> Build:
 
 TECHNIQUE = Technique(
     name="signs",
+    chooses_content=True,
     label="Sign library",
     kinds=SIGNED,
     parameters=(

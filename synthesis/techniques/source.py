@@ -100,6 +100,7 @@ def _apply(build: Build) -> Build:
 
 TECHNIQUE = Technique(
     name="source",
+    chooses_content=True,
     label="Performance",
     kinds=frozenset({"word"}),
     parameters=(

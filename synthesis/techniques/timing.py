@@ -110,6 +110,7 @@ def _ms(name: str, default: float, help: str) -> Parameter:
 
 TECHNIQUE = Technique(
     name="timing",
+    chooses_content=True,
     label="Timing model",
     kinds=frozenset({"word"}),
     parameters=(

@@ -1,0 +1,48 @@
+"""A clip's stimulus check, kept beside its files: ``<hash>.quality.json``.
+
+The check depends only on what the clip's content hash names (its specification and the
+engine), so it is made once, by whichever comes first — the render, or a check of a
+whole study before rendering (``manage.py check_stimuli``) — and read back by both.
+"""
+
+import json
+from pathlib import Path
+
+from synthesis.quality import ClipQuality, check_request
+from synthesis.techniques import ClipRequest
+from synthesis.techniques.request import Build
+
+
+def quality_file(directory: Path, content_hash: str) -> Path:
+    """Return the file of the check of the clip named *content_hash*."""
+    return Path(directory) / f"{content_hash}.quality.json"
+
+
+def stored_quality(directory: Path, content_hash: str) -> ClipQuality | None:
+    """Return the check kept for *content_hash*, or None if none was made (or it is damaged)."""
+    path = quality_file(directory, content_hash)
+    try:
+        return ClipQuality.from_dict(json.loads(path.read_text()))
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def checked(
+    spec: ClipRequest, directory: Path, content_hash: str | None = None, build: Build | None = None
+) -> ClipQuality:
+    """Return the check of *spec*: the one kept in *directory*, or made and kept now.
+
+    *build* is the clip's motion, where the caller made it already (a render).
+    """
+    name = content_hash or spec.content_hash()  # a ClipSpec's
+    found = stored_quality(directory, name)
+    if found is not None:
+        return found
+    quality = check_request(spec, build)
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    path = quality_file(directory, name)
+    temporary = path.with_suffix(".json.part")
+    temporary.write_text(json.dumps(quality.to_dict(), indent=1, ensure_ascii=False) + "\n")
+    temporary.replace(path)
+    return quality

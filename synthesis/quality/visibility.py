@@ -1,0 +1,126 @@
+"""Measure what a viewer sees of the hands and the face: each hand's size in pixels,
+whether it leaves the frame, and how much of the face a hand hides.
+
+The posed skin is projected through the clip's camera as the renderer sees it
+(:mod:`synthesis.render.framing` tells the parts' vertices by the joint that weighs
+most on them). A face vertex counts as hidden when a hand's skin lies over its pixel
+nearer the camera: the hands are drawn into a coarse depth buffer (one cell per
+:data:`CELL_PX` pixels, the nearest hand depth in each), and each face vertex is
+compared with its cell.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from synthesis.avatar.model import Avatar
+from synthesis.render.framing import HAND_JOINTS, face_vertices
+from synthesis.render.scene import CameraPath, CameraPreset, project_with_depth
+from synthesis.skeleton.kinematics import Pose
+
+# A hand's skin is sampled a vertex apart (≤ 6 mm on the human signer, under 4 px at
+# 720p in the signing view); cells of 4 px leave no gap between projected samples.
+CELL_PX = 4
+
+
+@dataclass(frozen=True)
+class Visibility:
+    """Per frame and hand (sides in *hands*): the hand's box in pixels, the larger of its
+    width and height (*hand_px*, (n_frames, n_hands)), whether any of its skin lies
+    outside the frame (*outside*); the share of the face's vertices a hand hides
+    (*face_hidden*, (n_frames,); None without a face)."""
+
+    hands: tuple[str, ...]
+    hand_px: np.ndarray
+    outside: np.ndarray
+    face_hidden: np.ndarray | None
+
+
+def _hand_side(name: str, sides: tuple[str, ...]) -> str | None:
+    """Return the side whose hand *name* belongs to ("" for a lone hand), or None."""
+    for side in sides:
+        prefix = f"{side}_" if side else ""
+        if name.startswith(prefix) and name[len(prefix) :] in HAND_JOINTS:
+            return side
+    return None
+
+
+def _masks(avatar: Avatar, side: str, sides: tuple[str, ...]) -> list[np.ndarray]:
+    """Return, per part, which vertices the hand of *side* owns most."""
+    owned = np.array([_hand_side(n, sides) == side for n in avatar.rig.skeleton.names])
+    return [owned[part.weights.main_joints()] for part in avatar.parts]
+
+
+def hand_sides(avatar: Avatar) -> tuple[str, ...]:
+    """Return the sides of the avatar's hands: ("right", "left"), or ("",) for a lone hand."""
+    names = avatar.rig.skeleton.names
+    sides = tuple(side for side in ("right", "left") if f"{side}_wrist" in names)
+    return sides or ("",)
+
+
+def _per_frame(camera, points_m: np.ndarray, width: int, height: int):
+    """Project points (n_frames, n, 3) through a camera or, frame by frame, a path's."""
+    if isinstance(camera, CameraPreset):
+        return project_with_depth(camera, points_m, width, height)
+    projected = [
+        project_with_depth(camera.at(k), frame, width, height) for k, frame in enumerate(points_m)
+    ]
+    return np.stack([p for p, _ in projected]), np.stack([d for _, d in projected])
+
+
+def _hidden_share(hand_px, hand_depth, face_px, face_depth, width, height) -> np.ndarray:
+    """Return, per frame, the share of face points behind a hand's skin (depth buffer)."""
+    n_frames = len(face_px)
+    cols, rows = -(-width // CELL_PX), -(-height // CELL_PX)
+    nearest = np.full((n_frames, rows * cols), np.inf)
+    frame = np.broadcast_to(np.arange(n_frames)[:, None], hand_depth.shape)
+    cell = _cells(hand_px, cols, rows)
+    ok = cell >= 0
+    np.minimum.at(nearest, (frame[ok], cell[ok]), hand_depth[ok])
+    face_cell = _cells(face_px, cols, rows)
+    seen = face_cell >= 0
+    in_front = np.take_along_axis(nearest, np.maximum(face_cell, 0), axis=1)
+    hidden = seen & (in_front < face_depth)
+    return hidden.sum(axis=1) / np.maximum(seen.sum(axis=1), 1)
+
+
+def _cells(pixels: np.ndarray, cols: int, rows: int) -> np.ndarray:
+    """Return each pixel's cell index (−1 outside the frame or behind the camera)."""
+    with np.errstate(invalid="ignore"):
+        col = np.floor(pixels[..., 0] / CELL_PX)
+        row = np.floor(pixels[..., 1] / CELL_PX)
+        inside = (col >= 0) & (col < cols) & (row >= 0) & (row < rows)
+    return np.where(inside, np.nan_to_num(row) * cols + np.nan_to_num(col), -1).astype(np.intp)
+
+
+def measure_visibility(
+    avatar: Avatar, camera: CameraPreset | CameraPath, pose: Pose, width: int, height: int
+) -> Visibility:
+    """Return what the camera shows of *avatar*'s hands and face posed by *pose*."""
+    sides = hand_sides(avatar)
+    sizes, outside, hand_points, hand_depths = [], [], [], []
+    for side in sides:
+        posed = np.concatenate(
+            [v for v, _ in avatar.deform_pose(pose, _masks(avatar, side, sides))], axis=1
+        )
+        pixels, depth = _per_frame(camera, posed, width, height)
+        extent = np.nanmax(pixels, axis=1) - np.nanmin(pixels, axis=1)
+        sizes.append(extent.max(axis=1))
+        outside.append(
+            ((pixels < 0) | (pixels > (width, height)) | np.isnan(pixels)).any(axis=(1, 2))
+        )
+        hand_points.append(pixels)
+        hand_depths.append(depth)
+    face_hidden = None
+    face = np.concatenate([v for v, _ in avatar.deform_pose(pose, face_vertices(avatar))], axis=1)
+    if face.shape[1]:
+        face_px, face_depth = _per_frame(camera, face, width, height)
+        face_hidden = _hidden_share(
+            np.concatenate(hand_points, axis=1),
+            np.concatenate(hand_depths, axis=1),
+            face_px,
+            face_depth,
+            width,
+            height,
+        )
+    return Visibility(sides, np.stack(sizes, axis=1), np.stack(outside, axis=1), face_hidden)
