@@ -3,8 +3,9 @@
 Participants see one letter per page on the same hand avatar and type which letter it
 is (scored automatically). Each letter comes twice: formed by the engine's alphabet, and
 as a real signer's recording (the spoken-to-signed package's ASL lexicon, fitted to the
-hand: :func:`attach_human_letters`). It measures how legible each source's handshapes
-are, the question behind seed 000 ch. 3's hand-fidelity work.
+hand: :func:`attach_human_letters`). The recordings have no depth, so the second source
+is the fitter's reading of them (issue 52: MediaPipe reads 1 of its 9 clips right), and
+the study's texts say so.
 """
 
 from typing import Any
@@ -25,10 +26,14 @@ CONDITIONS = (
     },
     {
         "key": "human",
-        "label": "Human-captured",
+        "label": "Human recording, fitted without depth",
         "description": (
             "A real signer's recording of the letter (spoken-to-signed ASL lexicon), fitted "
-            "to the same hand and played as performed."
+            "to the same hand and played as performed. The recordings hold 2-D video "
+            "landmarks without depth, so the fit guesses how far each finger bends toward "
+            "the camera: A, C, O and S come out wrong in every frame (A with the thumb out, "
+            "C flat, O open, S half-curled). This condition measures the fit, not the "
+            "signer; do not report it as human handshapes."
         ),
         "parameters": {"source": "recording", "timing": "mocap"},
     },
@@ -85,7 +90,9 @@ def alphabet_legibility_study() -> dict[str, Any]:
             "title": "ASL alphabet legibility (demo)",
             "description": (
                 "Can signers read the avatar's letters? The engine's handshapes against "
-                "real signers' captured handshapes on the same hand."
+                "real signers' recordings fitted to the same hand. The recordings have no "
+                "depth, so the fitted 'human' letters are the fitter's reading of them, not "
+                "the signer's handshapes (see the condition's description)."
             ),
             "status": "open",
             "consent_text": (

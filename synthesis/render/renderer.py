@@ -90,7 +90,11 @@ class Renderer:
         self._mesh = None
         self._staging: list[np.ndarray] | None = None
         self._uploaded = True
-        self._flags = pyrender.RenderFlags.SHADOWS_DIRECTIONAL
+        # Only a light that casts a shadow costs a shadow pass (and the shader's lookup).
+        casts = any(light.casts_shadow for light in self.lights)
+        self._flags = (
+            pyrender.RenderFlags.SHADOWS_DIRECTIONAL if casts else pyrender.RenderFlags.NONE
+        )
         self.antialias = antialias
         self._fxaa = None
         self._renderer = pyrender.OffscreenRenderer(width, height)

@@ -205,3 +205,22 @@ def test_missing_makehuman_files_say_how_to_install_them(monkeypatch):
     finally:
         monkeypatch.undo()
         assets.data_directory.cache_clear()
+
+
+def test_the_top_drapes_over_the_chest_with_no_anatomy_through_it(avatar):
+    """Issue 52: the top showed modelled nipples. Measured: every vertex under the top
+    (away from its edges) lies within 1.9 mm of its 1.5 cm neighbourhood's mean along
+    its normal; before the drape, 3.95 mm (3.43 mm at the 99th percentile)."""
+    from scipy.spatial import cKDTree
+
+    skin = avatar.parts[0]
+    owner = np.array(avatar.rig.skeleton.names)[skin.weights.main_joints()]
+    under = np.flatnonzero(
+        np.isin(owner, ["spine_upper", "spine_middle", "spine_lower"]) & (skin.edge_m < -0.06)
+    )
+    tree = cKDTree(skin.vertices_m)
+    relief = [
+        abs((skin.vertices_m[k] - skin.vertices_m[near].mean(axis=0)) @ skin.normals[k])
+        for k, near in zip(under, tree.query_ball_point(skin.vertices_m[under], 0.015), strict=True)
+    ]
+    assert len(under) > 500 and max(relief) < 0.0025

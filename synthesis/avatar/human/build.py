@@ -18,7 +18,7 @@ from synthesis.avatar.body_mesh import clothing_colours
 from synthesis.avatar.human.body import TRUNK_JOINTS, warp_body
 from synthesis.avatar.human.face import morph_drive
 from synthesis.avatar.human.features import eyes, face_morphs, features, nails
-from synthesis.avatar.human.parts import smoothed
+from synthesis.avatar.human.parts import draped, smoothed
 from synthesis.avatar.human.phenotype import DEFAULT_PRESET, Phenotype, body_key, body_phenotype
 from synthesis.avatar.model import Avatar, SkinnedPart, merge_parts
 from synthesis.rigs.body import SIDES, BodyModel
@@ -36,6 +36,8 @@ LIBRARIES = ("numpy", "scipy", "trimesh", "anny")
 TROUSERS_RGB, WAIST_ABOVE_HIPS_M = (0.14, 0.15, 0.19), 0.04
 # The top's cloth is smoothed this far inside its neckline and cuffs (m).
 TOP_EDGE_M = 0.02
+# Beyond that the cloth drapes over details, fully this much farther in (m).
+DRAPE_BLEND_M = 0.03
 
 
 def waistband(rig: BodyModel, bind_pose, warped, colours: np.ndarray, edge: np.ndarray):
@@ -72,6 +74,10 @@ def build_human(dominant: str, body: str | Phenotype, skin_tone: str) -> Avatar:
     on_trunk = warped.weights.joints[:, 0][:, None] == np.array(trunk)
     vertices = smoothed(warped.skin_vertices, warped.skin_faces,
                         on_trunk.any(axis=1) & (edge < -TOP_EDGE_M))  # fmt: skip
+    # ... and draped, the trousers too: no anatomy through the cloth (issue 52), blended in
+    # from the neckline, cuffs and waistband.
+    drape = np.clip((np.abs(edge) - TOP_EDGE_M) / DRAPE_BLEND_M, 0.0, 1.0) * on_trunk.any(axis=1)
+    vertices = draped(vertices, warped.skin_faces, drape)
     scale = warped.head.linear[0, 0]
     morphs = face_morphs(warped.kept, vertices, warped.skin_faces, scale)
     skin = SkinnedPart("skin", vertices, warped.skin_faces, colours, warped.weights,
