@@ -8,7 +8,7 @@ whole study before rendering (``manage.py check_stimuli``) — and read back by 
 import json
 from pathlib import Path
 
-from synthesis.quality import ClipQuality, check_request
+from synthesis.quality import ClipQuality, Finding, check_request
 from synthesis.techniques import ClipRequest
 from synthesis.techniques.request import Build
 
@@ -38,7 +38,12 @@ def checked(
     found = stored_quality(directory, name)
     if found is not None:
         return found
-    quality = check_request(spec, build)
+    try:
+        quality = check_request(spec, build)
+    except (ValueError, IndexError, KeyError) as error:
+        # A check that cannot run says so where its warnings go; the clip still renders.
+        message = f"the stimulus check could not run on this clip: {type(error).__name__}: {error}"
+        quality = ClipQuality({}, (Finding("check", message, 0),))
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     path = quality_file(directory, name)

@@ -95,6 +95,8 @@ def hand_points(pose: Pose, names, side: str) -> tuple[np.ndarray, np.ndarray]:
     index = {name: k for k, name in enumerate(names)}
     joints = [index[prefix + j] for j in HAND_JOINTS if prefix + j in index]
     positions = pose.positions_m[:, joints]
+    if not joints:  # a rig without this hand (an imported avatar's may name none)
+        return positions, np.zeros(0)
     middles, radii = [], []
     for name in HAND_JOINTS[1:]:
         digit, joint = name.split("_")
@@ -134,6 +136,9 @@ def penetration_m(surface: BodySurface, pose: Pose, sides) -> np.ndarray:
     depths = []
     for side in sides:
         points, radii = hand_points(pose, names, side)
+        if not len(radii):
+            depths.append(np.zeros(len(points)))
+            continue
         signed = surface.signed_distance_m(pose, points)
         depths.append(np.maximum(radii[None, :] - signed, 0.0).max(axis=1))
     return np.stack(depths, axis=1)

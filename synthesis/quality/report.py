@@ -18,6 +18,7 @@ where it is:
 - **face**: a hand over more than :data:`FACE_HIDDEN_SHARE` of the face for longer
   than :data:`FACE_HIDDEN_S`: signs at the face cover it briefly, the grammar on it
   (brows, mouth) must stay readable.
+- **check**: the check itself could not run on the clip (its error, named).
 """
 
 from dataclasses import asdict, dataclass
@@ -33,7 +34,7 @@ SPEED_FACTOR = 1.9
 HAND_MIN_PX = 56.0
 PENETRATION_M = 0.02
 FACE_HIDDEN_SHARE, FACE_HIDDEN_S = 0.5, 0.5
-CHECKS = ("speed", "frame", "size", "contact", "face")
+CHECKS = ("speed", "frame", "size", "contact", "face", "check")
 
 
 @dataclass(frozen=True)
@@ -127,7 +128,10 @@ def _contact_findings(sides, depth_m: np.ndarray, rate_hz: float) -> list[Findin
 
 
 def _size_findings(view, dominant: int) -> list[Finding]:
-    """Return a finding when the dominant hand is too small to read."""
+    """Return a finding when the dominant hand is too small to read (or not found)."""
+    if not np.isfinite(view.hand_px).any():
+        message = "no skin of the avatar's hands was found: hand size, frame and contact unchecked"
+        return [Finding("size", message, 0)]
     small = float(np.percentile(view.hand_px[:, dominant], 5))
     if small >= HAND_MIN_PX:
         return []
@@ -149,6 +153,11 @@ def _face_findings(view, rate_hz: float) -> list[Finding]:
         f"a hand hides over half the face for {length / rate_hz:.2f} s from {_at(start, rate_hz)}"
     )
     return [Finding("face", message, start)]
+
+
+def _measured(value) -> float | None:
+    """Return a figure rounded for the report, or None where nothing could be measured."""
+    return round(float(value), 1) if np.isfinite(value) else None
 
 
 def check_motion(
@@ -174,8 +183,8 @@ def check_motion(
         "peak_deg_s": round(float(speeds.peak_deg_s[fastest]), 1),
         "keyed_peak_deg_s": round(float(speeds.reference_deg_s[fastest]), 1),
         "speed_ratio": round(float(speeds.ratios()[fastest]), 3),
-        "hand_px_p5": round(float(np.percentile(view.hand_px[:, hand], 5)), 1),
-        "hand_px_median": round(float(np.median(view.hand_px[:, hand])), 1),
+        "hand_px_p5": _measured(np.percentile(view.hand_px[:, hand], 5)),
+        "hand_px_median": _measured(np.median(view.hand_px[:, hand])),
         "frames_hand_outside": int(view.outside.any(axis=1).sum()),
         "penetration_cm": round(float(depth.max()) * 100, 2),
         "face_hidden_max": None

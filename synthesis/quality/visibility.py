@@ -104,6 +104,11 @@ def measure_visibility(
             [v for v, _ in avatar.deform_pose(pose, _masks(avatar, side, sides))], axis=1
         )
         pixels, depth = _per_frame(camera, posed, width, height)
+        if not posed.shape[1]:
+            # An imported avatar whose skin no hand joint owns: nothing to measure.
+            sizes.append(np.full(len(posed), np.nan))
+            outside.append(np.zeros(len(posed), dtype=bool))
+            continue
         extent = np.nanmax(pixels, axis=1) - np.nanmin(pixels, axis=1)
         sizes.append(extent.max(axis=1))
         outside.append(
@@ -113,7 +118,7 @@ def measure_visibility(
         hand_depths.append(depth)
     face_hidden = None
     face = np.concatenate([v for v, _ in avatar.deform_pose(pose, face_vertices(avatar))], axis=1)
-    if face.shape[1]:
+    if face.shape[1] and hand_points:
         face_px, face_depth = _per_frame(camera, face, width, height)
         face_hidden = _hidden_share(
             np.concatenate(hand_points, axis=1),

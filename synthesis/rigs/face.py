@@ -142,6 +142,10 @@ EXPRESSIONS = MappingProxyType(
         "gaze down": {**gaze_degrees(0, 22), **both(upper_lid_close=22)},
         "mouth open": {"jaw_open": 9.0},
         "spread lips": both(mouth_corner_out=3.5, mouth_corner_up=1.5),
+        # Corners up and the cheeks lifting the lower lids, the jaw just open (issue 52:
+        # HAPPY as spread lips and a squint barely moved the human's face).
+        "smile": {**both(mouth_corner_up=4.0, mouth_corner_out=1.5, lower_lid_raise=12),
+                  "jaw_open": 2.0},
         "rounded lips (OO)": {**both(mouth_corner_out=-2.2), "jaw_open": 3.0,
                               "upper_lip_forward": 6.0, "lower_lip_forward": 6.0},
         "pursed lips (MM)": {**both(mouth_corner_out=-1.5), "upper_lip_forward": 3.0,

@@ -10,9 +10,10 @@ from pathlib import Path
 import pytest
 from django.core.files.uploadedfile import SimpleUploadedFile
 
+from stimuli import stored_quality
 from studyplatform.actions import do_duplicate_study, do_generate_stimuli
 from studyplatform.actions.avatars import AvatarRejected, do_map_avatar_bones, do_upload_avatar
-from studyplatform.lib.stimuli import clip_spec
+from studyplatform.lib.stimuli import clip_spec, clips_folder
 from studyplatform.models import Avatar, Condition, Stimulus
 from studyplatform.tasks import render_now
 from tests.conftest import as_draft
@@ -97,7 +98,13 @@ def test_a_condition_filmed_with_an_avatar_renders_it_and_hashes_its_file(
     assert clip_spec(condition, item).content_hash() != before.content_hash()
     do_generate_stimuli(spine, enqueue=False)
     stimulus = Stimulus.objects.get(condition=condition, item=item)
-    assert render_now(stimulus.pk) == Stimulus.Status.READY
+    status = render_now(stimulus.pk)
+    assert status == Stimulus.Status.READY, Stimulus.objects.get(pk=stimulus.pk).error
+    # The stimulus check ran on it too, and says what it could not measure: this
+    # avatar's skin is owned by no hand joint of the engine's.
+    quality = stored_quality(clips_folder(), clip_spec(condition, item).content_hash())
+    assert [f.check for f in quality.findings] == ["size"]
+    assert "hands was found" in quality.findings[0].message
     # A copy for its owner keeps the avatar; another researcher's copy films the signer.
     assert do_duplicate_study(spine, owner=bob).conditions.get(key="spine-off").avatar == avatar
 

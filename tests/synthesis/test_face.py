@@ -98,7 +98,8 @@ def _landmarks(model, image) -> np.ndarray | None:
 def _measures(points: np.ndarray) -> dict[str, float]:
     """Return brow height over the eye, eye and mouth opening and mouth width (pixels),
     from Face Mesh's landmarks (brow 105/334 over upper lid 159/386; lids 159–145 and
-    386–374; lips 13–14; mouth corners 61–291), averaged over both sides; and, with
+    386–374; lips 13–14; mouth corners 61–291, and how far the corners sit above the
+    lips' middle, 61/291 over 13/14: a smile's), averaged over both sides; and, with
     iris landmarks (468, 473), where the irises sit between the eyes' corners (33–133,
     362–263) as a share of the eye's width, image x."""
     x, y = points[:, 0], points[:, 1]
@@ -107,6 +108,7 @@ def _measures(points: np.ndarray) -> dict[str, float]:
         "eye": ((y[145] - y[159]) + (y[374] - y[386])) / 2,
         "mouth": y[14] - y[13],
         "width": x[291] - x[61],
+        "corners": (y[13] + y[14]) / 2 - (y[61] + y[291]) / 2,
     }
     if len(points) > 468:
         right = (x[468] - (x[33] + x[133]) / 2) / abs(x[133] - x[33])

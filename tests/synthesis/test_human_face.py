@@ -110,3 +110,51 @@ def test_mediapipe_finds_the_face_through_sad_s_hands():
             if model.process(renderer.frame(dofs)).face_landmarks is None:
                 missed.append(number)
     assert not missed, f"no face in frames {missed} of {len(motion)}"
+
+
+# The affects the face technique names (issue 52): the library's happy, sad and surprise
+# markers at full intensity, read by Holistic in the signing view. Measured (mediapipe
+# 0.10.21, default human) against the neutral face: happy width +10.2 px, corners
+# +3.3 px at 1280×720 (+5.7, +1.9 at 640×480), where the old happy (spread lips and a
+# squint) gave corners +0.4 (+0.8) and a face that read as neutral; sad corners −2.5
+# (−1.2), eyes −2.6 (−1.7); surprise brows +3.5 (+2.9), lips +9.9 (+6.9), eyes +2.8.
+# The limits are about two thirds of those.
+AFFECTS = {
+    (1280, 720): {
+        "happy": {"width": +6.8, "corners": +2.2},
+        "sad": {"corners": -1.6, "eye": -1.7},
+        "surprise": {"brow": +2.4, "mouth": +6.5, "eye": +1.8},
+    },
+    (640, 480): {
+        "happy": {"width": +3.6, "corners": +1.3},
+        "sad": {"corners": -0.8, "eye": -1.1},
+        "surprise": {"brow": +1.8, "mouth": +4.6},
+    },
+}
+
+
+@pytest.mark.parametrize("size", list(AFFECTS))
+def test_mediapipe_reads_the_affects_at_study_size(size):
+    solutions = pytest.importorskip(
+        "mediapipe.python.solutions", reason="FACE TESTS SKIPPED: MediaPipe is not installed"
+    )
+    from synthesis.render.renderer import Renderer
+    from synthesis.signing.signs import default_library
+
+    markers = default_library().nonmanuals
+    avatar = avatar_for("upper-body", "right", Look())
+    measured = {}
+    with Renderer(avatar, signing_view("right", *size), width=size[0], height=size[1]) as renderer:
+        for name in ("neutral", *AFFECTS[size]):
+            degrees = {} if name == "neutral" else dict(markers[name].face_deg)
+            frame = renderer.frame(avatar.rig.from_degrees(degrees))
+            with solutions.holistic.Holistic(
+                static_image_mode=True, refine_face_landmarks=True
+            ) as model:
+                points = _landmarks(model, frame)
+            assert points is not None, f"no face found in {name!r} at {size}"
+            measured[name] = _measures(points)
+    for name, wanted in AFFECTS[size].items():
+        for measure, least in wanted.items():
+            change = measured[name][measure] - measured["neutral"][measure]
+            assert np.sign(least) * change >= abs(least), (name, measure, round(change, 2))
