@@ -1,4 +1,4 @@
-"""Measure rendering speed at 640×480: the hand close-up and the upper body, per avatar.
+"""Measure rendering speed (640×480, or --size): the hand close-up and the upper body.
 
 Targets: ≥ 30 fps on the 2-core reference machine (issue 3; issue 16 for the upper body
 with its face); issue 36, the human signer: one renderer ≥ 30 fps with the face moving,
@@ -12,6 +12,10 @@ sentence with its non-manual signals (the face's channels move); the close-up sp
 Parallel figures include starting the worker processes. Asserts nothing.
 
     .venv/bin/python bench/bench_render.py [--frames 600] [--avatar human|simple|both]
+        [--size 1280x720]
+
+At --size the upper body is filmed by the signing view's camera for that frame (the 16:9
+one at 1280×720, issue 52's study size).
 """
 
 import argparse
@@ -31,7 +35,7 @@ from synthesis.render.backend import select_platform
 from synthesis.render.clip import render_clip
 from synthesis.render.parallel import default_workers, render_frames
 from synthesis.render.renderer import Renderer
-from synthesis.render.scene import hand_close_up, upper_body_front
+from synthesis.render.scene import hand_close_up, signing_view
 
 # A story sentence with non-manual signals: the face's channels move (issue 36's target).
 SENTENCE = "I LOST [rhq WHERE]. I SEARCH, SEARCH, [neg CAN'T FIND]."
@@ -56,7 +60,7 @@ def _timed(build):
     return avatar, cold, time.perf_counter() - started
 
 
-def _views(n_frames: int, look: str):
+def _views(n_frames: int, look: str, width: int, height: int):
     from synthesis.techniques import ClipRequest, build_motion
 
     word = "HEAVENLY" * 4
@@ -68,7 +72,7 @@ def _views(n_frames: int, look: str):
     body_motion = np.concatenate([body_motion] * (n_frames // len(body_motion) + 1))[:n_frames]
     return [
         (f"{look} close-up", *hand, hand_close_up(), hand_motion),
-        (f"{look} upper body", *body, upper_body_front(), body_motion),
+        (f"{look} upper body", *body, signing_view("right", width, height), body_motion),
     ]
 
 
@@ -100,27 +104,30 @@ def main() -> None:
     # 600 frames: a 10 s clip at 60 fps, a typical sentence or a long fingerspelled word.
     parser.add_argument("--frames", type=int, default=600)
     parser.add_argument("--avatar", choices=("human", "simple", "both"), default="both")
+    parser.add_argument("--size", default="640x480")
     args = parser.parse_args()
+    width, height = (int(value) for value in args.size.split("x"))
     print(machine.describe())
     print(f"OpenGL platform: {select_platform()}; render workers: {default_workers()}")
     looks = ("human", "simple") if args.avatar == "both" else (args.avatar,)
-    views = [view for look in looks for view in _views(args.frames, look)]
+    views = [view for look in looks for view in _views(args.frames, look, width, height)]
     for name, avatar, build_s, load_s, camera, motion in views:
         n = len(motion)
-        with Renderer(avatar, camera, 640, 480) as renderer:
+        with Renderer(avatar, camera, width, height) as renderer:
             renderer.frame(motion[0])  # compile shaders first
             single = _fps(renderer.frames(motion), n)
         workers = default_workers()
-        parallel = _fps(render_frames(avatar, camera, motion, 640, 480, workers), n)
+        parallel = _fps(render_frames(avatar, camera, motion, width, height, workers), n)
         with tempfile.TemporaryDirectory() as folder:
             started = time.perf_counter()
-            render_clip(avatar, motion, camera, Path(folder) / "clip.mp4", workers=workers)
+            out = Path(folder) / "clip.mp4"
+            render_clip(avatar, motion, camera, out, width=width, height=height, workers=workers)
             clip = n / (time.perf_counter() - started)
         print(
             f"{name:19s} {avatar.triangle_count:6d} triangles, built in {build_s:4.1f} s, "
             f"loaded in {load_s:4.2f} s | "
             f"one renderer {single:5.1f} fps | {workers} workers {parallel:5.1f} fps | "
-            f"MP4 clip {clip:5.1f} fps  ({n} frames, target ≥ 30 fps)"
+            f"MP4 clip {clip:5.1f} fps  ({n} frames at {width}×{height}, target ≥ 30 fps)"
         )
 
 

@@ -23,8 +23,11 @@ from synthesis.skeleton.rotations import quat_to_matrix
 SPELLING_WRIST_FROM_SHOULDER_M = (0.022, -0.075, 0.286)
 # The palm turns this far toward the body's midline (a signer faces the palm slightly in).
 FACING_IN_DEG = 8.0
-# The elbow hangs low, a little away from the body.
-ELBOW_SWIVEL_DEG = 20.0
+# The elbow hangs low, away from the body: at 20° G and H, held up in the fingerspelling
+# space, could turn the index only to 22° from where the hand model points it (40°: 3°).
+ELBOW_SWIVEL_DEG = 40.0
+# How far below its spelling height a leaning forearm may carry the wrist (m).
+MAX_WRIST_DROP_M = 0.04
 
 
 def fingerspelling_posture(body: BodyModel, side: str, hand_dofs_rad: np.ndarray) -> np.ndarray:
@@ -45,7 +48,12 @@ def fingerspelling_posture(body: BodyModel, side: str, hand_dofs_rad: np.ndarray
     forearm_m = at_rest[index(f"{side}_wrist")] - elbow
     leaning = moved.positions_m[:, wrist] - moved.positions_m[:, forearm]
     lean = _least_turns(np.array([0.0, 1.0, 0.0]), leaning)
-    targets = elbow + np.einsum("fij,j->fi", lean, forearm_m)
+    # The wrist goes where the leaning forearm takes it, forward and across, but stays
+    # up in the fingerspelling space (issue 52: leaning about a low elbow dropped P and
+    # Q's hands to the hip, G and H's to the breastbone): the arm lifts instead.
+    moved_by = np.einsum("fij,j->fi", lean, forearm_m) - forearm_m
+    moved_by[:, 1] = np.maximum(moved_by[:, 1], -MAX_WRIST_DROP_M)
+    targets = elbow + forearm_m + moved_by
     rotations = facing @ quat_to_matrix(moved.quaternions[:, wrist])
     dofs = body.with_hand(np.repeat(body.neutral()[None], len(hand_dofs), axis=0), side, hand_dofs)
     return solve_arm(body, dofs, side, targets, rotations, np.radians(ELBOW_SWIVEL_DEG))

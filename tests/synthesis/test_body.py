@@ -71,3 +71,25 @@ def test_a_letter_keeps_its_handshape_on_the_body():
                        atol=1e-9)  # fmt: skip
     wrist = on_body[body.skeleton.index("right_wrist")]
     assert wrist[1] > 1.2 and wrist[2] > 0.1  # held up in front of the chest
+
+
+def test_every_letter_is_held_up_in_the_fingerspelling_space_by_the_wrist():
+    """Issue 52: P and Q leaned the forearm about a low elbow and hung at the hip (wrist
+    27 and 31 cm below B's), G and H dropped to the breastbone (11 cm). The wrist now
+    stays within 4 cm of its spelling height whatever the letter turns the hand to, and
+    the hand keeps its orientation (the arm lifts, the wrist turns down)."""
+    from synthesis.rigs.posture import MAX_WRIST_DROP_M
+
+    body = BodyModel()
+    wrist = body.skeleton.index("right_wrist")
+    spelled = {k: fingerspelling_posture(body, "right", letter_pose(k)[None])[0] for k in "BGHPQ"}
+    height = {k: body.pose(d).positions_m[0, wrist, 1] for k, d in spelled.items()}
+    for k in "GHPQ":
+        assert height[k] >= height["B"] - MAX_WRIST_DROP_M - 0.01, (k, height[k], height["B"])
+    # P's middle finger still points down (the wrist turned, not the hand straightened).
+    pose = body.pose(spelled["P"]).positions_m[0]
+    down = (
+        pose[body.skeleton.index("right_middle_tip")]
+        - pose[body.skeleton.index("right_middle_mcp")]
+    )
+    assert down[1] < -0.5 * np.linalg.norm(down)
