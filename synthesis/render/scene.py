@@ -2,11 +2,13 @@
 
 Lighting follows seed 003 §4.2: three-point portrait lighting (a key light in front of
 the signer, a fill to the side, a rim light behind for the silhouette) plus one extra
-fill for the missing ambient. No light casts a shadow: the key's hard shadow map left
-hand-shaped black stains on the chest and laid the hand's shadow over the nose and
-mouth during SURPRISE and BROTHER, where the grammar is (issue 52); shading alone shows
-the hands' depth, and a frame skips the shadow pass. A :class:`Light` that casts one
-still can, for a renderer given its own lights.
+fill for the missing ambient. Only the key casts a shadow, and a soft one (the skin
+shader's wide penumbra, and a shadow keeps half the key's light): the hard shadow map
+left hand-shaped black stains on the chest and laid the hand's shadow over the nose and
+mouth during SURPRISE and BROTHER, where the grammar is (issue 52). Without any shadow
+MediaPipe read the simple signer's elbow 86 mm off instead of 57: the shading of a hand
+over the body is a depth cue worth keeping. A renderer given lights that cast none
+skips the shadow pass.
 """
 
 from dataclasses import dataclass
@@ -127,7 +129,7 @@ def portrait_lighting(target_m, distance_m: float) -> tuple[Light, ...]:
 
     falloff = d * d
     return (
-        Light("key", "directional", at(-0.7, 0.6, 1.0), 0.75, (1.0, 0.96, 0.9)),
+        Light("key", "directional", at(-0.7, 0.6, 1.0), 0.75, (1.0, 0.96, 0.9), casts_shadow=True),
         Light("fill", "point", at(1.0, 0.1, 0.8), 0.4 * falloff, (0.9, 0.94, 1.0)),
         Light("rim", "point", at(0.3, 0.9, -1.0), 0.8 * falloff),
         Light("extra fill", "point", at(0.0, -0.4, 1.2), 0.22 * falloff),

@@ -60,6 +60,8 @@ vec3 reflected(vec3 n, vec3 v, vec3 l, vec3 radiance, vec3 albedo)
 }
 
 #ifdef DIRECTIONAL_LIGHT_SHADOWS
+const float SHADOW_FLOOR = 0.5;
+
 float lit_fraction(mat4 light_matrix, sampler2D shadow_map, vec3 n, float facing)
 {
     // Looked up a little off the surface, along its normal, the more so the more the
@@ -74,13 +76,15 @@ float lit_fraction(mat4 light_matrix, sampler2D shadow_map, vec3 n, float facing
     }
     float bias = max(0.0015 * (1.0 - facing), 0.0003);
     vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
-    // Four taps on a 2×2 block: soft enough edges for a single cheap pass.
+    // Nine taps spread over about 1 cm: a soft penumbra, not a hand-shaped stain with
+    // jagged edges (issue 52); and a shadow keeps half the key's light, so a hand's
+    // shadow shades the chest or the face without blackening it.
     float lit = 0.0;
-    for (int k = 0; k < 4; k++) {
-        vec2 offset = (vec2(k % 2, k / 2) - 0.5) * 1.5 * texel;
+    for (int k = 0; k < 9; k++) {
+        vec2 offset = (vec2(k % 3, k / 3) - 1.0) * 2.0 * texel;
         lit += coords.z - bias > texture(shadow_map, coords.xy + offset).r ? 0.0 : 1.0;
     }
-    return lit * 0.25;
+    return mix(SHADOW_FLOOR, 1.0, lit / 9.0);
 }
 #endif
 
