@@ -48,13 +48,22 @@ def _apply(build: Build) -> Build:
         from synthesis.transitions.lexicon import SignLexicon, blend_recorded
         from synthesis.transitions.sentence import blend_sentence
 
+        fixed = values["blend_overlap_ms"] or None  # 0: the shortest attack or decay
         if isinstance(build.library, SignLexicon):
+            from synthesis.transitions.lexicon import LexiconError
+
             request = build.request
-            dofs, _ = blend_recorded(
-                build.result.glosses, build.library, request.rate_hz, request.side
-            )
+            try:
+                dofs, _ = blend_recorded(
+                    build.result.glosses,
+                    build.library,
+                    request.rate_hz,
+                    request.side,
+                    overlap_ms=fixed,
+                )
+            except LexiconError as error:
+                raise ClipError(str(error)) from None
         else:
-            fixed = values["blend_overlap_ms"] or None  # 0: the shortest attack or decay
             try:
                 dofs, _ = blend_sentence(build.request.text, build.options, build.library,
                                          overlap_ms=fixed)  # fmt: skip
@@ -103,7 +112,8 @@ TECHNIQUE = Technique(
             "Blended only: how long each sign's decay overlaps the next one's attack. "
             "0: the shortest attack or decay of the sentence's signs, so no blend reaches "
             "a sign's keys (longer attacks then play partly unblended); 1000: seed 004's "
-            "fixed 1 s.",
+            "fixed 1 s. Applies to synthesized signs and recorded lexicons alike; a sign or "
+            "recording shorter than twice the overlap is refused, by name.",
             minimum=0.0,
             maximum=2000.0,
             units="ms",

@@ -256,20 +256,38 @@ def assemble(
 
 
 def blend_recorded(
-    glosses, lexicon: SignLexicon, rate_hz: float, side: str = "right"
+    glosses,
+    lexicon: SignLexicon,
+    rate_hz: float,
+    side: str = "right",
+    overlap_ms: float | None = None,
 ) -> tuple[np.ndarray, int]:
-    """Return the whole recorded clips blended (seed 004 §4.1), and the overlap in frames."""
+    """Return the whole recorded clips blended (seed 004 §4.1), and the overlap in frames.
+
+    By default the overlap is the shortest marked attack or decay, so no blend reaches a
+    sign; *overlap_ms* fixes it instead, as the seed does (1 s, its recordings' own attack
+    and decay), and one longer than half a recording is refused, naming it.
+    """
     signs = [lexicon.sign(g).resampled(rate_hz) for g in glosses]
     if len(signs) == 1:
         return signs[0].dofs_rad, 0
-    attacks = [s.sign_frames[0] for s in signs[1:]]
-    decays = [len(s.dofs_rad) - 1 - s.sign_frames[1] for s in signs[:-1]]
-    overlap = min(attacks + decays)
-    if overlap < 1:
-        raise LexiconError(
-            "Blending needs each recording's attack and decay marked: segment "
-            "the recordings (rest, sign, rest)."
-        )
+    if overlap_ms is not None:
+        overlap = round(overlap_ms * rate_hz / 1000)
+        short = [g for g, s in zip(glosses, signs, strict=True) if len(s.dofs_rad) < 2 * overlap]
+        if short:
+            raise LexiconError(
+                f"A {overlap_ms:g} ms overlap needs recordings of at least {2 * overlap_ms:g} "
+                f"ms (an attack and a decay); {', '.join(short)} is shorter."
+            )
+    else:
+        attacks = [s.sign_frames[0] for s in signs[1:]]
+        decays = [len(s.dofs_rad) - 1 - s.sign_frames[1] for s in signs[:-1]]
+        overlap = min(attacks + decays)
+        if overlap < 1:
+            raise LexiconError(
+                "Blending needs each recording's attack and decay marked: segment "
+                "the recordings (rest, sign, rest)."
+            )
     dofs = blend_signs([s.dofs_rad for s in signs], overlap)
     body = BodyModel(side)
     return (body.mirror_pose(dofs) if side == "left" else dofs), overlap

@@ -99,3 +99,32 @@ def test_the_sentence_kind_plays_a_lexicon_with_any_transition(lexicon_path):
         ClipRequest("sentence", text, {"lexicon": str(lexicon_path), "spine": False})
     with pytest.raises(ClipError, match="no recording of 'LOST'"):
         build_motion(ClipRequest("sentence", "WHERE LOST", {"lexicon": str(lexicon_path)}))
+
+
+def test_a_fixed_overlap_blends_recordings_as_seed_004_does(lexicon_path):
+    """Issue 53, item 5: the overlap setting was ignored on the recorded path while the
+    clip's summary said it was fixed. Seed 004 §4.1 blends over a fixed 1 s."""
+    lexicon = read_lexicon(lexicon_path)
+    lengths = [len(lexicon.sign(g).resampled(120.0).dofs_rad) for g in GLOSSES[:2]]
+    shortest_ms = min(lengths) / 120.0 * 1000
+    fixed_ms = 0.4 * shortest_ms
+    dofs, overlap = blend_recorded(GLOSSES[:2], lexicon, 120.0, overlap_ms=fixed_ms)
+    assert overlap == round(fixed_ms * 120 / 1000) and len(dofs) == sum(lengths) - overlap
+    with pytest.raises(LexiconError, match=r"needs recordings of at least .* is shorter"):
+        blend_recorded(GLOSSES[:2], lexicon, 120.0, overlap_ms=0.6 * shortest_ms)
+    text = " ".join(GLOSSES[:2])
+    parameters = {"lexicon": str(lexicon_path), "transition": "blended"}
+    default = build_motion(ClipRequest("sentence", text, parameters, rate_hz=120.0))
+    fixed = build_motion(
+        ClipRequest("sentence", text, {**parameters, "blend_overlap_ms": fixed_ms}, rate_hz=120.0)
+    )
+    assert len(fixed.motion) == sum(lengths) - overlap != len(default.motion)
+    with pytest.raises(ClipError, match="is shorter"):
+        build_motion(
+            ClipRequest(
+                "sentence",
+                text,
+                {**parameters, "blend_overlap_ms": 0.6 * shortest_ms},
+                rate_hz=120.0,
+            )
+        )
