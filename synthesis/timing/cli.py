@@ -101,7 +101,15 @@ def _evaluate(args: argparse.Namespace) -> int:
         args.out.mkdir(parents=True, exist_ok=True)
         rows = report.rows()
         print(f"wrote {write_csv(args.out / 'leave-one-out.csv', rows)}")
-        columns = {"measure": "measure", "ours": "ours", "published": "published"}
+        # Each figure beside what it was computed from: the default transition line is
+        # seed 000's own, copied, and its input column says so (issue 53, item 5).
+        columns = {
+            "measure": "measure",
+            "ours": "ours",
+            "input": "our input",
+            "published": "published",
+            "published_input": "published input",
+        }
         caption = "Hold leave-one-out and transition line beside seed 000 §4.2 (published)"
         print(f"wrote {write_latex(args.out / 'leave-one-out.tex', rows, columns, caption)}")
     return 0

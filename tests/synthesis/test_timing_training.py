@@ -121,3 +121,14 @@ def test_evaluate_prints_the_default_models_leave_one_out_beside_the_papers(caps
     ours = next(line for line in printed if line.startswith("holds: "))
     assert "leave-one-out accuracy 19.27 %" in ours and "simulated from seed 000" in ours
     assert "304 recorded holds: accuracy 75.00 %, mean error 13.82 ms per hold" in printed[1]
+
+
+def test_the_leave_one_out_table_names_each_figures_input(tmp_path, capsys):
+    """Issue 53, item 5: the LaTeX table printed seed 000's transition line (r = 0.44) in
+    the "ours" column with nothing saying it was copied, not refitted."""
+    assert main(["evaluate", "--out", str(tmp_path)]) == 0
+    table = (tmp_path / "leave-one-out.tex").read_text()
+    assert "our input" in table and "published input" in table
+    line = next(row for row in table.splitlines() if row.startswith("transition r"))
+    assert "taken from seed 000" in line and "not refitted" in line
+    assert "simulated from seed 000" in table
