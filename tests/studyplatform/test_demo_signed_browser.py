@@ -45,7 +45,12 @@ def test_the_asl_first_demo_signs_its_prompts_and_hides_only_signed_english(
     assert "Gloss: S-T-O-R-Y LITTLE, ME INFORM-YOU. O-K?" in {v.transcript for v in videos}
     assert all(v.video.name.endswith(".mp4") and v.poster for v in videos)
     # Rendered clips, content-addressed in the clips folder like the stimuli.
-    facts = [json.loads(p.read_text()) for p in (clips_dir / "stimuli").glob("*.json")]
+    # Each clip's facts are <hash>.json (its stimulus check is <hash>.quality.json).
+    facts = [
+        json.loads(p.read_text())
+        for p in (clips_dir / "stimuli").glob("*.json")
+        if "." not in p.stem
+    ]
     assert sum(1 for f in facts if f["width"] == 480) == len(SPINE_PROMPTS)
 
     page.goto(f"{live_server.url}/s/{spine.slug}/")
