@@ -20,6 +20,7 @@ from pathlib import Path
 from stimuli.quality import checked
 from synthesis.identity import engine_digest, file_sha256
 from synthesis.techniques import ClipError, ClipRequest, build_motion, render_request
+from synthesis.techniques.request import film
 
 __all__ = [
     "ClipError",
@@ -106,8 +107,11 @@ def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
     directory.mkdir(parents=True, exist_ok=True)
     video, poster, facts = clip_files(directory, name)
     build = build_motion(spec)
-    checked(spec, directory, name, build)
-    info = render_request(spec, video, poster=poster, progress=progress, build=build)
+    # The check and the render share the motion and its filming (a close-up's camera
+    # follows the hand: solving it twice doubled that work).
+    filmed = film(spec, build)
+    checked(spec, directory, name, build, filmed)
+    info = render_request(spec, video, poster=poster, progress=progress, build=build, filmed=filmed)
     clip = RenderedClip(
         video, poster, round(info.duration_s * 1000), info.n_frames, info.width, info.height,
         video.stat().st_size, file_sha256(video),

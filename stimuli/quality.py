@@ -28,18 +28,23 @@ def stored_quality(directory: Path, content_hash: str) -> ClipQuality | None:
 
 
 def checked(
-    spec: ClipRequest, directory: Path, content_hash: str | None = None, build: Build | None = None
+    spec: ClipRequest,
+    directory: Path,
+    content_hash: str | None = None,
+    build: Build | None = None,
+    filmed=None,
 ) -> ClipQuality:
     """Return the check of *spec*: the one kept in *directory*, or made and kept now.
 
-    *build* is the clip's motion, where the caller made it already (a render).
+    *build* is the clip's motion and *filmed* its (avatar, camera), where the caller made
+    them already (a render).
     """
     name = content_hash or spec.content_hash()  # a ClipSpec's
     found = stored_quality(directory, name)
     if found is not None:
         return found
     try:
-        quality = check_request(spec, build)
+        quality = check_request(spec, build, filmed)
     except (ValueError, IndexError, KeyError) as error:
         # A check that cannot run says so where its warnings go; the clip still renders.
         message = f"the stimulus check could not run on this clip: {type(error).__name__}: {error}"

@@ -9,8 +9,8 @@ import numpy as np
 
 from synthesis.quality.report import ClipQuality, check_motion
 from synthesis.skeleton.kinematics import Pose
-from synthesis.techniques import REGISTRY, ClipRequest, build_motion, filming
-from synthesis.techniques.request import FIELDS, Build
+from synthesis.techniques import REGISTRY, ClipRequest, build_motion
+from synthesis.techniques.request import FIELDS, Build, film
 
 
 def keyed_reference(request: ClipRequest) -> ClipRequest:
@@ -31,21 +31,12 @@ def _pose(avatar, build: Build) -> Pose:
     return motion if isinstance(motion, Pose) else avatar.rig.pose(np.atleast_2d(motion))
 
 
-def check_request(request: ClipRequest, build: Build | None = None) -> ClipQuality:
-    """Return the checks of the clip *request* renders (*build*: its motion, if made)."""
+def check_request(request: ClipRequest, build: Build | None = None, filmed=None) -> ClipQuality:
+    """Return the checks of the clip *request* renders (*build*: its motion, and *filmed*
+    its avatar and camera, if made)."""
     build = build or build_motion(request)
     reference = build_motion(keyed_reference(request))
-    word = request.text if request.kind == "word" else None
-    avatar, camera = filming(
-        request.view,
-        request.side,
-        build.motion,
-        request.rate_hz,
-        request.width,
-        request.height,
-        word,
-        build.look,
-    )
+    avatar, camera = filmed or film(request, build)
     return check_motion(
         avatar,
         camera,

@@ -221,21 +221,26 @@ def filming(view: str, side: str, motion, rate_hz: float, width: int, height: in
     return avatar, camera
 
 
+def film(request: ClipRequest, build: Build):
+    """Return the avatar and camera that film *build*'s motion as *request* asks."""
+    word = request.text if request.kind == "word" else None
+    return filming(request.view, request.side, build.motion, request.rate_hz, request.width,
+                   request.height, word, build.look)  # fmt: skip
+
+
 def render_request(
     request: ClipRequest, out: str | Path, poster: str | Path | None = None,
-    progress=None, workers: int = 1, build: Build | None = None,
+    progress=None, workers: int = 1, build: Build | None = None, filmed=None,
 ):  # fmt: skip
     """Render *request* to an MP4 at *out* (and a poster PNG); return the video's facts.
 
-    *build* is the request's motion when the caller made it already.
+    *build* is the request's motion and *filmed* its (avatar, camera), when the caller
+    made them already.
     """
     from synthesis.render.clip import render_clip
 
     build = build or build_motion(request)
-    avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
-                             request.width, request.height,
-                             request.text if request.kind == "word" else None,
-                             build.look)  # fmt: skip
+    avatar, camera = filmed or film(request, build)
     return render_clip(
         avatar, build.motion, camera, out, request.rate_hz, poster=poster, width=request.width,
         height=request.height, progress=progress, workers=workers,
