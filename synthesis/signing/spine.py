@@ -5,17 +5,22 @@ forward reach, and the clavicles raise and come forward with the arms, so that a
 reaching with its arms is not a "pole with arms". Everything here works in seed 003's
 torso frame: x to the signer's right, y forward, z up, metres; angles in radians.
 
+Two readings of §3.1, chosen by ``SpineParams.formula``:
+
+- ``"seed"`` (the default): the equations as printed. The bend is
+  ``c0·smoothstep(|V_reach|/L_arm)`` about ``Z × V_reach`` (no bend only for an exactly
+  vertical reach), and the twist ``c1·smoothstep(V_w·V_twist/(2 L_arm))`` is clamped at
+  zero by the smoothstep, so it turns one way only.
+- ``"comfort"`` (this project's variant, the default until issue 53): the paper's text
+  says hands in the proximal signing space have "very little effect", which the printed
+  bend contradicts (it bends well over half-way for hands resting in front of the chest
+  and fully for arms hanging at rest). The variant bends by the reach's horizontal part
+  beyond a comfort radius, ``x = (|V_xy| − r) / (L_arm − r)``, and twists both ways,
+  ``sign(x)·smoothstep(|x|)``, since the text's two arms "cancel" and "amplify" each
+  other. A study that uses it says so in its Method (the technique's description).
+
 Where the paper leaves a choice open, this module decides and says so:
 
-- *Comfort zone*: the paper normalises the reach by the arm's length, which bends the
-  torso well over half-way for hands resting in front of the chest, against its own
-  text ("very little effect" in the proximal signing space), and fully for arms
-  hanging at rest. The bend counts the reach's horizontal part (the paper gives a
-  vertical reach no bend direction; here no bend at all) beyond a comfort radius:
-  ``x = (|V_xy| − r) / (L_arm − r)``.
-- *Twist in both directions*: the twist's smoothstep is applied to the magnitude and the
-  sign kept (``sign(x)·smoothstep(|x|)``); clamping at zero would only ever twist one way,
-  while the paper's two arms "cancel" and "amplify" each other.
 - *Clavicle raise* follows the vertical component of the reach (spec 03 notes the
   paper's ``V.x`` misprint); raise and forward are clamped at zero as printed, so a
   hanging arm does not pull its shoulder down.
@@ -28,6 +33,8 @@ Where the paper leaves a choice open, this module decides and says so:
 from dataclasses import dataclass
 
 import numpy as np
+
+FORMULAS = ("seed", "comfort")
 
 
 def smoothstep(x: np.ndarray) -> np.ndarray:
@@ -59,12 +66,17 @@ class SpineParams:
     bend_split: tuple[float, float, float] = (0.40, 0.35, 0.25)
     twist_split: tuple[float, float, float] = (0.15, 0.30, 0.55)
     arm_length_m: float = 0.55  # L_arm, shoulder to wrist at full reach
-    comfort_m: float = 0.25
+    comfort_m: float = 0.25  # r, used by the "comfort" formula only
+    formula: str = "seed"  # "seed" (as printed) or "comfort" (the variant)
 
     def __post_init__(self) -> None:
         for name in ("bend_split", "twist_split"):
             if abs(sum(getattr(self, name)) - 1.0) > 1e-9:
                 raise ValueError(f"SpineParams.{name} must sum to 1, not {getattr(self, name)}.")
+        if self.formula not in FORMULAS:
+            raise ValueError(
+                f"SpineParams.formula must be one of {FORMULAS}, not {self.formula!r}."
+            )
         if not 0 <= self.comfort_m < self.arm_length_m:
             raise ValueError("SpineParams.comfort_m must be at least 0 and below the arm length.")
 
@@ -113,32 +125,38 @@ def spine_motion(
     """Return the automated spine and clavicle motion for hand targets (n, 3), torso frame.
 
     Seed 003 §3.1: ``V_R = A_R − S_R``, ``V_L = A_L − S_L``, ``V_reach = (V_R + V_L)/2``;
-    ``θ_bend = c0·smoothstep(x)`` about ``Z × V_reach`` (x the horizontal reach beyond
-    the comfort radius); ``θ_twist =
+    ``θ_bend = c0·smoothstep(|V_reach|/L_arm)`` about ``Z × V_reach``; ``θ_twist =
     c1·smoothstep(V_w·V_twist/(2 L_arm))`` with ``V_twist = (V_R.x + V_L.x, V_R.y − V_L.y,
     0)``; §3.3: ``θ_raise = c2·smoothstep(V.z/L_arm)``, ``θ_forward =
-    c3·smoothstep(V.y/L_arm)`` per side. Reach beyond the comfort radius and the signed
-    twist as in the module's notes.
+    c3·smoothstep(V.y/L_arm)`` per side. The ``comfort`` formula's bend and twist as in
+    the module's notes.
     """
     params = params or SpineParams()
     v_right = np.atleast_2d(right_target_m) - right_shoulder_m
     v_left = np.atleast_2d(left_target_m) - left_shoulder_m
     reach = (v_right + v_left) / 2.0
     length = params.arm_length_m
-    horizontal = np.linalg.norm(reach[:, :2], axis=1)
-    beyond = (horizontal - params.comfort_m) / (length - params.comfort_m)
-    bend = np.radians(params.bend_deg) * smoothstep(beyond)
+    bend = np.radians(params.bend_deg) * smoothstep(_bend_x(reach, params))
     # a_bend = Z × V_reach: no bend for a purely vertical reach.
     axis = np.stack([-reach[:, 1], reach[:, 0], np.zeros(len(reach))], axis=1)
     norm = np.linalg.norm(axis, axis=1, keepdims=True)
     axis = np.divide(axis, norm, out=np.zeros_like(axis), where=norm > 1e-9)
     bend = np.where(norm[:, 0] > 1e-9, bend, 0.0)
     v_twist = np.stack([v_right[:, 0] + v_left[:, 0], v_right[:, 1] - v_left[:, 1]], axis=1)
-    twist = np.radians(params.twist_deg) * signed_smoothstep(
-        v_twist @ np.asarray(params.twist_weights) / (2.0 * length)
-    )
+    twist_x = v_twist @ np.asarray(params.twist_weights) / (2.0 * length)
+    ease = smoothstep if params.formula == "seed" else signed_smoothstep
+    twist = np.radians(params.twist_deg) * ease(twist_x)
     raise_, forward = {}, {}
     for side, v in (("right", v_right), ("left", v_left)):
         raise_[side] = np.radians(params.clavicle_raise_deg) * smoothstep(v[:, 2] / length)
         forward[side] = np.radians(params.clavicle_forward_deg) * smoothstep(v[:, 1] / length)
     return SpineMotion(bend, axis, twist, raise_, forward)
+
+
+def _bend_x(reach: np.ndarray, params: SpineParams) -> np.ndarray:
+    """Return the bend's smoothstep argument: the printed |V_reach|/L_arm, or the
+    horizontal reach beyond the comfort radius."""
+    if params.formula == "seed":
+        return np.linalg.norm(reach, axis=1) / params.arm_length_m
+    horizontal = np.linalg.norm(reach[:, :2], axis=1)
+    return (horizontal - params.comfort_m) / (params.arm_length_m - params.comfort_m)

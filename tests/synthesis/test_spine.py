@@ -1,11 +1,17 @@
-"""Test the automated spine and shoulder formulas (seed 003 §3.1–3.3, spec 03)."""
+"""Test the automated spine and shoulder formulas (seed 003 §3.1–3.3, spec 03).
+
+The seed's formulas are checked against the equations printed in seed 003 §3.1 (bend
+``c0·smoothstep(|V_reach|/L_arm)``, twist ``c1·smoothstep(V_w·V_twist/(2 L_arm))``);
+the comfort-radius variant against its own definition in ``synthesis.signing.spine``.
+"""
 
 import numpy as np
 import pytest
 
 from synthesis.signing.spine import SpineParams, smoothstep, spine_motion
 
-PARAMS = SpineParams()
+PARAMS = SpineParams(formula="comfort")
+SEED = SpineParams()
 RIGHT_SHOULDER = np.array([0.175, 0.0, 0.0])
 LEFT_SHOULDER = np.array([-0.175, 0.0, 0.0])
 
@@ -85,8 +91,38 @@ def test_twist_is_spread_mostly_over_the_thoracic_spine():
     assert sum(twist) == pytest.approx(motion.twist_rad[0])
 
 
+def test_the_default_is_the_seeds_printed_bend():
+    assert SEED.formula == "seed"
+    c0 = np.radians(SEED.bend_deg)
+    for v in ([0.1, 0.2, -0.3], [0.3, 0.1, 0.0], [-0.2, 0.05, 0.4], [0.6, 0.3, 0.1]):
+        reach = np.asarray(v)
+        expected = c0 * smoothstep(np.linalg.norm(reach) / SEED.arm_length_m)
+        motion = _motion(reach, reach, SEED)
+        assert motion.bend_rad[0] == pytest.approx(expected)
+        axis = np.cross([0, 0, 1], reach)
+        assert np.allclose(motion.bend_axis[0], axis / np.linalg.norm(axis))
+    # Hands resting in front of the chest already bend the torso (what the variant avoids).
+    resting = _motion([0.05, 0.2, -0.3], [-0.05, 0.2, -0.3], SEED).bend_rad[0]
+    assert resting > 0.5 * c0
+    assert _motion([0.05, 0.2, -0.3], [-0.05, 0.2, -0.3]).bend_rad[0] == 0.0
+
+
+def test_the_seeds_printed_twist_turns_one_way_only():
+    c1 = np.radians(SEED.twist_deg)
+    v_right, v_left = np.array([0.0, 0.4, 0.0]), np.array([0.0, 0.1, 0.0])
+    x = np.dot(SEED.twist_weights, [v_right[0] + v_left[0], v_right[1] - v_left[1]])
+    expected = c1 * smoothstep(x / (2 * SEED.arm_length_m))
+    assert expected > 0
+    assert _motion(v_right, v_left, SEED).twist_rad[0] == pytest.approx(expected)
+    # The mirror image would twist the other way; the printed smoothstep clamps it to 0.
+    assert _motion(v_left, v_right, SEED).twist_rad[0] == 0.0
+    assert _motion(v_left, v_right).twist_rad[0] < 0
+
+
 def test_parameters_are_checked():
     with pytest.raises(ValueError, match="bend_split must sum to 1"):
         SpineParams(bend_split=(0.5, 0.5, 0.5))
     with pytest.raises(ValueError, match="comfort_m"):
         SpineParams(comfort_m=0.9)
+    with pytest.raises(ValueError, match="formula must be one of"):
+        SpineParams(formula="curvy")
