@@ -14,6 +14,7 @@ from pathlib import Path
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip, file_sha256, render
 from synthesis.formats import check_header
+from synthesis.techniques import REGISTRY
 
 FORMAT = "signstudy.stimuli-manifest"
 FORMAT_VERSION = 1
@@ -29,6 +30,9 @@ class Entry:
 
     def to_dict(self) -> dict:
         data = {"label": self.label, "hash": self.spec.content_hash(), "spec": self.spec.to_dict()}
+        # What each technique did, in words: a model's training and its provenance
+        # travel with the clip (read back by nobody; the spec alone renders it again).
+        data["techniques"] = REGISTRY.describe(self.spec.kind, self.spec.parameters)
         if self.clip is not None:
             facts = asdict(self.clip)
             facts["video"], facts["poster"] = self.clip.video.name, self.clip.poster.name

@@ -139,7 +139,7 @@ def _row(study: Study, response: Response, conditions: dict, failed: bool) -> di
         first, second = presented_conditions(participant, trial, conditions)
         clip1, label1 = (first.key, first.label) if first is not None else ("", "")
         clip2, label2 = (second.key, second.label) if second is not None else ("", "")
-    simulated = {key for key, condition in conditions.items() if condition.is_simulated}
+    simulated = {key for key, condition in conditions.items() if condition.simulated}
     return {
         "participant": str(participant.pk),
         "study": study.slug,

@@ -23,7 +23,8 @@ CONDITIONS = (
     {
         "key": "variable",
         "label": "Variable",
-        "description": "Data-driven timing: naive Bayes holds, regression transitions.",
+        "description": "Data-driven timing: naive Bayes holds, regression transitions; the "
+        "built-in model, {provenance}.",
         "parameters": {"timing": "variable", "source": "simulated"},
     },
     {
@@ -41,7 +42,8 @@ CONDITIONS = (
     {
         "key": "normalized",
         "label": "Normalized constant",
-        "description": "Constant timing scaled to the Variable model's total duration.",
+        "description": "Constant timing scaled to the total duration of the built-in "
+        "Variable model, {provenance}.",
         "parameters": {"timing": "normalized", "source": "simulated"},
     },
 )
@@ -64,6 +66,17 @@ OPEN_QUESTIONS = (
     ),
     ("further-comments", "Please write any further comments you have here:"),
 )
+
+
+def _with_provenance(conditions) -> list[dict[str, Any]]:
+    """Return *conditions* with the built-in Variable model's training and leave-one-out
+    in their descriptions (one source: the model's own metadata)."""
+    from synthesis.timing import published_model
+
+    provenance = published_model().provenance()
+    return [
+        {**c, "description": c["description"].format(provenance=provenance)} for c in conditions
+    ]
 
 
 def fingerspelling_timing_study() -> dict[str, Any]:
@@ -227,7 +240,7 @@ def fingerspelling_timing_study() -> dict[str, Any]:
             "allow_back": True,
             "completion_code": "FSPELL-DEMO",
         },
-        conditions=numbered(list(CONDITIONS)),
+        conditions=numbered(_with_provenance(CONDITIONS)),
         items=numbered(items),
         questions=questions,
         blocks=blocks,

@@ -12,6 +12,7 @@ from django.core.validators import MinValueValidator
 from django.db import models
 
 from studyplatform.rules import check_condition, check_item
+from synthesis.techniques.timing import trained_on_simulated
 
 
 def position_field() -> models.SmallIntegerField:
@@ -329,7 +330,15 @@ class Condition(models.Model):
         ]
 
     def __str__(self) -> str:
-        return f"{self.label} (simulated)" if self.is_simulated else self.label
+        return f"{self.label} (simulated)" if self.simulated else self.label
+
+    @cached_property
+    def simulated(self) -> bool:
+        """Return whether what this condition shows rests on simulated data: marked so,
+        or timed by a Variable model trained on simulated holds (the built-in one)."""
+        if self.is_simulated:
+            return True
+        return not self.is_uploaded and trained_on_simulated(self.parameters or {})
 
     @property
     def is_uploaded(self) -> bool:

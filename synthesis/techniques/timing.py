@@ -9,8 +9,9 @@ Variable model's length), ``variable`` (naïve Bayes holds, pose-distance transi
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
@@ -94,9 +95,26 @@ def _summary(values) -> str:
             f" ({values['hold_ms']:g} ms holds, the last {values['last_hold_ms']:g} ms, "
             f"{values['transition_ms']:g} ms transitions)"
         )
-    if values["model"] and values["timing"] in ("variable", "normalized"):
-        words += f", Variable model {values['model']}"
+    if values["timing"] in ("variable", "normalized"):
+        words += f"; Variable model {values['model'] or 'the built-in one'}, {_provenance(values)}"
     return words
+
+
+def _provenance(values) -> str:
+    from synthesis.fingerspelling.word_timing import TimingError
+
+    try:
+        return variable_model(values).provenance()
+    except (OSError, TimingError) as error:
+        return f"not readable here ({error})"
+
+
+def trained_on_simulated(values: Mapping[str, Any]) -> bool:
+    """Return whether *values* time the words with a Variable model trained on
+    simulated holds (the built-in one, or a file that says so)."""
+    if values.get("timing_file") or values.get("timing") not in ("variable", "normalized"):
+        return False
+    return variable_model({"model": values.get("model", "")}).simulated
 
 
 def _apply(build: Build) -> Build:

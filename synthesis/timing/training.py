@@ -162,9 +162,11 @@ def train(
     features: tuple[str, ...] = DEFAULT_FEATURES,
     source: str = "annotations",
     space: str = DEFAULT_SPACE,
+    simulated: bool = False,
 ) -> tuple[VariableModel, TrainingReport]:
     """Fit the hold classifier and the transition line (distance *metric* over *space*:
-    joints or DOFs); evaluate holds by leave-one-out."""
+    joints or DOFs); evaluate holds by leave-one-out. *simulated* marks training data
+    that are not recordings (the model says so wherever it is described)."""
     if metric not in METRICS:
         raise TimingError(f"Unknown distance {metric!r}; use one of {', '.join(METRICS)}.")
     if space not in SPACES:
@@ -181,6 +183,8 @@ def train(
         {
             "name": "trained",
             "source": source,
+            "training": f"{len(holds)} holds from {source}",
+            "simulated": simulated,
             "training_holds": len(holds),
             "training_transitions": len(transitions),
             "leave_one_out": report.holds.to_dict(),

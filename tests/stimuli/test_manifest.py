@@ -43,6 +43,8 @@ def test_a_manifest_renders_the_study_again(tmp_path, renderable):
     data = json.loads(manifest.read_text())
     assert data["study"] == "demo" and len(data["clips"]) == 2
     clip = data["clips"][0]
+    # What each technique did, in words (issue 53: a model's training travels with it).
+    assert "Timing model: simple (equal holds)" in data["clips"][0]["techniques"]
     assert clip["clip"]["video"] == f"{clip['hash']}.mp4" and clip["clip"]["frame_count"] > 10
     # From the manifest alone: a second run into the same folder renders nothing, into a
     # new folder renders the same bytes.
