@@ -159,6 +159,7 @@ def write_evaluation(
                     "hermite_rmse_deg": round(e.mean_by_model["hermite"], 3),
                     "bspline_rmse_deg": round(e.mean_by_model["bspline"], 3),
                     "same_signer_share": round(e.same_signer_share, 3),
+                    "same_transition_share": round(e.same_transition_share, 3),
                     "simulated": e.simulated,
                 }
                 for w, e in evaluations.items()
