@@ -82,7 +82,7 @@ def _lexicon(args: argparse.Namespace) -> int:
     from synthesis.transitions.lexicon import simulated_lexicon, write_lexicon
 
     if args.simulate:
-        path = simulated_lexicon(args.items, args.out)
+        path = simulated_lexicon(args.items, args.out, attack_ms=args.attack_ms)
         print(f"wrote {path}: {len(args.items)} simulated recorded signs")
         return 0
     path = write_lexicon(args.items, args.out)
@@ -136,6 +136,13 @@ def parser() -> argparse.ArgumentParser:
     )
     lexicon.add_argument(
         "--simulate", action="store_true", help="record the engine's signs as simulated recordings"
+    )
+    lexicon.add_argument(
+        "--attack-ms",
+        type=float,
+        default=0.0,
+        help="with --simulate: hold the rest until each attack and decay lasts this long "
+        "(seed 004: 1000, for its 1 s blend overlap)",
     )
     lexicon.set_defaults(run=_lexicon)
     return root

@@ -182,10 +182,19 @@ def read_lexicon(path: str | Path) -> SignLexicon:
 
 
 def simulated_lexicon(
-    glosses, directory: str | Path, seed: int = 0, rate_hz: float = 120.0
+    glosses,
+    directory: str | Path,
+    seed: int = 0,
+    rate_hz: float = 120.0,
+    attack_ms: float = 0.0,
 ) -> Path:
     """Write simulated recordings of *glosses* (the engine's signs from rest to rest, with
-    liveliness noise; labelled simulated) and their lexicon; return the manifest's path."""
+    liveliness noise; labelled simulated) and their lexicon; return the manifest's path.
+
+    *attack_ms* > 0 holds the rest before and after each sign until its attack and decay
+    last that long, as seed 004 §3.1.3's recordings did (1 s each), so that its 1 s blend
+    overlap applies to them.
+    """
     from synthesis.signing.sentence import SentenceOptions, synthesize
     from synthesis.transitions.segments import Segment, Segmentation
 
@@ -193,7 +202,9 @@ def simulated_lexicon(
     paths = []
     for k, gloss in enumerate(glosses):
         sentence = synthesize(gloss, SentenceOptions(rate_hz=rate_hz, seed=seed + k))
-        (first, last), n = sentence.token_frames()[0], len(sentence.dofs_rad)
+        frames = round(attack_ms * rate_hz / 1000)
+        dofs, (first, last) = _rest_held(sentence.dofs_rad, sentence.token_frames()[0], frames)
+        n = len(dofs)
         segments = (
             Segment("rest", 1, 0, int(first) - 1, "attack"),
             Segment("sign", 2, int(first), int(last), gloss),
@@ -202,7 +213,7 @@ def simulated_lexicon(
         name = gloss.lower().replace("'", "")
         recording = SegmentedRecording(
             name,
-            sentence.dofs_rad,
+            dofs,
             tuple(sentence.body.dof_names),
             rate_hz,
             Segmentation(name, segments),
@@ -211,6 +222,17 @@ def simulated_lexicon(
         )
         paths.append(write_recording(recording, directory))
     return write_lexicon(paths, directory / "lexicon.json", simulated=True, glosses=list(glosses))
+
+
+def _rest_held(dofs: np.ndarray, sign: np.ndarray, frames: int) -> tuple[np.ndarray, tuple]:
+    """Return *dofs* with the first and last frame (at rest) held until the attack before
+    the *sign*'s first frame and the decay after its last are *frames* long each, and the
+    sign's frames moved with them."""
+    first, last = int(sign[0]), int(sign[1])
+    before = max(0, frames - first)
+    after = max(0, frames - (len(dofs) - 1 - last))
+    held = np.concatenate([np.repeat(dofs[:1], before, 0), dofs, np.repeat(dofs[-1:], after, 0)])
+    return held, (first + before, last + before)
 
 
 def _eased(v0: np.ndarray, v1: np.ndarray, n_frames: int) -> np.ndarray:

@@ -88,7 +88,7 @@ def blend_sentence(
     Each gloss is synthesized alone, from rest to rest. By default the overlap is the
     shortest decay (last key to the end) or attack (start to the first key), so no blend
     reaches into a sign's keys; the frames of a longer attack or decay then play
-    unblended (in "BUT SURPRISE MY BROTHER" at 60 fps, 7 frames of each attack).
+    unblended.
     *overlap_ms* fixes it instead, as the seed does (its attack and decay are 1 s,
     :data:`SEED_OVERLAP_MS`); a fixed overlap longer than a sign's attack or decay blends
     into its keys, and one longer than half a sign is refused.
@@ -106,4 +106,15 @@ def blend_sentence(
         overlap = min(attacks + decays)
     else:
         overlap = round(overlap_ms * options.rate_hz / 1000)
+        short = [g for g, s in zip(glosses, signs, strict=True) if len(s.dofs_rad) < 2 * overlap]
+        if short:
+            longest_ms = max(len(s.dofs_rad) for s in signs) / options.rate_hz * 1000
+            raise ValueError(
+                f"A {overlap_ms:g} ms blend overlap needs signs of at least {2 * overlap_ms:g} "
+                f"ms (an attack and a decay); {', '.join(short)} is shorter (the built-in "
+                f"signs last at most {longest_ms:.0f} ms here). Seed 004's 1 s overlap needs "
+                "recordings with 1 s attacks and decays: a lexicon (python -m "
+                "synthesis.transitions lexicon --simulate GLOSSES --attack-ms 1000 for "
+                "simulated ones)."
+            )
     return blend_signs([s.dofs_rad for s in signs], overlap), overlap
