@@ -83,10 +83,12 @@ TECHNIQUE = Technique(
             "spine_formula",
             "choice",
             DEFAULTS.formula,
-            "seed: §3.1's bend c0·smoothstep(|V_reach|/L_arm) and one-way twist as "
-            "printed; comfort: SignStudy's variant, bending only for the horizontal reach "
-            "beyond a 0.25 m comfort radius and twisting both ways (a departure from the "
-            "seed; a study using it should say so).",
+            "comfort: SignStudy's variant, bending only for the horizontal reach beyond a "
+            "0.25 m comfort radius and twisting both ways (a departure from seed 003, "
+            "named in every condition's description); seed: §3.1's bend "
+            "c0·smoothstep(|V_reach|/L_arm) and one-way twist as printed (it bends the "
+            "torso about 11° with the hands in front of the chest, and signs made on the "
+            "body reach into it).",
             choices=FORMULAS,
             labels=FORMULA_LABELS,
         ),

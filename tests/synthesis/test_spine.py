@@ -10,8 +10,8 @@ import pytest
 
 from synthesis.signing.spine import SpineParams, smoothstep, spine_motion
 
-PARAMS = SpineParams(formula="comfort")
-SEED = SpineParams()
+PARAMS = SpineParams()
+SEED = SpineParams(formula="seed")
 RIGHT_SHOULDER = np.array([0.175, 0.0, 0.0])
 LEFT_SHOULDER = np.array([-0.175, 0.0, 0.0])
 
@@ -91,8 +91,8 @@ def test_twist_is_spread_mostly_over_the_thoracic_spine():
     assert sum(twist) == pytest.approx(motion.twist_rad[0])
 
 
-def test_the_default_is_the_seeds_printed_bend():
-    assert SEED.formula == "seed"
+def test_the_seed_formula_is_the_printed_bend():
+    assert PARAMS.formula == "comfort"  # the default (issue 53: why, in the module's notes)
     c0 = np.radians(SEED.bend_deg)
     for v in ([0.1, 0.2, -0.3], [0.3, 0.1, 0.0], [-0.2, 0.05, 0.4], [0.6, 0.3, 0.1]):
         reach = np.asarray(v)
