@@ -3,6 +3,7 @@
 from studyplatform.models.avatars import Avatar
 from studyplatform.models.design import AnswerOption, Block, Question, Trial, trial_question_kinds
 from studyplatform.models.devices import KnownDevice
+from studyplatform.models.items import Item
 from studyplatform.models.participants import (
     Participant,
     PersonalAnswer,
@@ -14,7 +15,7 @@ from studyplatform.models.recordings import Recording
 from studyplatform.models.responses import MediaEvent, Response
 from studyplatform.models.scope import STUDY_PATHS
 from studyplatform.models.stimuli import ClipUpload, Stimulus, UploadedClip
-from studyplatform.models.studies import Condition, Item, Study
+from studyplatform.models.studies import Condition, Study
 from studyplatform.models.withdrawals import Withdrawal
 
 __all__ = [

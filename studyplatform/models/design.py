@@ -12,7 +12,8 @@ from django.contrib.contenttypes.fields import GenericRelation
 from django.core.exceptions import ValidationError
 from django.db import models
 
-from studyplatform.models.studies import Condition, Item, Study, check_unlocked, position_field
+from studyplatform.models.items import Item
+from studyplatform.models.studies import Condition, Study, check_unlocked, position_field
 
 
 class Question(models.Model):

@@ -2,7 +2,7 @@
 
 from django.db import models
 
-from studyplatform.models.studies import Item
+from studyplatform.models.items import Item
 from studyplatform.storage import private_storage
 
 VIDEO_SUFFIXES = (".mp4", ".webm", ".mov", ".m4v")

@@ -4,7 +4,8 @@ the files researchers upload for conditions whose clips they bring."""
 from django.db import models
 from django.urls import reverse
 
-from studyplatform.models.studies import Condition, Item
+from studyplatform.models.items import Item
+from studyplatform.models.studies import Condition
 from studyplatform.storage import private_storage
 
 

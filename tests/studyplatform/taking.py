@@ -98,9 +98,13 @@ def check_pair_wins(archive, study, participant, clicked: dict) -> dict:
     from studyplatform.models import Trial
 
     (pairs,) = list(csv.DictReader(io.StringIO(archive.read("report/pairs.csv").decode())))
-    wins = {c.label: 0 for c in study.conditions.all()}
+
+    def name(condition) -> str:  # as the analysis names it
+        return condition.label + (" (simulated)" if condition.simulated else "")
+
+    wins = {name(c): 0 for c in study.conditions.all()}
     for key, position in clicked.items():
         trial = Trial.objects.get(study=study, key=key)
-        wins[presented_conditions(participant, trial)[position - 1].label] += 1
+        wins[name(presented_conditions(participant, trial)[position - 1])] += 1
     assert {pairs["a"]: int(pairs["a_wins"]), pairs["b"]: int(pairs["b_wins"])} == wins
     return pairs

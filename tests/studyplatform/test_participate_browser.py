@@ -185,10 +185,10 @@ def test_fingerspelling_study_from_link_to_completion_code(
     table = results.analysed[results.analysed["kind"] == "pairwise"]
     for row in table.itertuples():
         trial = Trial.objects.get(study=fingerspelling, key=row.trial)
-        # The analysis names conditions by label, the simulated motion-capture stand-in
-        # "Motion capture (simulated)"; the keys stay beside them.
+        # The analysis names conditions by label, the simulated ones (the motion-capture
+        # stand-in, the built-in Variable model's) "… (simulated)"; keys stay beside them.
         presented = presented_conditions(participant, trial)
-        shown = [c.label + (" (simulated)" if c.is_simulated else "") for c in presented]
+        shown = [c.label + (" (simulated)" if c.simulated else "") for c in presented]
         assert [row.condition_a, row.condition_b] == shown
         assert [row.condition_a_key, row.condition_b_key] == [c.key for c in presented]
         assert row.chosen == shown[clicked[(row.trial, "most-natural")] - 1]
