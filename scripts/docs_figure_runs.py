@@ -98,3 +98,23 @@ def table_3_1() -> list[dict[str, str]]:
 
 
 LETTERS = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+
+
+@cache
+def leave_one_out_rows() -> list[dict[str, str]]:
+    """Return ``leave-one-out.csv`` of ``timing evaluate`` (with the Constant model's error)."""
+    run("synthesis.timing", "evaluate", "--out", "leave-one-out/")
+    return rows("leave-one-out/leave-one-out.csv")
+
+
+@cache
+def curve_rows() -> list[dict[str, str]]:
+    """Return ``curves.csv`` of ``timing curves`` (Figs 4.4–4.6)."""
+    run("synthesis.timing", "curves", "--out", "fig-4-4/")
+    return rows("fig-4-4/curves.csv")
+
+
+def six_marker_rows() -> list[dict[str, str]]:
+    """Return ``six-markers.csv``, which ``hands markers --configuration both`` writes too."""
+    table_3_1()
+    return rows("table-3-1-ours/six-markers.csv")

@@ -45,6 +45,7 @@ SMALL = {
     "synthesis.timing compare": ([], [], None),
     "synthesis.timing metrics": ([], [], "fig-4-7/metrics.tex"),
     "synthesis.timing evaluate": ([], [], "leave-one-out/leave-one-out.csv"),
+    "synthesis.timing curves": ([], ["--repeats", "2"], "fig-4-4/curves.csv"),
     "synthesis.transitions build sentences": ([], [], "db.json"),
     "synthesis.transitions evaluate db.json": ([], [], "table-5-1/table.tex"),
     "synthesis.transitions simulate": (
@@ -55,7 +56,12 @@ SMALL = {
     "synthesis.transitions build simulated": ([], [], "simulated.json"),
     "synthesis.transitions evaluate simulated.json": ([], [], "table-5-1-simulated/verdict.txt"),
     "synthesis.transitions speed": ([], [], "speed.png"),
-    "analysis report": ([], [], "report/report.html"),
+    "analysis report responses.csv --out report/": ([], [], "report/report.html"),
+    "analysis report responses.csv --out report-fingerspelling/": (
+        [],
+        [],
+        "report-fingerspelling/report.html",
+    ),
 }
 
 
@@ -132,6 +138,7 @@ def test_the_guide_names_every_seed_and_a_small_input_for_every_command():
     for seed in (
         "Seed 000 ch. 3",
         "Seed 000 ch. 4",
+        "Seed 000 ch. 5",
         "Seed 001",
         "Seed 002",
         "Seed 003",
@@ -165,5 +172,7 @@ def test_every_command_of_the_guide_runs_in_order(inputs, monkeypatch, capsys):
             assert "published" in printed.out or "seed 000" in printed.out, command
     verdict = (inputs / "table-5-1" / "verdict.txt").read_text()
     assert "(seed 001: 63.6 %)" in verdict and "(seed 001: 12.5 %)" in verdict
+    curves = (inputs / "fig-4-4" / "curves.csv").read_text()
+    assert "72.37" in curves and "simulated" in curves
     table = (inputs / "table-3-1" / "table-3-1.csv").read_text()
     assert "recordings capture.bvh; markers chosen on selection.bvh, tested on test.bvh" in table

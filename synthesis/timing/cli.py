@@ -22,6 +22,8 @@ from synthesis.timing.training import (
     HOLD_COLUMNS,
     TRANSITION_COLUMNS,
     TrainingReport,
+    constant_hold_errors,
+    hold_samples,
     read_annotations,
     train,
 )
@@ -92,7 +94,9 @@ def _evaluate(args: argparse.Namespace) -> int:
     source = (f"{len(samples)} holds simulated from seed 000 Table 4.1's means and spreads "
               "(the default model's training set), not recordings")  # fmt: skip
     line = "the default line: r and mean error taken from seed 000 §4.2.2, not refitted"
-    report = TrainingReport(holds, published_transitions(), source, line)
+    report = TrainingReport(
+        holds, published_transitions(), source, line, constant_ms=constant_hold_errors(samples)
+    )
     for line in report.lines():
         print(line)
     if args.out:
@@ -112,6 +116,35 @@ def _evaluate(args: argparse.Namespace) -> int:
         }
         caption = "Hold leave-one-out and transition line beside seed 000 §4.2 (published)"
         print(f"wrote {write_latex(args.out / 'leave-one-out.tex', rows, columns, caption)}")
+    return 0
+
+
+def _curves(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from synthesis.tables import write_csv
+    from synthesis.timing.defaults import SEED, published_holds
+    from synthesis.timing.learning import feature_curve, plot_curves, size_curve
+
+    if args.holds:
+        samples = hold_samples(read_annotations(args.holds, HOLD_COLUMNS))
+        source = f"{len(samples)} holds of {args.holds}"
+    else:
+        samples = published_holds(np.random.default_rng(SEED))
+        source = f"{len(samples)} holds simulated from seed 000 Table 4.1 (simulated)"
+    rng = np.random.default_rng(args.seed)
+    points = feature_curve(samples, "all ten") + feature_curve(samples, "without shape")
+    points += size_curve(samples, rng, args.repeats)
+    rows = [{**p.to_dict(), "input": source} for p in points]
+    for row in rows:
+        published = row["published_accuracy_pct"]
+        beside = f" (seed 000: {published:.2f} %)" if published != "" else ""
+        accuracy = f"{row['accuracy_pct']:6.2f} %{beside}"
+        print(f"{row['curve']:>14} {row['label']:>14}: {accuracy}, {row['mean_error_ms']:.2f} ms")
+    args.out.mkdir(parents=True, exist_ok=True)
+    print(f"wrote {write_csv(args.out / 'curves.csv', rows)}")
+    title = f"Hold classifier, leave-one-out (seed 000 Figs 4.4–4.6); input: {source}"
+    print(f"wrote {plot_curves(points, args.out / 'curves.png', title)}")
     return 0
 
 
@@ -224,6 +257,20 @@ def parser() -> argparse.ArgumentParser:
         help="a directory for leave-one-out.csv and .tex (ours beside seed 000's)",
     )
     evaluate.set_defaults(run=_evaluate)
+    curves = commands.add_parser(
+        "curves",
+        help="hold accuracy by feature and by training-set size (Figs 4.4–4.6)",
+    )
+    curves.add_argument(
+        "--holds",
+        type=Path,
+        help="annotated holds (word,index,hold_ms); default: the "
+        "built-in model's 384 simulated holds",
+    )
+    curves.add_argument("--repeats", type=int, default=20, help="random subsets per size")
+    curves.add_argument("--seed", type=int, default=0)
+    curves.add_argument("--out", type=Path, required=True)
+    curves.set_defaults(run=_curves)
     metrics = commands.add_parser(
         "metrics", help="each pose distance's regression on annotated transitions (Fig. 4.7)"
     )

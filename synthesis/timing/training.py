@@ -15,6 +15,7 @@ import numpy as np
 
 from synthesis.fingerspelling.word_timing import TimingError
 from synthesis.timing.bayes import HoldClassifier, LeaveOneOut
+from synthesis.timing.constant import HOLD_MS, LAST_HOLD_MS
 from synthesis.timing.features import DEFAULT_FEATURES, letter_features
 from synthesis.timing.transitions import (
     DEFAULT_SPACE,
@@ -89,6 +90,24 @@ def hold_samples(holds: list[Annotation]) -> list[tuple[dict[str, str], float]]:
 # Seed 000 §4.2: leave-one-out on 304 recorded holds with 9 features (its best).
 PUBLISHED_HOLDS = {"holds": 304, "accuracy": 0.75, "mean_abs_error_ms": 13.82,
                    "mean_difference_ms": 8.17}  # fmt: skip
+# Seed 000 §4.3: Huenerfauth's constant holds against the same 304 recorded holds, per hold:
+# mean |error| and mean recorded − predicted (negative: the constant model is slower).
+PUBLISHED_CONSTANT = {"mean_abs_error_ms": 170.9, "mean_difference_ms": -167.7}
+
+
+def constant_hold_errors(
+    samples: list[tuple[dict[str, str], float]],
+    hold_ms: float = HOLD_MS,
+    last_hold_ms: float = LAST_HOLD_MS,
+) -> tuple[float, float]:
+    """Return the Constant model's mean |error| and mean recorded − predicted hold (ms).
+
+    Seed 000 §4.3 compares Huenerfauth's constant timing (243 ms holds, the last 800 ms)
+    with the recorded holds: 170.9 ms per hold, −167.7 ms on average.
+    """
+    predicted = np.array([last_hold_ms if v["place"] == "last" else hold_ms for v, _ in samples])
+    difference = np.array([h for _, h in samples]) - predicted
+    return float(np.abs(difference).mean()), float(difference.mean())
 
 
 @dataclass(frozen=True)
@@ -101,6 +120,7 @@ class TrainingReport:
     transitions: TransitionModel
     source: str = ""
     transition_source: str = ""
+    constant_ms: tuple[float, float] | None = None  # constant_hold_errors on the same holds
 
     def rows(self) -> list[dict]:
         """Return the report as table rows: each measure, ours beside seed 000 §4.2's, with
@@ -113,6 +133,22 @@ class TrainingReport:
             ("holds", h.nobs, p["holds"], False),
             (f"transition r ({t.metric})", t.r, PUBLISHED_TRANSITION_R[t.metric], True),
         ]
+        if self.constant_ms is not None:
+            c = PUBLISHED_CONSTANT
+            measures += [
+                (
+                    "Constant model: hold mean error (ms)",
+                    self.constant_ms[0],
+                    c["mean_abs_error_ms"],
+                    False,
+                ),
+                (
+                    "Constant model: mean recorded − predicted hold (ms)",
+                    self.constant_ms[1],
+                    c["mean_difference_ms"],
+                    False,
+                ),
+            ]
         return [
             {
                 "measure": name,
@@ -144,6 +180,19 @@ class TrainingReport:
             f"transitions: {t.nobs}; t = {t.intercept_ms:.1f} ms + {t.slope_ms_per_rad:.1f} "
             f"ms/{unit} · {t.metric}{over}; r = {t.r:.2f}, mean error {t.mean_abs_error_ms:.2f} ms",
             f"  seed 000 §4.2.2: {t.metric} of the 18-joint poses, {published}",
+            *self._constant_lines(),
+        ]
+
+    def _constant_lines(self) -> list[str]:
+        if self.constant_ms is None:
+            return []
+        c = PUBLISHED_CONSTANT
+        return [
+            f"Constant model (243 ms holds, the last 800 ms) on the same holds: mean error "
+            f"{self.constant_ms[0]:.1f} ms per hold, recorded − predicted "
+            f"{self.constant_ms[1]:+.1f} ms",
+            f"  seed 000 §4.3: {c['mean_abs_error_ms']} ms per hold, "
+            f"{c['mean_difference_ms']:+.1f} ms",
         ]
 
 
@@ -176,7 +225,9 @@ def train(
     times = np.array([t.duration_ms for t in transitions])
     line = TransitionModel.fit(transition_distances(transitions, metric, space), times, metric,
                                space)  # fmt: skip
-    report = TrainingReport(classifier.leave_one_out(samples), line, source)
+    report = TrainingReport(
+        classifier.leave_one_out(samples), line, source, constant_ms=constant_hold_errors(samples)
+    )
     model = VariableModel(
         classifier,
         line,

@@ -144,6 +144,20 @@ def test_table_3_1_and_the_marker_choices_command(tmp_path, capsys):
     searched = {r["markers"]: float(r["error_cm"]) for r in choices if "exhaustive" in r["method"]}
     ranked = {r["markers"]: float(r["error_cm"]) for r in choices if "PCA" in r["method"]}
     assert all(searched[m] <= ranked[m] for m in searched)  # the search is the optimum
+    # Figs 3.3–3.5: three six-marker sets rebuilt by LWR, Hoyet et al.'s manual one among
+    # them (the five fingertips and a palm marker, no middle joint).
+    with (tmp_path / "six-markers.csv").open() as handle:
+        six = {r["method"]: r for r in csv.DictReader(handle)}
+    assert list(six) == [
+        "PCA influence (Alg. 2)",
+        "cluster pose (Alg. 1)",
+        "manual (Hoyet et al. 2012)",
+    ]
+    manual = six["manual (Hoyet et al. 2012)"]["set"].split()
+    assert len(manual) == 6 and not any(m.endswith("pip") for m in manual)
+    assert all(len(r["set"].split()) == 6 and float(r["angle_error_deg"]) > 0 for r in six.values())
+    assert "CAB" in six["manual (Hoyet et al. 2012)"]["input"]
+    assert (tmp_path / "six-markers.png").stat().st_size > 10_000
 
 
 def test_a_pose_database_of_words_and_recordings_is_written_and_used(tmp_path, capsys):
