@@ -2,7 +2,7 @@
 
 import dataclasses
 import platform
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from importlib import metadata
 from typing import Any
 
@@ -33,6 +33,7 @@ from analysis.summaries import (
     RatingSummary,
 )
 from analysis.tidy import (
+    SIMULATED_SUFFIX,
     analysed,
     check_conditions,
     condition_keys,
@@ -112,14 +113,30 @@ def _design(frame: pd.DataFrame) -> dict[str, Any]:
     }
 
 
+def _methods(design: dict[str, Any], methods: Mapping[str, str]) -> dict[str, str]:
+    """Return, per condition name of *design*, how it was made (*methods* by key)."""
+    keys = design.get("condition_keys", {})
+    found = {}
+    for name in design.get("conditions", ()):
+        key = keys.get(name, name.removesuffix(SIMULATED_SUFFIX))
+        if key in methods:
+            found[name] = methods[key]
+    return found
+
+
 def build_report(
-    frame: pd.DataFrame, options: ReportOptions = ReportOptions(), source: str = "responses"
+    frame: pd.DataFrame,
+    options: ReportOptions = ReportOptions(),
+    source: str = "responses",
+    methods: Mapping[str, str] | None = None,
 ) -> Report:
     """Apply the exclusions, then run the pairwise, rating and intelligibility analyses.
 
     Conditions are named by their labels where the table has them, and simulated ones
     ``"<name> (simulated)"``, throughout (the table from
     :func:`~analysis.tidy.check_responses` names them so); *options* may list their keys.
+    *methods* says how each condition (by key) was made, in words, for the Method
+    section: the techniques and their settings, which the table itself does not carry.
     """
     frame = label_simulated(label_conditions(frame))
     if options.conditions:
@@ -128,10 +145,13 @@ def build_report(
         )
         check_conditions(frame, options.conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
+    design = _design(kept) if not kept.empty else {"participants": 0, "rows": 0}
+    if methods:
+        design["condition_methods"] = _methods(design, methods)
     return Report(
         source=source,
         studies=tuple(sorted(set(frame["study"]) - {""})),
-        design=_design(kept) if not kept.empty else {"participants": 0, "rows": 0},
+        design=design,
         exclusions=exclusions,
         options=options,
         software=software_versions(),

@@ -28,6 +28,7 @@ from studyplatform.lib.quality import (
 )
 from studyplatform.lib.signed import signed_videos
 from studyplatform.models import Study
+from studyplatform.rules import describe_condition
 
 
 @dataclass(frozen=True)
@@ -43,7 +44,10 @@ def analyse_study(study: Study, options: ReportOptions) -> StudyResults:
     table = tidy_table(study)
     if table is None:
         return StudyResults(report=None, analysed=None)
-    report = build_report(table, options, source=f"{study.slug} (SignStudy export)")
+    # How each condition was made (techniques, settings, a model's training) for the
+    # report's Method: the tidy table carries only the conditions' names.
+    methods = {c.key: describe_condition(c) for c in study.conditions.all()}
+    report = build_report(table, options, f"{study.slug} (SignStudy export)", methods)
     analysed, _ = apply_exclusions(table, options.exclusions)
     return StudyResults(report=report, analysed=analysed)
 

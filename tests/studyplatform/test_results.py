@@ -209,6 +209,15 @@ def test_downloads(bob_client, spine):
     assert {"responses.csv", "spine-motion.study.json"} <= set(archive.namelist())
     results = json.loads(archive.read("report/results.json"))
     assert results["exclusions"]["participants_included"] == 6
+    # The Method says how each condition was made: which spine formula, seed's or variant
+    # (issue 53, item 3), from the conditions' own technique settings.
+    methods = results["design"]["condition_methods"]
+    assert set(methods) == set(results["design"]["conditions"])
+    on = next(text for text in methods.values() if "Automated spine motion: on" in text)
+    assert "comfort-radius variant (SignStudy's, not the seed's)" in on
+    assert "Automated spine motion: off" in " ".join(methods.values())
+    html = archive.read("report/report.html").decode()
+    assert "How each condition's clips were made" in html
 
 
 @pytest.mark.parametrize(
