@@ -239,6 +239,8 @@ class BradleyTerryResult(Result):
     strengths: tuple[Strength, ...]
     nobs: int
     log_likelihood: float
+    # Why no strength could be estimated ("" when they were): then strengths is empty.
+    not_estimable: str = ""
 
 
 @dataclasses.dataclass(frozen=True)

@@ -188,6 +188,9 @@ class _ModelResult(Result):
         )
 
     def apa(self) -> str:
+        if not self.converged:
+            # A fit that stopped short of its optimum has no covariance to test with.
+            return "not tested: the fit did not converge (no Wald test on its covariance)"
         return self._test() + (
             " (singular fit: a random-effect SD estimated at zero)" if self.singular else ""
         )
