@@ -85,6 +85,7 @@ def compare_preferences(
                 nobs=n,
                 judgements=len(pair),
                 points=points,
+                method=test.method,
             )
         )
     adjusted = adjust([r.pvalue for r in results], correction)

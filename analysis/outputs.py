@@ -29,20 +29,21 @@ POSTHOC_COLUMNS = {
     "ci": "ci", "apa": "apa",
 }  # fmt: skip
 WILCOXON_COLUMNS = {
-    "a": "a", "b": "b", "W": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
-    "rank_biserial": "rank_biserial", "n": "nobs", "apa": "apa",
+    "a": "a", "b": "b", "V": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
+    "method": "method", "rank_biserial": "rank_biserial", "n": "nobs", "apa": "apa",
 }  # fmt: skip
 PAIRED_COLUMNS = {
     "a": "a", "b": "b", "n": "nobs", "mean_difference": "ttest.mean_difference",
     "ci": "ttest.ci", "t": "ttest.statistic", "df": "ttest.df", "t_p": "ttest.pvalue",
     "t_p_adjusted": "ttest.pvalue_adjusted", "dz": "ttest.dz",
-    "wilcoxon_W": "wilcoxon.statistic", "wilcoxon_p": "wilcoxon.pvalue",
+    "wilcoxon_V": "wilcoxon.statistic", "wilcoxon_p": "wilcoxon.pvalue",
+    "wilcoxon_method": "wilcoxon.method",
     "wilcoxon_p_adjusted": "wilcoxon.pvalue_adjusted",
     "rank_biserial": "wilcoxon.rank_biserial", "apa": "apa",
 }  # fmt: skip
 COMPARATIVE_COLUMNS = {
     "a": "a", "b": "b", "mean_preference_a": "mean_preference", "ci": "ci",
-    "W": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
+    "V": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted", "method": "method",
     "rank_biserial": "rank_biserial", "participants": "nobs", "judgements": "judgements",
     "apa": "apa",
 }  # fmt: skip

@@ -198,9 +198,16 @@ class FriedmanResult(Result):
         )
 
 
+# How a Wilcoxon p was found (R's wilcox.test defaults; analysis.within.wilcoxon_test).
+EXACT = "exact"
+APPROXIMATE = "normal approximation, continuity-corrected"
+
+
 @dataclasses.dataclass(frozen=True)
 class WilcoxonTest(Result):
-    """Wilcoxon signed-rank test of a − b; effect size is the matched rank-biserial r."""
+    """Wilcoxon signed-rank test of a − b as R's ``wilcox.test`` (paired): *statistic* is
+    R's V, the positive differences' rank sum; *method* how p was found (exact, or the
+    normal approximation with continuity correction); effect size the rank-biserial r."""
 
     a: str
     b: str
@@ -209,12 +216,14 @@ class WilcoxonTest(Result):
     pvalue_adjusted: float
     rank_biserial: float
     nobs: int
+    method: str = ""
 
     def apa(self) -> str:
         if not _finite(self.statistic):
-            return f"{self.a} vs {self.b}: W not computed (n = {self.nobs}; needs 2 or more)"
+            return f"{self.a} vs {self.b}: V not computed (n = {self.nobs}; needs 2 or more)"
         return (
-            f"{self.a} vs {self.b}: W = {self.statistic:g}, {format_p(self.pvalue)} "
+            f"{self.a} vs {self.b}: V = {self.statistic:g}, {format_p(self.pvalue)}"
+            f"{f' ({self.method})' if self.method else ''} "
             f"({format_p(self.pvalue_adjusted).replace('p', 'p_adj', 1)}), "
             f"r = {_two(self.rank_biserial)}, n = {self.nobs}"
         )
@@ -286,7 +295,8 @@ class PairwiseAnalysis(Result):
 class ComparativePreference(Result):
     """Mean comparative-scale preference for *a* over *b* (scale points), signed-rank tested.
 
-    *statistic* is the Wilcoxon W of the participants' mean preferences against 0;
+    *statistic* is the Wilcoxon V (R's) of the participants' mean preferences against 0,
+    its p found by *method*;
     *ci* the t-based 95 % CI of their mean; *nobs* participants; *judgements* answers.
     """
 
@@ -301,6 +311,7 @@ class ComparativePreference(Result):
     nobs: int
     judgements: int
     points: int = 5
+    method: str = ""
 
     def with_adjusted(self, pvalue: float) -> "ComparativePreference":
         """Return a copy with its p-value corrected for the pairs tested."""
@@ -312,9 +323,10 @@ class ComparativePreference(Result):
             f"({ci_text(self.ci)}), "
         )
         if not _finite(self.statistic):
-            return text + f"W not computed (n = {self.nobs}; needs 2 or more)"
+            return text + f"V not computed (n = {self.nobs}; needs 2 or more)"
         return text + (
-            f"W = {self.statistic:g}, {format_p(self.pvalue)}, "
+            f"V = {self.statistic:g}, {format_p(self.pvalue)}"
+            f"{f' ({self.method})' if self.method else ''}, "
             f"r = {_two(self.rank_biserial)}, n = {self.nobs}"
         )
 

@@ -8,7 +8,7 @@ import pandas as pd
 from scipy import stats
 from statsmodels.stats.multitest import multipletests
 
-from analysis.results import FriedmanResult, PairedTTest, WilcoxonTest
+from analysis.results import APPROXIMATE, EXACT, FriedmanResult, PairedTTest, WilcoxonTest
 from analysis.summaries import PairedComparison
 
 CORRECTIONS = {"holm": "holm", "bonferroni": "bonferroni", "fdr_bh": "fdr_bh", "none": None}
@@ -63,27 +63,38 @@ def paired_ttest(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> Paired
 
 
 def wilcoxon_test(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> WilcoxonTest:
-    """Wilcoxon signed-rank test of a − b; r = (W⁺ − W⁻) / (W⁺ + W⁻) (Kerby 2014)."""
+    """Wilcoxon signed-rank test of a − b as R's ``wilcox.test(a, b, paired = TRUE)``.
+
+    V is the sum of the ranks of the positive differences (zeros dropped, ties given
+    their mean rank); p is exact for fewer than 50 differences without ties or zeros, and
+    otherwise the normal approximation with R's continuity correction and tie-corrected
+    variance (Hollander & Wolfe 1973, R's defaults). r = (W⁺ − W⁻) / (W⁺ + W⁻) (Kerby 2014).
+    """
     # Means of fractions (1/3 + 2/3 …) differ in their last bits: equal values must tie.
     difference = np.round(np.asarray(a, float) - np.asarray(b, float), 12)
     nonzero = difference[difference != 0]
     if difference.size < 2:
-        # One participant: W = 0 and r = ±1 would read as an effect; there is no test.
+        # One participant: V = 0 and r = ±1 would read as an effect; there is no test.
         nan = float("nan")
         return WilcoxonTest(names[0], names[1], nan, nan, nan, nan, int(difference.size))
     if nonzero.size == 0:
         return WilcoxonTest(names[0], names[1], 0.0, 1.0, 1.0, 0.0, int(difference.size))
-    result = stats.wilcoxon(difference, zero_method="wilcox")
+    ties = np.unique(np.abs(nonzero)).size < nonzero.size
+    exact = nonzero.size < 50 and not ties and nonzero.size == difference.size
+    result = stats.wilcoxon(
+        nonzero, correction=not exact, method="exact" if exact else "approx"
+    )
     ranks = stats.rankdata(np.abs(nonzero))
     positive, negative = ranks[nonzero > 0].sum(), ranks[nonzero < 0].sum()
     return WilcoxonTest(
         a=names[0],
         b=names[1],
-        statistic=float(result.statistic),
+        statistic=float(positive),
         pvalue=float(result.pvalue),
         pvalue_adjusted=float(result.pvalue),
         rank_biserial=float((positive - negative) / (positive + negative)),
         nobs=int(difference.size),
+        method=EXACT if exact else APPROXIMATE,
     )
 
 

@@ -58,10 +58,13 @@ def test_mean_preference_ci_and_signed_rank_by_hand():
     assert result.mean_preference == pytest.approx(0.5)
     half = stats.t.ppf(0.975, 2) * values.std(ddof=1) / np.sqrt(3)
     assert result.ci == pytest.approx((0.5 - half, 0.5 + half))
-    # |1.5| ranks 3, |1| and |−1| share rank 1.5: W⁺ = 4.5, W⁻ = 1.5.
-    assert result.statistic == pytest.approx(1.5)
+    # |1.5| ranks 3, |1| and |−1| share rank 1.5: V = W⁺ = 4.5 (R's statistic), W⁻ = 1.5.
+    assert result.statistic == pytest.approx(4.5)
     assert result.rank_biserial == pytest.approx((4.5 - 1.5) / 6)
-    assert result.pvalue == pytest.approx(stats.wilcoxon(values).pvalue)
+    # A tie: R's wilcox.test takes the normal approximation with continuity correction.
+    approximate = stats.wilcoxon(values, correction=True, method="approx").pvalue
+    assert result.pvalue == pytest.approx(approximate)
+    assert result.method == "normal approximation, continuity-corrected"
     assert "points toward A" in result.apa()
 
 

@@ -52,7 +52,7 @@ def test_every_statistic_has_a_table(written):
         "apa",
     ]  # fmt: skip
     assert list(pd.read_csv(out / "wilcoxon.csv").columns) == [
-        "a", "b", "W", "p", "p_adjusted", "rank_biserial", "n", "apa",
+        "a", "b", "V", "p", "p_adjusted", "method", "rank_biserial", "n", "apa",
     ]  # fmt: skip
 
 
@@ -84,7 +84,7 @@ def test_wilcoxon_tests_match_r(written):
     ours = _pairs(_table(written[0], "wilcoxon"))
     for expected in R["wilcoxon"]:
         row = ours[(expected["a"], expected["b"])]
-        assert row["W"] == expected["W"]
+        assert row["V"] == expected["V"] and row["method"] == expected["method"]
         assert row["p"] == close(expected["p"], rel=TOLERANCE)
         assert row["p_adjusted"] == close(expected["p_adjusted"], rel=TOLERANCE)
         assert row["rank_biserial"] == close(expected["r"], rel=TOLERANCE)
@@ -111,7 +111,7 @@ def test_condition_comparisons_across_items_match_r(written, measure):
         row = ours[(expected["a"], expected["b"])]
         for column, theirs in (("t", "t"), ("t_p", "p"), ("t_p_adjusted", "t_p_adjusted"),
                                ("dz", "dz"), ("mean_difference", "mean_difference"),
-                               ("wilcoxon_W", "wilcoxon_W"), ("wilcoxon_p", "wilcoxon_p"),
+                               ("wilcoxon_V", "wilcoxon_V"), ("wilcoxon_p", "wilcoxon_p"),
                                ("wilcoxon_p_adjusted", "wilcoxon_p_adjusted"),
                                ("rank_biserial", "rank_biserial")):  # fmt: skip
             assert row[column] == close(expected[theirs], rel=TOLERANCE), column
@@ -159,10 +159,10 @@ def test_one_participant_prints_no_test_and_no_empty_interval(tmp_path):
     data = results_json(report)
     for preference in data["comparative"]:
         assert "95 % CI not computed" in preference["apa"]
-        assert "W not computed (n = 1" in preference["apa"]
+        assert "V not computed (n = 1" in preference["apa"]
         assert preference["statistic"] is None and preference["rank_biserial"] is None
     text = re.sub(r"<[^>]+>", " ", (tmp_path / "report.html").read_text())
-    for placeholder in ("None", "nan", "W = 0,", "r = -1.00", "r = 1.00", " to  ", " to ."):
+    for placeholder in ("None", "nan", "V = 0,", "r = -1.00", "r = 1.00", " to  ", " to ."):
         assert placeholder not in text, placeholder
     for name in ("rating_conditions", "intelligibility_conditions"):
         table = (tmp_path / f"{name}.md").read_text()

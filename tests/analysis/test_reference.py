@@ -58,12 +58,12 @@ def test_friedman_matches_reference(dataset):
 
 
 @pytest.mark.parametrize("dataset", DATASETS, ids=lambda d: f"{len(d['subjects'])}-subjects")
-def test_wilcoxon_matches_reference(dataset):
+def test_wilcoxon_effect_size_matches_reference(dataset):
+    """The rank-biserial r (pingouin's); V and p follow R's conventions, which pingouin's
+    W = min(W⁺, W⁻) does not: test_wilcoxon_r.py checks them against R itself."""
     results = wilcoxon_tests(_scores(dataset), "none")
     for result, expected in zip(results, dataset["expected"]["wilcoxon"], strict=True):
         assert (result.a, result.b) == (expected["a"], expected["b"])
-        assert result.statistic == close(expected["W"], rel=1e-8)
-        assert result.pvalue == close(expected["p"], rel=1e-8)
         assert result.rank_biserial == close(expected["rank_biserial"], rel=1e-8)
 
 

@@ -15,20 +15,19 @@ names_of <- function(key) {
 conditions <- sort(names_of(unique(d$condition_a[d$kind == "pairwise"])))
 pairs <- combn(conditions, 2, simplify = FALSE)
 
-# Exact two-sided signed-rank p by enumerating every sign assignment of the midranks
-# (zeros dropped, as wilcox.test and scipy's zero_method = "wilcox" do).
+# R's own paired signed-rank test (wilcox.test's defaults: V = the positive differences'
+# rank sum; exact p for n < 50 without ties or zeros, else the normal approximation with
+# continuity correction), on differences rounded as the analysis rounds them.
 signed_rank <- function(x, y) {
   # Means of fractions (1/3 + 2/3 …) differ in the last bits; equal values must tie.
   diff <- round(x - y, 12)
-  diff <- diff[diff != 0]
-  r <- rank(abs(diff))
-  plus <- sum(r[diff > 0]); minus <- sum(r[diff < 0])
-  w <- min(plus, minus)
-  signs <- as.matrix(expand.grid(rep(list(c(0, 1)), length(r))))
-  sums <- signs %*% r
-  total <- sum(r)
-  p <- mean(pmin(sums, total - sums) <= w + 1e-9)
-  list(W = w, p = min(1, p), r = (plus - minus) / (plus + minus), n = length(x))
+  nonzero <- diff[diff != 0]
+  r <- rank(abs(nonzero))
+  plus <- sum(r[nonzero > 0]); minus <- sum(r[nonzero < 0])
+  test <- suppressWarnings(wilcox.test(diff))
+  exact <- !grepl("continuity", test$method)
+  list(V = unname(test$statistic), p = test$p.value, r = (plus - minus) / (plus + minus),
+       n = length(x), method = if (exact) "exact" else "normal approximation, continuity-corrected")
 }
 paired <- function(x, y) {
   t <- t.test(x, y, paired = TRUE)
@@ -84,7 +83,7 @@ across <- function(rows, score) {
   tests <- adjust_all(by_pair(means, paired), "p", "t_p_adjusted")
   ranks <- adjust_all(by_pair(means, signed_rank), "p", "wilcoxon_p_adjusted")
   list(conditions = summary, comparisons = mapply(function(t, w) c(t, list(
-    wilcoxon_W = w$W, wilcoxon_p = w$p, wilcoxon_p_adjusted = w$wilcoxon_p_adjusted,
+    wilcoxon_V = w$V, wilcoxon_p = w$p, wilcoxon_p_adjusted = w$wilcoxon_p_adjusted,
     rank_biserial = w$r)), tests, ranks, SIMPLIFY = FALSE))
 }
 ratings <- d[d$kind == "rating", ]
