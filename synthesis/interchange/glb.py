@@ -17,6 +17,7 @@ import numpy as np
 import pygltflib as gl
 from scipy.spatial.transform import Rotation
 
+from synthesis.avatar.colour import srgb_to_linear
 from synthesis.avatar.imported.gltf_read import COLOR_ACROSS, COLOR_INSIDE, EDGE, MAIN_JOINT
 from synthesis.render.scene import CameraPath, CameraPreset, look_at
 from synthesis.skeleton.kinematics import Pose, local_transforms
@@ -143,7 +144,7 @@ def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joi
     attributes = gl.Attributes(
         POSITION=buffer.add(part.vertices_m, FLOAT, gl.ARRAY_BUFFER, bounds=True),
         NORMAL=buffer.add(part.normals, FLOAT, gl.ARRAY_BUFFER),
-        COLOR_0=buffer.add(np.clip(part.vertex_rgb(), 0.0, 1.0), FLOAT, gl.ARRAY_BUFFER),
+        COLOR_0=buffer.add(srgb_to_linear(part.vertex_rgb()), FLOAT, gl.ARRAY_BUFFER),
         JOINTS_0=buffer.add(joints, UINT16, gl.ARRAY_BUFFER),
         WEIGHTS_0=buffer.add(weights, FLOAT, gl.ARRAY_BUFFER),
     )

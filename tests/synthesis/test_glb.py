@@ -181,3 +181,29 @@ def test_the_command_line_writes_the_glb(tmp_path):
     assert main(["spell", "AB", "--rate", "15", "--export-glb", str(out), "--timing-only"]) == 0
     reader = GlbReader(out.read_bytes())
     assert reader.gltf.animations[0].channels and reader.gltf.cameras
+
+
+def test_vertex_colours_are_linear_as_gltf_defines_them_and_read_back_as_shown():
+    """glTF 2.0 §3.7.2.1: COLOR_0 is linear. The engine keeps display sRGB colours, so
+    the file holds their linear values (IEC 61966-2-1; sRGB 0.5 is linear 0.2140) and
+    every viewer shows the skin the engine renders (issue 54: three.js showed
+    (218, 188, 166) for our (178, 128, 97)); reading the file back gives the sRGB again."""
+    from synthesis.avatar.colour import linear_to_srgb, srgb_to_linear
+    from synthesis.avatar.imported.gltf_avatar import read_gltf_avatar
+
+    assert srgb_to_linear(0.5) == pytest.approx(0.21404, abs=1e-5)
+    assert linear_to_srgb(srgb_to_linear(np.linspace(0, 1, 11))) == pytest.approx(
+        np.linspace(0, 1, 11)
+    )
+    request, build, avatar, _ = _clip("sentence", "ME HAPPY")
+    data = request_glb(request, build)
+    reader = GlbReader(data)
+    for mesh, part in zip(reader.gltf.meshes, avatar.parts, strict=True):
+        written = reader.read(mesh.primitives[0].attributes.COLOR_0)[:, :3]
+        np.testing.assert_allclose(written, srgb_to_linear(part.vertex_rgb()), atol=1e-6)
+    # The reader splits vertices its own way: compare the colours each mesh holds.
+    meshes = read_gltf_avatar(data).meshes
+    for mesh, part in zip(meshes, avatar.parts, strict=True):
+        read = {tuple(c) for c in np.round(mesh.colors_rgb, 4)}
+        assert read <= {tuple(c) for c in np.round(part.vertex_rgb(), 4)}
+    assert (0.7, 0.5, 0.38) in {tuple(c) for c in np.round(meshes[0].colors_rgb, 4)}

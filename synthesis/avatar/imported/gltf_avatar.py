@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from synthesis.avatar.colour import linear_to_srgb, srgb_to_linear
 from synthesis.avatar.imported.gltf_read import (
     COLOR_ACROSS,
     COLOR_INSIDE,
@@ -146,7 +147,11 @@ def _texture_colors(reader: Reader, material, uv: np.ndarray | None) -> np.ndarr
 
 
 def _colors(reader: Reader, primitive, count: int) -> np.ndarray:
-    """Return a primitive's vertex colours (n, 3), sRGB 0–1."""
+    """Return a primitive's vertex colours (n, 3), sRGB 0–1 as the engine keeps them.
+
+    glTF's COLOR_0 and baseColorFactor are linear, its colour textures sRGB-encoded
+    (glTF 2.0 §3.7.2.1, §3.9.2): the product is formed in linear values, then encoded.
+    """
     gltf = reader.gltf
     material = gltf.materials[primitive.material] if primitive.material is not None else None
     factor = np.ones(3)
@@ -154,12 +159,12 @@ def _colors(reader: Reader, primitive, count: int) -> np.ndarray:
         factor = np.asarray(material.pbrMetallicRoughness.baseColorFactor or (1, 1, 1, 1))[:3]
     attributes = primitive.attributes
     if attributes.COLOR_0 is not None:
-        return np.clip(reader.read(attributes.COLOR_0)[:, :3] * factor, 0.0, 1.0)
+        return linear_to_srgb(reader.read(attributes.COLOR_0)[:, :3] * factor)
     uv = reader.read(attributes.TEXCOORD_0) if attributes.TEXCOORD_0 is not None else None
     sampled = _texture_colors(reader, material, uv) if material is not None else None
     if sampled is not None:
-        return np.clip(sampled * factor, 0.0, 1.0)
-    return np.broadcast_to(np.clip(factor, 0.0, 1.0), (count, 3)).copy()
+        return linear_to_srgb(srgb_to_linear(sampled) * factor)
+    return np.broadcast_to(linear_to_srgb(factor), (count, 3)).copy()
 
 
 def _weights(reader: Reader, attributes, count: int, skin_to_order: np.ndarray):
