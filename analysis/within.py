@@ -81,9 +81,7 @@ def wilcoxon_test(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> Wilco
         return WilcoxonTest(names[0], names[1], 0.0, 1.0, 1.0, 0.0, int(difference.size))
     ties = np.unique(np.abs(nonzero)).size < nonzero.size
     exact = nonzero.size < 50 and not ties and nonzero.size == difference.size
-    result = stats.wilcoxon(
-        nonzero, correction=not exact, method="exact" if exact else "approx"
-    )
+    result = stats.wilcoxon(nonzero, correction=not exact, method="exact" if exact else "approx")
     ranks = stats.rankdata(np.abs(nonzero))
     positive, negative = ranks[nonzero > 0].sum(), ranks[nonzero < 0].sum()
     return WilcoxonTest(
