@@ -1,13 +1,17 @@
 """A clip's stimulus check, kept beside its files: ``<hash>.quality.json``.
 
-The check depends only on what the clip's content hash names (its specification and the
-engine), so it is made once, by whichever comes first — the render, or a check of a
-whole study before rendering (``manage.py check_stimuli``) — and read back by both.
+The check depends on what the clip's content hash names (its specification and the
+engine files it comes from) and on the checking code, which the hash leaves out (a
+change to the check must not re-render a clip): the file records the whole engine's
+:func:`~synthesis.identity.code_digest`, and a check made by other code is made again.
+It is made by whichever comes first — the render, or a check of a whole study before
+rendering (``manage.py check_stimuli``) — and read back by both.
 """
 
 import json
 from pathlib import Path
 
+from synthesis.identity import code_digest
 from synthesis.quality import ClipQuality, Finding, check_request
 from synthesis.techniques import ClipRequest
 from synthesis.techniques.request import Build
@@ -22,8 +26,11 @@ def stored_quality(directory: Path, content_hash: str) -> ClipQuality | None:
     """Return the check kept for *content_hash*, or None if none was made (or it is damaged)."""
     path = quality_file(directory, content_hash)
     try:
-        return ClipQuality.from_dict(json.loads(path.read_text()))
-    except (OSError, ValueError, KeyError, TypeError):
+        data = json.loads(path.read_text())
+        if data.get("checked_by") != code_digest():
+            return None
+        return ClipQuality.from_dict(data)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
 
 
@@ -53,6 +60,7 @@ def checked(
     directory.mkdir(parents=True, exist_ok=True)
     path = quality_file(directory, name)
     temporary = path.with_suffix(".json.part")
-    temporary.write_text(json.dumps(quality.to_dict(), indent=1, ensure_ascii=False) + "\n")
+    data = {**quality.to_dict(), "checked_by": code_digest()}
+    temporary.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
     temporary.replace(path)
     return quality

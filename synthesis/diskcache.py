@@ -3,7 +3,7 @@
 Built avatars (:mod:`synthesis.avatar.store`) and solved letters of the alphabet
 (:mod:`synthesis.fingerspelling.alphabet`) are deterministic results of the engine's
 files and a few libraries; every render process computed them again. Each is kept in
-one ``.npz`` whose name carries :func:`synthesis.identity.engine_digest` and the
+one ``.npz`` whose name carries :func:`synthesis.identity.code_digest` and the
 versions of the libraries that compute it, so that any change to either names a new
 file and a stale result is never loaded. The directory is ``$SIGNSTUDY_AVATAR_CACHE``
 (its name from when it held avatars only), else ``$XDG_CACHE_HOME/signstudy/avatars``,
@@ -25,7 +25,7 @@ from typing import TypeVar
 
 import numpy as np
 
-from synthesis.identity import engine_digest
+from synthesis.identity import code_digest
 
 CACHE_ENV = "SIGNSTUDY_AVATAR_CACHE"
 T = TypeVar("T")
@@ -58,7 +58,7 @@ def cache_path(key: str, libraries: tuple[str, ...]) -> Path | None:
     directory = cache_directory()
     if directory is None:
         return None
-    return directory / f"{key}-{engine_digest()}-{libraries_digest(libraries)}.npz"
+    return directory / f"{key}-{code_digest()}-{libraries_digest(libraries)}.npz"
 
 
 def load_arrays(path: Path | None) -> dict[str, np.ndarray] | None:

@@ -1,10 +1,20 @@
-"""The engine's identity: a digest of its own source and data files.
+"""The engine's identity: a digest of the source and data files a clip's pixels come from.
 
-Every clip's hash includes it, so a change to any engine file — code, alphabet, routes,
+Every clip's hash includes :func:`engine_digest`, so a change to any file that makes a
+clip — the techniques and everything they import, the renderer, the alphabet, routes,
 sign library, shaders — names every clip anew instead of reusing a cached one rendered
-by other code. A hand-set version number could be forgotten; the files cannot.
+by other code. Files a clip cannot come from (command lines, reports, evaluations of
+the seeds' tables, exports, the stimulus check) are left out: a fix there must not
+re-render a study's clips or lock an open study's (issue 57). Which modules count is
+read from the code itself, the imports of :data:`CLIP_ENTRIES` followed through the
+package (:func:`clip_modules`), so a new module is counted by being used. A hand-set
+version number could be forgotten; the imports cannot.
+
+:func:`code_digest` covers every file of the engine: the disk cache of built avatars and
+databases, and the stimulus check kept beside each clip, are keyed by it.
 """
 
+import ast
 import hashlib
 from functools import cache
 from pathlib import Path
@@ -12,10 +22,12 @@ from pathlib import Path
 PACKAGE = Path(__file__).resolve().parent
 IGNORED_DIRECTORIES = {"__pycache__"}
 IGNORED_SUFFIXES = {".pyc", ".pyo"}
+# What rendering a clip imports (stimuli.clips: ClipRequest, build_motion, film, render).
+CLIP_ENTRIES = ("synthesis.techniques", "synthesis.techniques.request", "synthesis.render")
 
 
 def engine_files(root: Path = PACKAGE) -> list[Path]:
-    """Return the engine's files under *root* that shape a clip, in a fixed order."""
+    """Return every file of the engine under *root*, in a fixed order."""
     return sorted(
         path
         for path in root.rglob("*")
@@ -25,14 +37,71 @@ def engine_files(root: Path = PACKAGE) -> list[Path]:
     )
 
 
-@cache
-def engine_digest(root: Path = PACKAGE) -> str:
-    """Return the first 16 hex digits of the SHA-256 over every engine file's path and bytes."""
+def clip_files(root: Path = PACKAGE) -> list[Path]:
+    """Return the files a clip can come from: every data file (YAML, JSON, shaders) and
+    the modules :func:`clip_modules` finds, in a fixed order."""
+    modules = clip_modules(root)
+    return [p for p in engine_files(root) if p.suffix != ".py" or p in modules]
+
+
+def clip_modules(root: Path = PACKAGE) -> set[Path]:
+    """Return the engine's modules that :data:`CLIP_ENTRIES` import, directly or through
+    others, at the top of a module or inside a function (each package's ``__init__``
+    with its modules)."""
+    seen: set[Path] = set()
+    todo = list(CLIP_ENTRIES)
+    while todo:
+        name = todo.pop()
+        parts = name.split(".")
+        for depth in range(1, len(parts) + 1):
+            path = _module_file(root, parts[:depth])
+            if path is not None and path not in seen:
+                seen.add(path)
+                todo += _imported(path)
+    return seen
+
+
+def _module_file(root: Path, parts: list[str]) -> Path | None:
+    """Return the file of module *parts* (``["synthesis", "render"]``) under *root*."""
+    if parts[0] != root.name:
+        return None
+    base = root.joinpath(*parts[1:])
+    for path in (base.with_suffix(".py"), base / "__init__.py"):
+        if path.is_file():
+            return path
+    return None
+
+
+def _imported(path: Path) -> list[str]:
+    """Return every module name a file imports (``from a import b`` names a and a.b)."""
+    names = []
+    for node in ast.walk(ast.parse(path.read_text("utf-8"))):
+        if isinstance(node, ast.Import):
+            names += [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names += [node.module, *(f"{node.module}.{alias.name}" for alias in node.names)]
+    return names
+
+
+def _digest(root: Path, files: list[Path]) -> str:
     digest = hashlib.sha256()
-    for path in engine_files(root):
+    for path in files:
         digest.update(path.relative_to(root).as_posix().encode() + b"\0")
         digest.update(hashlib.sha256(path.read_bytes()).digest())
     return digest.hexdigest()[:16]
+
+
+@cache
+def engine_digest(root: Path = PACKAGE) -> str:
+    """Return the first 16 hex digits of the SHA-256 over the path and bytes of every file
+    a clip can come from (:func:`clip_files`)."""
+    return _digest(root, clip_files(root))
+
+
+@cache
+def code_digest(root: Path = PACKAGE) -> str:
+    """Return the first 16 hex digits of the SHA-256 over every engine file's path and bytes."""
+    return _digest(root, engine_files(root))
 
 
 def file_sha256(path: str | Path) -> str:

@@ -7,7 +7,7 @@ import pytest
 
 from synthesis.avatar.model import Avatar, rigid_part
 from synthesis.avatar.store import CACHE_ENV, cache_directory, cached_avatar
-from synthesis.identity import engine_digest
+from synthesis.identity import code_digest
 from synthesis.rigs.hand import HandModel
 
 
@@ -41,7 +41,7 @@ def test_an_avatar_is_built_once_then_loaded_the_same(store):
     loaded = cached_avatar("tiny", HandModel(), build)
     assert len(calls) == 1
     (path,) = store.iterdir()
-    assert engine_digest() in path.name  # another engine names another file
+    assert code_digest() in path.name  # another engine names another file
     assert loaded.name == built.name and isinstance(loaded.rig, HandModel)
     np.testing.assert_array_equal(loaded.bind_dofs_rad, built.bind_dofs_rad)
     for ours, theirs in zip(loaded.parts, built.parts, strict=True):

@@ -13,6 +13,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from stimuli import ClipSpec, checked, quality_file
+from synthesis.identity import code_digest
 from synthesis.quality import SPEED_FACTOR, check_request, keyed_reference
 from synthesis.quality.contact import BodySurface
 from synthesis.quality.speed import joint_speeds_deg_s
@@ -134,6 +135,10 @@ def test_a_clip_check_is_kept_by_content_hash_and_read_back(tmp_path):
     spec = ClipSpec("word", "AB", {"timing": "constant"}, rate_hz=30)
     first = checked(spec, tmp_path)
     path = quality_file(tmp_path, spec.content_hash())
-    assert json.loads(path.read_text()) == first.to_dict()
-    path.write_text(json.dumps({**first.to_dict(), "figures": {"kept": True}}))
+    assert json.loads(path.read_text()) == {**first.to_dict(), "checked_by": code_digest()}
+    kept = {**first.to_dict(), "figures": {"kept": True}, "checked_by": code_digest()}
+    path.write_text(json.dumps(kept))
     assert checked(spec, tmp_path).figures == {"kept": True}  # read, not made again
+    # A check made by other checking code is made again (the clip's hash leaves it out).
+    path.write_text(json.dumps({**kept, "checked_by": "another engine"}))
+    assert checked(spec, tmp_path).figures == first.figures

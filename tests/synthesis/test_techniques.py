@@ -163,25 +163,35 @@ def test_the_timing_names_are_listed_in_one_place():
     assert TIMINGS[1:-1] == MODEL_TIMINGS and (TIMINGS[0], TIMINGS[-1]) == ("mocap", "simple")
 
 
-def test_changing_an_engine_source_file_changes_every_clip_hash(tmp_path):
+def test_a_clip_hash_changes_with_the_files_a_clip_comes_from_and_no_others(tmp_path):
+    """A change to the kinematics renames every clip; one to a command line, a report or
+    the stimulus check does not (issue 57: upgrading for a fix in a report re-rendered
+    every clip and locked open studies), though the disk cache's key still changes."""
     copy = tmp_path / "synthesis"
     shutil.copytree(ROOT / "synthesis", copy, ignore=shutil.ignore_patterns("__pycache__"))
     code = (
-        "from synthesis.identity import engine_digest\n"
+        "from synthesis.identity import code_digest, engine_digest\n"
         "from stimuli import ClipSpec\n"
-        "print(engine_digest(), ClipSpec('word', 'AB').content_hash())\n"
+        "print(engine_digest(), ClipSpec('word', 'AB').content_hash(), code_digest())\n"
     )
 
-    def digest_and_hash() -> list[str]:
+    def digests() -> list[str]:
         env = {"PYTHONPATH": f"{tmp_path}:{ROOT}", "PATH": "/usr/bin:/bin"}
         result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
                                 capture_output=True, text=True, check=True)  # fmt: skip
         return result.stdout.split()
 
-    before = digest_and_hash()
-    kinematics = copy / "skeleton" / "kinematics.py"
-    kinematics.write_text(kinematics.read_text() + "\n# a change\n")
-    after = digest_and_hash()
+    def change(path) -> None:
+        path.write_text(path.read_text() + "\n# a change\n")
+
+    before = digests()
+    for outside in ("cli.py", "transitions/report.py", "quality/speed.py", "timing/learning.py"):
+        change(copy / outside)
+        now = digests()
+        assert now[:2] == before[:2] and now[2] != before[2], outside
+        before = now
+    change(copy / "skeleton" / "kinematics.py")
+    after = digests()
     assert before[0] != after[0] and before[1] != after[1]
 
 
