@@ -2,6 +2,7 @@
 
 import difflib
 import re
+import unicodedata
 
 import numpy as np
 import pandas as pd
@@ -10,23 +11,31 @@ from analysis.conditions import SCORE_COLUMNS
 from analysis.summaries import IntelligibilityScore
 from analysis.tidy import analysed
 
-# Fingerspelled words are glossed letter by letter (T-O-Y); both spellings mean one word.
-_SPELLED = re.compile(r"\b(?:[A-Za-z]-){1,}[A-Za-z]\b")
-_WORD = re.compile(r"[A-Za-z0-9']+")
+# Fingerspelled words are glossed letter by letter (T-O-Y, Ç-A-Y); both spellings mean one
+# word. Letters and digits of any script count ([^\W_]): ÇAY is not AY.
+_SPELLED = re.compile(r"\b(?:[^\W\d_]-){1,}[^\W\d_]\b")
+_WORD = re.compile(r"(?:[^\W_]|['’])+")
+# Upper-casing is not Turkish-aware (i → I, not İ): dotted and dotless capitals match.
+_TURKISH_I = str.maketrans({"İ": "I"})
 FUZZY_RATIO = 0.8
+FUZZY_MIN_LETTERS = 5
 
 
 def words(text: str) -> list[str]:
-    """Split a gloss or an answer into upper-case words ("T-O-Y car!" → ["TOY", "CAR"])."""
+    """Split a gloss or an answer into upper-case words ("T-O-Y car!" → ["TOY", "CAR"]),
+    letters of any script kept ("çay" → ["ÇAY"]), Unicode-normalised (NFC)."""
+    text = unicodedata.normalize("NFC", text)
     joined = _SPELLED.sub(lambda match: match.group(0).replace("-", ""), text)
-    return [word.upper() for word in _WORD.findall(joined.replace("-", " "))]
+    found = _WORD.findall(joined.replace("-", " "))
+    return [word.upper().translate(_TURKISH_I).replace("’", "'") for word in found]
 
 
 def word_accuracy(answer: str, target: str, fuzzy: bool = True) -> float:
     """Return the fraction of target words found in the answer, each answer word used once.
 
     With *fuzzy*, a misspelling within difflib ratio ≥ 0.8 counts ("ELEFANT" for
-    "ELEPHANT").
+    "ELEPHANT") in target words of :data:`FUZZY_MIN_LETTERS` or more letters: in shorter
+    ones one letter makes another word (AY, moon, for ÇAY, tea; CAT for CAR).
     """
     wanted = words(target)
     if not wanted:
@@ -37,7 +46,7 @@ def word_accuracy(answer: str, target: str, fuzzy: bool = True) -> float:
         if word in given:
             given.remove(word)
             found += 1
-        elif fuzzy:
+        elif fuzzy and len(word) >= FUZZY_MIN_LETTERS:
             close = difflib.get_close_matches(word, given, n=1, cutoff=FUZZY_RATIO)
             if close:
                 given.remove(close[0])

@@ -57,3 +57,16 @@ def test_no_target_column_means_no_scoring():
     row = dict.fromkeys(COLUMNS, "")
     row.update(participant="P1", kind="text", text="comments")
     assert score_intelligibility(check_responses(pd.DataFrame([row]))) == ()
+
+
+def test_letters_of_any_script_are_kept_so_a_turkish_answer_is_not_misscored():
+    """Issue 55: words('ÇAY') was ['AY'], so "AY" (moon) scored 1.0 for "ÇAY" (tea) and
+    ÖĞRETMEN became RETMEN."""
+    assert words("ÇAY") == ["ÇAY"] and words("Ç-A-Y içtim") == ["ÇAY", "IÇTIM"]
+    assert words("öğretmen") == ["ÖĞRETMEN"]
+    assert word_accuracy("ay", "ÇAY") == 0.0 and word_accuracy("çay", "ÇAY") == 1.0
+    assert word_accuracy("İYİ", "iyi") == 1.0  # dotted and dotless capitals match
+    assert words("não sei") == ["NÃO", "SEI"] and words("CAN'T find") == ["CAN'T", "FIND"]
+    assert words("can’t") == ["CAN'T"]
+    decomposed = "ça".replace("ç", "c\u0327")  # c + combining cedilla
+    assert words(decomposed) == ["ÇA"]
