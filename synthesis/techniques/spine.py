@@ -29,10 +29,15 @@ FORMULA_LABELS = {
 }
 
 
+# Seed 003's V_w = (X_w, Y_w): how much lateral and one-sided forward reach twist.
+WEIGHTS = ("spine_twist_weight_x", "spine_twist_weight_y")
+
+
 def _params(values: Mapping[str, Any]) -> SpineParams:
     """Return the spine tuning a condition's values choose."""
     fields = {field: values[name] for name, (field, *_) in CONSTANTS.items()}
-    return replace(DEFAULTS, formula=values["spine_formula"], **fields)
+    weights = tuple(values[name] for name in WEIGHTS)
+    return replace(DEFAULTS, formula=values["spine_formula"], twist_weights=weights, **fields)
 
 
 def _apply(build: Build) -> Build:
@@ -50,6 +55,9 @@ def _summary(values: Mapping[str, Any]) -> str:
         for name, (field, symbol, _) in CONSTANTS.items()
         if values[name] != getattr(DEFAULTS, field)
     ]
+    weights = tuple(values[name] for name in WEIGHTS)
+    if weights != DEFAULTS.twist_weights:
+        words.append(f"V_w ({weights[0]:g}, {weights[1]:g})")
     return ", ".join(words)
 
 
@@ -93,6 +101,20 @@ TECHNIQUE = Technique(
             labels=FORMULA_LABELS,
         ),
         *(_constant(name, *spec) for name, spec in CONSTANTS.items()),
+        *(
+            Parameter(
+                name,
+                "float",
+                DEFAULTS.twist_weights[k],
+                f"Seed 003's {axis}_w, the twist's weight on the hands' {meaning} "
+                "(V_w = ⟨X_w, Y_w, 0⟩; the seed prints no value).",
+                minimum=-10.0,
+                maximum=10.0,
+            )
+            for k, (name, axis, meaning) in enumerate(
+                zip(WEIGHTS, "XY", ("lateral reach", "one-sided forward reach"), strict=True)
+            )
+        ),
     ),
     source="seed 003 §3.1–3.3",
     order=30,

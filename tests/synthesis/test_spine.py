@@ -18,9 +18,13 @@ LEFT_SHOULDER = np.array([-0.175, 0.0, 0.0])
 
 def _motion(v_right, v_left, params=PARAMS):
     """Return the extension for displacement vectors from each shoulder (torso frame)."""
-    return spine_motion(RIGHT_SHOULDER + np.atleast_2d(v_right),
-                        LEFT_SHOULDER + np.atleast_2d(v_left), RIGHT_SHOULDER, LEFT_SHOULDER,
-                        params)  # fmt: skip
+    return spine_motion(
+        RIGHT_SHOULDER + np.atleast_2d(v_right),
+        LEFT_SHOULDER + np.atleast_2d(v_left),
+        RIGHT_SHOULDER,
+        LEFT_SHOULDER,
+        params,
+    )
 
 
 def test_smoothstep_is_the_papers_cubic_clamped():
@@ -126,3 +130,34 @@ def test_parameters_are_checked():
         SpineParams(comfort_m=0.9)
     with pytest.raises(ValueError, match="formula must be one of"):
         SpineParams(formula="curvy")
+
+
+def test_a_study_sets_c0_to_c3_and_v_w_per_condition():
+    """Spec 03: the tuning constants are parameters editable per study. With V_w = 0 the
+    torso never twists; with c0 = 0 it never bends."""
+    from synthesis.techniques import ClipRequest, build_motion
+
+    def automated(parameters):
+        build = build_motion(ClipRequest("sentence", "INFORM-YOU BLUE", parameters))
+        sentence = build.result
+        names = sentence.body.dof_names
+        return {
+            angle: np.abs(
+                sentence.automated_rad[
+                    :,
+                    [
+                        names.index(f"{j}_{angle}")
+                        for j in ("spine_lower", "spine_middle", "spine_upper")
+                    ],
+                ]
+            ).max()
+            for angle in ("flexion", "side_bend", "rotation")
+        }
+
+    default = automated({})
+    assert default["rotation"] > 0.01 and max(default["flexion"], default["side_bend"]) > 0.01
+    still = automated({"spine_twist_weight_x": 0.0, "spine_twist_weight_y": 0.0})
+    assert still["rotation"] == 0.0 and still["flexion"] == default["flexion"]
+    upright = automated({"spine_bend_deg": 0.0})
+    assert upright["flexion"] == upright["side_bend"] == 0.0
+    assert upright["rotation"] == default["rotation"]
