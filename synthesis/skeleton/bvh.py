@@ -226,12 +226,14 @@ def _parse_values(
         if rows:
             raise BvhError(f"{source}, line {rows[0][0]}: values given but no joint has channels.")
         return np.zeros((n_frames, 0))
-    if len(rows) != n_frames:
-        where = rows[n_frames][0] if len(rows) > n_frames else first_line + len(lines)
+    if len(rows) < n_frames:
         raise BvhError(
-            f"{source}, line {where}: 'Frames: {n_frames}' but the file has "
-            f"{len(rows)} frame lines."
+            f"{source}, line {first_line + len(lines)}: 'Frames: {n_frames}' but the file "
+            f"has {len(rows)} frame lines (cut short?)."
         )
+    # Lines past the declared count are left out, as assimp does (CMU's Boxing_Toes.bvh
+    # declares 3069 frames above 3070 lines; Blender and bvhio read it too).
+    rows = rows[:n_frames]
     if n_frames == 0:
         return np.zeros((0, n_channels))
     values = _read_numbers("\n".join(line for _, line in rows))
