@@ -1,5 +1,7 @@
 """Let researchers read who took part and what they answered (read-only)."""
 
+import re
+
 from django.contrib import admin
 from django.http import HttpRequest
 
@@ -29,6 +31,9 @@ class ResponseInline(ReadOnlyMixin, admin.TabularInline):
     can_delete = False
 
 
+PARTICIPANT_LINK = re.compile(r"/p/([^/?#\s]+)")
+
+
 @admin.register(Participant)
 class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
     list_display = (
@@ -41,6 +46,10 @@ class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
         "position",
     )
     list_filter = (("study", OwnStudyFilter), "is_pilot", "language", "finished_at")
+    # A participant who writes in is found by their link, completion code or the
+    # recruitment service's id (PROLIFIC_PID, in the parameters they arrived with).
+    search_fields = ("=token", "=completion_code", "recruitment_params")
+    search_help_text = "A participant's link (or its token), completion code or Prolific id."
     date_hierarchy = "started_at"
     readonly_fields = (
         "study",
@@ -59,6 +68,12 @@ class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
         "finished_at",
     )
     inlines = (ResponseInline,)
+
+    def get_search_results(self, request: HttpRequest, queryset, search_term: str):
+        # A pasted link /p/<token>/ is searched as its token.
+        found = PARTICIPANT_LINK.search(search_term)
+        term = found.group(1) if found else search_term
+        return super().get_search_results(request, queryset, term)
 
     # Deleting a participant is a withdrawal: their signed-answer videos go too, and the
     # Withdrawals list records it (Django's own delete would leave the files behind).

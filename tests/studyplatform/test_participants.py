@@ -55,3 +55,26 @@ def test_draft_and_closed_studies_take_nobody(fingerspelling, status):
 def test_language_follows_the_study(fingerspelling, spine):
     assert do_enroll_participant(spine).language == "asl_en"
     assert do_enroll_participant(fingerspelling).language == "en"
+
+
+def test_a_participant_who_writes_in_is_found_by_link_code_or_prolific_id(
+    client, alice, fingerspelling
+):
+    """Issue 55, item 5: the admin's participant list searches the link (or its token),
+    the completion code and the recruitment parameters, within the researcher's studies."""
+    from django.urls import reverse
+
+    from studyplatform.models import Participant
+
+    wanted = do_enroll_participant(fingerspelling, recruitment_params={"PROLIFIC_PID": "5f3ab9"})
+    other = do_enroll_participant(fingerspelling, recruitment_params={"PROLIFIC_PID": "77c01d"})
+    Participant.objects.filter(pk=wanted.pk).update(completion_code="FSPELL-8K2Q")
+    client.force_login(alice)
+    url = reverse("admin:studyplatform_participant_changelist")
+    link = f"https://lab.example.org/p/{wanted.token}/?lang=en"
+    for term in ("5f3ab9", "FSPELL-8K2Q", wanted.token, link):
+        page = client.get(url, {"q": term})
+        assert page.status_code == 200
+        shown = [p.pk for p in page.context["cl"].result_list]
+        assert shown == [wanted.pk], term
+    assert other.pk in [p.pk for p in client.get(url, {"q": "77c01d"}).context["cl"].result_list]
