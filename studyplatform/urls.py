@@ -21,6 +21,7 @@ urlpatterns = [
     ),
     path("p/<str:token>/language/", views.set_language, name="participant_language"),
     path("p/<str:token>/done/", views.done, name="participant_done"),
+    path("p/<str:token>/withdraw/", views.withdraw, name="participant_withdraw"),
     path(
         "p/<str:token>/answers/<int:response>/video/",
         views.participant_answer_video,

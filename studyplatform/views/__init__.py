@@ -12,6 +12,7 @@ from studyplatform.views.participate import (
     study_welcome,
 )
 from studyplatform.views.signed import upload_signed_answer
+from studyplatform.views.withdraw import withdraw
 
 __all__ = [
     "done",
@@ -28,4 +29,5 @@ __all__ = [
     "study_welcome",
     "upload_signed_answer",
     "uploaded_clip",
+    "withdraw",
 ]

@@ -1,0 +1,45 @@
+"""Let a participant stop and withdraw: everything they gave is deleted, at their word.
+
+The consent says participants may stop at any time; before this only a researcher's
+deletion withdrew their data. The link is on every page; a confirmation page asks once
+(POST, CSRF-protected) and the same action as the researcher's deletion carries it out
+(:func:`~studyplatform.actions.do_withdraw_participant`, logged with no researcher).
+"""
+
+from django.http import HttpRequest, HttpResponse
+from django.shortcuts import render
+from django.views.decorators.cache import never_cache
+from django.views.decorators.http import require_http_methods
+
+from studyplatform.actions import do_withdraw_participant
+from studyplatform.lib import participant_by_token
+from studyplatform.models.participants import PARTICIPANT_SESSION_KEY
+
+WITHDRAWN_BY_PARTICIPANT = "withdrawn by the participant"
+
+
+@never_cache
+@require_http_methods(["GET", "POST"])
+def withdraw(request: HttpRequest, token: str) -> HttpResponse:
+    """Ask a participant to confirm (GET); withdraw them and delete their answers (POST)."""
+    participant = participant_by_token(token)
+    if participant is None:
+        return render(
+            request,
+            "studyplatform/participate/problem.html",
+            {"message": "This link is not valid (or its answers were already withdrawn)."},
+            status=404,
+        )
+    study = participant.study
+    if request.method == "GET":
+        return render(
+            request,
+            "studyplatform/participate/withdraw.html",
+            {"participant": participant, "study": study},
+        )
+    do_withdraw_participant(participant, by=None, reason=WITHDRAWN_BY_PARTICIPANT)
+    remembered = request.session.get(PARTICIPANT_SESSION_KEY, {})
+    if remembered.get(study.slug) == token:
+        del remembered[study.slug]
+        request.session.modified = True
+    return render(request, "studyplatform/participate/withdrawn.html", {"study": study})
