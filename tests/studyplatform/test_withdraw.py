@@ -45,3 +45,29 @@ def test_withdrawing_needs_the_pages_form_not_just_a_link(spine):
     refused = forged.post(reverse("participant_withdraw", args=[participant.token]))
     assert refused.status_code == 403
     assert Participant.objects.filter(pk=participant.pk).exists()
+
+
+@pytest.mark.django_db(transaction=True)
+def test_withdrawing_on_a_phone_in_chromium(page, live_server, fingerspelling, clips_dir, one_clip):
+    """At 390 px: the link is on the page without widening it, the confirmation and the
+    last page pass axe-core's serious and critical rules, and the answers are gone."""
+    from studyplatform.actions import do_enroll_participant
+    from tests.studyplatform.test_participate_browser import (
+        _serious_violations,
+        _wait_ready,
+        _with_clips,
+    )
+
+    _with_clips(fingerspelling, one_clip, clips_dir)
+    participant = do_enroll_participant(fingerspelling, consented=True)
+    page.set_viewport_size({"width": 390, "height": 844})
+    page.goto(f"{live_server.url}/p/{participant.token}/1/")
+    _wait_ready(page)
+    assert page.evaluate("document.documentElement.scrollWidth") <= 390
+    page.locator("#withdraw-link").click()
+    page.locator("#withdraw-confirm").wait_for()
+    assert _serious_violations(page) == []
+    page.locator("#withdraw-confirm").click()
+    page.locator("#withdrawn-note").wait_for()
+    assert _serious_violations(page) == []
+    assert not Participant.objects.filter(pk=participant.pk).exists()
