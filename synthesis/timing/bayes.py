@@ -107,18 +107,25 @@ class HoldClassifier:
         """Return the most probable hold duration (ms) for one letter's features."""
         return float(CLASSES_MS[int(np.argmax(self.log_posterior(values)))])
 
-    def leave_one_out(self, samples: list[tuple[dict[str, str], float]]) -> LeaveOneOut:
-        """Evaluate on the training samples, each classified by a model without it."""
-        predicted, actual, hits = [], [], 0
+    def leave_one_out_predictions(
+        self, samples: list[tuple[dict[str, str], float]]
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Return per sample whether its hold class was predicted and the predicted hold
+        (ms), each sample classified by the model without it."""
+        hits, predicted = [], []
         for values, hold_ms in samples:
             k = hold_class(hold_ms)
             guess = int(np.argmax(self.log_posterior(values, leave_out=k)))
-            hits += guess == k
+            hits.append(guess == k)
             predicted.append(CLASSES_MS[guess])
-            actual.append(hold_ms)
-        error = np.array(predicted) - np.array(actual)
+        return np.array(hits, dtype=bool), np.array(predicted, dtype=float)
+
+    def leave_one_out(self, samples: list[tuple[dict[str, str], float]]) -> LeaveOneOut:
+        """Evaluate on the training samples, each classified by a model without it."""
+        hits, predicted = self.leave_one_out_predictions(samples)
+        error = predicted - np.array([hold_ms for _, hold_ms in samples])
         return LeaveOneOut(
-            accuracy=hits / len(samples),
+            accuracy=int(hits.sum()) / len(samples),
             mean_abs_error_ms=float(np.abs(error).mean()),
             mean_signed_error_ms=float(error.mean()),
             nobs=len(samples),

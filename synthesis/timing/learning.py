@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from synthesis.timing.bayes import CLASSES_MS, HoldClassifier, hold_class
+from synthesis.timing.bayes import HoldClassifier
 from synthesis.timing.features import DEFAULT_FEATURES, FEATURES
 
 Sample = tuple[dict[str, str], float]
@@ -57,16 +57,10 @@ class CurvePoint:
 def leave_one_out_errors(
     samples: list[Sample], features: tuple[str, ...]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Return per hold whether its class was hit and its absolute error (ms), each hold
-    classified by a model trained on the others (the classifier's own leave-one-out)."""
-    model = HoldClassifier.fit(samples, features)
-    hits, errors = [], []
-    for values, hold_ms in samples:
-        k = hold_class(hold_ms)
-        guess = int(np.argmax(model.log_posterior(values, leave_out=k)))
-        hits.append(guess == k)
-        errors.append(abs(CLASSES_MS[guess] - hold_ms))
-    return np.array(hits, float), np.array(errors)
+    """Return per hold whether its class was hit (1.0 or 0.0) and its absolute error (ms),
+    by the classifier's own leave-one-out."""
+    hits, predicted = HoldClassifier.fit(samples, features).leave_one_out_predictions(samples)
+    return hits.astype(float), np.abs(predicted - np.array([hold for _, hold in samples]))
 
 
 def _se(values: np.ndarray) -> float:

@@ -188,7 +188,8 @@ class TrainingReport:
             return []
         c = PUBLISHED_CONSTANT
         return [
-            f"Constant model (243 ms holds, the last 800 ms) on the same holds: mean error "
+            f"Constant model ({HOLD_MS:g} ms holds, the last {LAST_HOLD_MS:g} ms) on the same "
+            "holds: mean error "
             f"{self.constant_ms[0]:.1f} ms per hold, recorded − predicted "
             f"{self.constant_ms[1]:+.1f} ms",
             f"  seed 000 §4.3: {c['mean_abs_error_ms']} ms per hold, "
