@@ -72,6 +72,14 @@ def _problem(request: HttpRequest, message: str, status: int = 400, **context) -
     )
 
 
+def forget_in_browser(request: HttpRequest, slug: str, token: str) -> None:
+    """Forget the participant *token* in this browser: the study's link starts afresh."""
+    remembered = request.session.get(SESSION_KEY, {})
+    if remembered.get(slug) == token:
+        del remembered[slug]
+        request.session.modified = True
+
+
 def _page_url(participant: Participant, number: int) -> str:
     if number > page_count(participant) or participant.is_finished:
         return reverse("participant_done", args=[participant.token])
@@ -353,11 +361,7 @@ def done(request: HttpRequest, token: str) -> HttpResponse:
         return redirect(_page_url(participant, max(participant.position, 1)))
     study = participant.study
     if study.shared_computer:
-        # Forget this participant in this browser: the study link now starts afresh.
-        remembered = request.session.get(SESSION_KEY, {})
-        if remembered.get(study.slug) == participant.token:
-            del remembered[study.slug]
-            request.session.modified = True
+        forget_in_browser(request, study.slug, participant.token)
     return render(
         request,
         "studyplatform/participate/done.html",

@@ -13,7 +13,7 @@ from django.views.decorators.http import require_http_methods
 
 from studyplatform.actions import do_withdraw_participant
 from studyplatform.lib import participant_by_token
-from studyplatform.models.participants import PARTICIPANT_SESSION_KEY
+from studyplatform.views.participate import forget_in_browser
 
 WITHDRAWN_BY_PARTICIPANT = "withdrawn by the participant"
 
@@ -38,8 +38,7 @@ def withdraw(request: HttpRequest, token: str) -> HttpResponse:
             {"participant": participant, "study": study},
         )
     do_withdraw_participant(participant, by=None, reason=WITHDRAWN_BY_PARTICIPANT)
-    remembered = request.session.get(PARTICIPANT_SESSION_KEY, {})
-    if remembered.get(study.slug) == token:
-        del remembered[study.slug]
-        request.session.modified = True
+    # The withdrawal forgets the participant in stored sessions; this request's own
+    # session is saved after it and must not write the token back.
+    forget_in_browser(request, study.slug, token)
     return render(request, "studyplatform/participate/withdrawn.html", {"study": study})
