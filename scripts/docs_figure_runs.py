@@ -7,24 +7,24 @@ the functions return the CSV rows the command wrote, which the figure blocks rea
 import atexit
 import contextlib
 import csv
+import importlib
 import io
 import shutil
 import tempfile
 from functools import cache
 from pathlib import Path
 
+LETTERS = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 WORK = Path(tempfile.mkdtemp(prefix="docs-figures-"))
 atexit.register(shutil.rmtree, WORK, True)
 
 
 def run(module: str, *argv: str) -> str:
-    """Run ``python -m module argv…`` in-process in the work directory; return its output."""
-    if module == "synthesis.transitions":
-        from synthesis.transitions.cli import main
-    elif module == "synthesis.hands":
-        from synthesis.hands.cli import main
-    else:
-        from synthesis.timing.cli import main
+    """Run ``python -m module argv…`` in-process in the work directory; return its output.
+
+    Each command-line package's ``__main__`` calls its ``cli.main``; so does this.
+    """
+    main = importlib.import_module(f"{module}.cli").main
     out = io.StringIO()
     with contextlib.chdir(WORK), contextlib.redirect_stdout(out):
         status = main(list(argv))
@@ -95,9 +95,6 @@ def table_3_1() -> list[dict[str, str]]:
     """Return ``table-3-1.csv`` of ``hands markers --configuration both``."""
     run("synthesis.hands", "markers", "--configuration", "both", "--out", "table-3-1-ours/")
     return rows("table-3-1-ours/table-3-1.csv")
-
-
-LETTERS = "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
 
 @cache
