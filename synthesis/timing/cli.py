@@ -84,15 +84,13 @@ def _plot(args: argparse.Namespace) -> int:
 
 
 def _evaluate(args: argparse.Namespace) -> int:
-    import numpy as np
+    from synthesis.timing.bayes import LeaveOneOut
+    from synthesis.timing.defaults import SIMULATED_HOLDS, model_holds, published_transitions
 
-    from synthesis.timing.bayes import HoldClassifier
-    from synthesis.timing.defaults import SEED, published_holds, published_transitions
-
-    samples = published_holds(np.random.default_rng(SEED))
-    holds = HoldClassifier.fit(samples).leave_one_out(samples)
-    source = (f"{len(samples)} holds simulated from seed 000 Table 4.1's means and spreads "
-              "(the default model's training set), not recordings")  # fmt: skip
+    samples = model_holds()
+    # The default model keeps its own leave-one-out, computed when it was built.
+    holds = LeaveOneOut(**published_model().metadata["leave_one_out"])
+    source = f"{len(samples)} {SIMULATED_HOLDS} (the default model's training set), not recordings"
     line = "the default line: r and mean error taken from seed 000 §4.2.2, not refitted"
     report = TrainingReport(
         holds, published_transitions(), source, line, constant_ms=constant_hold_errors(samples)
@@ -123,15 +121,15 @@ def _curves(args: argparse.Namespace) -> int:
     import numpy as np
 
     from synthesis.tables import write_csv
-    from synthesis.timing.defaults import SEED, published_holds
+    from synthesis.timing.defaults import SIMULATED_HOLDS, model_holds
     from synthesis.timing.learning import feature_curve, plot_curves, size_curve
 
     if args.holds:
         samples = hold_samples(read_annotations(args.holds, HOLD_COLUMNS))
         source = f"{len(samples)} holds of {args.holds}"
     else:
-        samples = published_holds(np.random.default_rng(SEED))
-        source = f"{len(samples)} holds simulated from seed 000 Table 4.1 (simulated)"
+        samples = model_holds()
+        source = f"{len(samples)} {SIMULATED_HOLDS}, not recordings"
     rng = np.random.default_rng(args.seed)
     points = feature_curve(samples, "all ten") + feature_curve(samples, "without shape")
     points += size_curve(samples, rng, args.repeats)

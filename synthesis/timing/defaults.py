@@ -48,6 +48,8 @@ TRANSITION_MEAN_MS = 216.11
 TRANSITION_SD_MS = 60.0
 TRANSITION_R = PUBLISHED_TRANSITION_R["rmsd"]
 SEED = 2016
+# What the default model's training holds are, in every output that names them.
+SIMULATED_HOLDS = "holds simulated from seed 000 Table 4.1's means and spreads"
 SOURCE = (
     "built from published statistics (Wheatland 2016, seed 000 Table 4.1, §4.1, §4.2.2) "
     "with the assumptions listed in synthesis/timing/defaults.py; not trained on recordings"
@@ -80,6 +82,11 @@ def published_holds(rng: np.random.Generator) -> list[tuple[dict[str, str], floa
     return samples
 
 
+def model_holds() -> list[tuple[dict[str, str], float]]:
+    """Return the default model's training holds (:func:`published_holds`, seed :data:`SEED`)."""
+    return published_holds(np.random.default_rng(SEED))
+
+
 def published_transitions() -> TransitionModel:
     """Return the transition line implied by the published mean, spread and correlation."""
     pairs = {(a, b) for word in VOCABULARY for a, b in itertools.pairwise(word)}
@@ -94,8 +101,7 @@ def published_transitions() -> TransitionModel:
 @cache
 def published_model() -> VariableModel:
     """Return the default Variable model (built once per process)."""
-    rng = np.random.default_rng(SEED)
-    samples = published_holds(rng)
+    samples = model_holds()
     classifier = HoldClassifier.fit(samples)
     return VariableModel(
         classifier,
@@ -103,8 +109,7 @@ def published_model() -> VariableModel:
         {
             "name": "published-statistics",
             "source": SOURCE,
-            "training": f"{len(samples)} holds simulated from seed 000 Table 4.1's means and "
-            "spreads, not recordings",
+            "training": f"{len(samples)} {SIMULATED_HOLDS}, not recordings",
             "simulated": True,
             "training_holds": len(samples),
             "leave_one_out": classifier.leave_one_out(samples).to_dict(),
