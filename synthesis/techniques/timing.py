@@ -112,9 +112,14 @@ def _provenance(values) -> str:
 def trained_on_simulated(values: Mapping[str, Any]) -> bool:
     """Return whether *values* time the words with a Variable model trained on
     simulated holds (the built-in one, or a file that says so)."""
+    from synthesis.fingerspelling.word_timing import TimingError
+
     if values.get("timing_file") or values.get("timing") not in ("variable", "normalized"):
         return False
-    return variable_model({"model": values.get("model", "")}).simulated
+    try:
+        return variable_model({"model": values.get("model", "")}).simulated
+    except (OSError, TimingError):
+        return False  # a model file not readable here says so in the description
 
 
 def _apply(build: Build) -> Build:

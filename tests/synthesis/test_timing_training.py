@@ -177,3 +177,17 @@ def test_the_constant_models_per_hold_error_is_reported_beside_the_seeds():
 
     samples = [({"place": "first"}, 100.0), ({"place": "last"}, 700.0)]
     assert constant_hold_errors(samples) == pytest.approx((121.5, -121.5))
+
+
+def test_a_model_file_not_readable_here_is_not_called_simulated_and_says_so(tmp_path):
+    """A condition's label asks whether its model was trained on simulated holds; a model
+    file moved away must not break the admin's lists (its description says it is
+    unreadable)."""
+    from synthesis.techniques import REGISTRY
+    from synthesis.techniques.timing import trained_on_simulated
+
+    values = {"timing": "variable", "model": str(tmp_path / "gone.json")}
+    assert trained_on_simulated({"timing": "variable"})
+    assert not trained_on_simulated(values)
+    (line,) = [d for d in REGISTRY.describe("word", values) if d.startswith("Timing")]
+    assert "not readable here" in line
