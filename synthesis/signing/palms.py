@@ -13,7 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from synthesis.rigs.body import BodyModel
-from synthesis.signing.sentence import TORSO_TO_WORLD, KeySolver, parse_glosses, timeline
+from synthesis.signing.keys import KeySolver
+from synthesis.signing.sentence import parse_glosses, timeline
 from synthesis.signing.signs import SignLibrary, default_library
 from synthesis.signing.spine import SpineParams
 from synthesis.skeleton.rotations import quat_to_matrix
@@ -38,14 +39,15 @@ def key_misses(text: str, library: SignLibrary | None = None,
     solver = KeySolver(BodyModel("right"), SpineParams())
     automated = solver.automated(keys) if spine else np.zeros((len(keys), len(solver.names)))
     pose = solver.body.pose(solver.keys(keys, automated))
+    trunk = solver.trunks(keys)
     misses = []
-    for side in ("right", "left"):
+    for side, (targets, palms, _) in solver.placed(keys, trunk, trunk + automated).items():
         wrist = solver.body.skeleton.index(f"{side}_wrist")
         normals = quat_to_matrix(pose.quaternions[:, wrist])[:, :, 2]
-        for key, normal, place in zip(keys, normals, pose.positions_m[:, wrist], strict=True):
-            wanted = TORSO_TO_WORLD @ key.hands[side].palm
+        solved = zip(keys, normals, pose.positions_m[:, wrist], targets, palms, strict=True)
+        for key, normal, place, target, wanted in solved:
             cosine = np.clip(normal @ wanted / np.linalg.norm(wanted), -1.0, 1.0)
-            miss = np.linalg.norm(place - solver.world(key.hands[side].at_m))
+            miss = np.linalg.norm(place - target)
             misses.append(KeyMiss(key.ms, side, float(np.degrees(np.arccos(cosine))),
                                   float(miss)))  # fmt: skip
     return misses

@@ -30,8 +30,8 @@ from scipy.interpolate import PchipInterpolator
 
 from synthesis.fingerspelling.alphabet import AlphabetError
 from synthesis.rigs.body import BodyModel
-from synthesis.rigs.face import gaze_degrees, is_face_dof
-from synthesis.rigs.ik import hand_frame, solve_arm_turning
+from synthesis.rigs.face import is_face_dof
+from synthesis.signing.keys import SPINE_JOINTS, Key, KeySolver
 from synthesis.signing.liveliness import Liveliness, joint_group
 from synthesis.signing.nonmanual import (
     NonmanualError,
@@ -42,19 +42,13 @@ from synthesis.signing.nonmanual import (
     parse_spans,
 )
 from synthesis.signing.signs import SignError, SignLibrary, default_library
-from synthesis.signing.spine import SpineParams, spine_motion
+from synthesis.signing.spine import SpineParams
 
-SPINE_JOINTS = ("spine_lower", "spine_middle", "spine_upper")
 REST_HOLD_MS = 150.0
 LEAD_MS = 450.0
-# The eyes turn this share of a keyed head turn or nod, ahead of the head (gaze leads).
-GAZE_SHARE = 0.5
 # A phrase-boundary blink starts this long after the phrase's last sign.
 BLINK_AFTER_MS = 60.0
 FACE_MODES = ("on", "neutral", "off")
-# Seed 003's torso frame (x right, y forward, z up) in the engine's world (x to the
-# viewer's right = the signer's left, y up, z toward the viewer).
-TORSO_TO_WORLD = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
 
 
 @dataclass(frozen=True)
@@ -148,28 +142,20 @@ def _is_spelled(token: str) -> bool:
     return len(parts) > 1 and all(len(p) == 1 and p.isalpha() for p in parts)
 
 
-@dataclass
-class _Key:
-    ms: float
-    hands: dict
-    spine_deg: dict
-    head_deg: dict
-
-
-def _spelled_keys(token: str, library: SignLibrary, rest: dict, t: float) -> list[_Key]:
+def _spelled_keys(token: str, library: SignLibrary, rest: dict, t: float) -> list[Key]:
     """Return a fingerspelled token's keys from *t* (ms): each letter held, then moved on."""
     spelling = library.spelling
-    keys: list[_Key] = []
+    keys: list[Key] = []
     for character in token.split("-"):
         hand = library.hand("right", {**spelling, "shape": character}, token)
         pose = {"right": hand, "left": rest["left"]}
-        keys += [_Key(t, pose, {}, {}),
-                 _Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
+        keys += [Key(t, pose, {}, {}),
+                 Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
         t = keys[-1].ms + float(spelling.get("transition_ms", 110))
     return keys
 
 
-def _sign_keys(sign, rest: dict, t: float) -> list[_Key]:
+def _sign_keys(sign, rest: dict, t: float) -> list[Key]:
     """Return a sign's keys from *t* (ms); a hand the sign leaves out stays at rest, and a
     hand holds its last pose between the keys that name it."""
     used = {side for key in sign for side in key.hands}
@@ -178,14 +164,14 @@ def _sign_keys(sign, rest: dict, t: float) -> list[_Key]:
     for key in sign:
         last.update(key.hands)
         hands = {side: last[side] if side in used else rest[side] for side in rest}
-        keys.append(_Key(t + key.ms, hands, key.spine_deg, key.head_deg))
+        keys.append(Key(t + key.ms, hands, key.spine_deg, key.head_deg))
         if key.hold_ms > 0:
-            keys.append(_Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
+            keys.append(Key(t + key.ms + key.hold_ms, hands, key.spine_deg, key.head_deg))
     return keys
 
 
 def timeline(glosses, library: SignLibrary,
-              gaps_ms=None) -> tuple[list[_Key], list[tuple[float, float]]]:  # fmt: skip
+              gaps_ms=None) -> tuple[list[Key], list[tuple[float, float]]]:  # fmt: skip
     """Return the sentence's keys in time order, holds written out as repeated keys, and
     each token's first and last key (ms).
 
@@ -197,7 +183,7 @@ def timeline(glosses, library: SignLibrary,
                         f"not {len(gaps_ms)}.")  # fmt: skip
     gaps = list(gaps_ms) if gaps_ms is not None else [library.transition_ms] * (len(glosses) - 1)
     rest = {side: library.hand(side, library.rest, "rest") for side in ("right", "left")}
-    keys = [_Key(0.0, dict(rest), {}, {}), _Key(REST_HOLD_MS, dict(rest), {}, {})]
+    keys = [Key(0.0, dict(rest), {}, {}), Key(REST_HOLD_MS, dict(rest), {}, {})]
     t = LEAD_MS
     tokens_ms = []
     for token in glosses:
@@ -209,72 +195,8 @@ def timeline(glosses, library: SignLibrary,
         tokens_ms.append((keys[first].ms, keys[-1].ms))
         t = keys[-1].ms + (gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps)
                            else library.transition_ms)  # fmt: skip
-    keys += [_Key(t, dict(rest), {}, {}), _Key(t + REST_HOLD_MS, dict(rest), {}, {})]
+    keys += [Key(t, dict(rest), {}, {}), Key(t + REST_HOLD_MS, dict(rest), {}, {})]
     return keys, tokens_ms
-
-
-class KeySolver:
-    """Key postures → body DOFs, and the automated spine motion for them."""
-
-    def __init__(self, body: BodyModel, params: SpineParams):
-        self.body, self.params = body, params
-        pose = body.pose(body.neutral()).positions_m[0]
-        index = body.skeleton.index
-        self.origin = (pose[index("right_clavicle")] + pose[index("left_clavicle")]) / 2
-        self.shoulders = {
-            side: TORSO_TO_WORLD.T @ (pose[index(f"{side}_shoulder")] - self.origin)
-            for side in ("right", "left")
-        }
-        self.names = body.dof_names
-
-    def world(self, torso_m: np.ndarray) -> np.ndarray:
-        return self.origin + TORSO_TO_WORLD @ torso_m
-
-    def trunk(self, spine_deg: dict, head_deg: dict) -> np.ndarray:
-        """Return the keyed trunk pose: spine angles split over the spine joints."""
-        dofs = self.body.neutral()
-        p = self.params
-        for name, value in spine_deg.items():
-            split = p.twist_split if name == "rotation" else p.bend_split
-            for joint, weight in zip(SPINE_JOINTS, split, strict=True):
-                dofs[self.names.index(f"{joint}_{name}")] += np.radians(value) * weight
-        for name, value in head_deg.items():
-            dofs[self.names.index(f"head_{name}")] += np.radians(value)
-        gaze = gaze_degrees(GAZE_SHARE * head_deg.get("rotation", 0.0),
-                            GAZE_SHARE * head_deg.get("flexion", 0.0))  # fmt: skip
-        for name, value in gaze.items():
-            dofs[self.names.index(name)] += np.radians(value)
-        return dofs
-
-    def keys(self, keys: list[_Key], automated: np.ndarray) -> np.ndarray:
-        """Return the body DOFs (n_keys, n_dofs) of the keys: the keyed trunk plus the
-        *automated* spine and clavicle DOFs, then the arms by IK from there."""
-        dofs = np.stack([self.trunk(k.spine_deg, k.head_deg) for k in keys]) + automated
-        for side in ("right", "left"):
-            hands = [k.hands[side] for k in keys]
-            rotations = np.stack([hand_frame(TORSO_TO_WORLD @ h.palm, TORSO_TO_WORLD @ h.fingers)
-                                  for h in hands])  # fmt: skip
-            targets = np.stack([self.world(h.at_m) for h in hands])
-            swivels = np.array([h.swivel_rad for h in hands])
-            dofs = solve_arm_turning(self.body, dofs, side, targets, rotations, swivels)
-            dofs = self.body.with_hand(dofs, side, np.stack([h.shape_rad for h in hands]),
-                                       digits_only=True)  # fmt: skip
-        return dofs
-
-    def automated(self, keys: list[_Key]) -> np.ndarray:
-        """Return the automated spine and clavicle DOFs (n_keys, n_dofs) from the targets."""
-        right = np.stack([k.hands["right"].at_m for k in keys])
-        left = np.stack([k.hands["left"].at_m for k in keys])
-        motion = spine_motion(right, left, self.shoulders["right"], self.shoulders["left"],
-                              self.params)  # fmt: skip
-        out = np.zeros((len(keys), len(self.names)))
-        for joint, angles in motion.spine_angles(self.params).items():
-            for column, name in enumerate(("flexion", "side_bend", "rotation")):
-                out[:, self.names.index(f"{joint}_{name}")] = angles[:, column]
-        for side in ("right", "left"):
-            out[:, self.names.index(f"{side}_clavicle_raise")] = motion.clavicle_raise_rad[side]
-            out[:, self.names.index(f"{side}_clavicle_forward")] = motion.clavicle_forward_rad[side]
-        return out
 
 
 def _offsets_ms(names: list[str], stagger: Stagger) -> np.ndarray:
@@ -334,13 +256,16 @@ def synthesize(
     # Signs are written for a right-handed signer; a left-handed one mirrors them.
     solver = KeySolver(BodyModel("right"), options.params)
     auto_keys = solver.automated(keys) if options.spine else np.zeros((len(keys), len(names)))
-    # The arms reach the key's targets from the torso as the spine leaves it, so the
-    # hands' positions are the same in both conditions.
-    keyed = solver.keys(keys, auto_keys)
     times_s = np.array([k.ms for k in keys]) / 1000.0
     count = int(np.floor(times_s[-1] * options.rate_hz + 1e-9)) + 1
     at_s = np.arange(count) / options.rate_hz
     offsets = _offsets_ms(names, options.stagger)
+    # The arms reach the key's targets from the torso as the spine, leading by the
+    # stagger, has left it at the key's time, so the hands' positions are the same in
+    # both conditions (and a hand placed on the body keeps its contact).
+    keyed = solver.keys(
+        keys, auto_keys, lambda key_dofs: _interpolate(times_s, key_dofs, offsets, times_s)
+    )
     dofs = _interpolate(times_s, keyed, offsets, at_s)
     automated = _interpolate(times_s, auto_keys, offsets, at_s)
     # Checked whatever the face shows: a misspelt signal is an error in every condition.

@@ -41,16 +41,26 @@ class SignError(ValueError):
     """A malformed sign library or an unknown gloss."""
 
 
+# Body parts a hand key can be placed on, and the joint whose motion carries it.
+BODY_PARTS = {"head": "head", "chest": "spine_upper"}
+
+
 @dataclass(frozen=True)
 class HandKey:
     """One hand in one key: wrist position (3,) and palm and finger directions (3,), torso
-    frame; handshape DOFs (radians, right-hand model order); elbow swivel (rad)."""
+    frame; handshape DOFs (radians, right-hand model order); elbow swivel (rad).
+
+    *body* names the body part the key is placed at (``BODY_PARTS``): its position and
+    directions are the part's and move with it when the automated spine moves the part;
+    empty for a key in the signing space, which stays where it is.
+    """
 
     at_m: np.ndarray
     palm: np.ndarray
     fingers: np.ndarray
     shape_rad: np.ndarray
     swivel_rad: float
+    body: str = ""
 
 
 @dataclass(frozen=True)
@@ -90,11 +100,18 @@ class SignLibrary:
         """Return a hand key from its library entry (positions mirrored for the left)."""
         try:
             at = spec["at"]
-            position = np.array(self.locations[at] if isinstance(at, str) else at, dtype=float)
+            named = self.locations[at] if isinstance(at, str) else at
+            place = named if isinstance(named, dict) else {"at": named}
+            position = np.array(place["at"], dtype=float)
             if position.shape != (3,):
                 raise ValueError
         except (KeyError, ValueError, TypeError):
             raise SignError(f"{where}: unknown or malformed position {spec.get('at')!r}.") from None
+        body = str(spec.get("body", place.get("body", "")))
+        if body and body not in BODY_PARTS:
+            raise SignError(
+                f"{where}: a key's body part is one of {', '.join(BODY_PARTS)}, not {body!r}."
+            )
         if side == "left":
             position[0] = -position[0]
         return HandKey(
@@ -103,6 +120,7 @@ class SignLibrary:
             _direction(spec.get("fingers", "up"), side, where),
             self.shape(spec.get("shape", "relaxed"), where),
             np.radians(float(spec.get("swivel_deg", 20.0))),
+            body,
         )
 
     def shape(self, name, where: str) -> np.ndarray:

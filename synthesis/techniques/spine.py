@@ -95,8 +95,8 @@ TECHNIQUE = Technique(
             "0.25 m comfort radius and twisting both ways (a departure from seed 003, "
             "named in every condition's description); seed: §3.1's bend "
             "c0·smoothstep(|V_reach|/L_arm) and one-way twist as printed (it bends the "
-            "torso about 11° with the hands in front of the chest, and signs made on the "
-            "body reach into it).",
+            "torso about 11° with the hands in front of the chest and 14° with the arms "
+            "at rest; hands placed on the body go with it).",
             choices=FORMULAS,
             labels=FORMULA_LABELS,
         ),

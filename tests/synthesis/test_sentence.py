@@ -5,8 +5,14 @@ import itertools
 import numpy as np
 import pytest
 
-from synthesis.signing.sentence import SentenceOptions, Stagger, parse_glosses, synthesize
-from synthesis.signing.signs import SignError
+from synthesis.signing.sentence import (
+    SentenceOptions,
+    Stagger,
+    parse_glosses,
+    synthesize,
+    timeline,
+)
+from synthesis.signing.signs import SignError, default_library
 from synthesis.signing.stories import SPINE_STORY
 
 QUIET = dict(liveliness=None)
@@ -31,19 +37,24 @@ def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text)
                "left_wrist")  # fmt: skip
     assert changed and all(name.startswith(allowed) for name in changed)
     assert any(name.startswith("spine_") for name in changed)
-    # The hands are where the signs put them in both: in held postures the wrists
-    # coincide (unstaggered, so the spine holds still with the arm), except where a far
-    # target is out of the arm's reach or its joint limits without the spine's help
-    # (SEARCH's far side, GET's far forward…; measured: 71–100 % of held postures
-    # within 1 cm per sentence).
+    # The hands are where the signs put them in both: in held postures in the signing
+    # space the wrists coincide (unstaggered, so the spine holds still with the arm),
+    # except where a far target is out of the arm's reach or its joint limits without
+    # the spine's help (SEARCH's far side, GET's far forward…; measured: 76–94 % of
+    # held postures within 1 cm per sentence). A hand placed on the body (``body:``)
+    # goes with the body instead, so it is not compared.
     still = dict(stagger=Stagger(0, 0, (0, 0, 0), 0), **QUIET)
     on_q = synthesize(text, SentenceOptions(spine=True, **still))
     off_q = synthesize(text, SentenceOptions(spine=False, **still))
-    keys = on_q.key_times_s
-    middles = [(a + b) / 2 for a, b in itertools.pairwise(keys) if b - a > 0.05]
+    keys, _ = timeline(on_q.glosses, default_library())
+    held = [k for k, (a, b) in enumerate(itertools.pairwise(on_q.key_times_s)) if b - a > 0.05]
+    middles = [(on_q.key_times_s[k] + on_q.key_times_s[k + 1]) / 2 for k in held]
     frames = np.round(np.array(middles) * on_q.rate_hz).astype(int)
     apart = np.linalg.norm(_wrists(on_q, frames) - _wrists(off_q, frames), axis=2)
-    assert np.mean(apart < 0.01) >= 0.7
+    in_space = np.array(
+        [[not keys[k].hands[side].body for side in ("right", "left")] for k in held]
+    )
+    assert np.mean(apart[in_space] < 0.01) >= 0.7
     assert not np.any(off_q.automated_rad)
 
 
