@@ -7,20 +7,18 @@ torso frame: x to the signer's right, y forward, z up, metres; angles in radians
 
 Two readings of §3.1, chosen by ``SpineParams.formula``:
 
-- ``"seed"``: the equations as printed. The bend is ``c0·smoothstep(|V_reach|/L_arm)``
-  about ``Z × V_reach`` (no bend only for an exactly vertical reach), and the twist
-  ``c1·smoothstep(V_w·V_twist/(2 L_arm))`` is clamped at zero by the smoothstep, so it
-  turns one way only.
-- ``"comfort"`` (the default; this project's variant): the paper's text says hands in
+- ``"seed"`` (the default): the equations as printed. The bend is
+  ``c0·smoothstep(|V_reach|/L_arm)`` about ``Z × V_reach`` (no bend only for an exactly
+  vertical reach), and the twist ``c1·smoothstep(V_w·V_twist/(2 L_arm))`` is clamped at
+  zero by the smoothstep, so it turns one way only. The torso leans about 11° over hands
+  in front of the chest and 15° (c0 = 16°) over arms at rest; a hand the sign library
+  places on the head or chest goes with it (synthesis.signing.keys).
+- ``"comfort"`` (this project's variant, a named option): the paper's text says hands in
   the proximal signing space have "very little effect", which the printed bend
-  contradicts (it bends well over half-way for hands resting in front of the chest and
-  nearly fully for arms at rest). The variant bends by the reach's horizontal part
-  beyond a comfort radius, ``x = (|V_xy| − r) / (L_arm − r)``, and twists both ways,
-  ``sign(x)·smoothstep(|x|)``, since the text's two arms "cancel" and "amplify" each
-  other. It stays the default because the sign library's hand targets are fixed in
-  space: a torso bent toward a sign made on the body (ME, MY, REMEMBER) carries the
-  chest into the hand, up to 8 cm with the printed formula (issue 53's notes). Every
-  condition's description says which formula it uses.
+  contradicts. The variant bends by the reach's horizontal part beyond a comfort radius,
+  ``x = (|V_xy| − r) / (L_arm − r)``, and twists both ways, ``sign(x)·smoothstep(|x|)``,
+  since the text's two arms "cancel" and "amplify" each other. Every condition's
+  description says which formula it uses.
 
 Where the paper leaves a choice open, this module decides and says so:
 
@@ -70,7 +68,7 @@ class SpineParams:
     twist_split: tuple[float, float, float] = (0.15, 0.30, 0.55)
     arm_length_m: float = 0.55  # L_arm, shoulder to wrist at full reach
     comfort_m: float = 0.25  # r, used by the "comfort" formula only
-    formula: str = "comfort"  # "comfort" (the variant) or "seed" (§3.1 as printed)
+    formula: str = "seed"  # "comfort" (the variant) or "seed" (§3.1 as printed)
 
     def __post_init__(self) -> None:
         for name in ("bend_split", "twist_split"):

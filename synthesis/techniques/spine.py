@@ -91,12 +91,12 @@ TECHNIQUE = Technique(
             "spine_formula",
             "choice",
             DEFAULTS.formula,
-            "comfort: SignStudy's variant, bending only for the horizontal reach beyond a "
-            "0.25 m comfort radius and twisting both ways (a departure from seed 003, "
-            "named in every condition's description); seed: §3.1's bend "
-            "c0·smoothstep(|V_reach|/L_arm) and one-way twist as printed (it bends the "
-            "torso about 11° with the hands in front of the chest and 14° with the arms "
-            "at rest; hands placed on the body go with it).",
+            "seed (the default): §3.1's bend c0·smoothstep(|V_reach|/L_arm) and one-way "
+            "twist as printed (it bends the torso about 11° with the hands in front of "
+            "the chest and 15° with the arms at rest; hands placed on the body go with "
+            "it); comfort: SignStudy's variant, bending only for the horizontal reach "
+            "beyond a 0.25 m comfort radius and twisting both ways (a departure from "
+            "seed 003, named in every condition's description).",
             choices=FORMULAS,
             labels=FORMULA_LABELS,
         ),

@@ -214,7 +214,7 @@ def test_downloads(bob_client, spine):
     methods = results["design"]["condition_methods"]
     assert set(methods) == set(results["design"]["conditions"])
     on = next(text for text in methods.values() if "Automated spine motion: on" in text)
-    assert "comfort-radius variant (SignStudy's, not the seed's)" in on
+    assert "seed 003 as printed" in on
     assert "Automated spine motion: off" in " ".join(methods.values())
     html = archive.read("report/report.html").decode()
     assert "How each condition's clips were made" in html

@@ -49,7 +49,7 @@ def human():
     return avatar_for("upper-body", "right", Look())
 
 
-# Both readings of seed 003's spine: the printed bend leans the torso 10–14° toward the
+# Both readings of seed 003's spine: the printed bend leans the torso 10–15° toward the
 # hands, and a hand placed on the body (the library's ``body:``) goes with it.
 FORMULAS = ("comfort", "seed")
 

@@ -13,6 +13,7 @@ from synthesis.signing.sentence import (
     timeline,
 )
 from synthesis.signing.signs import SignError, default_library
+from synthesis.signing.spine import SpineParams
 from synthesis.signing.stories import SPINE_STORY
 
 QUIET = dict(liveliness=None)
@@ -24,9 +25,16 @@ def _wrists(sentence, frames):
     return np.stack([pose.positions_m[:, index(f"{s}_wrist")] for s in ("right", "left")], 1)
 
 
+# Held postures in the signing space whose wrists coincide with the spine on and off,
+# at least (measured per story sentence: seed 66–88 %, comfort 76–94 %).
+COINCIDE = {"seed": 0.6, "comfort": 0.7}
+
+
+@pytest.mark.parametrize("formula", sorted(COINCIDE))
 @pytest.mark.parametrize("text", SPINE_STORY)
-def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text):
-    on = synthesize(text, SentenceOptions(spine=True))
+def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text, formula):
+    params = SpineParams(formula=formula)
+    on = synthesize(text, SentenceOptions(spine=True, params=params))
     off = synthesize(text, SentenceOptions(spine=False))
     assert on.dofs_rad.shape == off.dofs_rad.shape
     changed = {name for name, d in zip(on.body.dof_names,
@@ -39,11 +47,11 @@ def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text)
     assert any(name.startswith("spine_") for name in changed)
     # The hands are where the signs put them in both: in held postures in the signing
     # space the wrists coincide (unstaggered, so the spine holds still with the arm),
-    # except where a far target is out of the arm's reach or its joint limits without
-    # the spine's help (SEARCH's far side, GET's far forward…; measured: 76–94 % of
-    # held postures within 1 cm per sentence). A hand placed on the body (``body:``)
+    # except where a target is out of the arm's reach or its joint limits without the
+    # spine's help (SEARCH's far side, GET's far forward…) or with it (the seed's bend
+    # leans the torso 15° over hands at rest). A hand placed on the body (``body:``)
     # goes with the body instead, so it is not compared.
-    still = dict(stagger=Stagger(0, 0, (0, 0, 0), 0), **QUIET)
+    still = dict(stagger=Stagger(0, 0, (0, 0, 0), 0), params=params, **QUIET)
     on_q = synthesize(text, SentenceOptions(spine=True, **still))
     off_q = synthesize(text, SentenceOptions(spine=False, **still))
     keys, _ = timeline(on_q.glosses, default_library())
@@ -54,7 +62,7 @@ def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text)
     in_space = np.array(
         [[not keys[k].hands[side].body for side in ("right", "left")] for k in held]
     )
-    assert np.mean(apart[in_space] < 0.01) >= 0.7
+    assert np.mean(apart[in_space] < 0.01) >= COINCIDE[formula]
     assert not np.any(off_q.automated_rad)
 
 
@@ -80,7 +88,7 @@ def test_the_spine_leads_the_arm_by_the_stagger():
     names = base.body.dof_names
     column = names.index("spine_lower_flexion")
     a, b = base.automated_rad[:, column], staggered.automated_rad[:, column]
-    assert np.ptp(a) > 0.05
+    assert np.ptp(a) > 0.03  # measured 0.044 rad
     assert np.allclose(b[:-6], a[6:], atol=1e-9)
     upper = names.index("spine_upper_flexion")
     assert np.allclose(base.automated_rad[:, upper], staggered.automated_rad[:, upper])
