@@ -1,4 +1,5 @@
-"""One-way repeated-measures ANOVA with Mauchly's test and Greenhouse–Geisser correction."""
+"""One-way repeated-measures ANOVA with Mauchly's test and the Greenhouse–Geisser and
+Huynh–Feldt corrections."""
 
 import numpy as np
 import pandas as pd
@@ -23,13 +24,15 @@ def _orthonormal_contrasts(k: int) -> np.ndarray:
 def sphericity(scores: np.ndarray) -> tuple[float, float, float]:
     """Return Mauchly's W, its p-value, and the Greenhouse–Geisser epsilon.
 
-    *scores* is (n_subjects, k_levels). Formulas: Mauchly (1940) W = det(S) / (tr(S)/p)^p
-    with p = k − 1 and S the covariance of orthonormal contrasts; Greenhouse & Geisser
-    (1959) ε = tr(S)² / (p tr(S²)), bounded to [1/p, 1].
+    *scores* is (n_subjects, k_levels); with two levels W and p are NaN (no test) and ε
+    is 1. Formulas: Mauchly (1940) W = det(S) / (tr(S)/p)^p with p = k − 1 and S the
+    covariance of orthonormal contrasts; Greenhouse & Geisser (1959) ε = tr(S)² /
+    (p tr(S²)), bounded to [1/p, 1].
     """
     n, k = scores.shape
     if k < 3:
-        return 1.0, 1.0, 1.0  # two levels: sphericity holds trivially
+        # Two levels: sphericity holds trivially and there is nothing to test.
+        return float("nan"), float("nan"), 1.0
     contrasts = _orthonormal_contrasts(k)
     covariance = contrasts @ np.cov(scores, rowvar=False, ddof=1) @ contrasts.T
     p = k - 1
@@ -55,6 +58,21 @@ def sphericity(scores: np.ndarray) -> tuple[float, float, float]:
     first, second = stats.chi2.sf(chi2, dof), stats.chi2.sf(chi2, dof + 4)
     pvalue = first + w2 * (second - first)
     return float(w), float(pvalue), float(min(max(epsilon, 1 / p), 1.0))
+
+
+def huynh_feldt(epsilon_gg: float, n: int, k: int) -> float:
+    """Return the Huynh–Feldt epsilon from the Greenhouse–Geisser one, at most 1.
+
+    Huynh & Feldt (1976), as R's ``anova.mlm`` computes it for one group:
+    ε̃ = (n p ε̂ − 2) / (p (n − 1 − p ε̂)) with p = k − 1 and n subjects.
+    """
+    p = k - 1
+    if p < 2:
+        return 1.0
+    denominator = p * (n - 1 - p * epsilon_gg)
+    if denominator <= 0:
+        return 1.0
+    return float(min((n * p * epsilon_gg - 2) / denominator, 1.0))
 
 
 def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
@@ -99,6 +117,7 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
     df_num = float(table["Num DF"].iloc[0])
     df_den = float(table["Den DF"].iloc[0])
     w, w_p, epsilon = sphericity(values)
+    epsilon_hf = huynh_feldt(epsilon, n, k)
     return RmAnovaResult(
         statistic=f_value,
         df_num=df_num,
@@ -112,4 +131,6 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
         nobs=n,
         levels=levels,
         notes=tuple(notes),
+        epsilon_hf=epsilon_hf,
+        pvalue_hf=float(stats.f.sf(f_value, epsilon_hf * df_num, epsilon_hf * df_den)),
     )

@@ -39,7 +39,7 @@ def _report(args: argparse.Namespace) -> int:
             min_median_page_s=args.min_median_page_s,
         ),
     )
-    report = build_report(frame, options, source=Path(args.csv).name)
+    report = build_report(frame, options, source=Path(args.csv).name, title=args.title)
     kept, _ = apply_exclusions(frame, options.exclusions)
     written = write_report(report, kept, args.out, draw_figures=not args.no_figures)
     print(
@@ -122,6 +122,7 @@ def parser() -> argparse.ArgumentParser:
     report.add_argument("csv", help="tidy responses (docs/tidy-format.md)")
     report.add_argument("--out", required=True, help="output folder")
     report.add_argument("--conditions", help="condition order, comma-separated")
+    report.add_argument("--title", default="", help="the study's title, heading the report")
     report.add_argument("--ties", choices=("exclude", "split"), default="exclude")
     report.add_argument("--correction", choices=tuple(CORRECTIONS), default="holm")
     report.add_argument("--comparative-points", type=int, default=5)

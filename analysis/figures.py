@@ -112,6 +112,8 @@ def ratings_plot(frame):
     )  # fmt: skip
     colours = plt.get_cmap("tab10").colors
     step = 0.8 / len(conditions)
+    # One legend entry per condition, whichever panel drew it first.
+    handles = {}
     for axis, question in zip(axes[0], questions, strict=True):
         subset = rows[rows["question"] == question]
         for k, condition in enumerate(conditions):
@@ -121,19 +123,27 @@ def ratings_plot(frame):
                 continue
             data = [mine[mine["item"] == items[i]]["rating"].to_numpy() for i in present]
             offset = (k - (len(conditions) - 1) / 2) * step
-            # Tukey box plots: whiskers at 1.5 IQR.
+            # Tukey box plots (whiskers at 1.5 IQR) with a black median, which the
+            # default orange hid on orange boxes.
             parts = axis.boxplot(
                 data, positions=[i + offset for i in present], widths=0.9 * step,
                 whis=1.5, patch_artist=True, manage_ticks=False,
+                medianprops={"color": "black", "linewidth": 1.5},
             )  # fmt: skip
             for box in parts["boxes"]:
                 box.set(facecolor=colours[k % len(colours)], alpha=0.6)
-            parts["boxes"][0].set_label(condition)
+            handles.setdefault(condition, parts["boxes"][0])
         _tick_labels(axis, list(items), panel)
         axis.set_title(question, fontsize=10)
     axes[0][0].set_ylabel("Rating")
     if len(conditions) > 1:
-        figure.legend(loc="outside lower center", ncols=min(len(conditions), 4), fontsize=9)
+        figure.legend(
+            list(handles.values()),
+            list(handles),
+            loc="outside lower center",
+            ncols=min(len(conditions), 4),
+            fontsize=9,
+        )
     return figure
 
 

@@ -25,8 +25,8 @@ CONDITION_COLUMNS = {
 }  # fmt: skip
 POSTHOC_COLUMNS = {
     "a": "a", "b": "b", "t": "statistic", "df": "df", "p": "pvalue",
-    "p_adjusted": "pvalue_adjusted", "dz": "dz", "mean_difference": "mean_difference",
-    "ci": "ci", "apa": "apa",
+    "p_adjusted": "pvalue_adjusted", "dz": "dz", "dz_ci": "dz_ci",
+    "mean_difference": "mean_difference", "ci": "ci", "apa": "apa",
 }  # fmt: skip
 WILCOXON_COLUMNS = {
     "a": "a", "b": "b", "V": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
@@ -35,7 +35,7 @@ WILCOXON_COLUMNS = {
 PAIRED_COLUMNS = {
     "a": "a", "b": "b", "n": "nobs", "mean_difference": "ttest.mean_difference",
     "ci": "ttest.ci", "t": "ttest.statistic", "df": "ttest.df", "t_p": "ttest.pvalue",
-    "t_p_adjusted": "ttest.pvalue_adjusted", "dz": "ttest.dz",
+    "t_p_adjusted": "ttest.pvalue_adjusted", "dz": "ttest.dz", "dz_ci": "ttest.dz_ci",
     "wilcoxon_V": "wilcoxon.statistic", "wilcoxon_p": "wilcoxon.pvalue",
     "wilcoxon_method": "wilcoxon.method",
     "wilcoxon_p_adjusted": "wilcoxon.pvalue_adjusted",
@@ -47,6 +47,46 @@ COMPARATIVE_COLUMNS = {
     "rank_biserial": "rank_biserial", "participants": "nobs", "judgements": "judgements",
     "apa": "apa",
 }  # fmt: skip
+
+
+# The HTML report's column headings for a reader; a column not named here shows its name
+# with spaces (the CSV, LaTeX and Markdown tables keep the column names).
+HEADINGS = {
+    "a_wins": "a chosen",
+    "b_wins": "b chosen",
+    "pct_a": "% a",
+    "p_two_sided": "p (two-sided)",
+    "p_one_sided_majority": "p (one-sided, majority)",
+    "p_adjusted": "p adjusted",
+    "win_rate": "win rate",
+    "mean_participant_rate": "mean win rate (participants)",
+    "sem": "SEM",
+    "sd": "SD",
+    "q1": "Q1",
+    "q3": "Q3",
+    "n_participants": "participants",
+    "ci_low": "95 % CI low",
+    "ci_high": "95 % CI high",
+    "dz": "d_z",
+    "dz_ci_low": "d_z 95 % CI low",
+    "dz_ci_high": "d_z 95 % CI high",
+    "rank_biserial": "rank-biserial r",
+    "pct_ge3": "% rating ≥ 3",
+    "pct_ge4": "% rating ≥ 4",
+    "t_p": "t-test p",
+    "t_p_adjusted": "t-test p adjusted",
+    "wilcoxon_V": "Wilcoxon V",
+    "wilcoxon_p": "Wilcoxon p",
+    "wilcoxon_method": "Wilcoxon method",
+    "wilcoxon_p_adjusted": "Wilcoxon p adjusted",
+    "mean_preference_a": "mean preference for a",
+    "mean_accuracy": "mean accuracy",
+}
+
+
+def heading(column: str) -> str:
+    """Return the HTML report's heading of a table column."""
+    return HEADINGS.get(column, column.replace("_", " "))
 
 
 def _field(row: dict, path: str):
@@ -63,8 +103,8 @@ def _table(rows: list[dict], columns: dict[str, str], first: tuple[str, ...] = (
         cells = {name: row[name] for name in first}
         for column, path in columns.items():
             value = _field(row, path)
-            if column == "ci":
-                cells["ci_low"], cells["ci_high"] = value
+            if column.endswith("ci"):
+                cells[f"{column}_low"], cells[f"{column}_high"] = value
             else:
                 cells[column] = value
         table.append(cells)
@@ -314,9 +354,9 @@ def render_html(report: Report, data: dict, table_files: dict, figure_files: lis
         data=data,
         # APA sentences are listed under their table, not squeezed into a column.
         tables={
-            name: frame.drop(columns=["apa"], errors="ignore").to_html(
-                index=False, border=0, float_format=lambda v: f"{v:.4g}", na_rep="–"
-            )
+            name: frame.drop(columns=["apa"], errors="ignore")
+            .rename(columns=heading)
+            .to_html(index=False, border=0, float_format=lambda v: f"{v:.4g}", na_rep="–")
             for name, frame in table_files.items()
         },
         figures=[name for name in figure_files if name.endswith(".png")],

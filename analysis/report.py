@@ -78,6 +78,8 @@ class Report(Result):
     mixed: MixedModels | None = None
     # How each participant took the pages (all participants, before exclusions).
     quality: tuple[ParticipantQuality, ...] = ()
+    # The study's title as its researchers wrote it ("" names the report by its studies).
+    title: str = ""
     # Comparative-scale preferences per pair of conditions (signed-rank tests).
     comparative: tuple[ComparativePreference, ...] = ()
     # Each condition across items, on participants' means, and paired tests between them.
@@ -129,6 +131,7 @@ def build_report(
     options: ReportOptions = ReportOptions(),
     source: str = "responses",
     methods: Mapping[str, str] | None = None,
+    title: str = "",
 ) -> Report:
     """Apply the exclusions, then run the pairwise, rating and intelligibility analyses.
 
@@ -137,6 +140,7 @@ def build_report(
     :func:`~analysis.tidy.check_responses` names them so); *options* may list their keys.
     *methods* says how each condition (by key) was made, in words, for the Method
     section: the techniques and their settings, which the table itself does not carry.
+    *title* heads the report (the study's own title; the table carries only its slug).
     """
     frame = label_simulated(label_conditions(frame))
     if options.conditions:
@@ -150,6 +154,7 @@ def build_report(
         design["condition_methods"] = _methods(design, methods)
     return Report(
         source=source,
+        title=title,
         studies=tuple(sorted(set(frame["study"]) - {""})),
         design=design,
         exclusions=exclusions,
@@ -208,6 +213,7 @@ def results_json(report: Report) -> dict[str, Any]:
     vocabulary (``statistic``, ``pvalue``, ``nobs``…), with its APA sentence."""
     return {
         "source": report.source,
+        "title": report.title,
         "studies": list(report.studies),
         "design": plain(report.design),
         "exclusions": report.exclusions.to_dict(),

@@ -127,7 +127,9 @@ class ConditionRate(Result):
 class RmAnovaResult(Result):
     """One-way repeated-measures ANOVA with sphericity test and correction.
 
-    ``pvalue_gg`` uses the Greenhouse–Geisser epsilon; ``eta_p2`` is partial η².
+    ``pvalue_gg`` uses the Greenhouse–Geisser epsilon, ``pvalue_hf`` the Huynh–Feldt one;
+    ``eta_p2`` is partial η². With two levels there is no sphericity test (Mauchly's W
+    and its p are NaN).
     """
 
     statistic: float
@@ -142,6 +144,8 @@ class RmAnovaResult(Result):
     nobs: int
     levels: tuple[str, ...]
     notes: tuple[str, ...] = ()
+    epsilon_hf: float = float("nan")
+    pvalue_hf: float = float("nan")
 
     def apa(self) -> str:
         if not math.isfinite(self.statistic):
@@ -151,7 +155,10 @@ class RmAnovaResult(Result):
             f"{format_p(self.pvalue)}, η²p = {_two(self.eta_p2).lstrip('0')}"
         )
         if self.mauchly_pvalue is not None and self.mauchly_pvalue < 0.05:
-            text += f" (Greenhouse–Geisser ε = {self.epsilon_gg:.2f}, {format_p(self.pvalue_gg)})"
+            text += (
+                f" (Greenhouse–Geisser ε = {self.epsilon_gg:.2f}, {format_p(self.pvalue_gg)}; "
+                f"Huynh–Feldt ε = {self.epsilon_hf:.2f}, {format_p(self.pvalue_hf)})"
+            )
         return text
 
 
@@ -169,6 +176,8 @@ class PairedTTest(Result):
     ci: tuple[float, float]
     dz: float
     nobs: int
+    # Exact 95 % CI of d_z (noncentral t; analysis.within.dz_interval).
+    dz_ci: tuple[float, float] = (float("nan"), float("nan"))
 
     def apa(self) -> str:
         if not _finite(self.statistic):
@@ -178,6 +187,7 @@ class PairedTTest(Result):
             f"t({self.df}) = {self.statistic:.2f}, "
             f"{format_p(self.pvalue)} ({format_p(self.pvalue_adjusted).replace('p', 'p_adj', 1)}),"
             f" d_z = {_two(self.dz)}"
+            + (f" [{_two(self.dz_ci[0])}, {_two(self.dz_ci[1])}]" if _finite(self.dz_ci[0]) else "")
         )
 
 
@@ -217,10 +227,13 @@ class WilcoxonTest(Result):
     rank_biserial: float
     nobs: int
     method: str = ""
+    # Why V was not computed, when it was not.
+    note: str = ""
 
     def apa(self) -> str:
         if not _finite(self.statistic):
-            return f"{self.a} vs {self.b}: V not computed (n = {self.nobs}; needs 2 or more)"
+            why = self.note or "needs 2 or more"
+            return f"{self.a} vs {self.b}: V not computed (n = {self.nobs}; {why})"
         return (
             f"{self.a} vs {self.b}: V = {self.statistic:g}, {format_p(self.pvalue)}"
             f"{f' ({self.method})' if self.method else ''} "

@@ -5,7 +5,7 @@ from itertools import combinations
 
 import numpy as np
 import pandas as pd
-from scipy import stats
+from scipy import optimize, special, stats
 from statsmodels.stats.multitest import multipletests
 
 from analysis.results import APPROXIMATE, EXACT, FriedmanResult, PairedTTest, WilcoxonTest
@@ -41,13 +41,45 @@ def holm(pvalues) -> np.ndarray:
     return adjusted
 
 
+def dz_interval(dz: float, n: int, level: float = 0.95) -> tuple[float, float]:
+    """Return the exact CI of Cohen's d_z from the noncentral t distribution.
+
+    Steiger & Fouladi (1997): t = d_z √n has a noncentral t distribution with n − 1
+    degrees of freedom and noncentrality δ = d_z,pop √n; the limits are the δ at which
+    the observed t is the upper and lower (1 − level)/2 quantile, divided by √n (as
+    MBESS's ``ci.sm``).
+    """
+    if not np.isfinite(dz) or n < 2:
+        return (float("nan"), float("nan"))
+    t_value, df, tail = dz * np.sqrt(n), n - 1, (1 - level) / 2
+
+    def limit(probability: float) -> float:
+        # CDFLIB's inverse in the noncentrality (about 1e-7), polished by root-finding on
+        # nct's cdf in a narrow bracket: far from the root that cdf can return NaN.
+        guess = float(special.nctdtrinc(df, probability, t_value))
+
+        def gap(ncp: float) -> float:
+            return float(stats.nct.cdf(t_value, df, ncp)) - probability
+
+        for width in (1e-4, 1e-3, 1e-2, 1e-1):
+            low, high = guess - width * (1 + abs(guess)), guess + width * (1 + abs(guess))
+            ends = gap(low), gap(high)
+            if np.all(np.isfinite(ends)) and ends[0] * ends[1] < 0:
+                return optimize.brentq(gap, low, high, xtol=1e-13)
+        return guess
+
+    return (float(limit(1 - tail) / np.sqrt(n)), float(limit(tail) / np.sqrt(n)))
+
+
 def paired_ttest(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> PairedTTest:
-    """Test the mean of a − b against zero; d_z = mean(diff) / sd(diff)."""
+    """Test the mean of a − b against zero; d_z = mean(diff) / sd(diff), with its exact CI
+    (:func:`dz_interval`)."""
     difference = np.asarray(a, float) - np.asarray(b, float)
     n = difference.size
     result = stats.ttest_rel(a, b)
     sd = difference.std(ddof=1)
     ci = result.confidence_interval(0.95)
+    dz = float(difference.mean() / sd) if sd > 0 else float("nan")
     return PairedTTest(
         a=names[0],
         b=names[1],
@@ -57,8 +89,9 @@ def paired_ttest(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> Paired
         pvalue_adjusted=float(result.pvalue),
         mean_difference=float(difference.mean()),
         ci=(float(ci.low), float(ci.high)),
-        dz=float(difference.mean() / sd) if sd > 0 else float("nan"),
+        dz=dz,
         nobs=n,
+        dz_ci=dz_interval(dz, n),
     )
 
 
@@ -78,7 +111,18 @@ def wilcoxon_test(a: np.ndarray, b: np.ndarray, names: tuple[str, str]) -> Wilco
         nan = float("nan")
         return WilcoxonTest(names[0], names[1], nan, nan, nan, nan, int(difference.size))
     if nonzero.size == 0:
-        return WilcoxonTest(names[0], names[1], 0.0, 1.0, 1.0, 0.0, int(difference.size))
+        # Every difference is zero: R's wilcox.test gives V = 0 with p NA; no test.
+        nan = float("nan")
+        return WilcoxonTest(
+            names[0],
+            names[1],
+            nan,
+            nan,
+            nan,
+            nan,
+            int(difference.size),
+            note="every difference is zero",
+        )
     ties = np.unique(np.abs(nonzero)).size < nonzero.size
     exact = nonzero.size < 50 and not ties and nonzero.size == difference.size
     result = stats.wilcoxon(nonzero, correction=not exact, method="exact" if exact else "approx")

@@ -47,7 +47,9 @@ def analyse_study(study: Study, options: ReportOptions) -> StudyResults:
     # How each condition was made (techniques, settings, a model's training) for the
     # report's Method: the tidy table carries only the conditions' names.
     methods = {c.key: describe_condition(c) for c in study.conditions.all()}
-    report = build_report(table, options, f"{study.slug} (SignStudy export)", methods)
+    report = build_report(
+        table, options, f"{study.slug} (SignStudy export)", methods, title=study.title
+    )
     analysed, _ = apply_exclusions(table, options.exclusions)
     return StudyResults(report=report, analysed=analysed)
 

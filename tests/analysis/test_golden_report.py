@@ -48,8 +48,8 @@ def test_every_statistic_has_a_table(written):
                  "intelligibility_comparisons"):  # fmt: skip
         assert {f"{name}.csv", f"{name}.md", f"{name}.tex"} <= set(names), name
     assert list(pd.read_csv(out / "posthoc.csv").columns) == [
-        "a", "b", "t", "df", "p", "p_adjusted", "dz", "mean_difference", "ci_low", "ci_high",
-        "apa",
+        "a", "b", "t", "df", "p", "p_adjusted", "dz", "dz_ci_low", "dz_ci_high",
+        "mean_difference", "ci_low", "ci_high", "apa",
     ]  # fmt: skip
     assert list(pd.read_csv(out / "wilcoxon.csv").columns) == [
         "a", "b", "V", "p", "p_adjusted", "method", "rank_biserial", "n", "apa",
@@ -75,6 +75,7 @@ def test_posthoc_t_tests_with_ci_and_apa_match_r(written):
         for column in ("t", "p", "p_adjusted", "dz", "mean_difference"):
             assert row[column] == close(expected[column], rel=TOLERANCE), column
         assert (row["ci_low"], row["ci_high"]) == close(expected["ci"], rel=TOLERANCE)
+        assert (row["dz_ci_low"], row["dz_ci_high"]) == close(expected["dz_ci"], abs=1e-7)
         assert row["df"] == expected["df"]
         low, high = (f"{v:.2f}" for v in expected["ci"])
         assert f"(95 % CI {low} to {high}), t(5) = {expected['t']:.2f}" in row["apa"]
@@ -116,6 +117,7 @@ def test_condition_comparisons_across_items_match_r(written, measure):
                                ("rank_biserial", "rank_biserial")):  # fmt: skip
             assert row[column] == close(expected[theirs], rel=TOLERANCE), column
         assert (row["ci_low"], row["ci_high"]) == close(expected["ci"], rel=TOLERANCE)
+        assert (row["dz_ci_low"], row["dz_ci_high"]) == close(expected["dz_ci"], abs=1e-7)
 
 
 def test_report_names_conditions_by_label_and_keeps_the_keys(written):

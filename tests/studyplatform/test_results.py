@@ -154,6 +154,10 @@ def test_results_page_shows_every_test_with_its_interval_and_apa(bob_client, spi
     for test in data["pairwise"]["posthoc"] + data["pairwise"]["wilcoxon"]:
         assert test["apa"].replace("<", "&lt;") in text
     assert 'id="posthoc"' in text and "mean a − b" in text and 'id="wilcoxon"' in text
+    assert "d_z 95 % CI" in text
+    # Issue 56, item 7: the Bradley–Terry strengths the README lists are on the page too.
+    strengths = data["pairwise"]["bradley_terry"]
+    assert 'id="bradley-terry"' in text or strengths["not_estimable"] in text
     assert "By condition, across items" in text and "Conditions compared across items" in text
     summaries = data["rating_conditions"]
     assert {s["condition"] for s in summaries} == {"Spine on", "Spine off (control)"}

@@ -29,11 +29,21 @@ signed_rank <- function(x, y) {
   list(V = unname(test$statistic), p = test$p.value, r = (plus - minus) / (plus + minus),
        n = length(x), method = if (exact) "exact" else "normal approximation, continuity-corrected")
 }
+# The exact 95 % CI of d_z: the noncentralities at which the observed t is the 97.5 %
+# and 2.5 % point of R's noncentral t (Steiger & Fouladi 1997), over sqrt(n).
+dz_ci <- function(dz, n) {
+  t <- dz * sqrt(n)
+  f <- function(ncp, p) pt(t, n - 1, ncp) - p
+  span <- 6 * sqrt(1 + t^2 / (2 * (n - 1))) + 1
+  limit <- function(p) uniroot(f, c(t - span, t + span), p = p, tol = 1e-12)$root
+  suppressWarnings(c(limit(0.975), limit(0.025)) / sqrt(n))
+}
 paired <- function(x, y) {
   t <- t.test(x, y, paired = TRUE)
+  dz <- mean(x - y) / sd(x - y)
   list(t = unname(t$statistic), df = unname(t$parameter), p = t$p.value,
        mean_difference = unname(t$estimate), ci = as.numeric(t$conf.int),
-       dz = mean(x - y) / sd(x - y))
+       dz = dz, dz_ci = dz_ci(dz, length(x)))
 }
 holm <- function(results, field) p.adjust(sapply(results, function(r) r[[field]]), "holm")
 

@@ -1,0 +1,48 @@
+"""The report as a reviewer reads it (issue 56, item 7): headed by the study's title,
+tables headed in words, one legend entry per condition, medians visible on every box."""
+
+import json
+
+import pandas as pd
+from matplotlib.colors import to_rgba
+
+from analysis import ReportOptions, build_report, write_report
+from analysis.figures import ratings_plot
+from tests.analysis.mixed_data import pairwise_tidy, ratings_tidy
+
+
+def test_the_report_is_headed_by_the_studys_title_and_its_tables_in_words(tmp_path):
+    frame = pairwise_tidy()
+    report = build_report(frame, ReportOptions(mixed_models=False), title="Spine motion")
+    write_report(report, frame, tmp_path, draw_figures=False)
+    html = (tmp_path / "report.html").read_text()
+    assert "<h1>Spine motion: results</h1>" in html
+    assert "<title>Spine motion — results</title>" in html
+    assert json.loads((tmp_path / "results.json").read_text())["title"] == "Spine motion"
+    for raw in ("a_wins", "p_one_sided_majority", "mean_participant_rate", "rank_biserial"):
+        assert f"<th>{raw}</th>" not in html
+    assert "<th>p (one-sided, majority)</th>" in html and "<th>a chosen</th>" in html
+    # The CSV tables keep their column names for scripts.
+    assert "p_one_sided_majority" in pd.read_csv(tmp_path / "pairs.csv").columns
+
+
+def test_without_a_title_the_report_is_named_by_its_studies(tmp_path):
+    frame = pairwise_tidy()
+    report = build_report(frame, ReportOptions(mixed_models=False))
+    write_report(report, frame, tmp_path, draw_figures=False)
+    assert "<h1>Results" in (tmp_path / "report.html").read_text()
+
+
+def test_the_ratings_legend_names_each_condition_once_and_medians_are_black():
+    frame = pd.concat([ratings_tidy(), ratings_tidy(question="naturalness")])
+    figure = ratings_plot(frame)
+    labels = [text.get_text() for legend in figure.legends for text in legend.get_texts()]
+    conditions = sorted(set(frame["condition_a"]) - {""})
+    assert sorted(labels) == conditions
+    medians = [
+        line
+        for axis in figure.axes
+        for line in axis.get_lines()
+        if len(line.get_xdata()) == 2 and line.get_linewidth() == 1.5
+    ]
+    assert medians and all(to_rgba(line.get_color()) == to_rgba("black") for line in medians)
