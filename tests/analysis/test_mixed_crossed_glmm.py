@@ -53,6 +53,11 @@ def test_binary_glmm_reaches_glmer():
         results.append((reference["set"], fit.loglik, fit.singular, fit.converged, r, r["theta"]))
         if abs(fit.loglik - r["loglik"]) < 1e-5 and not r["singular"]:
             assert fit.params == pytest.approx(list(r["fixed"].values()), abs=2e-3)
+            # glmer with tolPwrss = 1e-12 (crossed.R). Measured: median 3e-6, within 6e-5
+            # but set 41's 8.7e-4, where glmer's PIRLS had not converged (with
+            # tolPwrss = 1e-14 glmer gives ours to 6e-6).
+            ses = np.sqrt(np.diag(fit.cov))
+            assert ses == pytest.approx(list(r["se"].values()), rel=1e-3)
     _check(results)
     assert sum(r["singular"] for _, _, _, _, r, _ in results) > 40
 
@@ -67,7 +72,8 @@ def test_bradley_terry_reaches_glmer():
             ours = [fit.position.estimate, *(e.estimate for e in fit.effects)]
             assert ours == pytest.approx(list(r["fixed"].values()), abs=2e-3)
             assert [e.se for e in fit.effects] == pytest.approx(
-                [r["se"]["x_b"], r["se"]["x_c"]], rel=1e-2
+                [r["se"]["x_b"], r["se"]["x_c"]],
+                rel=1e-3,  # measured: median 1e-6, max 5.4e-5
             )
     _check(results)
 

@@ -121,3 +121,39 @@ def test_proportional_odds_check_matches_nominal_test(name, key):
     assert result.df == R[key]["df"]
     assert result.pvalue == close(R[key]["pvalue"], rel=1e-4)
     assert result.holds is (key == "nominal_proportional")
+
+
+CONVERGED = json.loads((REFERENCE / "glmer_converged.json").read_text())
+
+
+@pytest.mark.parametrize("name", ["pairwise_intercepts", "pairwise_slope"])
+def test_laplace_standard_errors_are_glmers_with_its_pirls_converged(name):
+    """Issue 56, item 4: glmer's default standard errors differ from ours by 0.1–0.4 %
+    here (1.3 % on cbpp) because its PIRLS stops at tolPwrss = 1e-7 and its log det L lags
+    one iteration; with tolPwrss = 1e-13 (glmer_converged.R) they agree to 1e-4 (measured
+    within 2e-5), as do the estimates and the log-likelihood."""
+    data = pd.read_csv(REFERENCE / "mixed_pairwise.csv")
+    participant, levels = codes(data["participant"])
+    item, items = codes(data["item"])
+    components = [Component.from_codes("participant", "participant", participant, levels)]
+    if name == "pairwise_slope":
+        values = data[["x_b"]].to_numpy()
+        components.append(
+            Component.from_codes("x_b", "participant", participant, levels, values=values)
+        )
+    components.append(Component.from_codes("item", "item", item, items))
+    problem = MixedProblem(
+        y=data["first"].to_numpy(float),
+        X=np.column_stack([np.ones(len(data)), data[["x_b", "x_c", "x_d"]]]),
+        fixed_names=("(Intercept)", "x_b", "x_c", "x_d"),
+        components=tuple(components),
+    )
+    fit = fit_laplace(problem)
+    converged = CONVERGED[name]["converged"]
+    ses = dict(zip(fit.names, np.sqrt(np.diag(fit.cov)), strict=True))
+    assert ses == {key: close(value, rel=1e-4) for key, value in converged["se"].items()}
+    assert fit.loglik == close(converged["loglik"], abs=1e-5)
+    # The default glmer's differ by more than the acceptance's 1e-3 somewhere: the reason
+    # this test exists.
+    default = CONVERGED[name]["default"]["se"]
+    assert max(abs(ses[key] / value - 1) for key, value in default.items()) > 1e-3
