@@ -37,6 +37,38 @@ def _tick_labels(axes, names: list[str], width_in: float) -> None:
         axes.set_xticks(range(len(names)), names, rotation=90, fontsize=9)
 
 
+def participant_flow_plot(report: Report):
+    """Draw the participant flow as bars: each stage's participants, each exclusion's."""
+    flow = report.flow
+    plt = pyplot()
+    stages = [
+        ("started", flow.started),
+        ("consented", flow.consented),
+        ("finished", flow.finished),
+    ]
+    excluded = [(f"excluded: {reason}", n) for reason, n in flow.excluded.items()]
+    rows = [*stages, *excluded, ("analysed", flow.analysed)]
+    figure, axes = plt.subplots(figsize=(6.0, 0.42 * len(rows) + 0.9))
+    colours = ["#4a7ab5"] * len(stages) + ["#c0504d"] * len(excluded) + ["#2e7d32"]
+    positions = np.arange(len(rows))[::-1]
+    axes.barh(positions, [n for _, n in rows], color=colours)
+    axes.set_yticks(positions, [name for name, _ in rows], fontsize=9)
+    for position, (_, n) in zip(positions, rows, strict=True):
+        axes.annotate(f" {n}", (n, position), va="center", fontsize=9)
+    axes.set_xlabel("Participants")
+    axes.set_xlim(0, max(1, flow.started) * 1.12)
+    axes.set_title(f"Participant flow (from the {flow.source})", fontsize=10)
+    figure.tight_layout()
+    return figure
+
+
+def participant_flow_figure(report: Report, out_dir: Path, formats=("png", "pdf")) -> list[str]:
+    """Save :func:`participant_flow_plot` as participant_flow.<format>."""
+    if report.flow is None:
+        return []
+    return _save(participant_flow_plot(report), out_dir, "participant_flow", formats)
+
+
 def condition_rates_plot(report: Report):
     """Draw the bar chart of per-participant win rates, mean ± SEM (seed 000 Fig. 5.4)."""
     plt = pyplot()

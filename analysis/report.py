@@ -11,6 +11,7 @@ import pandas as pd
 from analysis.comparative import compare_preferences
 from analysis.conditions import compare_conditions, summarize_conditions
 from analysis.exclusions import ExclusionRules, apply_exclusions
+from analysis.flow import ParticipantFlow, participant_flow
 from analysis.intelligibility import accuracy_scores, score_intelligibility
 from analysis.mixed.results import MixedModels
 from analysis.mixed.section import fit_mixed_models
@@ -80,6 +81,8 @@ class Report(Result):
     quality: tuple[ParticipantQuality, ...] = ()
     # The study's title as its researchers wrote it ("" names the report by its studies).
     title: str = ""
+    # Every participant accounted for: started, consented, finished, excluded, analysed.
+    flow: ParticipantFlow | None = None
     # Comparative-scale preferences per pair of conditions (signed-rank tests).
     comparative: tuple[ComparativePreference, ...] = ()
     # Each condition across items, on participants' means, and paired tests between them.
@@ -132,6 +135,7 @@ def build_report(
     source: str = "responses",
     methods: Mapping[str, str] | None = None,
     title: str = "",
+    participants: Mapping[str, int] | None = None,
 ) -> Report:
     """Apply the exclusions, then run the pairwise, rating and intelligibility analyses.
 
@@ -141,6 +145,9 @@ def build_report(
     *methods* says how each condition (by key) was made, in words, for the Method
     section: the techniques and their settings, which the table itself does not carry.
     *title* heads the report (the study's own title; the table carries only its slug).
+    *participants* are the study's own counts of participants who ``started``,
+    ``consented`` and ``finished`` (the table lacks those who answered nothing), for the
+    participant flow.
     """
     frame = label_simulated(label_conditions(frame))
     if options.conditions:
@@ -155,6 +162,7 @@ def build_report(
     return Report(
         source=source,
         title=title,
+        flow=participant_flow(frame, exclusions, participants),
         studies=tuple(sorted(set(frame["study"]) - {""})),
         design=design,
         exclusions=exclusions,
@@ -214,6 +222,7 @@ def results_json(report: Report) -> dict[str, Any]:
     return {
         "source": report.source,
         "title": report.title,
+        "participant_flow": rendered(report.flow),
         "studies": list(report.studies),
         "design": plain(report.design),
         "exclusions": report.exclusions.to_dict(),

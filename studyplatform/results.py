@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pandas as pd
+from django.db.models import Count
 
 from analysis import (
     Report,
@@ -17,7 +18,12 @@ from analysis import (
     build_report,
     write_report,
 )
-from analysis.figures import condition_rates_figure, pairwise_matrix_figure, ratings_figure
+from analysis.figures import (
+    condition_rates_figure,
+    pairwise_matrix_figure,
+    participant_flow_figure,
+    ratings_figure,
+)
 from studyplatform.exchange import export_study
 from studyplatform.export import safe_csv, tidy_csv, tidy_table
 from studyplatform.lib.quality import (
@@ -47,8 +53,18 @@ def analyse_study(study: Study, options: ReportOptions) -> StudyResults:
     # How each condition was made (techniques, settings, a model's training) for the
     # report's Method: the tidy table carries only the conditions' names.
     methods = {c.key: describe_condition(c) for c in study.conditions.all()}
+    # Who started, consented and finished, from the participant records: the table has
+    # no row for a participant who left before answering anything.
+    participants = study.participants.aggregate(
+        started=Count("pk"), consented=Count("consented_at"), finished=Count("finished_at")
+    )
     report = build_report(
-        table, options, f"{study.slug} (SignStudy export)", methods, title=study.title
+        table,
+        options,
+        f"{study.slug} (SignStudy export)",
+        methods,
+        title=study.title,
+        participants=participants,
     )
     analysed, _ = apply_exclusions(table, options.exclusions)
     return StudyResults(report=report, analysed=analysed)
@@ -62,6 +78,7 @@ def figure_images(results: StudyResults) -> dict[str, str]:
     with tempfile.TemporaryDirectory() as folder:
         out = Path(folder)
         names = [
+            *participant_flow_figure(results.report, out, formats=("png",)),
             *condition_rates_figure(results.report, out, formats=("png",)),
             *pairwise_matrix_figure(results.report, out, formats=("png",)),
             *ratings_figure(results.report, results.analysed, out, formats=("png",)),

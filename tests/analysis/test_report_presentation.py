@@ -46,3 +46,25 @@ def test_the_ratings_legend_names_each_condition_once_and_medians_are_black():
         if len(line.get_xdata()) == 2 and line.get_linewidth() == 1.5
     ]
     assert medians and all(to_rgba(line.get_color()) == to_rgba("black") for line in medians)
+
+
+def test_the_participant_flow_accounts_for_everyone_in_the_table(tmp_path):
+    """Issue 56, item 6: from a response table alone, who answered anything started and
+    consented; who is flagged incomplete did not finish; each exclusion is counted."""
+    frame = pairwise_tidy()
+    people = sorted(frame["participant"].unique())
+    frame.loc[frame["participant"] == people[0], "flags"] = "incomplete"
+    frame.loc[frame["participant"] == people[1], "flags"] = "pilot"
+    report = build_report(frame, ReportOptions(mixed_models=False))
+    flow = report.flow
+    assert (flow.started, flow.consented, flow.finished) == (48, 48, 47)
+    assert flow.excluded == {"pilot": 1, "incomplete": 1} and flow.analysed == 46
+    assert flow.source == "response table"
+    assert flow.apa() == (
+        "Of 48 participants who started, 48 consented and 47 finished; 2 were excluded "
+        "(1 pilot, 1 incomplete); 46 were analysed"
+    )
+    written = write_report(report, frame, tmp_path)
+    assert "participant_flow.png" in written
+    html = (tmp_path / "report.html").read_text()
+    assert 'class="flow"' in html and "answered nothing are not in it" in html

@@ -34,7 +34,7 @@ def take_spine_study(study, participants=6, rate_off=False):
     taken = []
     for number in range(participants):
         participant = do_enroll_participant(
-            study, recruitment_params={"PROLIFIC_PID": f"p{number}"}
+            study, recruitment_params={"PROLIFIC_PID": f"p{number}"}, consented=True
         )
         participant.schedule = [{"trial": "prefer-s2", "swap": number % 2 == 1}]
         _answer(participant, "pretest", "hearing-status", Answer(rating=1 + number % 3))
@@ -141,6 +141,29 @@ def test_results_page_shows_the_analysis(bob_client, spine):
     assert "Only participants whose hearing-status is" in page.text
     assert 'id="mixed-models"' in page.text and "Mixed-effects Bradley–Terry" in page.text
     assert "Conditions alike:" in page.text
+
+
+def test_results_page_accounts_for_every_participant(bob_client, spine):
+    """Issue 56, item 6: the participant flow counts from the participant records, so one
+    who agreed and left before answering is counted as started, not finished."""
+    take_spine_study(spine)
+    do_enroll_participant(spine, consented=True)  # agreed, then answered nothing
+    page = bob_client.get(reverse("admin:studyplatform_study_results", args=[spine.pk]))
+    flow = page.context["results"]["participant_flow"]
+    assert (flow["started"], flow["consented"], flow["finished"]) == (7, 7, 6)
+    assert flow["source"] == "participant records" and flow["analysed"] == 6
+    assert 'id="participant-flow"' in page.text
+    assert "Of 7 participants who started, 7 consented and 6 finished" in page.text
+    assert "participant_flow" in page.context["figures"]
+    archive = zipfile.ZipFile(
+        io.BytesIO(
+            bob_client.get(
+                reverse("admin:studyplatform_study_results_report", args=[spine.pk])
+            ).content
+        )
+    )
+    assert "report/participant_flow.png" in archive.namelist()
+    assert "Of 7 participants who started" in archive.read("report/report.html").decode()
 
 
 def test_results_page_shows_every_test_with_its_interval_and_apa(bob_client, spine):
