@@ -37,9 +37,18 @@ class PairedComparison(Result):
     nobs: int
     wilcoxon: WilcoxonTest
     ttest: PairedTTest
+    # Participants with an answer in only one of the two conditions: not in the tests.
+    left_out: tuple[str, ...] = ()
 
     def apa(self) -> str:
-        return f"{self.ttest.apa()}; {self.wilcoxon.apa()}"
+        text = f"{self.ttest.apa()}; {self.wilcoxon.apa()}"
+        if self.left_out:
+            named = ", ".join(self.left_out[:5]) + (" …" if len(self.left_out) > 5 else "")
+            text += (
+                f" ({len(self.left_out)} participant{'s' if len(self.left_out) > 1 else ''} "
+                f"with only one of the two conditions left out: {named})"
+            )
+        return text
 
 
 @dataclasses.dataclass(frozen=True)

@@ -152,16 +152,27 @@ def mean_ci(values: np.ndarray) -> tuple[float, float]:
 
 def paired_comparisons(wide: pd.DataFrame, result: type[PairedComparison], **fields) -> list:
     """Return a *result* (paired t and Wilcoxon tests) for every two columns of *wide*
-    (participants × conditions) that two or more participants have both; *fields* are
-    the result's other fields (item, question, measure)."""
+    (participants × conditions) that two or more participants have both, naming who has
+    only one of them; *fields* are the result's other fields (item, question, measure)."""
     found = []
     for a, b in combinations(sorted(wide.columns), 2):
         paired = wide[[a, b]].dropna()
         if len(paired) < 2:
             continue
+        # Who answered in only one of the two is not in the tests: the result names them.
+        one = wide[[a, b]].notna().sum(axis=1) == 1
         x, y = paired[a].to_numpy(), paired[b].to_numpy()
-        found.append(result(a=a, b=b, nobs=len(paired), wilcoxon=wilcoxon_test(x, y, (a, b)),
-                            ttest=paired_ttest(x, y, (a, b)), **fields))  # fmt: skip
+        found.append(
+            result(
+                a=a,
+                b=b,
+                nobs=len(paired),
+                wilcoxon=wilcoxon_test(x, y, (a, b)),
+                ttest=paired_ttest(x, y, (a, b)),
+                left_out=tuple(str(who) for who in wide.index[one]),
+                **fields,
+            )
+        )
     return found
 
 

@@ -68,3 +68,16 @@ def test_the_participant_flow_accounts_for_everyone_in_the_table(tmp_path):
     assert "participant_flow.png" in written
     html = (tmp_path / "report.html").read_text()
     assert 'class="flow"' in html and "answered nothing are not in it" in html
+
+
+def test_a_participant_with_only_one_condition_is_named_where_a_comparison_leaves_them_out():
+    """Issue 56, item 6: who rated only one of two conditions is dropped from their paired
+    tests; the comparison names them in its APA line and in results.json."""
+    frame = ratings_tidy()
+    conditions = sorted(set(frame["condition_a"]) - {""})
+    who = sorted(frame["participant"].unique())[0]
+    frame = frame[~((frame["participant"] == who) & (frame["condition_a"] == conditions[0]))]
+    report = build_report(frame, ReportOptions(mixed_models=False))
+    comparison = next(c for c in report.rating_condition_comparisons if conditions[0] in (c.a, c.b))
+    assert comparison.left_out == (str(who),)
+    assert f"with only one of the two conditions left out: {who}" in comparison.apa()
