@@ -6,7 +6,7 @@
 - :func:`fit_laplace`: the maximum-likelihood engine under the first two.
 """
 
-from analysis.mixed.families import Bernoulli, CumulativeLogit, Davidson
+from analysis.mixed.families import Bernoulli, Binomial, CumulativeLogit, Davidson
 from analysis.mixed.laplace import Component, LaplaceFit, MixedProblem, fit_laplace
 from analysis.mixed.linear import linear_mixed
 from analysis.mixed.ordinal import (
@@ -30,6 +30,7 @@ from analysis.mixed.section import fit_mixed_models
 
 __all__ = [
     "Bernoulli",
+    "Binomial",
     "Coefficient",
     "Component",
     "Contrast",

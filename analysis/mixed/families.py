@@ -1,7 +1,7 @@
 """Conditional log-likelihoods of one observation given its linear predictor η.
 
 Each family returns, per observation, the log-likelihood, its first derivative in η
-and the negative second derivative in η (the weight of a Newton step). All three
+and the negative second derivative in η (the weight of a Newton step). All the
 families are log-concave in η, so the weights are positive and the conditional mode of
 the random effects is unique.
 """
@@ -9,7 +9,7 @@ the random effects is unique.
 import dataclasses
 
 import numpy as np
-from scipy.special import expit, log_expit
+from scipy.special import expit, gammaln, log_expit
 
 
 @dataclasses.dataclass(frozen=True)
@@ -46,6 +46,45 @@ class Bernoulli:
 
     def simulate(self, eta: np.ndarray, extra: np.ndarray, rng: np.random.Generator):
         return (rng.random(eta.shape) < expit(eta)).astype(float)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Binomial:
+    """Logistic regression on counts: y successes of *trials* (one count per observation),
+    P(success) = logit⁻¹(η); as R's ``glmer(cbind(y, trials − y) ~ …, binomial)``, the
+    log-likelihood includes log C(trials, y)."""
+
+    trials: np.ndarray
+    name: str = "binomial with trials (logit link)"
+
+    def __post_init__(self) -> None:
+        trials = np.asarray(self.trials, dtype=float)
+        if trials.ndim != 1 or np.any(trials < 1) or np.any(trials != np.round(trials)):
+            raise ValueError("Binomial trials must be whole numbers of at least 1.")
+        object.__setattr__(self, "trials", trials)
+
+    def extra_names(self, y: np.ndarray) -> tuple[str, ...]:
+        return ()
+
+    def extra_start(self, y: np.ndarray) -> np.ndarray:
+        if np.any(y < 0) or np.any(y > self.trials) or np.any(y != np.round(y)):
+            raise ValueError("Binomial successes must be whole numbers from 0 to the trials.")
+        return np.zeros(0)
+
+    def extra_natural(self, free: np.ndarray) -> np.ndarray:
+        return free
+
+    def extra_free(self, natural: np.ndarray) -> np.ndarray:
+        return natural
+
+    def derivatives(self, eta: np.ndarray, y: np.ndarray, extra: np.ndarray) -> Derivatives:
+        n, p = self.trials, expit(eta)
+        choose = gammaln(n + 1) - gammaln(y + 1) - gammaln(n - y + 1)
+        loglik = y * log_expit(eta) + (n - y) * log_expit(-eta) + choose
+        return Derivatives(loglik, y - n * p, n * p * (1 - p))
+
+    def simulate(self, eta: np.ndarray, extra: np.ndarray, rng: np.random.Generator):
+        return rng.binomial(self.trials.astype(int), expit(eta)).astype(float)
 
 
 # Davidson outcome codes: the first-named option won, the second won, or a tie.
