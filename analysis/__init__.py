@@ -8,6 +8,7 @@ from analysis.anova import rm_anova, sphericity
 from analysis.bradley_terry import bradley_terry
 from analysis.comparative import compare_preferences, preferences
 from analysis.exclusions import ExclusionRules, apply_exclusions
+from analysis.factorial import FactorialEffect, factorial_rm_anova
 from analysis.intelligibility import score_intelligibility, word_accuracy, words
 from analysis.outputs import write_report
 from analysis.pairwise import analyze_pairwise, binomial_pair, judgements
@@ -21,6 +22,7 @@ from analysis.within import adjust, friedman, paired_ttests, wilcoxon_tests
 __all__ = [
     "REQUIRED_COLUMNS",
     "ExclusionRules",
+    "FactorialEffect",
     "Report",
     "ReportOptions",
     "TidyFormatError",
@@ -34,6 +36,7 @@ __all__ = [
     "check_responses",
     "compare_preferences",
     "compare_ratings",
+    "factorial_rm_anova",
     "format_p",
     "friedman",
     "judgements",

@@ -9,7 +9,7 @@ from statsmodels.stats.anova import AnovaRM
 from analysis.results import RmAnovaResult
 
 
-def _orthonormal_contrasts(k: int) -> np.ndarray:
+def orthonormal_contrasts(k: int) -> np.ndarray:
     """Return a (k−1, k) matrix of orthonormal contrasts (rows orthogonal to ones)."""
     # Helmert-style contrasts, normalized: any orthonormal basis of the contrast space
     # gives the same sphericity statistics.
@@ -29,13 +29,22 @@ def sphericity(scores: np.ndarray) -> tuple[float, float, float]:
     covariance of orthonormal contrasts; Greenhouse & Geisser (1959) ε = tr(S)² /
     (p tr(S²)), bounded to [1/p, 1].
     """
-    n, k = scores.shape
+    k = scores.shape[1]
     if k < 3:
         # Two levels: sphericity holds trivially and there is nothing to test.
         return float("nan"), float("nan"), 1.0
-    contrasts = _orthonormal_contrasts(k)
-    covariance = contrasts @ np.cov(scores, rowvar=False, ddof=1) @ contrasts.T
-    p = k - 1
+    return contrast_sphericity(scores @ orthonormal_contrasts(k).T, k)
+
+
+def contrast_sphericity(transformed: np.ndarray, k: int) -> tuple[float, float, float]:
+    """Return Mauchly's W, its p and the Greenhouse–Geisser ε of (n, p) scores on p
+    orthonormal contrasts (:func:`sphericity`'s formulas); *k* enters the p-value's
+    second-order term as R's mauchly.test takes it (the levels; the term vanishes for
+    p = 2)."""
+    n, p = transformed.shape
+    if p < 2:
+        return float("nan"), float("nan"), 1.0
+    covariance = np.atleast_2d(np.cov(transformed, rowvar=False, ddof=1))
     trace = np.trace(covariance)
     epsilon = trace**2 / (p * np.trace(covariance @ covariance)) if trace > 0 else 1.0
     determinant = np.linalg.det(covariance)
