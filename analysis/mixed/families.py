@@ -21,11 +21,8 @@ class Derivatives:
     weight: np.ndarray
 
 
-@dataclasses.dataclass(frozen=True)
-class Bernoulli:
-    """Logistic regression: P(y = 1) = logit⁻¹(η); y is 0 or 1."""
-
-    name: str = "binomial (logit link)"
+class NoExtraParameters:
+    """What a family without parameters beyond η answers about them (the logistic ones)."""
 
     def extra_names(self, y: np.ndarray) -> tuple[str, ...]:
         return ()
@@ -39,6 +36,13 @@ class Bernoulli:
     def extra_free(self, natural: np.ndarray) -> np.ndarray:
         return natural
 
+
+@dataclasses.dataclass(frozen=True)
+class Bernoulli(NoExtraParameters):
+    """Logistic regression: P(y = 1) = logit⁻¹(η); y is 0 or 1."""
+
+    name: str = "binomial (logit link)"
+
     def derivatives(self, eta: np.ndarray, y: np.ndarray, extra: np.ndarray) -> Derivatives:
         p = expit(eta)
         loglik = y * log_expit(eta) + (1 - y) * log_expit(-eta)
@@ -49,7 +53,7 @@ class Bernoulli:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class Binomial:
+class Binomial(NoExtraParameters):
     """Logistic regression on counts: y successes of *trials* (one count per observation),
     P(success) = logit⁻¹(η); as R's ``glmer(cbind(y, trials − y) ~ …, binomial)``, the
     log-likelihood includes log C(trials, y)."""
@@ -63,19 +67,10 @@ class Binomial:
             raise ValueError("Binomial trials must be whole numbers of at least 1.")
         object.__setattr__(self, "trials", trials)
 
-    def extra_names(self, y: np.ndarray) -> tuple[str, ...]:
-        return ()
-
     def extra_start(self, y: np.ndarray) -> np.ndarray:
         if np.any(y < 0) or np.any(y > self.trials) or np.any(y != np.round(y)):
             raise ValueError("Binomial successes must be whole numbers from 0 to the trials.")
         return np.zeros(0)
-
-    def extra_natural(self, free: np.ndarray) -> np.ndarray:
-        return free
-
-    def extra_free(self, natural: np.ndarray) -> np.ndarray:
-        return natural
 
     def derivatives(self, eta: np.ndarray, y: np.ndarray, extra: np.ndarray) -> Derivatives:
         n, p = self.trials, expit(eta)
