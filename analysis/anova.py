@@ -6,7 +6,7 @@ import pandas as pd
 from scipy import stats
 from statsmodels.stats.anova import AnovaRM
 
-from analysis.results import RmAnovaResult
+from analysis.results import RmAnovaResult, few_named
 
 
 def orthonormal_contrasts(k: int) -> np.ndarray:
@@ -69,6 +69,11 @@ def contrast_sphericity(transformed: np.ndarray, k: int) -> tuple[float, float, 
     return float(w), float(pvalue), float(min(max(epsilon, 1 / p), 1.0))
 
 
+def corrected_pvalue(f_value: float, df_num: float, df_den: float, epsilon: float) -> float:
+    """Return the p of F on both degrees of freedom scaled by a sphericity ε."""
+    return float(stats.f.sf(f_value, epsilon * df_num, epsilon * df_den))
+
+
 def huynh_feldt(epsilon_gg: float, n: int, k: int) -> float:
     """Return the Huynh–Feldt epsilon from the Greenhouse–Geisser one, at most 1.
 
@@ -96,9 +101,9 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
     notes = []
     missing = scores.index[scores.isna().any(axis=1)]
     if len(missing):
-        named = ", ".join(str(s) for s in missing[:5]) + (" …" if len(missing) > 5 else "")
         notes.append(
-            f"{len(missing)} subject(s) without a score at every level are left out ({named})."
+            f"{len(missing)} subject(s) without a score at every level are left out "
+            f"({few_named(missing)})."
         )
     scores = scores.dropna()
     n, k = scores.shape
@@ -133,7 +138,7 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
         df_den=df_den,
         pvalue=float(table["Pr > F"].iloc[0]),
         epsilon_gg=epsilon,
-        pvalue_gg=float(stats.f.sf(f_value, epsilon * df_num, epsilon * df_den)),
+        pvalue_gg=corrected_pvalue(f_value, df_num, df_den, epsilon),
         eta_p2=f_value * df_num / (f_value * df_num + df_den),
         mauchly_w=w,
         mauchly_pvalue=w_p,
@@ -141,5 +146,5 @@ def rm_anova(scores: pd.DataFrame) -> RmAnovaResult:
         levels=levels,
         notes=tuple(notes),
         epsilon_hf=epsilon_hf,
-        pvalue_hf=float(stats.f.sf(f_value, epsilon_hf * df_num, epsilon_hf * df_den)),
+        pvalue_hf=corrected_pvalue(f_value, df_num, df_den, epsilon_hf),
     )

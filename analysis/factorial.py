@@ -2,15 +2,18 @@
 each with Mauchly's test and the Greenhouse–Geisser and Huynh–Feldt corrections."""
 
 import dataclasses
-import math
 
 import numpy as np
 import pandas as pd
-from scipy import stats
 from statsmodels.stats.anova import AnovaRM
 
-from analysis.anova import contrast_sphericity, huynh_feldt, orthonormal_contrasts
-from analysis.results import Result, format_p
+from analysis.anova import (
+    contrast_sphericity,
+    corrected_pvalue,
+    huynh_feldt,
+    orthonormal_contrasts,
+)
+from analysis.results import Result, few_named, format_p, proportion_text, sphericity_text
 
 
 @dataclasses.dataclass(frozen=True)
@@ -34,18 +37,11 @@ class FactorialEffect(Result):
     notes: tuple[str, ...] = ()
 
     def apa(self) -> str:
-        # APA drops the leading zero of a quantity that cannot exceed 1.
-        eta = f"{self.eta_p2:.2f}".removeprefix("0")
         text = (
             f"{self.effect}: F({self.df_num:g}, {self.df_den:g}) = {self.statistic:.2f}, "
-            f"{format_p(self.pvalue)}, η²p = {eta}"
+            f"{format_p(self.pvalue)}, η²p = {proportion_text(self.eta_p2)}"
         )
-        if math.isfinite(self.mauchly_pvalue) and self.mauchly_pvalue < 0.05:
-            text += (
-                f" (Greenhouse–Geisser ε = {self.epsilon_gg:.2f}, {format_p(self.pvalue_gg)}; "
-                f"Huynh–Feldt ε = {self.epsilon_hf:.2f}, {format_p(self.pvalue_hf)})"
-            )
-        return text
+        return text + sphericity_text(self)
 
 
 def factorial_rm_anova(
@@ -68,8 +64,10 @@ def factorial_rm_anova(
     missing = cells.index[cells.isna().any(axis=1)]
     notes = ()
     if len(missing):
-        named = ", ".join(str(s) for s in missing[:5]) + (" …" if len(missing) > 5 else "")
-        notes = (f"{len(missing)} subject(s) without a value in every cell left out ({named}).",)
+        notes = (
+            f"{len(missing)} subject(s) without a value in every cell left out "
+            f"({few_named(missing)}).",
+        )
     cells = cells.dropna()
     long = cells.stack([0, 1], future_stack=True).rename("value").reset_index()
     long.columns = ["subject", first, second, "value"]
@@ -96,9 +94,9 @@ def factorial_rm_anova(
                 pvalue=float(row["Pr > F"]),
                 eta_p2=f_value * df_num / (f_value * df_num + df_den),
                 epsilon_gg=epsilon,
-                pvalue_gg=float(stats.f.sf(f_value, epsilon * df_num, epsilon * df_den)),
+                pvalue_gg=corrected_pvalue(f_value, df_num, df_den, epsilon),
                 epsilon_hf=epsilon_hf,
-                pvalue_hf=float(stats.f.sf(f_value, epsilon_hf * df_num, epsilon_hf * df_den)),
+                pvalue_hf=corrected_pvalue(f_value, df_num, df_den, epsilon_hf),
                 mauchly_w=w,
                 mauchly_pvalue=w_p,
                 nobs=n,

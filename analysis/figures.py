@@ -179,6 +179,19 @@ def ratings_plot(frame):
     return figure
 
 
+def all_figures(report: Report, frame, out_dir: Path, formats=("png", "pdf")) -> list[str]:
+    """Save every figure the report has data for; return the file names written.
+
+    *frame* is the table after exclusions, for the figures that show raw ratings.
+    """
+    return [
+        *participant_flow_figure(report, out_dir, formats),
+        *condition_rates_figure(report, out_dir, formats),
+        *pairwise_matrix_figure(report, out_dir, formats),
+        *ratings_figure(report, frame, out_dir, formats),
+    ]
+
+
 def ratings_figure(report: Report, frame, out_dir: Path, formats=("png", "pdf")) -> list[str]:
     """Save :func:`ratings_plot` as ratings_boxplots.<format>."""
     figure = ratings_plot(frame)

@@ -47,17 +47,19 @@ def participant_flow(
     """Return the participant flow of *frame* (the whole response table) and its
     *exclusions*; *records* (``started``, ``consented``, ``finished``) are the study's own
     counts, which include participants who left before answering anything."""
-    answered = frame["participant"].astype(str)
-    incomplete = frame["flags"].map(lambda cell: "incomplete" in split_flags(cell))
-    counts = {
-        "started": int(answered.nunique()),
-        "consented": int(answered.nunique()),
-        "finished": int(answered.nunique() - answered[incomplete].nunique()),
-    }
-    source = "response table"
     if records is not None:
-        counts = {name: int(records[name]) for name in counts}
+        counts = {name: int(records[name]) for name in ("started", "consented", "finished")}
         source = "participant records"
+    else:
+        answered = frame["participant"].astype(str)
+        incomplete = frame["flags"].map(lambda cell: "incomplete" in split_flags(cell))
+        everyone = int(answered.nunique())
+        counts = {
+            "started": everyone,
+            "consented": everyone,
+            "finished": everyone - int(answered[incomplete].nunique()),
+        }
+        source = "response table"
     return ParticipantFlow(
         **counts,
         excluded=dict(exclusions.excluded_by_reason),

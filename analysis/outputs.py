@@ -320,10 +320,7 @@ def write_report(
         written += [f"{name}.csv", f"{name}.tex", f"{name}.md"]
     figure_files = []
     if draw_figures:
-        figure_files += figures.participant_flow_figure(report, out)
-        figure_files += figures.condition_rates_figure(report, out)
-        figure_files += figures.pairwise_matrix_figure(report, out)
-        figure_files += figures.ratings_figure(report, frame, out)
+        figure_files += figures.all_figures(report, frame, out)
         written += figure_files
     (out / "report.html").write_text(render_html(report, data, table_files, figure_files))
     written.append("report.html")

@@ -63,6 +63,30 @@ def _two(value: float) -> str:
     return f"{value:.2f}".replace("-0.00", "0.00")
 
 
+def proportion_text(value: float) -> str:
+    """Return a quantity that cannot exceed 1 (η², a share) to two places, without the
+    leading zero, as APA writes it."""
+    return _two(value).lstrip("0")
+
+
+def few_named(ids, limit: int = 5) -> str:
+    """Return the first *limit* of *ids* comma-separated, "…" when there are more."""
+    ids = [str(i) for i in ids]
+    return ", ".join(ids[:limit]) + (" …" if len(ids) > limit else "")
+
+
+def sphericity_text(result) -> str:
+    """Return the Greenhouse–Geisser and Huynh–Feldt corrections of a repeated-measures
+    result (``epsilon_gg``, ``pvalue_gg``, ``epsilon_hf``, ``pvalue_hf``) for its APA
+    line, where Mauchly's test rejected sphericity; "" otherwise."""
+    if not (_finite(result.mauchly_pvalue) and result.mauchly_pvalue < 0.05):
+        return ""
+    return (
+        f" (Greenhouse–Geisser ε = {result.epsilon_gg:.2f}, {format_p(result.pvalue_gg)}; "
+        f"Huynh–Feldt ε = {result.epsilon_hf:.2f}, {format_p(result.pvalue_hf)})"
+    )
+
+
 def _finite(*values: float | None) -> bool:
     return all(v is not None and math.isfinite(v) for v in values)
 
@@ -152,14 +176,9 @@ class RmAnovaResult(Result):
             return "F not computed: " + (self.notes[-1] if self.notes else "undefined")
         text = (
             f"F({_df(self.df_num)}, {_df(self.df_den)}) = {self.statistic:.2f}, "
-            f"{format_p(self.pvalue)}, η²p = {_two(self.eta_p2).lstrip('0')}"
+            f"{format_p(self.pvalue)}, η²p = {proportion_text(self.eta_p2)}"
         )
-        if self.mauchly_pvalue is not None and self.mauchly_pvalue < 0.05:
-            text += (
-                f" (Greenhouse–Geisser ε = {self.epsilon_gg:.2f}, {format_p(self.pvalue_gg)}; "
-                f"Huynh–Feldt ε = {self.epsilon_hf:.2f}, {format_p(self.pvalue_hf)})"
-            )
-        return text
+        return text + sphericity_text(self)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -8,7 +8,7 @@ and, where a test is involved, ``apa()``.
 
 import dataclasses
 
-from analysis.results import PairedTTest, Result, WilcoxonTest
+from analysis.results import PairedTTest, Result, WilcoxonTest, few_named
 
 
 @dataclasses.dataclass(frozen=True)
@@ -43,10 +43,9 @@ class PairedComparison(Result):
     def apa(self) -> str:
         text = f"{self.ttest.apa()}; {self.wilcoxon.apa()}"
         if self.left_out:
-            named = ", ".join(self.left_out[:5]) + (" …" if len(self.left_out) > 5 else "")
             text += (
                 f" ({len(self.left_out)} participant{'s' if len(self.left_out) > 1 else ''} "
-                f"with only one of the two conditions left out: {named})"
+                f"with only one of the two conditions left out: {few_named(self.left_out)})"
             )
         return text
 

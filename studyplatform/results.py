@@ -18,12 +18,7 @@ from analysis import (
     build_report,
     write_report,
 )
-from analysis.figures import (
-    condition_rates_figure,
-    pairwise_matrix_figure,
-    participant_flow_figure,
-    ratings_figure,
-)
+from analysis.figures import all_figures
 from studyplatform.exchange import export_study
 from studyplatform.export import safe_csv, tidy_csv, tidy_table
 from studyplatform.lib.quality import (
@@ -77,12 +72,7 @@ def figure_images(results: StudyResults) -> dict[str, str]:
     images = {}
     with tempfile.TemporaryDirectory() as folder:
         out = Path(folder)
-        names = [
-            *participant_flow_figure(results.report, out, formats=("png",)),
-            *condition_rates_figure(results.report, out, formats=("png",)),
-            *pairwise_matrix_figure(results.report, out, formats=("png",)),
-            *ratings_figure(results.report, results.analysed, out, formats=("png",)),
-        ]
+        names = all_figures(results.report, results.analysed, out, formats=("png",))
         for name in names:
             encoded = base64.b64encode((out / name).read_bytes()).decode("ascii")
             images[name.removesuffix(".png")] = f"data:image/png;base64,{encoded}"
