@@ -105,11 +105,11 @@ class KeySolver:
 
         A hand key placed at a body part (``HandKey.body``) goes where the automated
         spine takes the part: the hand moves as the point of the part nearest it does
-        (the point of the wrist-to-fingertip line closest to the part's joint), keeping
-        its turn (the body's turn, up to 12°, would take the wrist past its limits on
-        signs made at the chest), so a sign made on the chest or the face keeps its
-        contact. Keys in the signing space stay where the sign puts them, in both spine
-        conditions.
+        (the point of the wrist-to-fingertip line closest to the part's joint); a hand at
+        the head turns with it too (``TURNING_PARTS``), one at the chest keeps its turn
+        (the body's turn, up to 12°, would take the wrist past its limits there), so a
+        sign made on the chest or the face keeps its contact. Keys in the signing space
+        stay where the sign puts them, in both spine conditions.
         """
         carried = self._carried(before, after)
         out = {}
@@ -136,9 +136,13 @@ class KeySolver:
         motion that takes the part from its pose in *before* to its pose in *after*
         (DOFs, n × n_dofs): rotation (n, 3, 3), translation (n, 3) and the part's joint
         before (n, 3), world frame."""
-        pose_before, pose_after = self.body.pose(before), self.body.pose(after)
         n = len(before)
-        carried = {"": (np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)))}
+        still = (np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3)), np.zeros((n, 3)))
+        if np.array_equal(before, after):
+            # No automated motion (spine off): nothing moves, no need to pose the body.
+            return {"": still, **dict.fromkeys(BODY_PARTS, still)}
+        pose_before, pose_after = self.body.pose(before), self.body.pose(after)
+        carried = {"": still}
         for part, joint in BODY_PARTS.items():
             j = self.body.skeleton.index(joint)
             turn = pose_after.rotations[:, j] @ np.swapaxes(pose_before.rotations[:, j], 1, 2)

@@ -50,9 +50,9 @@ class HandKey:
     """One hand in one key: wrist position (3,) and palm and finger directions (3,), torso
     frame; handshape DOFs (radians, right-hand model order); elbow swivel (rad).
 
-    *body* names the body part the key is placed at (``BODY_PARTS``): its position and
-    directions are the part's and move with it when the automated spine moves the part;
-    empty for a key in the signing space, which stays where it is.
+    *body* names the body part the key is placed at (``BODY_PARTS``): the hand goes with
+    the part when the automated spine moves it (synthesis.signing.keys); empty for a key
+    in the signing space, which stays where it is.
     """
 
     at_m: np.ndarray
