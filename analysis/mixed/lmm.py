@@ -12,22 +12,24 @@ R = XᵀX − XᵀZΛ A⁻¹ ΛᵀZᵀX and r² the penalised residual sum of sq
 
 profiled over σ at σ² = r²/n or r²/(n − p) (Bates et al. 2015, J. Stat. Softw. 67(1)
 §3.4–3.6, eqs. 34 and 41; the criteria of ``lmer``). Only θ is searched, by BOBYQA with
-the bound test of :mod:`analysis.mixed.optimize`; cov(β̂) = σ² R⁻¹. statsmodels' MixedLM
-gives the same numbers but forms dense per-group matrices: ten minutes for 48,000
-ratings by 1,000 participants, against seconds here with the participants' block
-eliminated first.
+the bound test of :mod:`analysis.mixed.optimize`; cov(β̂) = σ² R⁻¹. As in lme4, A is
+factored sparse in one symbolic analysis for every θ (analysis.mixed.cholesky), or with
+one grouping factor's levels eliminated first where the rest is narrow. statsmodels'
+MixedLM gives the same numbers but forms dense per-group matrices: ten minutes for
+48,000 ratings by 1,000 participants, against seconds here; InstEval's 300 students ×
+999 lecturers take seconds too (bench/bench_insteval.py).
 """
 
 import dataclasses
 
 import numpy as np
-from scipy import sparse
 
 from analysis.mixed import convergence, optimize
 from analysis.mixed.degenerate import dropped_message, full_rank
-from analysis.mixed.factor import DENSE_UP_TO, Blocks, Factor
+from analysis.mixed.factor import Factor
 from analysis.mixed.modes import ConditionalModes
 from analysis.mixed.problem import LARGEST_SD, MixedProblem
+from analysis.mixed.relative import RelativeCross
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -67,15 +69,6 @@ def _lower_triangle(c: int) -> tuple[np.ndarray, np.ndarray]:
     return rows[order], cols[order]
 
 
-def _lambda(components, factors) -> sparse.csc_array:
-    """Return Λ, block diagonal: each component's factor T once per level (sparse)."""
-    blocks = [
-        sparse.kron(sparse.eye_array(len(component.levels)), block)
-        for component, block in zip(components, factors, strict=True)
-    ]
-    return sparse.block_diag(blocks, format="csc")
-
-
 @dataclasses.dataclass(frozen=True)
 class _Solution:
     logdet_a: float
@@ -107,7 +100,9 @@ class LinearCriterion:
             offset += c
         self.lower = np.array(lower)
         # Without correlated components Λ = diag(θ per column): ZᵀZ, Zᵀ X and Zᵀ y are
-        # formed once and scaled, so an evaluation never touches the n rows again.
+        # formed once and scaled, so an evaluation never touches the n rows again. With
+        # them, ΛᵀZᵀZΛ + I is formed in ZᵀZ's fixed sparse pattern from sums kept per
+        # stored entry (analysis.mixed.relative), and factored sparse.
         self.scaled = not any(c.correlated for c in problem.components)
         self.q = self.state.q
         self.zx, self.zy = self.state.z_t_dot(self.X), self.state.z_t_dot(self.y)
@@ -115,12 +110,7 @@ class LinearCriterion:
         if self.scaled:
             self.cross = self.state.scaled_cross(np.ones(self.n))
         else:
-            rows = np.repeat(np.arange(self.n), self.state.cols.shape[1])
-            z = sparse.csr_array(
-                (self.state.vals.ravel(), (rows, self.state.cols.ravel())), shape=(self.n, self.q)
-            )
-            self.crossprod = (z.T @ z).tocsc()
-            self._prepare_blocks()
+            self.relative = RelativeCross(self.state)
 
     def start(self, scale: float) -> np.ndarray:
         """Return θ with every SD *scale* times σ and no correlation."""
@@ -142,20 +132,19 @@ class LinearCriterion:
 
     def solve(self, theta: np.ndarray) -> _Solution:
         """Solve the penalised least squares problem at θ."""
-        if self.scaled:
-            return self._solve_scaled(np.asarray(theta, float)[self.state.owner])
         theta = np.asarray(theta, float)
-        if self.blocks is not None:
-            return self._solve_blocks(theta)
-        lam = _lambda(self.problem.components, self.factors(theta))
-        crossed = (lam.T @ self.crossprod @ lam + sparse.eye_array(self.q)).tocsc()
-        factor = Factor(crossed.toarray() if self.q <= DENSE_UP_TO else crossed)
-        zx, zy = lam.T @ self.zx, lam.T @ self.zy
+        if self.scaled:
+            scale = theta[self.state.owner]
+            factor = self.cross.factor(scale)
+            return self._finish(factor, scale[:, None] * self.zx, scale * self.zy)
+        factors = self.factors(theta)
+        pattern, relative = self.state.pattern, self.relative
+        factor = pattern.factor(relative.identity_plus(factors))
+        zx, zy = (
+            relative.transposed_times(factors, self.zx),
+            relative.transposed_times(factors, self.zy),
+        )
         return self._finish(factor, zx, zy)
-
-    def _solve_scaled(self, scale: np.ndarray) -> _Solution:
-        factor = self.cross.factor(scale)
-        return self._finish(factor, scale[:, None] * self.zx, scale * self.zy)
 
     def _finish(self, factor: Factor, zx: np.ndarray, zy: np.ndarray) -> _Solution:
         """Solve for β and u given A's factor, ΛᵀZᵀX and ΛᵀZᵀy."""
@@ -167,51 +156,6 @@ class LinearCriterion:
         # W = [X, ZΛ]: no pass over the n rows.
         r2 = self.yy - float(beta @ self.xy) - float(u @ zy)
         return _Solution(factor.logdet, reduced, beta, u, r2)
-
-    def _prepare_blocks(self) -> None:
-        """Keep ZᵀZ in blocks when the first component's levels can be eliminated first.
-
-        Each observation has one level of the first grouping factor, so its part of ZᵀZ
-        is block diagonal (one c × c block per level, c its columns); the rest must be
-        small enough to factor dense.
-        """
-        first = self.problem.components[0]
-        c, levels = len(first.columns), len(first.levels)
-        k = c * levels
-        self.blocks = None
-        if self.q - k > DENSE_UP_TO:
-            return
-        values = first.values
-        head = np.zeros((levels, c, c))
-        np.add.at(head, first.codes, values[:, :, None] * values[:, None, :])
-        self.blocks = (
-            head,
-            self.crossprod[:k, k:].toarray().reshape(levels, c, self.q - k),
-            self.crossprod[k:, k:].toarray(),
-        )
-
-    def _solve_blocks(self, theta: np.ndarray) -> _Solution:
-        head, coupling, rest = self.blocks
-        levels, c, r = coupling.shape
-        factors = self.factors(theta)
-        first = factors[0]
-        tail = (
-            _lambda(self.problem.components[1:], factors[1:]).toarray() if r else np.zeros((0, 0))
-        )
-
-        def head_t(matrix: np.ndarray) -> np.ndarray:
-            """Return (I_levels ⊗ Tᵀ) matrix for matrix (levels·c, m)."""
-            shaped = matrix.reshape(levels, c, -1)
-            return np.einsum("ba,lbm->lam", first, shaped).reshape(matrix.shape)
-
-        pivots = np.einsum("ba,lbd,de->lae", first, head, first) + np.eye(c)
-        blocked = head_t(coupling.reshape(levels * c, r)) @ tail
-        remainder = tail.T @ rest @ tail + np.eye(r)
-        factor = Factor(Blocks(pivots, blocked, remainder))
-        k = levels * c
-        zx = np.vstack([head_t(self.zx[:k]), tail.T @ self.zx[k:]])
-        zy = np.concatenate([head_t(self.zy[:k, None])[:, 0], tail.T @ self.zy[k:]])
-        return self._finish(factor, zx, zy)
 
     def _residual_df(self) -> int:
         return self.n - self.p if self.reml else self.n

@@ -1,14 +1,17 @@
 """The random effects' conditional modes of a mixed model and what the fits need of them.
 
 Z is kept row-wise (each observation's few non-zero columns and values), so Zᵀ w and
-Zᵀ W Z are bincounts; with one intercept per level first, I + S Zᵀ W Z S is built and
-factored in blocks (analysis.mixed.factor).
+Zᵀ W Z are bincounts. I + S Zᵀ W Z S is factored in blocks (analysis.mixed.factor) when
+one grouping factor's levels can be eliminated first and what remains is narrow (items
+rated by every participant), and otherwise as a sparse matrix of one fixed pattern,
+refactored numerically at each θ and W (analysis.mixed.cholesky; crossed designs).
 """
 
 import numpy as np
-from scipy import linalg, sparse
+from scipy import linalg
 
-from analysis.mixed.factor import DENSE_UP_TO, Blocks, Factor
+from analysis.mixed.cholesky import SparsePattern
+from analysis.mixed.factor import BLOCKED_UP_TO, Blocks, Factor
 from analysis.mixed.problem import NEWTON_STEP, MixedProblem
 
 
@@ -79,6 +82,8 @@ class ConditionalModes:
         order = grouped + [k for k in range(len(components)) if k not in grouped]
         self.position, c = _positions(components, grouped, order, widths, offsets, self.q)
         self.cols, self.vals = _rows_of_z(components, order, self.position, offsets, self.n)
+        self.order = tuple(order)
+        self.offsets = offsets
         self.owner = np.empty(self.q, dtype=np.int64)
         self.owner[self.position] = np.repeat(np.arange(len(widths)), widths)
         self.v = np.zeros(self.q)
@@ -86,13 +91,11 @@ class ConditionalModes:
         self.head = c * len(components[0].levels) if grouped else 0
         self.rest_width = self.q - self.head
         self.level_width = c
-        # I + S ZᵀWZ S is factored in blocks, the grouped levels eliminated first.
-        self.blocked = bool(grouped) and self.rest_width <= DENSE_UP_TO
-        # Flat indices of each row's column pairs into a dense q × q: the unstructured
-        # path, and the fallback when a blocked factorisation fails.
-        self.pairs = None
-        if self.q <= DENSE_UP_TO:
-            self.pairs = (self.cols[:, :, None] * self.q + self.cols[:, None, :]).ravel()
+        # I + S ZᵀWZ S is factored in blocks, the grouped levels eliminated first, when
+        # the rest is narrow; otherwise sparse in one fixed pattern (crossed designs).
+        self.blocked = bool(grouped) and self.rest_width <= BLOCKED_UP_TO
+        self._joint = None
+        self._index_pattern()
         if self.blocked:
             self._index_blocks(c)
 
@@ -109,31 +112,35 @@ class ConditionalModes:
         self.coupling_index = (head[:, :, None] * r + rest[:, None, :]).ravel()
         self.rest_pairs = (rest[:, :, None] * r + rest[:, None, :]).ravel()
 
+    def _index_pattern(self) -> None:
+        """Set ZᵀZ's pattern (each row's pairs of columns) and each row's pairs' slots."""
+        first, second = np.triu_indices(self.cols.shape[1])
+        rows, cols = self.cols[:, first], self.cols[:, second]
+        self.pattern = SparsePattern(rows, cols, self.q)
+        self.pair_columns = (first, second)
+        self.pair_slots = self.pattern.slots(rows, cols).ravel()
+
+    def _pattern_values(self, weight: np.ndarray, vals: np.ndarray | None = None) -> np.ndarray:
+        """Return Zᵀ W Z's values in :attr:`pattern`'s slots (Z's row values *vals*, or
+        the problem's own)."""
+        vals = self.vals if vals is None else vals
+        first, second = self.pair_columns
+        products = weight[:, None] * vals[:, first] * vals[:, second]
+        return np.bincount(self.pair_slots, products.ravel(), minlength=len(self.pattern.keys))
+
     def z_dot(self, vector: np.ndarray) -> np.ndarray:
         """Return Z @ vector, shape (n_obs,)."""
         return (self.vals * vector[self.cols]).sum(axis=1)
 
-    def z_t_dot(self, weights: np.ndarray) -> np.ndarray:
-        """Return Zᵀ @ weights for weights (n_obs,) or (n_obs, k)."""
+    def z_t_dot(self, weights: np.ndarray, vals: np.ndarray | None = None) -> np.ndarray:
+        """Return Zᵀ @ weights for weights (n_obs,) or (n_obs, k) (Z's row values *vals*,
+        or the problem's own)."""
+        vals = self.vals if vals is None else vals
         if weights.ndim == 1:
             return np.bincount(
-                self.cols.ravel(), (self.vals * weights[:, None]).ravel(), minlength=self.q
+                self.cols.ravel(), (vals * weights[:, None]).ravel(), minlength=self.q
             )
-        return np.column_stack([self.z_t_dot(weights[:, j]) for j in range(weights.shape[1])])
-
-    def _cross(self, weight: np.ndarray):
-        """Return Zᵀ W Z, shape (q, q): dense, or sparse above DENSE_UP_TO columns."""
-        products = weight[:, None, None] * self.vals[:, :, None] * self.vals[:, None, :]
-        if self.q > DENSE_UP_TO:
-            rows = np.repeat(self.cols, self.cols.shape[1], axis=1).ravel()
-            cols = np.tile(self.cols, (1, self.cols.shape[1])).ravel()
-            return sparse.csc_array((products.ravel(), (rows, cols)), shape=(self.q, self.q))
-        cross = np.bincount(self.pairs, products.ravel(), minlength=self.q * self.q)
-        return cross.reshape(self.q, self.q)
-
-    def _weighted_cross(self, weight: np.ndarray, scale: np.ndarray):
-        """Return S Zᵀ W Z S, shape (q, q): dense, or sparse above DENSE_UP_TO columns."""
-        return _scaled(self._cross(weight), scale)
+        return np.column_stack([self.z_t_dot(weights[:, j], vals) for j in range(weights.shape[1])])
 
     def _raw_blocks(self, weight: np.ndarray) -> Blocks:
         """Return Zᵀ W Z in blocks, unscaled and without I (needs the grouped components
@@ -181,10 +188,8 @@ class ConditionalModes:
         """Factor I + S Zᵀ W Z S."""
         if self.blocked:
             return Factor(self._blocks(weight, scale))
-        return Factor(self._eye() + self._weighted_cross(weight, scale))
-
-    def _eye(self):
-        return sparse.eye_array(self.q, format="csc") if self.q > DENSE_UP_TO else np.eye(self.q)
+        values = self.pattern.identity_plus_scaled(self._pattern_values(weight), scale)
+        return self.pattern.factor(values)
 
     def mode(self, eta_fixed: np.ndarray, scale: np.ndarray, extra: np.ndarray):
         """Return (v̂, Σℓ_i, log det H) at the conditional mode of v (Newton with halving)."""
@@ -225,8 +230,7 @@ class ConditionalModes:
             try:
                 solve = self._joint_solver(scale, derivs.weight)
             except (linalg.LinAlgError, RuntimeError):
-                hessian = self._joint_hessian(scale, derivs.weight)
-                dense = hessian.toarray() if sparse.issparse(hessian) else hessian
+                dense = self._joint_hessian(scale, derivs.weight)
 
                 def solve(rhs, dense=dense):
                     return linalg.lstsq(dense, rhs)[0]
@@ -239,7 +243,7 @@ class ConditionalModes:
     def _joint_solver(self, scale: np.ndarray, weight: np.ndarray):
         """Return a solver of the joint Hessian over (β, v), in that order."""
         if not self.blocked:
-            return Factor(self._joint_hessian(scale, weight)).solve
+            return self._joint_pattern().factor(self._joint_values(scale, weight)).solve
         X, p, k = self.X, self.p, self.head
         weighted = X * weight[:, None]
         side = scale[:, None] * self.z_t_dot(weighted)
@@ -257,15 +261,41 @@ class ConditionalModes:
 
         return solve
 
+    def _joint_pattern(self) -> SparsePattern:
+        """Return the joint Hessian's pattern over (β, v): β's rows dense, then ZᵀZ's."""
+        if self._joint is None:
+            p, q = self.p, self.q
+            beta_rows, beta_cols = np.triu_indices(p)
+            side_rows, side_cols = np.repeat(np.arange(p), q), p + np.tile(np.arange(q), p)
+            v_rows, v_cols = p + self.pattern.rows, p + self.pattern.cols
+            pattern = SparsePattern(
+                np.concatenate([beta_rows, side_rows, v_rows]),
+                np.concatenate([beta_cols, side_cols, v_cols]),
+                p + q,
+            )
+            self._joint = (
+                pattern,
+                pattern.slots(beta_rows, beta_cols),
+                pattern.slots(side_rows, side_cols),
+                pattern.slots(v_rows, v_cols),
+            )
+        return self._joint[0]
+
+    def _joint_values(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
+        """Return the joint Hessian's values in :meth:`_joint_pattern`'s slots."""
+        pattern, beta_slots, side_slots, v_slots = self._joint
+        weighted = self.X * weight[:, None]
+        values = np.zeros(len(pattern.keys))
+        values[beta_slots] = (self.X.T @ weighted)[np.triu_indices(self.p)]
+        values[side_slots] = (scale[:, None] * self.z_t_dot(weighted)).T.ravel()
+        v_values = self._pattern_values(weight)
+        values[v_slots] = self.pattern.identity_plus_scaled(v_values, scale)
+        return values
+
     def _joint_hessian(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
-        X = self.X
-        weighted = X * weight[:, None]
-        top = X.T @ weighted
-        side = scale[:, None] * self.z_t_dot(weighted)
-        corner = self._weighted_cross(weight, scale) + self._eye()
-        if sparse.issparse(corner):
-            return sparse.block_array([[top, side.T], [side, corner]], format="csc")
-        return np.block([[top, side.T], [side, corner]])
+        """Return the joint Hessian over (β, v), dense (a singular system's fallback)."""
+        pattern = self._joint_pattern()
+        return pattern.dense(self._joint_values(scale, weight))
 
     def profiled_loglik(self, scale: np.ndarray, extra: np.ndarray, beta: np.ndarray):
         """Return ℓ_L at the joint mode of (β, v) for given SDs (per column) and extras."""
@@ -282,21 +312,14 @@ class ScaledCross:
 
     def __init__(self, modes: ConditionalModes, weight: np.ndarray):
         self.modes = modes
-        self.raw = modes._raw_blocks(weight) if modes.blocked else modes._cross(weight)
+        self.raw = modes._raw_blocks(weight) if modes.blocked else modes._pattern_values(weight)
 
     def factor(self, scale: np.ndarray) -> Factor:
         """Factor I + S ZᵀWZ S for S = diag(*scale*)."""
         if self.modes.blocked:
             return Factor(self.modes._scale_blocks(self.raw, scale))
-        return Factor(self.modes._eye() + _scaled(self.raw, scale))
-
-
-def _scaled(cross, scale: np.ndarray):
-    """Return S cross S for S = diag(*scale*), cross dense or sparse."""
-    if sparse.issparse(cross):
-        diagonal = sparse.diags_array(scale)
-        return diagonal @ cross @ diagonal
-    return scale[:, None] * cross * scale[None, :]
+        pattern = self.modes.pattern
+        return pattern.factor(pattern.identity_plus_scaled(self.raw, scale))
 
 
 def _newton(evaluate, newton_step, start: np.ndarray):
