@@ -81,3 +81,23 @@ def test_a_participant_with_only_one_condition_is_named_where_a_comparison_leave
     comparison = next(c for c in report.rating_condition_comparisons if conditions[0] in (c.a, c.b))
     assert comparison.left_out == (str(who),)
     assert f"with only one of the two conditions left out: {who}" in comparison.apa()
+
+
+def test_wide_tables_scroll_inside_the_report_on_a_phone_and_a_laptop(browser, tmp_path):
+    """The intelligibility comparisons table (19 columns) widened the whole page to
+    1,756 px on a 1,366 px laptop; it now scrolls on its own."""
+    from analysis import read_responses
+    from tests.analysis.mixed_data import REFERENCE
+
+    frame = read_responses(REFERENCE / "study_r.csv")
+    report = build_report(frame, ReportOptions(mixed_models=False))
+    write_report(report, frame, tmp_path, draw_figures=False)
+    for width in (390, 1366):
+        page = browser.new_page(viewport={"width": width, "height": 900})
+        page.goto((tmp_path / "report.html").as_uri())
+        widest = page.evaluate(
+            "Math.max(...[...document.querySelectorAll('table')].map(t => t.scrollWidth))"
+        )
+        assert widest > width / 2  # the tables are there, and wide
+        assert page.evaluate("document.documentElement.scrollWidth") == width
+        page.close()
