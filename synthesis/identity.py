@@ -8,7 +8,9 @@ the seeds' tables, exports, the stimulus check) are left out: a fix there must n
 re-render a study's clips or lock an open study's (issue 57). Which modules count is
 read from the code itself, the imports of :data:`CLIP_ENTRIES` followed through the
 package (:func:`clip_modules`), so a new module is counted by being used. A hand-set
-version number could be forgotten; the imports cannot.
+version number could be forgotten; the imports cannot. A module counts by its syntax
+tree, docstrings left out: reformatting it, or editing its comments or docstrings, cannot
+change a pixel and leaves every clip valid.
 
 :func:`code_digest` covers every file of the engine: the disk cache of built avatars and
 databases, and the stimulus check kept beside each clip, are keyed by it.
@@ -83,24 +85,43 @@ def _imported(path: Path) -> list[str]:
     return names
 
 
+def _code(path: Path) -> bytes:
+    """Return what of a file can change a result: a module's syntax tree without its
+    docstrings (its layout, comments and prose cannot), any other file's bytes."""
+    if path.suffix != ".py":
+        return path.read_bytes()
+    tree = ast.parse(path.read_text("utf-8"))
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (
+            isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef)
+            and body
+            and isinstance(body[0], ast.Expr)
+            and isinstance(body[0].value, ast.Constant)
+            and isinstance(body[0].value.value, str)
+        ):
+            node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree).encode()
+
+
 def _digest(root: Path, files: list[Path]) -> str:
     digest = hashlib.sha256()
     for path in files:
         digest.update(path.relative_to(root).as_posix().encode() + b"\0")
-        digest.update(hashlib.sha256(path.read_bytes()).digest())
+        digest.update(hashlib.sha256(_code(path)).digest())
     return digest.hexdigest()[:16]
 
 
 @cache
 def engine_digest(root: Path = PACKAGE) -> str:
-    """Return the first 16 hex digits of the SHA-256 over the path and bytes of every file
-    a clip can come from (:func:`clip_files`)."""
+    """Return the first 16 hex digits of the SHA-256 over the path and code (:func:`_code`)
+    of every file a clip can come from (:func:`clip_files`)."""
     return _digest(root, clip_files(root))
 
 
 @cache
 def code_digest(root: Path = PACKAGE) -> str:
-    """Return the first 16 hex digits of the SHA-256 over every engine file's path and bytes."""
+    """Return the first 16 hex digits of the SHA-256 over every engine file's path and code."""
     return _digest(root, engine_files(root))
 
 
