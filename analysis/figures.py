@@ -139,9 +139,12 @@ def ratings_plot(frame):
     items = sorted(rows["item"].unique())
     panel = max(3.2, 0.35 * len(items) * len(conditions) + 1)
     figure, axes = plt.subplots(
-        1, len(questions), figsize=(panel * len(questions) + 1, 3.8), squeeze=False,
+        1,
+        len(questions),
+        figsize=(panel * len(questions) + 1, 3.8),
+        squeeze=False,
         layout="constrained",
-    )  # fmt: skip
+    )
     colours = plt.get_cmap("tab10").colors
     step = 0.8 / len(conditions)
     # One legend entry per condition, whichever panel drew it first.
@@ -158,10 +161,14 @@ def ratings_plot(frame):
             # Tukey box plots (whiskers at 1.5 IQR) with a black median, which the
             # default orange hid on orange boxes.
             parts = axis.boxplot(
-                data, positions=[i + offset for i in present], widths=0.9 * step,
-                whis=1.5, patch_artist=True, manage_ticks=False,
+                data,
+                positions=[i + offset for i in present],
+                widths=0.9 * step,
+                whis=1.5,
+                patch_artist=True,
+                manage_ticks=False,
                 medianprops={"color": "black", "linewidth": 1.5},
-            )  # fmt: skip
+            )
             for box in parts["boxes"]:
                 box.set(facecolor=colours[k % len(colours)], alpha=0.6)
             handles.setdefault(condition, parts["boxes"][0])

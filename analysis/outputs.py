@@ -13,40 +13,85 @@ from analysis.results import format_p
 # Table columns named for a reader, each read from a rendered result's own field (a dotted
 # path for a nested result); results.json keeps the results' vocabulary.
 PAIR_COLUMNS = {
-    "a": "a", "b": "b", "a_wins": "a_wins", "b_wins": "b_wins", "ties": "ties", "n": "nobs",
-    "pct_a": "statistic", "p_two_sided": "pvalue",
-    "p_one_sided_majority": "pvalue_one_sided_majority", "majority": "majority",
+    "a": "a",
+    "b": "b",
+    "a_wins": "a_wins",
+    "b_wins": "b_wins",
+    "ties": "ties",
+    "n": "nobs",
+    "pct_a": "statistic",
+    "p_two_sided": "pvalue",
+    "p_one_sided_majority": "pvalue_one_sided_majority",
+    "majority": "majority",
     "p_adjusted": "pvalue_adjusted",
-}  # fmt: skip
+}
 CONDITION_COLUMNS = {
-    "condition": "condition", "shown": "shown", "chosen": "chosen", "win_rate": "win_rate",
-    "share": "share", "mean_participant_rate": "mean_participant_rate", "sem": "sem",
+    "condition": "condition",
+    "shown": "shown",
+    "chosen": "chosen",
+    "win_rate": "win_rate",
+    "share": "share",
+    "mean_participant_rate": "mean_participant_rate",
+    "sem": "sem",
     "n_participants": "nobs",
-}  # fmt: skip
+}
 POSTHOC_COLUMNS = {
-    "a": "a", "b": "b", "t": "statistic", "df": "df", "p": "pvalue",
-    "p_adjusted": "pvalue_adjusted", "dz": "dz", "dz_ci": "dz_ci",
-    "mean_difference": "mean_difference", "ci": "ci", "apa": "apa",
-}  # fmt: skip
+    "a": "a",
+    "b": "b",
+    "t": "statistic",
+    "df": "df",
+    "p": "pvalue",
+    "p_adjusted": "pvalue_adjusted",
+    "dz": "dz",
+    "dz_ci": "dz_ci",
+    "mean_difference": "mean_difference",
+    "ci": "ci",
+    "apa": "apa",
+}
 WILCOXON_COLUMNS = {
-    "a": "a", "b": "b", "V": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted",
-    "method": "method", "rank_biserial": "rank_biserial", "n": "nobs", "apa": "apa",
-}  # fmt: skip
+    "a": "a",
+    "b": "b",
+    "V": "statistic",
+    "p": "pvalue",
+    "p_adjusted": "pvalue_adjusted",
+    "method": "method",
+    "rank_biserial": "rank_biserial",
+    "n": "nobs",
+    "apa": "apa",
+}
 PAIRED_COLUMNS = {
-    "a": "a", "b": "b", "n": "nobs", "mean_difference": "ttest.mean_difference",
-    "ci": "ttest.ci", "t": "ttest.statistic", "df": "ttest.df", "t_p": "ttest.pvalue",
-    "t_p_adjusted": "ttest.pvalue_adjusted", "dz": "ttest.dz", "dz_ci": "ttest.dz_ci",
-    "wilcoxon_V": "wilcoxon.statistic", "wilcoxon_p": "wilcoxon.pvalue",
+    "a": "a",
+    "b": "b",
+    "n": "nobs",
+    "mean_difference": "ttest.mean_difference",
+    "ci": "ttest.ci",
+    "t": "ttest.statistic",
+    "df": "ttest.df",
+    "t_p": "ttest.pvalue",
+    "t_p_adjusted": "ttest.pvalue_adjusted",
+    "dz": "ttest.dz",
+    "dz_ci": "ttest.dz_ci",
+    "wilcoxon_V": "wilcoxon.statistic",
+    "wilcoxon_p": "wilcoxon.pvalue",
     "wilcoxon_method": "wilcoxon.method",
     "wilcoxon_p_adjusted": "wilcoxon.pvalue_adjusted",
-    "rank_biserial": "wilcoxon.rank_biserial", "apa": "apa",
-}  # fmt: skip
-COMPARATIVE_COLUMNS = {
-    "a": "a", "b": "b", "mean_preference_a": "mean_preference", "ci": "ci",
-    "V": "statistic", "p": "pvalue", "p_adjusted": "pvalue_adjusted", "method": "method",
-    "rank_biserial": "rank_biserial", "participants": "nobs", "judgements": "judgements",
+    "rank_biserial": "wilcoxon.rank_biserial",
     "apa": "apa",
-}  # fmt: skip
+}
+COMPARATIVE_COLUMNS = {
+    "a": "a",
+    "b": "b",
+    "mean_preference_a": "mean_preference",
+    "ci": "ci",
+    "V": "statistic",
+    "p": "pvalue",
+    "p_adjusted": "pvalue_adjusted",
+    "method": "method",
+    "rank_biserial": "rank_biserial",
+    "participants": "nobs",
+    "judgements": "judgements",
+    "apa": "apa",
+}
 
 
 # The HTML report's column headings for a reader; a column not named here shows its name
@@ -206,8 +251,14 @@ def _test_cells(c: dict) -> dict:
 def _sd_cells(component: str, column: str, sd: float, levels, ci) -> dict:
     """Return one random-effect SD's row cells, with its profile CI where there is one."""
     low, high = ci or (None, None)
-    return {"component": component, "column": column, "sd": sd, "levels": levels,
-            "ci_low": low, "ci_high": high}  # fmt: skip
+    return {
+        "component": component,
+        "column": column,
+        "sd": sd,
+        "levels": levels,
+        "ci_low": low,
+        "ci_high": high,
+    }
 
 
 def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
@@ -232,14 +283,22 @@ def mixed_tables(mixed: dict | None) -> dict[str, pd.DataFrame]:
             )
         for r in model["random"]:
             random.append(
-                {**key, **_sd_cells(r["name"], r.get("column", "(Intercept)"), r["sd"],
-                                    r["levels"], r.get("ci"))}
-            )  # fmt: skip
+                {
+                    **key,
+                    **_sd_cells(
+                        r["name"], r.get("column", "(Intercept)"), r["sd"], r["levels"], r.get("ci")
+                    ),
+                }
+            )
         if model.get("residual_sd") is not None:
             random.append(
-                {**key, **_sd_cells("residual", "", model["residual_sd"], None,
-                                    model.get("residual_sd_ci"))}
-            )  # fmt: skip
+                {
+                    **key,
+                    **_sd_cells(
+                        "residual", "", model["residual_sd"], None, model.get("residual_sd_ci")
+                    ),
+                }
+            )
         for c in model["contrasts"]:
             contrasts.append(
                 {

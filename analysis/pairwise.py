@@ -209,8 +209,12 @@ def _repeated_measures(rates: pd.DataFrame, order, correction: str, notes: list[
         notes.append("Fewer than two complete participants: no repeated-measures tests.")
         return None, None, None, None
     fried = friedman(complete) if len(order) >= 3 else None
-    return (rm_anova(complete), paired_ttests(complete, correction), fried,
-            wilcoxon_tests(complete, correction))  # fmt: skip
+    return (
+        rm_anova(complete),
+        paired_ttests(complete, correction),
+        fried,
+        wilcoxon_tests(complete, correction),
+    )
 
 
 def analyze_pairwise(

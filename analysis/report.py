@@ -174,8 +174,12 @@ def build_report(
 
 
 # The Report's fields when every participant was excluded.
-_NO_ANALYSES: dict[str, Any] = {"pairwise": None, "ratings": (), "rating_comparisons": (),
-                                "intelligibility": ()}  # fmt: skip
+_NO_ANALYSES: dict[str, Any] = {
+    "pairwise": None,
+    "ratings": (),
+    "rating_comparisons": (),
+    "intelligibility": (),
+}
 
 
 def _analyses(kept: pd.DataFrame, options: ReportOptions) -> dict[str, Any]:
@@ -197,9 +201,12 @@ def _analyses(kept: pd.DataFrame, options: ReportOptions) -> dict[str, Any]:
     }
     for conditions, comparisons, long in (
         ("rating_conditions", "rating_condition_comparisons", rating_scores(kept)),
-        ("intelligibility_conditions", "intelligibility_comparisons",
-         accuracy_scores(kept, options.fuzzy_scoring)),
-    ):  # fmt: skip
+        (
+            "intelligibility_conditions",
+            "intelligibility_comparisons",
+            accuracy_scores(kept, options.fuzzy_scoring),
+        ),
+    ):
         found[conditions] = summarize_conditions(long)
         found[comparisons] = compare_conditions(long, options.correction)
     if options.mixed_models:

@@ -26,11 +26,16 @@ def free_port() -> int:
 class AppServer:
     """gunicorn serving ``studyplatform.wsgi`` with deploy/gunicorn.conf.py."""
 
-    def __init__(self, env: dict[str, str], workers: int = 2, threads: int = 8,
-                 port: int | None = None):  # fmt: skip
+    def __init__(
+        self, env: dict[str, str], workers: int = 2, threads: int = 8, port: int | None = None
+    ):
         self.port = port or free_port()
-        self.env = {**env, "SIGNSTUDY_WORKERS": str(workers), "SIGNSTUDY_THREADS": str(threads),
-                    "SIGNSTUDY_LOG_LEVEL": "warning"}  # fmt: skip
+        self.env = {
+            **env,
+            "SIGNSTUDY_WORKERS": str(workers),
+            "SIGNSTUDY_THREADS": str(threads),
+            "SIGNSTUDY_LOG_LEVEL": "warning",
+        }
         self.process: subprocess.Popen | None = None
 
     @property
@@ -39,8 +44,16 @@ class AppServer:
 
     def start(self, timeout_s: float = 30.0) -> None:
         """Start the server and wait until it accepts connections."""
-        command = [sys.executable, "-m", "gunicorn", "-c", str(ROOT / "deploy/gunicorn.conf.py"),
-                   "--bind", f"127.0.0.1:{self.port}", "studyplatform.wsgi"]  # fmt: skip
+        command = [
+            sys.executable,
+            "-m",
+            "gunicorn",
+            "-c",
+            str(ROOT / "deploy/gunicorn.conf.py"),
+            "--bind",
+            f"127.0.0.1:{self.port}",
+            "studyplatform.wsgi",
+        ]
         self.process = subprocess.Popen(command, cwd=ROOT, env=self.env, start_new_session=True)
         deadline = time.monotonic() + timeout_s
         while time.monotonic() < deadline:

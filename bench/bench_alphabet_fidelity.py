@@ -33,14 +33,15 @@ def main() -> int:
     }
     fitted = {k: seen_as(model, v.dofs_rad, v) for k, v in views.items()}
     human = {letter: view.features for letter, view in views.items()}
-    ours = score_handshapes({k: seen_as(model, letter_pose(k), v) for k, v in views.items()},
-                            human)  # fmt: skip
+    ours = score_handshapes({k: seen_as(model, letter_pose(k), v) for k, v in views.items()}, human)
     elapsed = time.perf_counter() - started
     print("our letters, each taken for the nearest human letter:")
     print("  " + "  ".join(f"{k}→{v}" for k, v in ours.taken.items()))
     print(ours.summary())
-    print("confusions (human letter: our letters taken for it): "
-          + "; ".join(f"{k}: {''.join(v)}" for k, v in ours.confusions().items()))  # fmt: skip
+    print(
+        "confusions (human letter: our letters taken for it): "
+        + "; ".join(f"{k}: {''.join(v)}" for k, v in ours.confusions().items())
+    )
     print("human letters fitted onto our hand: " + score_handshapes(fitted, human).summary())
     print(f"({elapsed:.1f} s for 26 recordings)")
     return 0

@@ -41,9 +41,13 @@ def _views(n_frames: int):
     body = body_avatar("right")
     return [
         ("hand close-up", hand_avatar("right"), hand_close_up(), hand_motion),
-        ("signing view", body, upper_body_front(),
-         fingerspelling_posture(body.rig, "right", hand_motion)),
-    ]  # fmt: skip
+        (
+            "signing view",
+            body,
+            upper_body_front(),
+            fingerspelling_posture(body.rig, "right", hand_motion),
+        ),
+    ]
 
 
 def _frame_ms(renderer: Renderer, motion, scale: int) -> float:
@@ -76,14 +80,18 @@ def main() -> None:
                     times[name].append(_frame_ms(renderers[name], motion, scale))
             for name, scale, _fxaa in METHODS:
                 renderer = renderers[name]
-                errors = [edge_error(downsample(renderer.frame(pose), scale), reference)
-                          for pose, reference in zip(samples, references, strict=True)]  # fmt: skip
+                errors = [
+                    edge_error(downsample(renderer.frame(pose), scale), reference)
+                    for pose, reference in zip(samples, references, strict=True)
+                ]
                 error = np.mean([e for e, _ in errors])
                 ms = float(np.median(times[name]))
                 base = float(np.median(times["none"]))
-                print(f"{view:13s} {name:18s} {1000 / ms:5.1f} fps ({ms:5.1f} ms, "
-                      f"{ms / base:4.2f}× none) | edge error {error:5.1f} levels over "
-                      f"{np.mean([n for _, n in errors]):6.0f} edge pixels")  # fmt: skip
+                print(
+                    f"{view:13s} {name:18s} {1000 / ms:5.1f} fps ({ms:5.1f} ms, "
+                    f"{ms / base:4.2f}× none) | edge error {error:5.1f} levels over "
+                    f"{np.mean([n for _, n in errors]):6.0f} edge pixels"
+                )
         finally:
             for renderer in renderers.values():
                 renderer.close()

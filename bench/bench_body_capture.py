@@ -63,21 +63,26 @@ def main() -> int:
             misses = []
             for joint in ("right_elbow", "right_wrist", "left_elbow", "left_wrist"):
                 j = body.skeleton.index(joint)
-                miss = np.linalg.norm(fitted_pose.positions_m[:, j] - true_pose.positions_m[:, j],
-                                      axis=1)  # fmt: skip
+                miss = np.linalg.norm(
+                    fitted_pose.positions_m[:, j] - true_pose.positions_m[:, j], axis=1
+                )
                 misses.append(f"{joint.replace('_', ' ')} {np.median(miss) * 1000:.0f}")
             turn, fitted_turn = (
                 _summed(body, d[:n], "spine", "rotation") for d in (truth, fit.dofs_rad)
             )
             print(f"  {text}")
             print(f"    {recording.n_frames} frames; median miss (mm): " + ", ".join(misses))
-            print(f"    trunk turn: true range {np.ptp(turn):.0f}°, "
-                  f"fitted {np.ptp(fitted_turn):.0f}°, "
-                  f"correlation {np.corrcoef(turn, fitted_turn)[0, 1]:.2f}, "
-                  f"mean error {np.abs(turn - fitted_turn).mean():.1f}° "
-                  f"(left at rest: {np.abs(turn).mean():.1f}°)")  # fmt: skip
-    print(f"Holistic capture: {frames / capture_s:.1f} video frames/s; upper-body fit: "
-          f"{frames / fit_s:.1f} frames/s ({frames:.0f} frames)")  # fmt: skip
+            print(
+                f"    trunk turn: true range {np.ptp(turn):.0f}°, "
+                f"fitted {np.ptp(fitted_turn):.0f}°, "
+                f"correlation {np.corrcoef(turn, fitted_turn)[0, 1]:.2f}, "
+                f"mean error {np.abs(turn - fitted_turn).mean():.1f}° "
+                f"(left at rest: {np.abs(turn).mean():.1f}°)"
+            )
+    print(
+        f"Holistic capture: {frames / capture_s:.1f} video frames/s; upper-body fit: "
+        f"{frames / fit_s:.1f} frames/s ({frames:.0f} frames)"
+    )
     return 0
 
 

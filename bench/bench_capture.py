@@ -36,9 +36,18 @@ from synthesis.rigs import HandModel
 from synthesis.rigs.landmarks import landmarks
 from synthesis.techniques import ClipRequest, build_motion, render_request
 
-WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR",
-         # The 26 letters, spelled in one clip.
-         "ABCDEFGHIJKLMNOPQRSTUVWXYZ")  # fmt: skip
+WORDS = (
+    "GUITAR",
+    "HEAVEN",
+    "ARREST",
+    "ELEPHANT",
+    "PSYCHIATRY",
+    "DAVID",
+    "MICHAEL",
+    "VICTOR",
+    # The 26 letters, spelled in one clip.
+    "ABCDEFGHIJKLMNOPQRSTUVWXYZ",
+)
 TIPS = (4, 8, 12, 16, 20)
 
 
@@ -83,14 +92,20 @@ def closed_loop(words: list[str], avatar: str) -> None:
                 f"  {word:<11} {recording.n_frames:4d} frames, found {found:.0%}, finger error "
                 f"median {np.median(error[:, fingers]):5.1f}°, fingertips {np.median(tips):5.1f} mm"
             )
-    for label, values, unit in (("finger flexion", finger_errors, "°"),
-                                ("all finger and thumb DOFs", digit_errors, "°"),
-                                ("fingertip position", tip_errors, " mm")):  # fmt: skip
+    for label, values, unit in (
+        ("finger flexion", finger_errors, "°"),
+        ("all finger and thumb DOFs", digit_errors, "°"),
+        ("fingertip position", tip_errors, " mm"),
+    ):
         values = np.concatenate(values)
-        print(f"{label:<27} median {np.median(values):5.1f}{unit}, "
-              f"p95 {np.percentile(values, 95):5.1f}{unit}")  # fmt: skip
-    print(f"capture: {frames / capture_s:.1f} video frames/s; fit: {frames / fit_s:.1f} frames/s "
-          f"({frames:.0f} frames)")  # fmt: skip
+        print(
+            f"{label:<27} median {np.median(values):5.1f}{unit}, "
+            f"p95 {np.percentile(values, 95):5.1f}{unit}"
+        )
+    print(
+        f"capture: {frames / capture_s:.1f} video frames/s; fit: {frames / fit_s:.1f} frames/s "
+        f"({frames:.0f} frames)"
+    )
 
 
 def human_letters() -> None:
@@ -98,8 +113,9 @@ def human_letters() -> None:
     from human_letters_sheet import human_letter_files, human_pose
 
     model = HandModel()
-    residuals = {name: human_pose(model, path)[1] for name, path in
-                 sorted(human_letter_files().items())}  # fmt: skip
+    residuals = {
+        name: human_pose(model, path)[1] for name, path in sorted(human_letter_files().items())
+    }
     print(
         "human letters (spoken-to-signed 0.4.0), median landmark residual after scale "
         "calibration, image plane:"

@@ -44,9 +44,16 @@ def _events(participant, study) -> list:
             rows += [("play", 1), ("ended", 1)]
         for kind, clip in rows:
             clock += 1500
-            events.append(MediaEvent(participant=participant, trial=trial, kind=kind,
-                                     clip_position=clip, client_time_ms=clock,
-                                     detail={"width": 1280, "height": 800}))  # fmt: skip
+            events.append(
+                MediaEvent(
+                    participant=participant,
+                    trial=trial,
+                    kind=kind,
+                    clip_position=clip,
+                    client_time_ms=clock,
+                    detail={"width": 1280, "height": 800},
+                )
+            )
     return events
 
 
@@ -74,15 +81,16 @@ def main(participants: int) -> None:
     conditions = tuple(study.conditions.values_list("key", flat=True))
     questions = list(study.questions.filter(key="most-natural"))
     example = study.items.get(is_practice=True).key  # the demo's practice word
-    spec = DesignSpec(Design.BALANCED_PAIRS, conditions, WORDS, practice_items=(example,),
-                      seed=1)  # fmt: skip
+    spec = DesignSpec(Design.BALANCED_PAIRS, conditions, WORDS, practice_items=(example,), seed=1)
     build_ms, built = timed_ms(lambda: do_build_design(study, spec, questions))
     study.refresh_from_db()
     summary_ms, summary = timed_ms(lambda: summarize_design(study))
     identical_ms, _ = timed_ms(lambda: identical_clips(study))
     print(f"database: {connection.vendor}")
-    print(f"design builder, {built.pages} pages (4 conditions × 8 words, balanced): "
-          f"{build_ms:.0f} ms (median of 5 rebuilds)")  # fmt: skip
+    print(
+        f"design builder, {built.pages} pages (4 conditions × 8 words, balanced): "
+        f"{build_ms:.0f} ms (median of 5 rebuilds)"
+    )
     print(f"design summary ({summary.pages} pages a participant): {summary_ms:.0f} ms")
     print(f"identical-clip check (32 clip specifications): {identical_ms:.0f} ms")
 
@@ -93,20 +101,25 @@ def main(participants: int) -> None:
         participant = do_enroll_participant(study, consented=True)
         for trial in study.trials.filter(kind="pairwise").prefetch_related("questions"):
             for question in trial.questions.all():
-                do_save_response(participant, trial, question,
-                                 Answer(choice_position=1 + number % 2, rt_ms=9000))  # fmt: skip
+                do_save_response(
+                    participant, trial, question, Answer(choice_position=1 + number % 2, rt_ms=9000)
+                )
         MediaEvent.objects.bulk_create(_events(participant, study), batch_size=2000)
     setup_s = time.perf_counter() - started
     events = MediaEvent.objects.filter(participant__study=study).count()
     quality_ms, _ = timed_ms(lambda: study_quality(study), repeat=3)
     export_ms, text = timed_ms(lambda: tidy_csv(study), repeat=3)
     rows = text.count("\n") - 1
-    print(f"{participants} participants, {rows} answer rows, {events} media events "
-          f"(set up in {setup_s:.0f} s)")  # fmt: skip
-    print(f"tidy CSV with quality columns: {export_ms:.0f} ms "
-          f"({1000 * rows / export_ms:.0f} rows/s); of which the quality data "
-          f"{quality_ms:.0f} ms ({100 * quality_ms / export_ms:.0f} %, "
-          f"{1000 * events / quality_ms:.0f} events/s)")  # fmt: skip
+    print(
+        f"{participants} participants, {rows} answer rows, {events} media events "
+        f"(set up in {setup_s:.0f} s)"
+    )
+    print(
+        f"tidy CSV with quality columns: {export_ms:.0f} ms "
+        f"({1000 * rows / export_ms:.0f} rows/s); of which the quality data "
+        f"{quality_ms:.0f} ms ({100 * quality_ms / export_ms:.0f} %, "
+        f"{1000 * events / quality_ms:.0f} events/s)"
+    )
 
 
 if __name__ == "__main__":

@@ -29,8 +29,15 @@ def missed_frames(text: str, size: tuple[int, int], look: Look, holistic) -> tup
     parameters = {"rate_hz": 30.0, "width": size[0], "height": size[1], "spine": True}
     request = ClipRequest.from_parameters("sentence", text, parameters)
     motion = np.asarray(build_motion(request).motion)
-    avatar, camera = filming(request.view, request.side, motion, request.rate_hz,
-                             request.width, request.height, look=look)  # fmt: skip
+    avatar, camera = filming(
+        request.view,
+        request.side,
+        motion,
+        request.rate_hz,
+        request.width,
+        request.height,
+        look=look,
+    )
     missed = []
     with Renderer(avatar, camera, width=size[0], height=size[1]) as renderer, holistic() as model:
         for number, dofs in enumerate(motion):
@@ -57,10 +64,14 @@ def main() -> int:
         count, missed = missed_frames(text, size, Look(avatar=arguments.avatar), holistic)
         frames, found = frames + count, found + count - len(missed)
         when = ", ".join(f"{number / 30:.2f} s" for number in missed)
-        print(f"{text[:48]:<48} {count:4d} frames, no face in {len(missed)}"
-              + (f" (at {when})" if missed else ""))  # fmt: skip
-    print(f"face found in {found} of {frames} frames ({found / frames:.1%}), {arguments.avatar} "
-          f"avatar, {size[0]}×{size[1]} ({time.perf_counter() - started:.0f} s)")  # fmt: skip
+        print(
+            f"{text[:48]:<48} {count:4d} frames, no face in {len(missed)}"
+            + (f" (at {when})" if missed else "")
+        )
+    print(
+        f"face found in {found} of {frames} frames ({found / frames:.1%}), {arguments.avatar} "
+        f"avatar, {size[0]}×{size[1]} ({time.perf_counter() - started:.0f} s)"
+    )
     return 0
 
 

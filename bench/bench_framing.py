@@ -25,8 +25,17 @@ from synthesis.render.framing import measure_framing
 from synthesis.signing.stories import DEMO_SENTENCES
 from synthesis.techniques import ClipRequest, build_motion, filming
 
-WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR",
-         "ABCDEFGHIJKLMNOPQRSTUVWXYZ")  # fmt: skip
+WORDS = (
+    "GUITAR",
+    "HEAVEN",
+    "ARREST",
+    "ELEPHANT",
+    "PSYCHIATRY",
+    "DAVID",
+    "MICHAEL",
+    "VICTOR",
+    "ABCDEFGHIJKLMNOPQRSTUVWXYZ",
+)
 
 
 def main() -> int:
@@ -37,33 +46,41 @@ def main() -> int:
         request = ClipRequest("word", word, {"timing": "constant"}, rate_hz=30)
         build = build_motion(request)
         motion = np.asarray(build.motion)
-        avatar, camera = filming(request.view, request.side, motion, request.rate_hz,
-                                 request.width, request.height, word)  # fmt: skip
+        avatar, camera = filming(
+            request.view, request.side, motion, request.rate_hz, request.width, request.height, word
+        )
         framing = measure_framing(avatar, camera, motion)
         middles = np.round(hold_times_s(build.timing).mean(axis=1) * request.rate_hz)
         at_holds = framing.hand_share[middles.astype(int)]
         shares.append(at_holds)
         outside += int(framing.hand_outside.sum())
         smallest = build.timing.letters[int(np.argmin(at_holds))]
-        print(f"  {word:<11} hand height at holds {at_holds.min():4.0%} (smallest, {smallest}) – "
-              f"{np.median(at_holds):4.0%} (median) of the frame; "
-              f"frames with the hand outside: {framing.hand_outside.sum()}")  # fmt: skip
+        print(
+            f"  {word:<11} hand height at holds {at_holds.min():4.0%} (smallest, {smallest}) – "
+            f"{np.median(at_holds):4.0%} (median) of the frame; "
+            f"frames with the hand outside: {framing.hand_outside.sum()}"
+        )
     shares = np.concatenate(shares)
-    print(f"  all: at holds smallest {shares.min():.0%}, median {np.median(shares):.0%}; "
-          f"frames with the hand outside: {outside} (targets: ≥ 45 % at holds, 0)")  # fmt: skip
+    print(
+        f"  all: at holds smallest {shares.min():.0%}, median {np.median(shares):.0%}; "
+        f"frames with the hand outside: {outside} (targets: ≥ 45 % at holds, 0)"
+    )
     for width, height in ((640, 480), (1280, 720)):
         print(f"signing view, {width}×{height} (spine on), the story and the demo's prompts:")
         for text in DEMO_SENTENCES:
             values = {"rate_hz": 30.0, "width": width, "height": height}
             request = ClipRequest.from_parameters("sentence", text, values)
             motion = np.asarray(build_motion(request).motion)
-            avatar, camera = filming(request.view, request.side, motion, request.rate_hz,
-                                     request.width, request.height)  # fmt: skip
+            avatar, camera = filming(
+                request.view, request.side, motion, request.rate_hz, request.width, request.height
+            )
             framing = measure_framing(avatar, camera, motion, width, height)
-            print(f"  {text[:40]:<40} frames with a hand outside {framing.hand_outside.sum()} "
-                  f"of {len(framing.hand_outside)}; head (crown to chin) "
-                  f"{np.nanmin(framing.head_px):.0f} px tall, face "
-                  f"{np.nanmin(framing.face_px):.0f} px")  # fmt: skip
+            print(
+                f"  {text[:40]:<40} frames with a hand outside {framing.hand_outside.sum()} "
+                f"of {len(framing.hand_outside)}; head (crown to chin) "
+                f"{np.nanmin(framing.head_px):.0f} px tall, face "
+                f"{np.nanmin(framing.face_px):.0f} px"
+            )
     print("  (targets: no hand outside; the face ≥ 90 px at 640×480, ≥ 120 px at 1280×720)")
     print(f"({time.perf_counter() - started:.0f} s)")
     return 0

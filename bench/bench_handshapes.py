@@ -55,14 +55,17 @@ def main() -> int:
         flat = points * [1, 1, 0]
         fit = fit_hand(model, flat, confidence)
         middle = len(points) // 2
-        marks = np.einsum("ij,kj->ki", fit.rotations[middle],
-                          landmarks(model, fit.dofs_rad[middle]))  # fmt: skip
+        marks = np.einsum(
+            "ij,kj->ki", fit.rotations[middle], landmarks(model, fit.dofs_rad[middle])
+        )
         marks[:, 2] = 0.0
         tracked += nearest_handshape(handshape_features(marks), human) == letter
         frames += len(points)
     elapsed = time.perf_counter() - started
-    print(f"whole recordings, tracked: {tracked} of {len(human)} middle frames classified right "
-          f"({frames / elapsed:.1f} frames/s)")  # fmt: skip
+    print(
+        f"whole recordings, tracked: {tracked} of {len(human)} middle frames classified right "
+        f"({frames / elapsed:.1f} frames/s)"
+    )
     return 0
 
 

@@ -55,8 +55,13 @@ def _prepare(env: dict[str, str]) -> None:
         subprocess.run([*psql, f"DROP DATABASE IF EXISTS {DATABASE}"], check=True)
         subprocess.run([*psql, f"CREATE DATABASE {DATABASE}"], check=True)
     for command in (["migrate", "--noinput"], ["collectstatic", "--noinput"], ["seed_demo"]):
-        subprocess.run([sys.executable, "manage.py", *command, "-v0"], cwd=ROOT, env=env,
-                       check=True, stdout=subprocess.DEVNULL)  # fmt: skip
+        subprocess.run(
+            [sys.executable, "manage.py", *command, "-v0"],
+            cwd=ROOT,
+            env=env,
+            check=True,
+            stdout=subprocess.DEVNULL,
+        )
 
 
 def _participant(url: str, number: int, pages: int, think_s: float, arrival_s: float):
@@ -85,8 +90,13 @@ def _fault(kind: str, server: AppServer, at_s: float, log: list[str]) -> None:
         log.append(f"worker {server.kill_worker()} killed (SIGKILL)")
     elif kind == "backup":
         archive = Path(server.env["SIGNSTUDY_VAR_DIR"]) / "under-load.tar.gz"
-        subprocess.run([sys.executable, "manage.py", "backup", str(archive)], cwd=ROOT,
-                       env=server.env, check=True, stdout=subprocess.DEVNULL)  # fmt: skip
+        subprocess.run(
+            [sys.executable, "manage.py", "backup", str(archive)],
+            cwd=ROOT,
+            env=server.env,
+            check=True,
+            stdout=subprocess.DEVNULL,
+        )
         log.append(f"backup of {archive.stat().st_size / 1e6:.1f} MB written")
     elif kind == "pg-restart":
         subprocess.run(["pg_ctlcluster", "15", "main", "restart"], check=True)
@@ -115,10 +125,14 @@ def _check(results) -> tuple[int, int, int]:
             continue
         participant = Participant.objects.get(token=answered.token)
         answers = Response.objects.filter(participant=participant)
-        rows = {(r.trial.key, r.question.key): r
-                for r in answers.select_related("trial", "question")}  # fmt: skip
-        personal = dict(PersonalAnswer.objects.filter(participant=participant)
-                        .values_list("question__key", "value"))  # fmt: skip
+        rows = {
+            (r.trial.key, r.question.key): r for r in answers.select_related("trial", "question")
+        }
+        personal = dict(
+            PersonalAnswer.objects.filter(participant=participant).values_list(
+                "question__key", "value"
+            )
+        )
         for (trial, question), value in answered.sent.items():
             if question in personal:
                 stored += 1
@@ -139,8 +153,12 @@ def main() -> None:
     parser.add_argument("--participants", type=int, default=200)
     parser.add_argument("--pages", type=int, default=10)
     parser.add_argument("--think-s", type=float, default=15.0, help="mean seconds per page")
-    parser.add_argument("--arrival-s", type=float, default=60.0,
-                        help="participants start at random within this many seconds")  # fmt: skip
+    parser.add_argument(
+        "--arrival-s",
+        type=float,
+        default=60.0,
+        help="participants start at random within this many seconds",
+    )
     parser.add_argument(
         "--fault",
         default="none",
@@ -153,11 +171,17 @@ def main() -> None:
     print(machine.describe())
     with tempfile.TemporaryDirectory() as var_dir:
         kept = ("SIGNSTUDY_ACCESS_LOG",)
-        env = {k: v for k, v in os.environ.items()
-               if not k.startswith(("SIGNSTUDY_", "CELERY_")) or k in kept}  # fmt: skip
+        env = {
+            k: v
+            for k, v in os.environ.items()
+            if not k.startswith(("SIGNSTUDY_", "CELERY_")) or k in kept
+        }
         database = POSTGRES if args.database == "postgres" else f"sqlite:///{var_dir}/load.sqlite3"
-        env.update(SIGNSTUDY_VAR_DIR=var_dir, DATABASE_URL=database,
-                   DJANGO_SETTINGS_MODULE="studyplatform.settings")  # fmt: skip
+        env.update(
+            SIGNSTUDY_VAR_DIR=var_dir,
+            DATABASE_URL=database,
+            DJANGO_SETTINGS_MODULE="studyplatform.settings",
+        )
         try:
             _prepare(env)
         except (OSError, subprocess.CalledProcessError) as error:
@@ -169,38 +193,51 @@ def main() -> None:
         log: list[str] = []
         expected_s = args.arrival_s + args.think_s * args.pages or 20.0
         if args.fault != "none":
-            threading.Thread(target=_fault, args=(args.fault, server, 0.4 * expected_s, log),
-                             daemon=True).start()  # fmt: skip
+            threading.Thread(
+                target=_fault, args=(args.fault, server, 0.4 * expected_s, log), daemon=True
+            ).start()
         started = time.perf_counter()
         try:
             with ThreadPoolExecutor(args.participants) as pool:
-                results = list(pool.map(
-                    lambda n: _participant(server.url, n, args.pages, args.think_s,
-                                           args.arrival_s),
-                    range(args.participants)))  # fmt: skip
+                results = list(
+                    pool.map(
+                        lambda n: _participant(
+                            server.url, n, args.pages, args.think_s, args.arrival_s
+                        ),
+                        range(args.participants),
+                    )
+                )
         finally:
             server.stop()
         wall = time.perf_counter() - started
         stored, lost, wrong = _check(results)
-    timings = {kind: [t for answered, _ in results for t in answered.timings[kind]]
-               for kind in ("page", "save", "next")}  # fmt: skip
+    timings = {
+        kind: [t for answered, _ in results for t in answered.timings[kind]]
+        for kind in ("page", "save", "next")
+    }
     requests = sum(len(v) for v in timings.values())
     failed = [error for _, error in results if error]
     engine = "PostgreSQL" if args.database == "postgres" else "SQLite"
-    print(f"{engine} through gunicorn ({args.workers} workers × {args.threads} threads): "
-          f"{args.participants} participants arriving within {args.arrival_s:g} s × {args.pages} "
-          f"pages, think time {args.think_s:g} s, fault {args.fault}; {requests} requests in "
-          f"{wall:.1f} s "
-          f"({requests / wall:.0f}/s), {sum(a.retries for a, _ in results)} retries")  # fmt: skip
+    print(
+        f"{engine} through gunicorn ({args.workers} workers × {args.threads} threads): "
+        f"{args.participants} participants arriving within {args.arrival_s:g} s × {args.pages} "
+        f"pages, think time {args.think_s:g} s, fault {args.fault}; {requests} requests in "
+        f"{wall:.1f} s "
+        f"({requests / wall:.0f}/s), {sum(a.retries for a, _ in results)} retries"
+    )
     for line in log:
         print(f"  {line}")
     for name, label in (("page", "trial page"), ("save", "answer save"), ("next", "Next")):
         values = [1000 * v for v in timings[name]]
-        print(f"  {label:12s} median {statistics.median(values):6.1f} ms   "
-              f"p95 {_percentile(values, 0.95):6.1f} ms   max {max(values):7.1f} ms  "
-              f"(target p95 < 100 ms)")  # fmt: skip
-    print(f"  answers stored {stored}, lost {lost}, duplicated or wrong {wrong}; "
-          f"participants who could not go on: {len(failed)}")  # fmt: skip
+        print(
+            f"  {label:12s} median {statistics.median(values):6.1f} ms   "
+            f"p95 {_percentile(values, 0.95):6.1f} ms   max {max(values):7.1f} ms  "
+            f"(target p95 < 100 ms)"
+        )
+    print(
+        f"  answers stored {stored}, lost {lost}, duplicated or wrong {wrong}; "
+        f"participants who could not go on: {len(failed)}"
+    )
     for error in sorted(set(failed))[:5]:
         print(f"    {error}")
 

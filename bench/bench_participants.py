@@ -78,8 +78,15 @@ def _take_study(
                 value = "30"
             else:
                 value = f"open answer {number}"
-            body = json.dumps({"page": number, "trial": key, "question": question.key,
-                               "value": value, "rt_ms": 900})  # fmt: skip
+            body = json.dumps(
+                {
+                    "page": number,
+                    "trial": key,
+                    "question": question.key,
+                    "value": value,
+                    "rt_ms": 900,
+                }
+            )
             for _ in range(2):  # the second is a retry of the first: changes nothing
                 started = time.perf_counter()
                 saved = client.post(f"/p/{token}/answer/", body, content_type="application/json")
@@ -150,13 +157,17 @@ def run(database: str, participants: int, pages: int, think_s: float) -> None:
     wall = time.perf_counter() - started
     stored, lost, wrong = _check(results)
     requests = sum(len(v) for v in timings.values())
-    print(f"{database}: {participants} participants × {pages} pages, think time {think_s:g} s, "
-          f"{requests} requests in {wall:.1f} s ({requests / wall:.0f} requests/s)")  # fmt: skip
+    print(
+        f"{database}: {participants} participants × {pages} pages, think time {think_s:g} s, "
+        f"{requests} requests in {wall:.1f} s ({requests / wall:.0f} requests/s)"
+    )
     for name, label in (("page", "trial page"), ("save", "answer save"), ("next", "Next")):
         values = [1000 * v for v in timings[name]]
-        print(f"  {label:12s} median {statistics.median(values):6.1f} ms   "
-              f"p95 {_percentile(values, 0.95):6.1f} ms   max {max(values):7.1f} ms  "
-              f"(target p95 < 50 ms)")  # fmt: skip
+        print(
+            f"  {label:12s} median {statistics.median(values):6.1f} ms   "
+            f"p95 {_percentile(values, 0.95):6.1f} ms   max {max(values):7.1f} ms  "
+            f"(target p95 < 50 ms)"
+        )
     print(f"  responses stored {stored}, lost {lost}, duplicated or wrong {wrong}")
 
 
@@ -190,9 +201,18 @@ def main() -> None:
                     print(f"postgres: SKIPPED, no server on 127.0.0.1:5432 ({error})")
                     continue
                 environment["DATABASE_URL"] = POSTGRES
-            command = [sys.executable, __file__, "--child", database, "--participants",
-                       str(args.participants), "--pages", str(args.pages), "--think-s",
-                       str(args.think_s)]  # fmt: skip
+            command = [
+                sys.executable,
+                __file__,
+                "--child",
+                database,
+                "--participants",
+                str(args.participants),
+                "--pages",
+                str(args.pages),
+                "--think-s",
+                str(args.think_s),
+            ]
             subprocess.run(command, check=True, env=environment, cwd=ROOT)
 
 

@@ -89,7 +89,7 @@ def _uncached(view: str, look: str):
         ("hand", "human"): human_hand_avatar,
         ("upper-body", "human"): human_avatar,
     }
-    return make[view, look].__wrapped__("right")  # fmt: skip
+    return make[view, look].__wrapped__("right")
 
 
 def _fps(frames, count: int) -> float:

@@ -45,13 +45,16 @@ def main() -> int:
         seconds = time.perf_counter() - started
         errors = bone_direction_errors_deg(motion, pose, body)
         every = np.concatenate(list(errors.values()))
-        print(f"{path.name}: {motion.n_frames} frames at {motion.rate_hz:.0f} Hz, retargeted in "
-              f"{seconds * 1000:.0f} ms; bone direction error mean {every.mean():.2f}°, "
-              f"largest {every.max():.1f}° over {len(errors)} bones")  # fmt: skip
+        print(
+            f"{path.name}: {motion.n_frames} frames at {motion.rate_hz:.0f} Hz, retargeted in "
+            f"{seconds * 1000:.0f} ms; bone direction error mean {every.mean():.2f}°, "
+            f"largest {every.max():.1f}° over {len(errors)} bones"
+        )
         for bone, angles in errors.items():
             print(f"  {bone:28s} mean {angles.mean():6.2f}°  max {angles.max():6.1f}°")
-    request = ClipRequest.from_parameters("sentence", "INFORM-YOU [top BLUE] [assert MY FAVORITE "
-                                          "COLOR].", {"rate_hz": 30.0})  # fmt: skip
+    request = ClipRequest.from_parameters(
+        "sentence", "INFORM-YOU [top BLUE] [assert MY FAVORITE COLOR].", {"rate_hz": 30.0}
+    )
     build = build_motion(request)
     started = time.perf_counter()
     data = request_glb(request, build)

@@ -30,9 +30,11 @@ def main() -> None:
                 times.append((time.perf_counter() - started) * 1000)
             median = statistics.median(times)
             per_5s = median / sentence.duration_s * 5
-            print(f"sentence {number} ({sentence.duration_s:.1f} s, {len(sentence.dofs_rad)} "
-                  f"frames, spine {'on' if spine else 'off'}): {median:.1f} ms; "
-                  f"{per_5s:.1f} ms per 5 s (target < 50 ms)")  # fmt: skip
+            print(
+                f"sentence {number} ({sentence.duration_s:.1f} s, {len(sentence.dofs_rad)} "
+                f"frames, spine {'on' if spine else 'off'}): {median:.1f} ms; "
+                f"{per_5s:.1f} ms per 5 s (target < 50 ms)"
+            )
 
 
 if __name__ == "__main__":

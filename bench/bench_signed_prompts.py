@@ -30,8 +30,14 @@ def _manage(var_dir: Path, *arguments: str) -> str:
     unset = ("DATABASE_URL", "CELERY_BROKER_URL", "REDIS_URL")
     environment = {k: v for k, v in os.environ.items() if k not in unset}
     environment["SIGNSTUDY_VAR_DIR"] = str(var_dir)
-    done = subprocess.run([sys.executable, str(ROOT / "manage.py"), *arguments], check=True,
-                          env=environment, cwd=ROOT, capture_output=True, text=True)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "manage.py"), *arguments],
+        check=True,
+        env=environment,
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     return done.stdout
 
 

@@ -50,8 +50,10 @@ def mediapipe_hand(model, image: np.ndarray, near_px: np.ndarray) -> np.ndarray 
     if not result.multi_hand_landmarks:
         return None
     height, width = image.shape[:2]
-    hands = [np.array([(p.x * width, p.y * height, p.z * width) for p in found.landmark])
-             for found in result.multi_hand_landmarks]  # fmt: skip
+    hands = [
+        np.array([(p.x * width, p.y * height, p.z * width) for p in found.landmark])
+        for found in result.multi_hand_landmarks
+    ]
     return min(hands, key=lambda marks: np.linalg.norm(marks[0, :2] - near_px))
 
 
@@ -85,21 +87,28 @@ def main() -> int:
             confidence = np.ones((1, 21))
             seen[k] = handshape_features(marks * [1, 1, 0])
             scale = calibrate_scale(model, marks[None], confidence)
-            fitted[k] = seen_as(model, fit_hand(model, marks[None], confidence, scale)
-                                .dofs_rad[0], views[k])  # fmt: skip
+            fitted[k] = seen_as(
+                model, fit_hand(model, marks[None], confidence, scale).dofs_rad[0], views[k]
+            )
             flat = marks[None] * [1, 1, 0]
             scale = calibrate_scale(model, flat, confidence, planar=True)
-            planar[k] = seen_as(model, fit_hand(model, flat, confidence, scale).dofs_rad[0],
-                                views[k])  # fmt: skip
+            planar[k] = seen_as(
+                model, fit_hand(model, flat, confidence, scale).dofs_rad[0], views[k]
+            )
     not_found = f" (not {''.join(missing)})" if missing else ""
-    print(f"{arguments.avatar} avatar, signing view {width}×{height}: hand found in "
-          f"{len(views) - len(missing)} of {len(views)}{not_found}")  # fmt: skip
+    print(
+        f"{arguments.avatar} avatar, signing view {width}×{height}: hand found in "
+        f"{len(views) - len(missing)} of {len(views)}{not_found}"
+    )
     # The reading with no detector at all, for scale: what the renders could reach if
     # MediaPipe read them perfectly (tests/synthesis/test_fidelity.py pins it at 20).
     alphabet = {k: seen_as(model, letter_pose(k, "right"), views[k]) for k in views}
-    ways = {"as seen": seen, "fitted, seen as humans see": fitted,
-            "fitted in the image plane, seen as humans see": planar,
-            "our alphabet's DOFs, no render or detector, seen as humans see": alphabet}  # fmt: skip
+    ways = {
+        "as seen": seen,
+        "fitted, seen as humans see": fitted,
+        "fitted in the image plane, seen as humans see": planar,
+        "our alphabet's DOFs, no render or detector, seen as humans see": alphabet,
+    }
     for name, candidates in ways.items():
         score = score_handshapes(candidates, human)
         wrong = ", ".join(f"{k}→{v}" for k, v in score.taken.items() if k not in score.agreeing)

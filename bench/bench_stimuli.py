@@ -39,8 +39,10 @@ def _cold(workers: int) -> tuple[float, dict]:
         var_dir = Path(directory)
         _manage(var_dir, "migrate", "--noinput", "-v0")
         _manage(var_dir, "seed_demo")
-        per_study = {slug: _manage(var_dir, "generate_stimuli", slug, "--workers", str(workers))
-                     for slug in STUDIES}  # fmt: skip
+        per_study = {
+            slug: _manage(var_dir, "generate_stimuli", slug, "--workers", str(workers))
+            for slug in STUDIES
+        }
         warm = sum(_manage(var_dir, "generate_stimuli", slug) for slug in STUDIES)
         clips = list((var_dir / "media" / "stimuli").glob("*.mp4"))
         # Issue 35: an empty database beside the filled media folder (a fresh install, a
@@ -51,8 +53,13 @@ def _cold(workers: int) -> tuple[float, dict]:
         fresh += _manage(var_dir, "seed_demo")
         fresh += sum(_manage(var_dir, "generate_stimuli", slug) for slug in STUDIES)
         rewritten = sum(clip.stat().st_mtime_ns != stamp for clip, stamp in stamps.items())
-        facts = {"per_study": per_study, "warm": warm, "clips": len(clips), "fresh": fresh,
-                 "rewritten": rewritten}  # fmt: skip
+        facts = {
+            "per_study": per_study,
+            "warm": warm,
+            "clips": len(clips),
+            "fresh": fresh,
+            "rewritten": rewritten,
+        }
         return sum(per_study.values()), facts
 
 
@@ -62,13 +69,17 @@ def main() -> None:
     args = parser.parse_args()
     print(machine.describe())
     two, facts = _cold(2)
-    print(f"cold render, 2 workers: {facts['clips']} clips in {two:.0f} s "
-          f"({', '.join(f'{k} {v:.0f} s' for k, v in facts['per_study'].items())}; "
-          f"target < 360 s)")  # fmt: skip
+    print(
+        f"cold render, 2 workers: {facts['clips']} clips in {two:.0f} s "
+        f"({', '.join(f'{k} {v:.0f} s' for k, v in facts['per_study'].items())}; "
+        f"target < 360 s)"
+    )
     print(f"warm re-run (nothing to render): {facts['warm']:.1f} s (target < 10 s)")
-    print(f"empty database, filled media folder (migrate, seed_demo, generate): "
-          f"{facts['fresh']:.1f} s, {facts['rewritten']} of {facts['clips']} clip files "
-          f"rewritten; ratio to the cold render {facts['fresh'] / two:.3f}")  # fmt: skip
+    print(
+        f"empty database, filled media folder (migrate, seed_demo, generate): "
+        f"{facts['fresh']:.1f} s, {facts['rewritten']} of {facts['clips']} clip files "
+        f"rewritten; ratio to the cold render {facts['fresh'] / two:.3f}"
+    )
     if not args.skip_single:
         one, _ = _cold(1)
         print(f"cold render, 1 worker: {one:.0f} s; speed-up with 2 workers: {one / two:.2f}×")

@@ -45,8 +45,10 @@ def main() -> None:
     samples = published_holds(np.random.default_rng(0))[:300]
     classifier = HoldClassifier.fit(samples)
     loo_ms = _median_ms(lambda: classifier.leave_one_out(samples), 5)
-    print(f"{WORD}: timing {timing_ms:.2f} ms; timing + poses at 60 fps {both_ms:.2f} ms "
-          f"(target < 10 ms)")  # fmt: skip
+    print(
+        f"{WORD}: timing {timing_ms:.2f} ms; timing + poses at 60 fps {both_ms:.2f} ms "
+        f"(target < 10 ms)"
+    )
     print(f"naïve Bayes leave-one-out on {len(samples)} holds: {loo_ms:.0f} ms (target < 2 s)")
     motion, _ = simulate_recording(WORD, np.random.default_rng(0), model)
     extract_ms = _median_ms(lambda: extract(motion, WORD), 3)

@@ -48,8 +48,9 @@ def _segments(cuts) -> list[tuple]:
             frames = splice_points(smoothed, max(3, len(y) // 8))
             directions = np.column_stack([np.ones(len(frames)), np.gradient(smoothed)[frames]])
             directions /= np.linalg.norm(directions, axis=1)[:, None]
-            for a, b, d0, d1 in zip(frames[:-1], frames[1:], directions[:-1], directions[1:],
-                                    strict=True):  # fmt: skip
+            for a, b, d0, d1 in zip(
+                frames[:-1], frames[1:], directions[:-1], directions[1:], strict=True
+            ):
                 found.append((np.arange(a, b + 1, dtype=float), y[a : b + 1], d0, d1, delta))
     return found
 
@@ -66,13 +67,17 @@ def tangent_search(cuts) -> None:
     )
     for name, steps, coarse in searches:
         started = time.perf_counter()
-        errors[name] = np.array([
-            fit_segment(x, y, d0, d1, steps, coarse)[2] * np.degrees(delta)
-            for x, y, d0, d1, delta in segments
-        ])  # fmt: skip
+        errors[name] = np.array(
+            [
+                fit_segment(x, y, d0, d1, steps, coarse)[2] * np.degrees(delta)
+                for x, y, d0, d1, delta in segments
+            ]
+        )
         ms = 1000 * (time.perf_counter() - started) / len(segments)
-        print(f"Hermite segment fit, {name}: mean RMSE {errors[name].mean():.4f} deg over "
-              f"{len(segments)} segments, {ms:.2f} ms a segment")  # fmt: skip
+        print(
+            f"Hermite segment fit, {name}: mean RMSE {errors[name].mean():.4f} deg over "
+            f"{len(segments)} segments, {ms:.2f} ms a segment"
+        )
     full, fast = errors["100 lengths, all pairs"], errors["100 lengths, coarse to fine (default)"]
     same = np.isclose(full, fast, rtol=1e-9, atol=1e-12).mean()
     print(

@@ -29,9 +29,25 @@ def make(folder: Path, size: str, codec: str, container: str) -> Path:
     extra = ["-pix_fmt", "yuv420p"] if codec == "libx264" else []
     if container == "mp4":
         extra += ["-movflags", "+faststart"]
-    subprocess.run([imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-y", "-f", "lavfi", "-i",
-                    f"testsrc2=size={size}:rate=30", "-t", str(SECONDS), "-c:v", codec, *extra,
-                    str(out)], check=True)  # fmt: skip
+    subprocess.run(
+        [
+            imageio_ffmpeg.get_ffmpeg_exe(),
+            "-v",
+            "error",
+            "-y",
+            "-f",
+            "lavfi",
+            "-i",
+            f"testsrc2=size={size}:rate=30",
+            "-t",
+            str(SECONDS),
+            "-c:v",
+            codec,
+            *extra,
+            str(out),
+        ],
+        check=True,
+    )
     return out
 
 
@@ -48,9 +64,11 @@ def main() -> int:
                 clip = prepare_clip(source, work, source.name)
                 seconds = time.perf_counter() - started
                 how = clip.converted or "kept"
-                print(f"{size} {codec:7s} in {container.upper()}: {how:10s} {seconds:5.2f} s "
-                      f"for a {SECONDS} s clip ({SECONDS / seconds:4.1f}× real time), "
-                      f"{clip.size_bytes / 1e6:.1f} MB")  # fmt: skip
+                print(
+                    f"{size} {codec:7s} in {container.upper()}: {how:10s} {seconds:5.2f} s "
+                    f"for a {SECONDS} s clip ({SECONDS / seconds:4.1f}× real time), "
+                    f"{clip.size_bytes / 1e6:.1f} MB"
+                )
     return 0
 
 

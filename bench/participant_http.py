@@ -57,8 +57,9 @@ class HttpParticipant:
     def _csrf(self) -> str:
         return next((c.value for c in self.jar if c.name == "csrftoken"), "")
 
-    def request(self, kind: str | None, path: str, data: bytes | None = None,
-                headers: dict | None = None) -> tuple[int, dict, bytes]:  # fmt: skip
+    def request(
+        self, kind: str | None, path: str, data: bytes | None = None, headers: dict | None = None
+    ) -> tuple[int, dict, bytes]:
         """Send a request, retrying like the page's script; return (status, headers, body)."""
         deadline = time.monotonic() + self.patience_s
         server_errors = 0
@@ -111,18 +112,26 @@ class HttpParticipant:
             return False
         form = {"nav": "next"}
         for question, value in _answers(page, self.random):
-            payload = json.dumps({"page": number, "trial": trial.group(1), "question": question,
-                                  "value": value, "rt_ms": 900}).encode()  # fmt: skip
+            payload = json.dumps(
+                {
+                    "page": number,
+                    "trial": trial.group(1),
+                    "question": question,
+                    "value": value,
+                    "rt_ms": 900,
+                }
+            ).encode()
             for _ in range(2):  # the second is the retry of a lost reply: changes nothing
-                saved, _, reply = self.request("save", f"/p/{token}/answer/", payload,
-                                               JSON_HEADERS)  # fmt: skip
+                saved, _, reply = self.request("save", f"/p/{token}/answer/", payload, JSON_HEADERS)
                 if saved != 200:
                     raise Refused(f"save answered {saved}: {reply[:200]!r}")
             self.answered.sent[(trial.group(1), question)] = value
             form[f"q-{question}"] = value
         encoded = urllib.parse.urlencode(form).encode()
-        form_headers = {"Content-Type": "application/x-www-form-urlencoded",
-                        "Accept": "application/json"}  # fmt: skip
+        form_headers = {
+            "Content-Type": "application/x-www-form-urlencoded",
+            "Accept": "application/json",
+        }
         moved, _, reply = self.request("next", f"/p/{token}/{number}/", encoded, form_headers)
         if moved != 200:
             raise Refused(f"Next answered {moved}: {reply[:200]!r}")

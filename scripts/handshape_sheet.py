@@ -23,8 +23,14 @@ CHAINS = {
     "pinky": (0, 17, 18, 19, 20),
     "palm": (5, 9, 13, 17),
 }
-COLOURS = {"thumb": "#d62728", "index": "#1f77b4", "middle": "#2ca02c", "ring": "#9467bd",
-           "pinky": "#ff7f0e", "palm": "#777777"}  # fmt: skip
+COLOURS = {
+    "thumb": "#d62728",
+    "index": "#1f77b4",
+    "middle": "#2ca02c",
+    "ring": "#9467bd",
+    "pinky": "#ff7f0e",
+    "palm": "#777777",
+}
 
 
 def main() -> None:

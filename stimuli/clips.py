@@ -113,9 +113,15 @@ def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
     checked(spec, directory, name, build, filmed)
     info = render_request(spec, video, poster=poster, progress=progress, build=build, filmed=filmed)
     clip = RenderedClip(
-        video, poster, round(info.duration_s * 1000), info.n_frames, info.width, info.height,
-        video.stat().st_size, file_sha256(video),
-    )  # fmt: skip
+        video,
+        poster,
+        round(info.duration_s * 1000),
+        info.n_frames,
+        info.width,
+        info.height,
+        video.stat().st_size,
+        file_sha256(video),
+    )
     _write_facts(clip, facts, name)
     return clip
 
@@ -145,10 +151,15 @@ def rendered(
         try:
             data = json.loads(facts.read_text())
             clip = RenderedClip(
-                video, poster, int(data["duration_ms"]), int(data["frame_count"]),
-                int(data["width"]), int(data["height"]), int(data["size_bytes"]),
+                video,
+                poster,
+                int(data["duration_ms"]),
+                int(data["frame_count"]),
+                int(data["width"]),
+                int(data["height"]),
+                int(data["size_bytes"]),
                 str(data["sha256"]),
-            )  # fmt: skip
+            )
         except (ValueError, KeyError, TypeError):
             return None
         if data.get("content_hash") != name or video.stat().st_size != clip.size_bytes:
@@ -169,9 +180,15 @@ def _measure(video: Path, poster: Path) -> RenderedClip:
     width, height = meta["size"]
     duration_ms = round(n_frames / meta["fps"] * 1000)
     return RenderedClip(
-        video, poster, duration_ms, n_frames, width, height, video.stat().st_size,
+        video,
+        poster,
+        duration_ms,
+        n_frames,
+        width,
+        height,
+        video.stat().st_size,
         file_sha256(video),
-    )  # fmt: skip
+    )
 
 
 def _write_facts(clip: RenderedClip, path: Path, name: str) -> None:

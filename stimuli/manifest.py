@@ -55,8 +55,9 @@ def existing(spec: ClipSpec, directory: Path) -> RenderedClip | None:
     frames = count_frames(video)
     duration_ms = round(frames / spec.rate_hz * 1000)
     size = video.stat().st_size
-    return RenderedClip(video, poster, duration_ms, frames, spec.width, spec.height, size,
-                        file_sha256(video))  # fmt: skip
+    return RenderedClip(
+        video, poster, duration_ms, frames, spec.width, spec.height, size, file_sha256(video)
+    )
 
 
 def generate(entries: list[Entry], directory: Path, progress=None) -> tuple[list[Entry], int]:
@@ -82,15 +83,20 @@ def manifest_dict(
     *uploaded* lists clips a study brings rather than renders (their files' names,
     SHA-256s and facts); they cannot be rendered again, so reading a manifest skips them.
     """
-    data = {"format": FORMAT, "version": FORMAT_VERSION, "study": study,
-            "clips": [entry.to_dict() for entry in entries]}  # fmt: skip
+    data = {
+        "format": FORMAT,
+        "version": FORMAT_VERSION,
+        "study": study,
+        "clips": [entry.to_dict() for entry in entries],
+    }
     if uploaded is not None:
         data["uploaded"] = uploaded
     return data
 
 
-def write_manifest(entries: list[Entry], path: Path, study: str = "",
-                   uploaded: list[dict] | None = None) -> Path:  # fmt: skip
+def write_manifest(
+    entries: list[Entry], path: Path, study: str = "", uploaded: list[dict] | None = None
+) -> Path:
     """Write the manifest as indented JSON, atomically (temporary file, then rename)."""
     path = Path(path)
     data = manifest_dict(entries, study, uploaded)

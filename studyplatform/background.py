@@ -48,9 +48,13 @@ def start_render_process(stimulus_ids: Sequence[int]) -> subprocess.Popen:
     with open(log_dir / LOG_NAME, "ab") as log:
         return subprocess.Popen(
             [sys.executable, "-m", "django", "render_stimuli", *map(str, stimulus_ids)],
-            cwd=settings.BASE_DIR, env=env, stdin=subprocess.DEVNULL, stdout=log,
-            stderr=subprocess.STDOUT, start_new_session=True,
-        )  # fmt: skip
+            cwd=settings.BASE_DIR,
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
 
 
 def dispatch_renders(stimulus_ids: Sequence[int], background: bool = False) -> str:

@@ -54,8 +54,10 @@ class BackupSummary:
 
 
 def _roots() -> dict[str, Path]:
-    return {"media": Path(settings.MEDIA_ROOT),
-            "private": Path(settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT)}  # fmt: skip
+    return {
+        "media": Path(settings.MEDIA_ROOT),
+        "private": Path(settings.SIGNSTUDY_PRIVATE_MEDIA_ROOT),
+    }
 
 
 def _counts() -> dict[str, int]:
@@ -76,8 +78,14 @@ def make_backup(out: Path) -> BackupSummary:
     with tempfile.TemporaryDirectory() as scratch:
         data = Path(scratch) / "data.json"
         with transaction.atomic():  # one consistent snapshot of the rows and their counts
-            call_command("dumpdata", exclude=list(EXCLUDED), natural_foreign=True,
-                         natural_primary=True, output=str(data), verbosity=0)  # fmt: skip
+            call_command(
+                "dumpdata",
+                exclude=list(EXCLUDED),
+                natural_foreign=True,
+                natural_primary=True,
+                output=str(data),
+                verbosity=0,
+            )
             counts = _counts()
         out.parent.mkdir(parents=True, exist_ok=True)
         with tarfile.open(out, "w:gz") as archive:
@@ -90,12 +98,18 @@ def make_backup(out: Path) -> BackupSummary:
                     files[name] = file_sha256(path)
                     size += path.stat().st_size
                     archive.add(path, name)
-            manifest = {"format": FORMAT, "version": VERSION,
-                        "created_at": timezone.now().isoformat(), "counts": counts,
-                        "files": files, "data_sha256": file_sha256(data),
-                        "ledger_sha256": hashlib.sha256(ledger_text).hexdigest()}  # fmt: skip
-            _add_bytes(archive, "manifest.json",
-                       json.dumps(manifest, indent=1, sort_keys=True).encode())  # fmt: skip
+            manifest = {
+                "format": FORMAT,
+                "version": VERSION,
+                "created_at": timezone.now().isoformat(),
+                "counts": counts,
+                "files": files,
+                "data_sha256": file_sha256(data),
+                "ledger_sha256": hashlib.sha256(ledger_text).hexdigest(),
+            }
+            _add_bytes(
+                archive, "manifest.json", json.dumps(manifest, indent=1, sort_keys=True).encode()
+            )
     return BackupSummary(rows=sum(counts.values()), files=len(files), bytes=size)
 
 
@@ -139,8 +153,11 @@ def _read_manifest(archive: tarfile.TarFile) -> dict:
 
 
 def _database_is_empty() -> bool:
-    return not any(count for label, count in _counts().items()
-                   if label.startswith("studyplatform.") or label == "auth.user")  # fmt: skip
+    return not any(
+        count
+        for label, count in _counts().items()
+        if label.startswith("studyplatform.") or label == "auth.user"
+    )
 
 
 def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummary:
@@ -160,13 +177,17 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
     roots = _roots()
     stages = {prefix: root.parent / f".restore-{prefix}" for prefix, root in roots.items()}
     try:
-        with tarfile.open(archive_path, "r:gz") as archive, \
-                tempfile.TemporaryDirectory() as scratch:  # fmt: skip
+        with (
+            tarfile.open(archive_path, "r:gz") as archive,
+            tempfile.TemporaryDirectory() as scratch,
+        ):
             manifest = _read_manifest(archive)
             empty = _database_is_empty()
             if not empty and not replace:
-                raise BackupError("The database is not empty; restore with --replace to "
-                                  "delete what it holds first.")  # fmt: skip
+                raise BackupError(
+                    "The database is not empty; restore with --replace to "
+                    "delete what it holds first."
+                )
             archive.extract("data.json", scratch, filter="data")
             data = Path(scratch) / "data.json"
             if file_sha256(data) != manifest["data_sha256"]:
@@ -175,16 +196,20 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
             try:
                 known = ledger.merge(ledger.read(), _archived_ledger(archive, manifest))
             except ValueError as error:
-                raise BackupError(f"This installation's withdrawal ledger cannot be read "
-                                  f"({error}); nothing was changed.") from None  # fmt: skip
+                raise BackupError(
+                    f"This installation's withdrawal ledger cannot be read "
+                    f"({error}); nothing was changed."
+                ) from None
             with transaction.atomic():
                 if not empty:
                     call_command("flush", interactive=False, verbosity=0)
                 call_command("loaddata", str(data), verbosity=0)
                 counts = _counts()
-                differing = {label: (counts.get(label), expected)
-                             for label, expected in manifest["counts"].items()
-                             if counts.get(label) != expected}  # fmt: skip
+                differing = {
+                    label: (counts.get(label), expected)
+                    for label, expected in manifest["counts"].items()
+                    if counts.get(label) != expected
+                }
                 if differing:
                     raise BackupError(f"Restored row counts differ from the backup's: {differing}.")
                 # The files are in place before the commit deletes those withdrawn again.
@@ -194,8 +219,12 @@ def restore_backup(archive_path: Path, *, replace: bool = False) -> BackupSummar
     finally:
         for stage in stages.values():
             shutil.rmtree(stage, ignore_errors=True)
-    return BackupSummary(rows=sum(counts.values()), files=len(staged), bytes=size,
-                         withdrawn_again=reapplied.participants)  # fmt: skip
+    return BackupSummary(
+        rows=sum(counts.values()),
+        files=len(staged),
+        bytes=size,
+        withdrawn_again=reapplied.participants,
+    )
 
 
 def _place_files(staged: dict[str, Path], roots: dict[str, Path]) -> int:

@@ -44,8 +44,14 @@ STUDY_FIELDS = (
     "design",
 )
 CONDITION_FIELDS = (
-    "key", "label", "description", "source", "is_simulated", "parameters", "position",
-)  # fmt: skip
+    "key",
+    "label",
+    "description",
+    "source",
+    "is_simulated",
+    "parameters",
+    "position",
+)
 ITEM_FIELDS = ("key", "kind", "text", "target_text", "is_practice", "parameters", "position")
 QUESTION_FIELDS = (
     "key",
@@ -78,9 +84,18 @@ ASL_VIDEO_FIELDS = ("field_name", "transcript", "credit")
 RECORDING_FIELDS = ("mirrored", "one_hand", "quality", "sha256")
 RECORDING_FILES = ("upload", "motion", "sheet")
 UPLOAD_FIELDS = (
-    "original_name", "source_sha256", "sha256", "source_codec", "converted",
-    "duration_ms", "frame_count", "frame_rate", "width", "height", "size_bytes",
-)  # fmt: skip
+    "original_name",
+    "source_sha256",
+    "sha256",
+    "source_codec",
+    "converted",
+    "duration_ms",
+    "frame_count",
+    "frame_rate",
+    "width",
+    "height",
+    "size_bytes",
+)
 UPLOAD_FILES = ("video", "poster")
 # Fields a definition leaves out on purpose, with why (tests/studyplatform/
 # test_exchange.py checks that every field is exported or listed here).

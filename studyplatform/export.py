@@ -96,15 +96,25 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     clash = set(attribute_columns) & {*REQUIRED_COLUMNS, *OPTIONAL_COLUMNS}
     if clash:
         attribute_columns = [f"demo_{k}" if k in clash else k for k in attribute_columns]
-    columns = [*REQUIRED_COLUMNS, "target", *LABEL_COLUMNS.values(), "condition_simulated",
-               *SOURCE_COLUMNS, *QUALITY_COLUMNS, *SIGNED_COLUMNS, *attribute_columns]  # fmt: skip
+    columns = [
+        *REQUIRED_COLUMNS,
+        "target",
+        *LABEL_COLUMNS.values(),
+        "condition_simulated",
+        *SOURCE_COLUMNS,
+        *QUALITY_COLUMNS,
+        *SIGNED_COLUMNS,
+        *attribute_columns,
+    ]
     attribute_pairs = list(
         zip((q.key for q in demographic_questions), attribute_columns, strict=True)
     )
     conditions = {condition.key: condition for condition in study.conditions.all()}
     ready = Stimulus.objects.filter(condition__study=study, status=Stimulus.Status.READY)
-    files = {(key, item): sha256 for key, item, sha256
-             in ready.values_list("condition__key", "item_id", "sha256")}  # fmt: skip
+    files = {
+        (key, item): sha256
+        for key, item, sha256 in ready.values_list("condition__key", "item_id", "sha256")
+    }
     quality = study_quality(study)
     orders: dict[int, dict[str, str]] = {}  # each participant's schedule, read once
 
@@ -117,11 +127,17 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
             row.update(_source_cells(row, response.trial, conditions, files))
             if participant.pk not in orders:
                 orders[participant.pk] = page_orders(participant)
-            row.update(quality_cells(participant, response.trial,
-                                     quality.get(participant.pk, {}).get(response.trial.pk),
-                                     response.rt_ms, response.updated_at,
-                                     orders[participant.pk],
-                                     response.answered_client_ms))  # fmt: skip
+            row.update(
+                quality_cells(
+                    participant,
+                    response.trial,
+                    quality.get(participant.pk, {}).get(response.trial.pk),
+                    response.rt_ms,
+                    response.updated_at,
+                    orders[participant.pk],
+                    response.answered_client_ms,
+                )
+            )
             row.update(signed_cells(response))
             answers = attributes.get(participant.pk, {})
             for key, column in attribute_pairs:

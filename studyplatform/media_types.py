@@ -177,10 +177,15 @@ def decoded_length(path: Path, timeout_s: float = DECODE_TIMEOUT_S) -> tuple[flo
     only decoding to the end finds that it ends before its data does.
     """
     done = _ffmpeg(path, "-progress", "pipe:1", "-nostats", timeout_s=timeout_s)
-    complaints = [] if done is None else [
-        line for line in done.stderr.decode(errors="replace").splitlines()
-        if line.strip() and MUXER_TIMESTAMP_NOTE not in line
-    ]  # fmt: skip
+    complaints = (
+        []
+        if done is None
+        else [
+            line
+            for line in done.stderr.decode(errors="replace").splitlines()
+            if line.strip() and MUXER_TIMESTAMP_NOTE not in line
+        ]
+    )
     if done is None or done.returncode != 0 or complaints:
         # The participant is told to record again; the log says why, for the researcher.
         why = "timed out" if done is None else "; ".join(complaints)[-600:]

@@ -26,9 +26,15 @@ class RefuseNulMiddleware:
     def __call__(self, request: HttpRequest):
         for name in [name for name, value in request.COOKIES.items() if NUL in name + value]:
             del request.COOKIES[name]
-        if NUL in request.path or _has_nul(request.GET) or (
-            request.method == "POST" and request.content_type in FORMS and _has_nul(request.POST)
-        ):  # fmt: skip
+        if (
+            NUL in request.path
+            or _has_nul(request.GET)
+            or (
+                request.method == "POST"
+                and request.content_type in FORMS
+                and _has_nul(request.POST)
+            )
+        ):
             raise BadRequest("The request holds a NUL character.")
         return self.get_response(request)
 
@@ -37,8 +43,7 @@ FORMS = ("application/x-www-form-urlencoded", "multipart/form-data")
 
 
 def _has_nul(query) -> bool:
-    return any(NUL in key or any(NUL in value for value in values)
-               for key, values in query.lists())  # fmt: skip
+    return any(NUL in key or any(NUL in value for value in values) for key, values in query.lists())
 
 
 class DatabaseUnavailableMiddleware:
@@ -61,8 +66,9 @@ class DatabaseUnavailableMiddleware:
         if not isinstance(exception, OperationalError | InterfaceError):
             return None
         logger.warning("database unavailable for %s: %s", request.path, exception)
-        response = JsonResponse({"error": "The server is busy for a moment; trying again."},
-                                status=503)  # fmt: skip
+        response = JsonResponse(
+            {"error": "The server is busy for a moment; trying again."}, status=503
+        )
         response["Retry-After"] = str(self.RETRY_AFTER_S)
         return response
 

@@ -45,16 +45,20 @@ def render_many(stimulus_ids, workers: int, report=None) -> list[str]:
 
     from studyplatform.models import Stimulus
 
-    pending = (Stimulus.objects.filter(pk__in=list(stimulus_ids))
-               .exclude(status=Stimulus.Status.READY)
-               .exclude(condition__source="uploaded").values_list("pk", "parameters"))  # fmt: skip
+    pending = (
+        Stimulus.objects.filter(pk__in=list(stimulus_ids))
+        .exclude(status=Stimulus.Status.READY)
+        .exclude(condition__source="uploaded")
+        .values_list("pk", "parameters")
+    )
     order = [pk for pk, _ in sorted(pending, key=lambda row: -expected_cost(row[1]))]
     statuses = []
     if workers <= 1 or len(order) <= 1:
         results = map(render, order)
     else:
-        pool = ProcessPoolExecutor(min(workers, len(order)), mp_context=get_context("spawn"),
-                                   initializer=setup)  # fmt: skip
+        pool = ProcessPoolExecutor(
+            min(workers, len(order)), mp_context=get_context("spawn"), initializer=setup
+        )
         results = pool.map(render, order)
     try:
         for number, status in enumerate(results, start=1):

@@ -97,8 +97,9 @@ def report_archive(
         if everything:
             archive.writestr("responses.csv", tidy_csv(study))
             archive.writestr("media_events.csv", safe_csv(EVENT_COLUMNS, media_event_rows(study)))
-            archive.writestr("participants.csv",
-                             safe_csv(PARTICIPANT_COLUMNS, participant_rows(study)))  # fmt: skip
+            archive.writestr(
+                "participants.csv", safe_csv(PARTICIPANT_COLUMNS, participant_rows(study))
+            )
             archive.writestr(
                 f"{study.slug}.study.json",
                 json.dumps(export_study(study), indent=2, ensure_ascii=False) + "\n",

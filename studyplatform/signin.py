@@ -138,8 +138,12 @@ class KnownDeviceMiddleware:
         value = getattr(request, "signstudy_device_cookie", None)
         if value:
             response.set_cookie(
-                DEVICE_COOKIE, value, max_age=DEVICE_MAX_AGE_S, httponly=True,
-                secure=settings.SESSION_COOKIE_SECURE, samesite="Lax",
+                DEVICE_COOKIE,
+                value,
+                max_age=DEVICE_MAX_AGE_S,
+                httponly=True,
+                secure=settings.SESSION_COOKIE_SECURE,
+                samesite="Lax",
                 path="/admin/",
-            )  # fmt: skip
+            )
         return response

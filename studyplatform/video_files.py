@@ -25,10 +25,18 @@ CONVERT_TIMEOUT_S = 900
 H264_PIXELS = ("yuv420p", "yuvj420p")
 WEBM_CODECS = ("vp8", "vp9", "av1")
 H264_ARGUMENTS = (
-    "-c:v", "libx264", "-preset", "medium", "-crf", "18", "-pix_fmt", "yuv420p",
+    "-c:v",
+    "libx264",
+    "-preset",
+    "medium",
+    "-crf",
+    "18",
+    "-pix_fmt",
+    "yuv420p",
     # H.264 in 4:2:0 needs even sides; a one-pixel crop keeps every other pixel as it was.
-    "-vf", "crop=trunc(iw/2)*2:trunc(ih/2)*2",
-)  # fmt: skip
+    "-vf",
+    "crop=trunc(iw/2)*2:trunc(ih/2)*2",
+)
 
 
 @dataclass(frozen=True)
@@ -140,8 +148,10 @@ def prepare_clip(source: Path, folder: Path, what: str) -> PreparedClip:
     if length is None:
         raise MediaRejected(f"{what} does not decode to its end (a broken or cut-off file).")
     if length[0] > MAX_CLIP_S:
-        raise MediaRejected(f"{what} lasts {length[0]:.0f} s; a clip may last "
-                            f"{MAX_CLIP_S / 60:.0f} minutes at most.")  # fmt: skip
+        raise MediaRejected(
+            f"{what} lasts {length[0]:.0f} s; a clip may last "
+            f"{MAX_CLIP_S / 60:.0f} minutes at most."
+        )
     try:
         video, suffix, converted = _playable(source, folder, kind.suffix, facts)
     except MediaRejected as error:
@@ -165,12 +175,20 @@ def prepare_clip(source: Path, folder: Path, what: str) -> PreparedClip:
     duration_s, frames = length
     frame_rate = float(facts.get("fps") or frames / duration_s)
     return PreparedClip(
-        video=video, poster=poster, suffix=suffix, sha256=file_sha256(video),
-        source_sha256=file_sha256(source), source_codec=facts["codec"][:40],
-        converted=converted, duration_ms=round(duration_s * 1000), frame_count=frames,
-        frame_rate=round(frame_rate, 3), width=int(width), height=int(height),
+        video=video,
+        poster=poster,
+        suffix=suffix,
+        sha256=file_sha256(video),
+        source_sha256=file_sha256(source),
+        source_codec=facts["codec"][:40],
+        converted=converted,
+        duration_ms=round(duration_s * 1000),
+        frame_count=frames,
+        frame_rate=round(frame_rate, 3),
+        width=int(width),
+        height=int(height),
         size_bytes=video.stat().st_size,
-    )  # fmt: skip
+    )
 
 
 def copy_upload(upload, target: Path) -> Path:

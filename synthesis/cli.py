@@ -69,8 +69,13 @@ def _render_pose(args: argparse.Namespace) -> int:
 
 
 def _request(args: argparse.Namespace, kind: str, text: str, **values) -> ClipRequest:
-    fields = {"view": args.view or "", "side": args.side, "width": args.size[0],
-              "height": args.size[1], "rate_hz": args.rate}  # fmt: skip
+    fields = {
+        "view": args.view or "",
+        "side": args.side,
+        "width": args.size[0],
+        "height": args.size[1],
+        "rate_hz": args.rate,
+    }
     if getattr(args, "seed", None) is not None:
         fields["seed"] = args.seed
     return ClipRequest(kind, text, {**technique_values(args), **values}, **fields)
@@ -96,8 +101,14 @@ def _spell(args: argparse.Namespace) -> int:
         return 0
     if args.out is None:
         raise ValueError("Give --out FILE.mp4 (or --timing-only to print the timing).")
-    info = render_request(request, args.out, poster=args.poster, workers=args.workers,
-                          progress=_progress(f"spelling {args.word}"), build=build)  # fmt: skip
+    info = render_request(
+        request,
+        args.out,
+        poster=args.poster,
+        workers=args.workers,
+        progress=_progress(f"spelling {args.word}"),
+        build=build,
+    )
     print(
         f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, "
         f"{build.timing.condition if build.timing is not None else 'as performed'} timing)"
@@ -120,8 +131,14 @@ def _sentence(args: argparse.Namespace) -> int:
         print(f"wrote {args.plot}")
     if args.out is None:
         return 0
-    info = render_request(request, args.out, poster=args.poster, workers=args.workers,
-                          progress=_progress("signing"), build=build)  # fmt: skip
+    info = render_request(
+        request,
+        args.out,
+        poster=args.poster,
+        workers=args.workers,
+        progress=_progress("signing"),
+        build=build,
+    )
     spine = "on" if request.parameters["spine"] else "off"
     print(f"wrote {info.path} ({info.n_frames} frames, {info.duration_s:.2f} s, spine {spine})")
     return 0
@@ -141,10 +158,17 @@ def _render_bvh(args: argparse.Namespace) -> int:
     pose = retarget(motion, rig, mapping)
     avatar, camera = filming(view, side, pose, motion.rate_hz, *args.size)
     info = render_clip(
-        avatar, pose, camera, args.out, motion.rate_hz, poster=args.poster,
-        width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),
+        avatar,
+        pose,
+        camera,
+        args.out,
+        motion.rate_hz,
+        poster=args.poster,
+        width=args.size[0],
+        height=args.size[1],
+        progress=_progress(Path(args.file).name),
         workers=args.workers,
-    )  # fmt: skip
+    )
     print(
         f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; "
         f"{mapping.convention} joint names, {len(mapping.to_canonical)} joints mapped)"
@@ -164,12 +188,16 @@ def _techniques(args: argparse.Namespace) -> int:
         print(json.dumps(REGISTRY.schema(), indent=2, ensure_ascii=False))
         return 0
     for technique in REGISTRY.techniques:
-        print(f"{technique.name}: {technique.label} ({technique.source}), "
-              f"for {', '.join(sorted(technique.kinds))}")  # fmt: skip
+        print(
+            f"{technique.name}: {technique.label} ({technique.source}), "
+            f"for {', '.join(sorted(technique.kinds))}"
+        )
         for parameter in technique.parameters:
             allowed = f" {{{', '.join(parameter.choices)}}}" if parameter.choices else ""
-            print(f"  {parameter.name} ({parameter.type}{allowed}, default "
-                  f"{parameter.default!r}): {parameter.help}")  # fmt: skip
+            print(
+                f"  {parameter.name} ({parameter.type}{allowed}, default "
+                f"{parameter.default!r}): {parameter.help}"
+            )
     return 0
 
 
@@ -195,8 +223,9 @@ def parser() -> argparse.ArgumentParser:
     ) -> argparse.ArgumentParser:
         command = commands.add_parser(name, help=help)
         command.add_argument("--out", required=out_required, type=Path, help="output file")
-        command.add_argument("--side", choices=("right", "left"), default="right",
-                             help="the signer's dominant hand")  # fmt: skip
+        command.add_argument(
+            "--side", choices=("right", "left"), default="right", help="the signer's dominant hand"
+        )
         command.add_argument("--view", choices=("hand", "upper-body"), default=view)
         command.add_argument("--size", type=_size, default=(640, 480), help="WIDTHxHEIGHT")
         return command
@@ -206,13 +235,22 @@ def parser() -> argparse.ArgumentParser:
         command.add_argument("--workers", type=int, default=1, help="render in this many processes")
 
     def export_options(command: argparse.ArgumentParser) -> None:
-        command.add_argument("--export-pose", type=Path, metavar="FILE.pose",
-                             help="also write the motion as .pose landmarks")  # fmt: skip
-        command.add_argument("--export-bvh", type=Path, metavar="FILE.bvh",
-                             help="also write the motion as BVH")  # fmt: skip
-        command.add_argument("--export-glb", type=Path, metavar="FILE.glb",
-                             help="also write the avatar, its motion, face and camera as "
-                             "glTF binary (Blender, Unity, three.js)")  # fmt: skip
+        command.add_argument(
+            "--export-pose",
+            type=Path,
+            metavar="FILE.pose",
+            help="also write the motion as .pose landmarks",
+        )
+        command.add_argument(
+            "--export-bvh", type=Path, metavar="FILE.bvh", help="also write the motion as BVH"
+        )
+        command.add_argument(
+            "--export-glb",
+            type=Path,
+            metavar="FILE.glb",
+            help="also write the avatar, its motion, face and camera as "
+            "glTF binary (Blender, Unity, three.js)",
+        )
 
     pose = rendering("render-pose", "render one letter's handshape to a PNG")
     pose.add_argument("--letter", required=True)
@@ -221,13 +259,16 @@ def parser() -> argparse.ArgumentParser:
     spell = rendering("spell", "render a fingerspelled word to an MP4", out_required=False)
     spell.add_argument("word")
     spell.add_argument("--rate", type=float, default=60.0, help="frames per second")
-    spell.add_argument("--condition", dest="technique_timing", choices=TIMINGS,
-                       help="the same as --timing")  # fmt: skip
     spell.add_argument(
-        "--simulate", type=int, metavar="SEED",
+        "--condition", dest="technique_timing", choices=TIMINGS, help="the same as --timing"
+    )
+    spell.add_argument(
+        "--simulate",
+        type=int,
+        metavar="SEED",
         help="a simulated capture of the word (timing sampled from the model, capture noise "
         "added) in place of --recording; labelled simulated in the timing",
-    )  # fmt: skip
+    )
     add_technique_flags(spell, "word")
     spell.add_argument(
         "--timing-only", action="store_true", help="print the timing as JSON, render nothing"
@@ -236,13 +277,18 @@ def parser() -> argparse.ArgumentParser:
     export_options(spell)
     spell.set_defaults(run=_spell)
 
-    sentence = rendering("sentence", "render a signed sentence on the upper body",
-                         view="upper-body", out_required=False)  # fmt: skip
+    sentence = rendering(
+        "sentence",
+        "render a signed sentence on the upper body",
+        view="upper-body",
+        out_required=False,
+    )
     sentence.add_argument("text", help='glosses, e.g. "BUT SURPRISE MY BROTHER GET NEW C-A-R"')
     sentence.add_argument("--rate", type=float, default=60.0, help="frames per second")
     sentence.add_argument("--seed", type=int, default=0, help="seed of the liveliness noise")
-    sentence.add_argument("--plot", type=Path,
-                          help="plot torso bend and twist, spine on vs off (PNG/PDF)")  # fmt: skip
+    sentence.add_argument(
+        "--plot", type=Path, help="plot torso bend and twist, spine on vs off (PNG/PDF)"
+    )
     add_technique_flags(sentence, "sentence")
     clip_options(sentence)
     export_options(sentence)
@@ -265,25 +311,31 @@ def parser() -> argparse.ArgumentParser:
     capture.add_argument("--out", type=Path, help="write the landmarks as a .pose file")
     capture.add_argument("--bvh", type=Path, help="write the fitted hand motion as BVH")
     capture.add_argument("--report", type=Path, help="write quality.json and quality.png here")
-    capture.add_argument("--side", choices=("right", "left"), default="right",
-                         help="the signer's dominant hand")  # fmt: skip
-    capture.add_argument("--one-hand", action="store_true",
-                         help="the video shows only that hand (a close-up)")  # fmt: skip
+    capture.add_argument(
+        "--side", choices=("right", "left"), default="right", help="the signer's dominant hand"
+    )
+    capture.add_argument(
+        "--one-hand", action="store_true", help="the video shows only that hand (a close-up)"
+    )
     capture.add_argument("--mirrored", action="store_true", help="the video is a selfie view")
     capture.add_argument(
         "--body", action="store_true", help="capture the body (MediaPipe Holistic), fit the arms"
     )
     capture.set_defaults(run=capture_command)
 
-    pose_file = rendering("render-pose-file", "render a .pose file's hand (or, with --view "
-                          "upper-body, its arms and hands) on the avatar", view="hand")  # fmt: skip
+    pose_file = rendering(
+        "render-pose-file",
+        "render a .pose file's hand (or, with --view upper-body, its arms and hands) on the avatar",
+        view="hand",
+    )
     pose_file.add_argument("file", type=Path)
     pose_file.add_argument("--rate", type=float, default=None, help="resample to this rate")
     clip_options(pose_file)
     pose_file.set_defaults(run=render_pose_file_command)
 
-    bvh = rendering("render-bvh", "render a BVH, glTF/GLB or (through assimp) FBX motion "
-                    "to an MP4", view=None)  # fmt: skip
+    bvh = rendering(
+        "render-bvh", "render a BVH, glTF/GLB or (through assimp) FBX motion to an MP4", view=None
+    )
     bvh.add_argument("file", type=Path)
     bvh.add_argument("--rate", type=float, default=None, help="resample to this frame rate")
     clip_options(bvh)

@@ -10,8 +10,9 @@ from synthesis.techniques import avatar_and_camera
 from synthesis.terminal import frame_progress as _progress
 
 
-def export_motion(build, request, pose_path: Path | None, bvh_path: Path | None,
-                  glb_path: Path | None = None) -> None:  # fmt: skip
+def export_motion(
+    build, request, pose_path: Path | None, bvh_path: Path | None, glb_path: Path | None = None
+) -> None:
     """Write a clip's motion as .pose landmarks (*pose_path*), as BVH (*bvh_path*) and
     with the avatar and camera as GLB (*glb_path*)."""
     if glb_path is not None:
@@ -70,8 +71,12 @@ def capture_command(args: argparse.Namespace) -> int:
     if args.body:
         return _capture_body(args)
     one_hand = args.side if args.one_hand else None
-    recording = capture_hands(args.video, mirrored=args.mirrored, one_hand=one_hand,
-                              progress=_progress(Path(args.video).name))  # fmt: skip
+    recording = capture_hands(
+        args.video,
+        mirrored=args.mirrored,
+        one_hand=one_hand,
+        progress=_progress(Path(args.video).name),
+    )
     hand = captured_hand(recording, args.side)
     if args.out is not None:
         print(f"wrote {write_pose(recording, args.out)}")
@@ -111,10 +116,17 @@ def render_pose_file_command(args: argparse.Namespace) -> int:
         motion = resample(motion, args.rate)
     avatar, camera = avatar_and_camera("hand", args.side)
     info = render_clip(
-        avatar, retarget(motion, avatar.rig), camera, args.out, motion.rate_hz,
-        poster=args.poster, width=args.size[0], height=args.size[1],
-        progress=_progress(Path(args.file).name), workers=args.workers,
-    )  # fmt: skip
+        avatar,
+        retarget(motion, avatar.rig),
+        camera,
+        args.out,
+        motion.rate_hz,
+        poster=args.poster,
+        width=args.size[0],
+        height=args.size[1],
+        progress=_progress(Path(args.file).name),
+        workers=args.workers,
+    )
     print(
         f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; fit residual "
         f"median {hand.fit.median_residual_mm():.1f} mm)"
@@ -132,12 +144,21 @@ def _render_pose_file_body(args: argparse.Namespace, recording) -> int:
     avatar, camera = avatar_and_camera("upper-body", args.side)
     fit = fit_arms(avatar.rig, recording)
     info = render_clip(
-        avatar, fit.dofs_rad, camera, args.out, recording.fps, poster=args.poster,
-        width=args.size[0], height=args.size[1], progress=_progress(Path(args.file).name),
+        avatar,
+        fit.dofs_rad,
+        camera,
+        args.out,
+        recording.fps,
+        poster=args.poster,
+        width=args.size[0],
+        height=args.size[1],
+        progress=_progress(Path(args.file).name),
         workers=args.workers,
-    )  # fmt: skip
-    print(f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; "
-          f"found: {_arms_found(fit)})")  # fmt: skip
+    )
+    print(
+        f"wrote {info.path} ({info.n_frames} frames at {info.rate_hz:g} fps; "
+        f"found: {_arms_found(fit)})"
+    )
     return 0
 
 

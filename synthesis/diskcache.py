@@ -89,9 +89,13 @@ def save_arrays(path: Path | None, arrays: dict[str, np.ndarray]) -> None:
             raise
 
 
-def cached(key: str, libraries: tuple[str, ...], compute: Callable[[], T],
-           encode: Callable[[T], dict[str, np.ndarray]],
-           decode: Callable[[dict[str, np.ndarray]], T]) -> T:  # fmt: skip
+def cached(
+    key: str,
+    libraries: tuple[str, ...],
+    compute: Callable[[], T],
+    encode: Callable[[T], dict[str, np.ndarray]],
+    decode: Callable[[dict[str, np.ndarray]], T],
+) -> T:
     """Return the result kept under *key* (computed with *libraries*), decoded from its
     arrays; else compute it and keep its arrays. A file that does not decode (KeyError,
     ValueError: written by something else) is computed again and replaced."""

@@ -22,9 +22,24 @@ def tiny_webm() -> bytes:
     """Return a real one-second WebM (VP8) a browser could have recorded, made by ffmpeg."""
     import imageio_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-f", "lavfi",
-               "-i", "testsrc=size=160x120:rate=15", "-t", "1", "-c:v", "libvpx",
-               "-b:v", "200k", "-f", "webm", "pipe:1"]  # fmt: skip
+    command = [
+        imageio_ffmpeg.get_ffmpeg_exe(),
+        "-v",
+        "error",
+        "-f",
+        "lavfi",
+        "-i",
+        "testsrc=size=160x120:rate=15",
+        "-t",
+        "1",
+        "-c:v",
+        "libvpx",
+        "-b:v",
+        "200k",
+        "-f",
+        "webm",
+        "pipe:1",
+    ]
     return subprocess.run(command, capture_output=True, check=True).stdout
 
 

@@ -107,9 +107,10 @@ def inputs(tmp_path_factory) -> Path:
     _write_hand(here / "take-david.bvh", ["DAVID"], 60.0)
     _write_hand(here / "take-victor.bvh", ["VICTOR"], 60.0)
     holds = ["word,index,hold_ms"] + [
-        f"{w},{k},{h}" for w, hs in (("CAT", (300, 200, 350)), ("DOG", (280, 210, 330)))
+        f"{w},{k},{h}"
+        for w, hs in (("CAT", (300, 200, 350)), ("DOG", (280, 210, 330)))
         for k, h in enumerate(hs)
-    ]  # fmt: skip
+    ]
     (here / "holds.csv").write_text("\n".join(holds) + "\n")
     (here / "transitions.csv").write_text(
         "word,index,transition_ms\nCAT,0,200\nCAT,1,180\nDOG,0,230\nDOG,1,190\n"

@@ -61,8 +61,9 @@ def check_avatar_file(upload) -> tuple[bytes, dict]:
     data = upload.read()
     original = getattr(upload, "name", "") or "avatar.glb"
     if data[:4] != b"glTF":
-        raise AvatarRejected(f"“{original}” is not a GLB or VRM file (glTF 2.0 binary), "
-                             "judged by its content.")  # fmt: skip
+        raise AvatarRejected(
+            f"“{original}” is not a GLB or VRM file (glTF 2.0 binary), judged by its content."
+        )
     return data, _inspected(data, original)
 
 
@@ -81,8 +82,10 @@ def check_bone_mapping(avatar: Avatar, bones) -> None:
         if joint not in known:
             raise AvatarRejected(f"The avatar has no joint {joint!r}.")
         if target and target not in engine:
-            raise AvatarRejected(f"The engine has no joint {target!r} (its joints: "
-                                 f"{', '.join(sorted(engine)[:8])}, …).")  # fmt: skip
+            raise AvatarRejected(
+                f"The engine has no joint {target!r} (its joints: "
+                f"{', '.join(sorted(engine)[:8])}, …)."
+            )
 
 
 def do_upload_avatar(owner, upload, name: str, licence: str, source: str = "") -> Avatar:
@@ -91,9 +94,14 @@ def do_upload_avatar(owner, upload, name: str, licence: str, source: str = "") -
     data, report = check_avatar_file(upload)
     original = getattr(upload, "name", "") or "avatar.glb"
     with transaction.atomic():
-        avatar = Avatar(owner=owner, name=name or report["meta"].get("name") or original,
-                        licence=licence, source=source, original_name=original[:255],
-                        report=report)  # fmt: skip
+        avatar = Avatar(
+            owner=owner,
+            name=name or report["meta"].get("name") or original,
+            licence=licence,
+            source=source,
+            original_name=original[:255],
+            report=report,
+        )
         _store(avatar, data)
     return avatar
 

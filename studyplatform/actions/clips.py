@@ -67,16 +67,28 @@ def _store(condition: Condition, item: Item, prepared: PreparedClip, name: str) 
     clip = UploadedClip.objects.filter(condition=condition, item=item).first()
     old = (clip.video.name, clip.poster.name) if clip is not None else ()
     clip = clip or UploadedClip(condition=condition, item=item)
-    for field, path, suffix in (("video", prepared.video, prepared.suffix),
-                                ("poster", prepared.poster, ".png")):  # fmt: skip
+    for field, path, suffix in (
+        ("video", prepared.video, prepared.suffix),
+        ("poster", prepared.poster, ".png"),
+    ):
         stored = f"uploads/{prepared.sha256}{suffix}"
         if not PRIVATE_STORAGE.exists(stored):
             with open(path, "rb") as handle:
                 stored = PRIVATE_STORAGE.save(stored, File(handle))
         getattr(clip, field).name = stored
     clip.original_name = PurePosixPath(name).name[:255]
-    for fact in ("sha256", "source_sha256", "source_codec", "converted", "duration_ms",
-                 "frame_count", "frame_rate", "width", "height", "size_bytes"):  # fmt: skip
+    for fact in (
+        "sha256",
+        "source_sha256",
+        "source_codec",
+        "converted",
+        "duration_ms",
+        "frame_count",
+        "frame_rate",
+        "width",
+        "height",
+        "size_bytes",
+    ):
         setattr(clip, fact, getattr(prepared, fact))
     clip.save()
     record_uploaded_stimulus(clip)

@@ -72,9 +72,13 @@ def _standard_question(study: Study, design: Design, allow_no_difference: bool) 
     key = _free_key(template["key"], set(study.questions.values_list("key", flat=True)))
     position = max(study.questions.values_list("position", flat=True), default=0) + 1
     question = Question.objects.create(
-        study=study, key=key, kind=template["kind"], text=template["text"], position=position,
+        study=study,
+        key=key,
+        kind=template["kind"],
+        text=template["text"],
+        position=position,
         allow_no_difference=allow_no_difference and design.compares_pairs,
-    )  # fmt: skip
+    )
     if not design.compares_pairs:
         AnswerOption.objects.bulk_create(
             AnswerOption(question=question, value=value, label=label, position=value)
@@ -147,8 +151,9 @@ def _builder_blocks(study: Study, practice: bool) -> tuple[Block | None, Block]:
             return existing
         key = _free_key(role, taken)
         taken.add(key)
-        return Block.objects.create(study=study, key=key, kind=kind, title=title,
-                                    randomize_order=kind == Block.Kind.TRIALS)  # fmt: skip
+        return Block.objects.create(
+            study=study, key=key, kind=kind, title=title, randomize_order=kind == Block.Kind.TRIALS
+        )
 
     trial_block = block("trials", Block.Kind.TRIALS, "Trials")
     practice_block = block("practice", Block.Kind.PRACTICE, "Practice") if practice else None
@@ -186,8 +191,11 @@ def _checked_design(study: Study, spec: DesignSpec) -> tuple[list[PlannedPage], 
     items = {
         i.key: i for i in Item.objects.filter(study=study, key__in=spec.items + spec.practice_items)
     }
-    missing = [k for k in (*spec.conditions, *spec.items, *spec.practice_items)
-               if k not in conditions and k not in items]  # fmt: skip
+    missing = [
+        k
+        for k in (*spec.conditions, *spec.items, *spec.practice_items)
+        if k not in conditions and k not in items
+    ]
     if missing:
         raise DesignRejected(f"Not in this study: {', '.join(missing)}.")
     return pages, conditions, items
@@ -240,8 +248,9 @@ def do_build_design(
         _delete_builder_pages(study)
         practice_block, trial_block = _builder_blocks(study, bool(spec.practice_items))
         taken = set(Trial.objects.filter(study=study).values_list("key", flat=True))
-        trials = _make_trials(study, pages, kind, expected, practice_block, trial_block, taken,
-                              conditions, items)  # fmt: skip
+        trials = _make_trials(
+            study, pages, kind, expected, practice_block, trial_block, taken, conditions, items
+        )
         for trial in trials:
             trial.full_clean(exclude=["questions"])
         Trial.objects.bulk_create(trials)
@@ -270,8 +279,17 @@ def do_build_design(
     )
 
 
-def _make_trials(study, pages: Sequence[PlannedPage], kind, expected, practice_block,
-                 trial_block, taken, conditions, items) -> list[Trial]:  # fmt: skip
+def _make_trials(
+    study,
+    pages: Sequence[PlannedPage],
+    kind,
+    expected,
+    practice_block,
+    trial_block,
+    taken,
+    conditions,
+    items,
+) -> list[Trial]:
     expected_answer, instruction = expected
     trials, counters = [], {"practice": 0, "main": 0, "check": 0}
     prefix = trial_block.key

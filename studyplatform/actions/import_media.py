@@ -33,8 +33,9 @@ class ImportedMedia:
         self.files = files if files is not None else BundleFiles()
         self._owned: set[str] | None = None  # the owner's files, read when first needed
 
-    def resolve(self, name: Any, folder: str, families: tuple[str, ...], whose: str,
-                where: str) -> str | None:  # fmt: skip
+    def resolve(
+        self, name: Any, folder: str, families: tuple[str, ...], whose: str, where: str
+    ) -> str | None:
         """Return the name to store for *name* ("" for none, None if it is not here).
 
         A bundled file is checked by content (one of *families*, whole) and stored under

@@ -33,8 +33,9 @@ from studyplatform.models import (
 )
 
 
-def pick(row: Any, fields: tuple[str, ...], where: str,
-          model: type[models.Model] | None = None) -> dict[str, Any]:  # fmt: skip
+def pick(
+    row: Any, fields: tuple[str, ...], where: str, model: type[models.Model] | None = None
+) -> dict[str, Any]:
     """Return *row*'s values for *fields*, rejecting anything else it holds.
 
     With *model*, each value must be of the kind its field holds (lib.field_input).
@@ -68,8 +69,11 @@ def save_checked(obj: models.Model, where: str) -> None:
     the importing user), never to an id from the file, and a lookup a key was a third
     of an import's queries. Unique constraints that include them are still checked.
     """
-    foreign_keys = {field.name for field in obj._meta.concrete_fields
-                    if field.many_to_one and getattr(obj, field.attname) is not None}  # fmt: skip
+    foreign_keys = {
+        field.name
+        for field in obj._meta.concrete_fields
+        if field.many_to_one and getattr(obj, field.attname) is not None
+    }
     errors: dict = {}
     for check in (lambda: obj.clean_fields(exclude=foreign_keys), obj.clean):
         try:
@@ -101,9 +105,13 @@ def _lookup(table: dict[str, Any], key: Any, kind: str, where: str) -> Any:
 
 
 def _create_keyed(
-    data: dict[str, Any], name: str, model: type[models.Model], fields: tuple[str, ...], study,
+    data: dict[str, Any],
+    name: str,
+    model: type[models.Model],
+    fields: tuple[str, ...],
+    study,
     save,
-) -> dict[str, Any]:  # fmt: skip
+) -> dict[str, Any]:
     """Create the study's *name* rows of *model* with *save*; return them by key."""
     created = {}
     for index, row in enumerate(_rows(data, name)):
@@ -145,13 +153,13 @@ class Batches:
 def import_rows(data: dict, study: Study, batches: Batches, media: ImportedMedia) -> list[str]:
     """Create every row of the definition *data* for *study*; return the warnings."""
     save = batches.save
-    conditions = _create_keyed(data, "conditions", Condition, exchange.CONDITION_FIELDS, study,
-                               save)  # fmt: skip
+    conditions = _create_keyed(
+        data, "conditions", Condition, exchange.CONDITION_FIELDS, study, save
+    )
     items = _create_keyed(data, "items", Item, exchange.ITEM_FIELDS, study, save)
     questions, options = _import_questions(data, study, save)
     blocks = _create_keyed(data, "blocks", Block, exchange.BLOCK_FIELDS, study, save)
-    tables = {"block": blocks, "item": items, "condition_a": conditions,
-              "condition_b": conditions}  # fmt: skip
+    tables = {"block": blocks, "item": items, "condition_a": conditions, "condition_b": conditions}
     trials = _import_trials(data, study, save, tables, questions)
     targets = {"block": blocks, "trial": trials, "question": questions, "answeroption": options}
     warnings = _import_asl_videos(data, study, save, media, targets)
@@ -214,19 +222,22 @@ def _import_trials(data: dict, study: Study, save, tables: dict, questions: dict
     return trials
 
 
-def _import_asl_videos(data: dict, study: Study, save, media: ImportedMedia,
-                       targets: dict) -> list[str]:  # fmt: skip
+def _import_asl_videos(
+    data: dict, study: Study, save, media: ImportedMedia, targets: dict
+) -> list[str]:
     """Create the ASL videos of the study and its rows; return what was left out."""
     warnings = []
     for index, row in enumerate(_rows(data, "asl_videos")):
         where = f"asl_videos[{index}]"
-        values = pick(row, (*exchange.ASL_VIDEO_FIELDS, "target", "video", "poster"), where,
-                      AslVideo)  # fmt: skip
+        values = pick(
+            row, (*exchange.ASL_VIDEO_FIELDS, "target", "video", "poster"), where, AslVideo
+        )
         target = _asl_target(values.pop("target", None), study, targets, where)
         video_name = values.pop("video", "")
         video = media.resolve(video_name, "asl", ASL_VIDEO, "an ASL video's", f"{where}.video")
-        poster = media.resolve(values.pop("poster", ""), "asl", ASL_POSTER, "an ASL video's",
-                               f"{where}.poster")  # fmt: skip
+        poster = media.resolve(
+            values.pop("poster", ""), "asl", ASL_POSTER, "an ASL video's", f"{where}.poster"
+        )
         if not video:
             warnings.append(f"{where}: video file {video_name!r} is not in media; left out.")
             continue
@@ -253,50 +264,71 @@ def _import_recordings(data: dict, save, media: ImportedMedia, items: dict) -> l
     warnings = []
     for index, row in enumerate(_rows(data, "recordings")):
         where = f"recordings[{index}]"
-        values = pick(row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
-                      where, Recording)  # fmt: skip
+        values = pick(
+            row, ("item", *exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES), where, Recording
+        )
         item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
         if item is None or item.kind != Item.Kind.WORD:
-            raise StudyImportError(f"{where}.item: recordings belong to words; "
-                                   f"{getattr(item, 'key', None)!r} is not one.")  # fmt: skip
+            raise StudyImportError(
+                f"{where}.item: recordings belong to words; "
+                f"{getattr(item, 'key', None)!r} is not one."
+            )
         named = {name: values.pop(name, "") or "" for name in exchange.RECORDING_FILES}
-        found = {name: media.resolve(file_name, "recordings", RECORDING_KINDS[name],
-                                     "a recording's", f"{where}.{name}")
-                 for name, file_name in named.items()}  # fmt: skip
+        found = {
+            name: media.resolve(
+                file_name, "recordings", RECORDING_KINDS[name], "a recording's", f"{where}.{name}"
+            )
+            for name, file_name in named.items()
+        }
         missing = [name for name in ("upload", "motion") if not found[name]]
         if missing:
-            warnings.append(f"{where}: {missing[0]} file {named[missing[0]]!r} of {item.key} "
-                            "is not in media; left out.")  # fmt: skip
+            warnings.append(
+                f"{where}: {missing[0]} file {named[missing[0]]!r} of {item.key} "
+                "is not in media; left out."
+            )
             continue
         found["sheet"] = found["sheet"] or ""
-        recording = Recording(item=item, status=Recording.Status.READY,
-                              progress_percent=100, **found, **values)  # fmt: skip
+        recording = Recording(
+            item=item, status=Recording.Status.READY, progress_percent=100, **found, **values
+        )
         save(recording, where)
     return warnings
 
 
-def _import_uploaded_clips(data: dict, save, media: ImportedMedia, conditions: dict,
-                           items: dict) -> list[str]:  # fmt: skip
+def _import_uploaded_clips(
+    data: dict, save, media: ImportedMedia, conditions: dict, items: dict
+) -> list[str]:
     """Create the uploaded conditions' clips whose files came; return what was left out."""
     warnings = []
     for index, row in enumerate(_rows(data, "uploaded_clips")):
         where = f"uploaded_clips[{index}]"
-        values = pick(row, ("condition", "item", *exchange.UPLOAD_FIELDS, *exchange.UPLOAD_FILES),
-                      where, UploadedClip)  # fmt: skip
-        condition = _lookup(conditions, values.pop("condition", None), "condition",
-                            f"{where}.condition")  # fmt: skip
+        values = pick(
+            row,
+            ("condition", "item", *exchange.UPLOAD_FIELDS, *exchange.UPLOAD_FILES),
+            where,
+            UploadedClip,
+        )
+        condition = _lookup(
+            conditions, values.pop("condition", None), "condition", f"{where}.condition"
+        )
         item = _lookup(items, values.pop("item", None), "item", f"{where}.item")
         if condition is None or item is None or not condition.is_uploaded:
-            raise StudyImportError(f"{where}: clips belong to an item in a condition of "
-                                   "uploaded clips.")  # fmt: skip
+            raise StudyImportError(
+                f"{where}: clips belong to an item in a condition of uploaded clips."
+            )
         named = {name: values.pop(name, "") or "" for name in exchange.UPLOAD_FILES}
-        found = {name: media.resolve(file_name, "uploads", UPLOAD_KINDS[name],
-                                     "an uploaded clip's", f"{where}.{name}")
-                 for name, file_name in named.items()}  # fmt: skip
+        found = {
+            name: media.resolve(
+                file_name, "uploads", UPLOAD_KINDS[name], "an uploaded clip's", f"{where}.{name}"
+            )
+            for name, file_name in named.items()
+        }
         missing = [name for name in exchange.UPLOAD_FILES if not found[name]]
         if missing:
-            warnings.append(f"{where}: {missing[0]} file {named[missing[0]]!r} of "
-                            f"{condition.key} × {item.key} is not in media; left out.")  # fmt: skip
+            warnings.append(
+                f"{where}: {missing[0]} file {named[missing[0]]!r} of "
+                f"{condition.key} × {item.key} is not in media; left out."
+            )
             continue
         save(UploadedClip(condition=condition, item=item, **found, **values), where)
     return warnings

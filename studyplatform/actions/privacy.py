@@ -55,19 +55,28 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
             files=len(videos) + partials,
         )
         entry = ledger.LedgerEntry(
-            study_id=locked.study_id, participant_number=locked.pk,
+            study_id=locked.study_id,
+            participant_number=locked.pk,
             token_sha256=ledger.token_sha256(locked.token),
             withdrawn_at=withdrawal.withdrawn_at.isoformat(),
-            withdrawn_by=getattr(by, "username", None), reason=withdrawal.reason,
-            responses=withdrawal.responses, events=withdrawal.events,
-            personal_answers=withdrawal.personal_answers, files=withdrawal.files,
-        )  # fmt: skip
+            withdrawn_by=getattr(by, "username", None),
+            reason=withdrawal.reason,
+            responses=withdrawal.responses,
+            events=withdrawal.events,
+            personal_answers=withdrawal.personal_answers,
+            files=withdrawal.files,
+        )
         forget_in_sessions({locked.token})
         _erase(locked, videos)
         transaction.on_commit(lambda: ledger.append(entry))
-    log.info("participant %s withdrew from study %s: %s responses, %s events, %s files deleted",
-             withdrawal.participant_number, withdrawal.study_id, withdrawal.responses,
-             withdrawal.events, withdrawal.files)  # fmt: skip
+    log.info(
+        "participant %s withdrew from study %s: %s responses, %s events, %s files deleted",
+        withdrawal.participant_number,
+        withdrawal.study_id,
+        withdrawal.responses,
+        withdrawal.events,
+        withdrawal.files,
+    )
     return withdrawal
 
 
@@ -130,8 +139,10 @@ def do_reapply_withdrawals(entries: list[ledger.LedgerEntry]) -> Reapplied:
     withdrawn = []
     logged = 0
     with transaction.atomic():
-        present = {(w.study_id, w.participant_number)
-                   for w in Withdrawal.objects.only("study_id", "participant_number")}  # fmt: skip
+        present = {
+            (w.study_id, w.participant_number)
+            for w in Withdrawal.objects.only("study_id", "participant_number")
+        }
         studies = set(Study.objects.values_list("pk", flat=True))
         tokens = set()
         for participant in Participant.objects.select_for_update().order_by("pk"):
@@ -146,17 +157,24 @@ def do_reapply_withdrawals(entries: list[ledger.LedgerEntry]) -> Reapplied:
             if key in present or entry.study_id not in studies:
                 continue
             row = Withdrawal.objects.create(
-                study_id=entry.study_id, participant_number=entry.participant_number,
-                reason=entry.reason, responses=entry.responses, events=entry.events,
-                personal_answers=entry.personal_answers, files=entry.files,
-            )  # fmt: skip
+                study_id=entry.study_id,
+                participant_number=entry.participant_number,
+                reason=entry.reason,
+                responses=entry.responses,
+                events=entry.events,
+                personal_answers=entry.personal_answers,
+                files=entry.files,
+            )
             # auto_now_add stamps the restore's time; the log keeps the withdrawal's.
             Withdrawal.objects.filter(pk=row.pk).update(withdrawn_at=entry.withdrawn_at)
             present.add(key)
             logged += 1
     if withdrawn:
-        log.warning("restore: %s withdrawn participants were in the backup and were "
-                    "withdrawn again: %s", len(withdrawn), withdrawn)  # fmt: skip
+        log.warning(
+            "restore: %s withdrawn participants were in the backup and were withdrawn again: %s",
+            len(withdrawn),
+            withdrawn,
+        )
     return Reapplied(participants=tuple(withdrawn), logged=logged)
 
 
@@ -178,9 +196,10 @@ def do_apply_retention(now: datetime | None = None) -> RetentionResult:
         cutoff = now - timedelta(days=study.personal_data_retention_days)
         # Finished before the cutoff, or left unfinished with no visit since.
         expired = Participant.objects.filter(study=study).filter(
-            Q(finished_at__lt=cutoff) | Q(finished_at__isnull=True, last_seen_at__lt=cutoff)
+            Q(finished_at__lt=cutoff)
+            | Q(finished_at__isnull=True, last_seen_at__lt=cutoff)
             | Q(finished_at__isnull=True, last_seen_at__isnull=True, started_at__lt=cutoff)
-        )  # fmt: skip
+        )
         with transaction.atomic():
             answers = PersonalAnswer.objects.filter(participant__in=expired)
             signed = Response.objects.filter(participant__in=expired).exclude(video="")
@@ -192,6 +211,11 @@ def do_apply_retention(now: datetime | None = None) -> RetentionResult:
             cleared += expired.exclude(recruitment_params={}).update(recruitment_params={})
             delete_unused_files_on_commit(Response._meta.get_field("video").storage, names)
     if cleared or personal or videos:
-        log.info("retention: recruitment ids of %s participants, %s personal answers and %s "
-                 "videos deleted", cleared, personal, videos)  # fmt: skip
+        log.info(
+            "retention: recruitment ids of %s participants, %s personal answers and %s "
+            "videos deleted",
+            cleared,
+            personal,
+            videos,
+        )
     return RetentionResult(cleared, personal, videos)

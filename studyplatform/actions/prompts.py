@@ -12,8 +12,9 @@ from studyplatform.models import PARTICIPANT_FACING_FIELDS, STUDY_PATHS, AslVide
 MAX_ASL_VIDEO_BYTES = 300 * 1024 * 1024
 
 
-def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, field_name: str,
-                        upload) -> AslVideo:  # fmt: skip
+def do_attach_asl_video(
+    study: Study, content_type_id: int, object_id: int, field_name: str, upload
+) -> AslVideo:
     """Save *upload* as the ASL video of one text of *study*, replacing an older one."""
     try:
         model = ContentType.objects.get_for_id(content_type_id).model_class()
@@ -34,9 +35,11 @@ def do_attach_asl_video(study: Study, content_type_id: int, object_id: int, fiel
     kind = check_upload(upload, ("video",), f"“{name}”")
     with stored_video(upload, kind) as (stored, sha256), transaction.atomic():
         video, _ = AslVideo.objects.select_for_update().get_or_create(
-            content_type_id=content_type_id, object_id=object_id, field_name=field_name,
+            content_type_id=content_type_id,
+            object_id=object_id,
+            field_name=field_name,
             defaults={"video": ""},
-        )  # fmt: skip
+        )
         old = video.video.name if video.video else ""
         video.video.save(f"{sha256}{kind.suffix}", File(stored), save=True)
         if old != video.video.name:

@@ -44,8 +44,9 @@ def check_motion_file(name: str, data: bytes, kind: MediaKind) -> dict:
         raise RecordingRejected(str(error)) from None
 
 
-def do_attach_recording(item: Item, upload, mirrored: bool = False,
-                        one_hand: bool = False) -> Recording:  # fmt: skip
+def do_attach_recording(
+    item: Item, upload, mirrored: bool = False, one_hand: bool = False
+) -> Recording:
     """Store *upload* as a recording of *item* and queue its preparation.
 
     Raise RecordingRejected for an item that is not a word, a file that is neither a
@@ -78,12 +79,14 @@ def do_attach_recording(item: Item, upload, mirrored: bool = False,
         return _save_recording(item, upload, name, digest.hexdigest(), mirrored, one_hand)
     # A camera's WebM is stored with its duration and seek index, named by its content.
     with stored_video(upload, kind) as (stored, sha256):
-        return _save_recording(item, File(stored), f"{sha256}{kind.suffix}", sha256,
-                               mirrored, one_hand)  # fmt: skip
+        return _save_recording(
+            item, File(stored), f"{sha256}{kind.suffix}", sha256, mirrored, one_hand
+        )
 
 
-def _save_recording(item: Item, upload, name: str, sha256: str, mirrored: bool,
-                    one_hand: bool) -> Recording:  # fmt: skip
+def _save_recording(
+    item: Item, upload, name: str, sha256: str, mirrored: bool, one_hand: bool
+) -> Recording:
     with transaction.atomic():
         recording = Recording(item=item, mirrored=mirrored, one_hand=one_hand, sha256=sha256)
         recording.upload.save(name, upload, save=False)
@@ -106,13 +109,17 @@ def do_fail_recording(recording: Recording, error: Exception) -> str:
     media, not where the server keeps it.
     """
     message = str(error).replace(str(PRIVATE_STORAGE.location).rstrip("/") + "/", "")
-    Recording.objects.filter(pk=recording.pk).update(status=Recording.Status.FAILED,
-                                                     error=message)  # fmt: skip
+    Recording.objects.filter(pk=recording.pk).update(status=Recording.Status.FAILED, error=message)
     return Recording.Status.FAILED
 
 
-def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None = None,
-                        sheet: bytes | None = None, bvh: bytes | None = None) -> str:  # fmt: skip
+def do_finish_recording(
+    recording: Recording,
+    quality: dict,
+    pose: bytes | None = None,
+    sheet: bytes | None = None,
+    bvh: bytes | None = None,
+) -> str:
     """Mark the recording ready, with its captured landmarks (*pose*) and contact sheet
     (*sheet*, PNG) for a video, or an FBX's or glTF's motion as BVH (*bvh*).
 
@@ -143,8 +150,11 @@ def do_finish_recording(recording: Recording, quality: dict, pose: bytes | None 
 def do_delete_recordings(recordings) -> int:
     """Delete recordings with their files and relabel their studies; return how many."""
     with transaction.atomic():
-        recordings = list(Recording.objects.select_for_update().filter(
-            pk__in=[r.pk for r in recordings]).select_related("item__study"))  # fmt: skip
+        recordings = list(
+            Recording.objects.select_for_update()
+            .filter(pk__in=[r.pk for r in recordings])
+            .select_related("item__study")
+        )
         _remove(recordings)
         for study in {r.item.study for r in recordings}:
             do_relabel_stand_ins(study)

@@ -73,8 +73,9 @@ def _check_page(participant: Participant, trial: Trial) -> None:
         raise AnswerRejected("This study is finished; answers can no longer change.")
 
 
-def _checked_values(participant: Participant, trial: Trial, question: Question,
-                    answer: Answer) -> dict:  # fmt: skip
+def _checked_values(
+    participant: Participant, trial: Trial, question: Question, answer: Answer
+) -> dict:
     """Return the Response fields *answer* sets, or raise AnswerRejected naming why not."""
     if question.pk not in {asked.pk for asked in trial.questions.all()}:  # prefetched or one query
         raise AnswerRejected(f"“{question.key}” is not asked on this page.")
@@ -94,8 +95,7 @@ def _write_personal(participant: Participant, question: Question, value: str) ->
     return personal
 
 
-def _write_response(key: dict, values: dict, answer: Answer,
-                    existing: Response | None) -> Response:  # fmt: skip
+def _write_response(key: dict, values: dict, answer: Answer, existing: Response | None) -> Response:
     """Insert the response of *key*, or revise *existing* if the answer changed."""
     if existing is None:
         try:

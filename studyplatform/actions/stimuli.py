@@ -121,8 +121,9 @@ def do_generate_stimuli(
     queued, ready, ids, changed = [], 0, [], []
     hashed, missing = [], 0
     refuse_changes = _in_field(study) and not rerender_open
-    uploads = {(u.condition_id, u.item_id): u
-               for u in UploadedClip.objects.filter(condition__study=study)}  # fmt: skip
+    uploads = {
+        (u.condition_id, u.item_id): u for u in UploadedClip.objects.filter(condition__study=study)
+    }
     with transaction.atomic():
         for condition, item in needed_pairs(study):
             if condition.is_uploaded:
@@ -200,8 +201,11 @@ def do_retry_stimuli(stimuli, background: bool = False) -> int:
     """Queue failed (or stuck) clips again; return how many (uploaded ones are not
     rendered: they wait for their file)."""
     with transaction.atomic():
-        pks = [s.pk for s in stimuli
-               if s.status != Stimulus.Status.READY and not s.condition.is_uploaded]  # fmt: skip
+        pks = [
+            s.pk
+            for s in stimuli
+            if s.status != Stimulus.Status.READY and not s.condition.is_uploaded
+        ]
         Stimulus.objects.filter(pk__in=pks).update(status=Stimulus.Status.PENDING, error="")
         if pks:
             transaction.on_commit(lambda: dispatch_renders(pks, background=background))

@@ -193,10 +193,13 @@ def _check_take(path: Path, final: FinalChunk) -> str:
             problem = "The recording is incomplete or does not play; please record it again."
         elif final.duration_ms is not None:
             claimed_s = final.duration_ms / 1000
-            if abs(duration_s - claimed_s) > max(DURATION_TOLERANCE_S,
-                                                 DURATION_TOLERANCE_SHARE * claimed_s):  # fmt: skip
-                problem = (f"The recording plays for {duration_s:.1f} s, not the "
-                           f"{claimed_s:.1f} s recorded; please record it again.")  # fmt: skip
+            if abs(duration_s - claimed_s) > max(
+                DURATION_TOLERANCE_S, DURATION_TOLERANCE_SHARE * claimed_s
+            ):
+                problem = (
+                    f"The recording plays for {duration_s:.1f} s, not the "
+                    f"{claimed_s:.1f} s recorded; please record it again."
+                )
     if problem:
         path.unlink(missing_ok=True)
         raise UploadRejected(problem)
@@ -219,8 +222,15 @@ def parse_final(sha256: object, duration_ms: object) -> FinalChunk:
     return FinalChunk(sha256=text, duration_ms=duration)
 
 
-def _save_recording(participant: Participant, trial: Trial, question: Question, take: str,
-                    video: Path, length: int, suffix: str) -> Response:  # fmt: skip
+def _save_recording(
+    participant: Participant,
+    trial: Trial,
+    question: Question,
+    take: str,
+    video: Path,
+    length: int,
+    suffix: str,
+) -> Response:
     """Save *video*, the checked take as stored (remuxed), as the answer's video
     (replacing an older one); its SHA-256 is the stored file's."""
     with transaction.atomic():

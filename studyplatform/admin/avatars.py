@@ -24,11 +24,12 @@ class AvatarForm(forms.ModelForm):
     """Upload an avatar (a new one) or edit its description and bone mapping."""
 
     upload = forms.FileField(
-        required=False, label="GLB or VRM file",
+        required=False,
+        label="GLB or VRM file",
         help_text="A humanoid glTF 2.0 binary (.glb) or VRM (.vrm): a skeleton with skin "
         "weights; finger bones to fingerspell; ARKit-named morph targets or VRM "
         "expressions for the face. At most 200 MB.",
-    )  # fmt: skip
+    )
 
     class Meta:
         model = Avatar
@@ -80,16 +81,24 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
         """Store a new upload through its action; save a new mapping into the file."""
         data = form.cleaned_data
         if not change:
-            created = do_upload_avatar(request.user, data["upload"], data.get("name") or "",
-                                       data["licence"], data.get("source") or "")  # fmt: skip
+            created = do_upload_avatar(
+                request.user,
+                data["upload"],
+                data.get("name") or "",
+                data["licence"],
+                data.get("source") or "",
+            )
             obj.pk, obj.file = created.pk, created.file
             return
         stored = Avatar.objects.get(pk=obj.pk)
         super().save_model(request, obj, form, change)
         if (data.get("bone_mapping") or {}) != (stored.bone_mapping or {}):
             do_map_avatar_bones(obj, data["bone_mapping"])
-            messages.info(request, "The mapping is saved in the file; clips filmed with the "
-                          "avatar will be rendered again.")  # fmt: skip
+            messages.info(
+                request,
+                "The mapping is saved in the file; clips filmed with the "
+                "avatar will be rendered again.",
+            )
 
     @admin.display(description="fingerspells")
     def fingers(self, avatar: Avatar) -> bool:
@@ -108,13 +117,18 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
         if avatar.status != Avatar.Status.READY:
             return "Being rendered; reload the page." if avatar.status == "preparing" else "—"
         return format_html_join(
-            " ", '<figure style="display:inline-block;margin:0 8px 0 0"><img src="{}" '
+            " ",
+            '<figure style="display:inline-block;margin:0 8px 0 0"><img src="{}" '
             'width="240" alt="{}"><figcaption>{}</figcaption></figure>',
-            ((reverse("private_media", args=[field.name]), label, label)
-             for field, label in ((avatar.still_rest, "at rest"),
-                                  (avatar.still_letter, "the letter B"),
-                                  (avatar.still_face, "brows raised (a question)"))),
-        )  # fmt: skip
+            (
+                (reverse("private_media", args=[field.name]), label, label)
+                for field, label in (
+                    (avatar.still_rest, "at rest"),
+                    (avatar.still_letter, "the letter B"),
+                    (avatar.still_face, "brows raised (a question)"),
+                )
+            ),
+        )
 
     @admin.display(description="bones and face")
     def findings(self, avatar: Avatar) -> str:
@@ -125,14 +139,21 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
             for side, names in missing.items()
         )
         channels = report.get("face_channels") or []
-        face = (f"plays {len(channels)} channels ({', '.join(channels[:8])}"
-                f"{'…' if len(channels) > 8 else ''})" if channels else
-                "no morph target the face channels drive (ARKit names or VRM expressions): "
-                "non-manual signals are not shown")  # fmt: skip
+        face = (
+            f"plays {len(channels)} channels ({', '.join(channels[:8])}"
+            f"{'…' if len(channels) > 8 else ''})"
+            if channels
+            else "no morph target the face channels drive (ARKit names or VRM expressions): "
+            "non-manual signals are not shown"
+        )
         return format_html(
             "{} of {} joints mapped to the engine's; not mapped: {}.<br>{}.<br>Face: {}.<br>"
             "Height {} m.<br><details><summary>The mapping</summary><pre>{}</pre></details>",
-            len(report.get("mapped", {})), report.get("joints", 0),
-            ", ".join(report.get("unmapped", [])) or "none", hands, face,
-            report.get("height_m"), json.dumps(report.get("mapped", {}), indent=1),
-        )  # fmt: skip
+            len(report.get("mapped", {})),
+            report.get("joints", 0),
+            ", ".join(report.get("unmapped", [])) or "none",
+            hands,
+            face,
+            report.get("height_m"),
+            json.dumps(report.get("mapped", {}), indent=1),
+        )

@@ -25,36 +25,45 @@ class DesignForm(forms.Form):
     """Choose the design, its conditions and items, practice, questions and checks."""
 
     design = forms.ChoiceField(
-        choices=[(d.value, d.label) for d in Design], widget=forms.RadioSelect,
+        choices=[(d.value, d.label) for d in Design],
+        widget=forms.RadioSelect,
         initial=Design.BALANCED_PAIRS.value,
-    )  # fmt: skip
+    )
     conditions = forms.ModelMultipleChoiceField(
-        queryset=None, widget=forms.CheckboxSelectMultiple,
+        queryset=None,
+        widget=forms.CheckboxSelectMultiple,
         help_text="The conditions compared (add them on the study page first).",
-    )  # fmt: skip
+    )
     items = forms.ModelMultipleChoiceField(
-        queryset=None, widget=forms.CheckboxSelectMultiple,
+        queryset=None,
+        widget=forms.CheckboxSelectMultiple,
         help_text="The items shown in every condition.",
-    )  # fmt: skip
+    )
     practice_items = forms.ModelMultipleChoiceField(
-        queryset=None, required=False, widget=forms.CheckboxSelectMultiple,
+        queryset=None,
+        required=False,
+        widget=forms.CheckboxSelectMultiple,
         help_text="One practice page each, before the trials; practice answers are not analysed.",
-    )  # fmt: skip
+    )
     questions = forms.ModelMultipleChoiceField(
-        queryset=None, required=False, widget=forms.CheckboxSelectMultiple,
+        queryset=None,
+        required=False,
+        widget=forms.CheckboxSelectMultiple,
         help_text=(
             "What each page asks, all of one kind: pairwise or comparative for pairs, "
             "Likert or intelligibility for single clips. None chosen: a standard question "
             "is created (“Which clip looks more natural?”, or a 5-point naturalness rating)."
         ),
-    )  # fmt: skip
+    )
     attention_checks = forms.IntegerField(
-        min_value=0, max_value=20, initial=1,
+        min_value=0,
+        max_value=20,
+        initial=1,
         help_text=(
             "Pages with a known answer, flagged in the data: two identical clips on pair "
             "designs (answer: no difference), an instructed answer on rating designs."
         ),
-    )  # fmt: skip
+    )
     randomize_order = forms.BooleanField(
         required=False, initial=True, label="Shuffle the trial pages per participant (seeded)"
     )
@@ -64,19 +73,25 @@ class DesignForm(forms.Form):
         initial = kwargs.setdefault("initial", {})
         conditions = study.conditions.order_by("position", "pk")
         items = study.items.order_by("position", "pk")
-        initial.setdefault("conditions", list(conditions.filter(
-            key__in=stored["conditions"]) if stored else conditions))  # fmt: skip
+        initial.setdefault(
+            "conditions",
+            list(conditions.filter(key__in=stored["conditions"]) if stored else conditions),
+        )
         main = items.filter(key__in=stored["items"]) if stored else items.filter(is_practice=False)
         initial.setdefault("items", list(main))
-        practice = (items.filter(key__in=stored.get("practice_items", ())) if stored
-                    else items.filter(is_practice=True))  # fmt: skip
+        practice = (
+            items.filter(key__in=stored.get("practice_items", ()))
+            if stored
+            else items.filter(is_practice=True)
+        )
         initial.setdefault("practice_items", list(practice))
         if stored:
             initial.setdefault("design", stored["design"])
             initial.setdefault("attention_checks", stored.get("attention_checks", 0))
             initial.setdefault("randomize_order", stored.get("randomize_order", True))
-            initial.setdefault("questions", list(study.questions.filter(
-                key__in=stored.get("questions", ()))))  # fmt: skip
+            initial.setdefault(
+                "questions", list(study.questions.filter(key__in=stored.get("questions", ())))
+            )
         super().__init__(*args, **kwargs)
         self.study = study
         self.fields["conditions"].queryset = conditions
@@ -157,8 +172,12 @@ class StudyDesignMixin:
         if request.method == "POST" and can_build and form.is_valid():
             questions = list(form.cleaned_data["questions"])
             try:
-                built = do_build_design(study, form.cleaned_data["spec"], questions,
-                                        form.cleaned_data["randomize_order"])  # fmt: skip
+                built = do_build_design(
+                    study,
+                    form.cleaned_data["spec"],
+                    questions,
+                    form.cleaned_data["randomize_order"],
+                )
             except DesignRejected as error:
                 form.add_error(None, error.message)
             else:
@@ -177,7 +196,14 @@ class StudyDesignMixin:
                 return redirect(reverse("admin:studyplatform_study_design", args=[study.pk]))
         summary = summarize_design(study)
         return self._page(
-            request, "design.html", f"Design of “{study.title}”", study=study, form=form,
-            summary=summary, can_build=can_build, answer_s=ANSWER_S, info_page_s=INFO_PAGE_S,
+            request,
+            "design.html",
+            f"Design of “{study.title}”",
+            study=study,
+            form=form,
+            summary=summary,
+            can_build=can_build,
+            answer_s=ANSWER_S,
+            info_page_s=INFO_PAGE_S,
             mismatched=mismatched_pairs(study),
-        )  # fmt: skip
+        )

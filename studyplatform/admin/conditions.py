@@ -39,18 +39,22 @@ def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
         return forms.ChoiceField(choices=choices, help_text=help_text, **common)
     if parameter.type == "bool":
         return forms.TypedChoiceField(
-            choices=[(True, "On"), (False, "Off")], coerce=lambda v: v in (True, "True"),
-            help_text=help_text, **common,
-        )  # fmt: skip
+            choices=[(True, "On"), (False, "Off")],
+            coerce=lambda v: v in (True, "True"),
+            help_text=help_text,
+            **common,
+        )
     if parameter.type == "file":
         help_text += f" {file_help(parameter.name)}"
         return forms.CharField(required=False, help_text=help_text, **common)
     field = forms.IntegerField if parameter.type == "int" else forms.FloatField
     default = parameter.label_of(parameter.default)  # with its units
     return field(
-        min_value=parameter.minimum, max_value=parameter.maximum,
-        help_text=f"{help_text} Default: {default}.", **common,
-    )  # fmt: skip
+        min_value=parameter.minimum,
+        max_value=parameter.maximum,
+        help_text=f"{help_text} Default: {default}.",
+        **common,
+    )
 
 
 def technique_groups(kinds) -> list[tuple[str, tuple[Parameter, ...]]]:
@@ -78,8 +82,17 @@ class ConditionForm(forms.ModelForm):
 
     class Meta:
         model = Condition
-        fields = ("study", "position", "key", "label", "description", "source", "avatar",
-                  "is_simulated", "parameters")  # fmt: skip
+        fields = (
+            "study",
+            "position",
+            "key",
+            "label",
+            "description",
+            "source",
+            "avatar",
+            "is_simulated",
+            "parameters",
+        )
         labels = {"parameters": "Other parameters (JSON)"}
         help_texts = {
             "parameters": (
@@ -138,8 +151,17 @@ class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
         return super().get_form(request, obj, **kwargs)
 
     def get_fieldsets(self, request: HttpRequest, obj: Condition | None = None):
-        main = ("study", "position", "key", "label", "description", "source", "avatar",
-                "is_simulated", "compares")  # fmt: skip
+        main = (
+            "study",
+            "position",
+            "key",
+            "label",
+            "description",
+            "source",
+            "avatar",
+            "is_simulated",
+            "compares",
+        )
         fieldsets = [(None, {"fields": main})]
         for title, parameters in technique_groups(condition_item_kinds(obj)):
             fieldsets.append((title, {"fields": [PREFIX + p.name for p in parameters]}))

@@ -28,23 +28,36 @@ class StudyGenerateMixin:
     def generate_urls(self):
         view = self.admin_site.admin_view
         return [
-            path("<path:object_id>/stimuli/generate/", view(self.generate_view),
-                 name="studyplatform_study_generate"),
-            path("<path:object_id>/stimuli/", view(self.stimuli_view),
-                 name="studyplatform_study_stimuli"),
-            path("<path:object_id>/stimuli/progress.json", view(self.stimuli_progress_view),
-                 name="studyplatform_study_stimuli_progress"),
-            path("<path:object_id>/stimuli/manifest.json", view(self.stimuli_manifest_view),
-                 name="studyplatform_study_stimuli_manifest"),
-        ]  # fmt: skip
+            path(
+                "<path:object_id>/stimuli/generate/",
+                view(self.generate_view),
+                name="studyplatform_study_generate",
+            ),
+            path(
+                "<path:object_id>/stimuli/",
+                view(self.stimuli_view),
+                name="studyplatform_study_stimuli",
+            ),
+            path(
+                "<path:object_id>/stimuli/progress.json",
+                view(self.stimuli_progress_view),
+                name="studyplatform_study_stimuli_progress",
+            ),
+            path(
+                "<path:object_id>/stimuli/manifest.json",
+                view(self.stimuli_manifest_view),
+                name="studyplatform_study_stimuli_manifest",
+            ),
+        ]
 
     def _generate(self, request: HttpRequest, study: Study, allow_identical: bool):
         """Generate *study*'s clips in the background; return the result or the refusal."""
         try:
             return do_generate_stimuli(
-                study, background=True,
+                study,
+                background=True,
                 allow_identical=allow_identical or study.allow_identical_clips,
-            ), None  # fmt: skip
+            ), None
         except IdenticalClips as refusal:
             return None, refusal
         except ClipError as error:
@@ -66,18 +79,32 @@ class StudyGenerateMixin:
         title = f"Generate the stimuli of “{study.title}”"
         pairs = needed_pairs(study)
         hashed = hashed_pairs(pairs)  # the page's two counts share the hashing
-        return self._page(request, "generate.html", title, study=study, allowed=allowed,
-                          identical=group_identical(hashed), clips=len(pairs),
-                          progress=stimuli_progress(study), checks=stored_checks(hashed),
-                          on_disk=clips_on_disk(hashed))  # fmt: skip
+        return self._page(
+            request,
+            "generate.html",
+            title,
+            study=study,
+            allowed=allowed,
+            identical=group_identical(hashed),
+            clips=len(pairs),
+            progress=stimuli_progress(study),
+            checks=stored_checks(hashed),
+            on_disk=clips_on_disk(hashed),
+        )
 
     def stimuli_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
         """Show the study's clips being rendered: a live progress bar, the failures and
         the stimulus check's warnings."""
         study = self._get_visible_study(request, object_id)
         checks = stored_checks(hashed_pairs(needed_pairs(study)))
-        return self._page(request, "stimuli.html", f"Stimuli of “{study.title}”", study=study,
-                          progress=stimuli_progress(study), checks=checks)  # fmt: skip
+        return self._page(
+            request,
+            "stimuli.html",
+            f"Stimuli of “{study.title}”",
+            study=study,
+            progress=stimuli_progress(study),
+            checks=checks,
+        )
 
     def stimuli_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
         """Return the rendering progress as JSON, for the progress bar to poll."""
@@ -101,19 +128,27 @@ class StudyGenerateMixin:
                 continue
             result, refusal = self._generate(request, study, allow_identical=False)
             if refusal is not None:
-                messages.error(request, format_html(
-                    "“{}”: {} <a href='{}'>Review and confirm</a>.", study.title, str(refusal),
-                    reverse("admin:studyplatform_study_generate", args=[study.pk])))  # fmt: skip
+                messages.error(
+                    request,
+                    format_html(
+                        "“{}”: {} <a href='{}'>Review and confirm</a>.",
+                        study.title,
+                        str(refusal),
+                        reverse("admin:studyplatform_study_generate", args=[study.pk]),
+                    ),
+                )
             if result is None:
                 continue
             started.append(study)
             messages.success(
                 request,
                 format_html(
-                    "“{}”: {} <a href='{}'>Progress</a>", study.title, _generated(result),
+                    "“{}”: {} <a href='{}'>Progress</a>",
+                    study.title,
+                    _generated(result),
                     reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
                 ),
-            )  # fmt: skip
+            )
         if len(studies) == 1 and started:
             return redirect(reverse("admin:studyplatform_study_stimuli", args=[started[0].pk]))
         return None
@@ -123,6 +158,8 @@ def _generated(result) -> str:
     """Say what generation did: clips queued, ready, and uploads still missing."""
     text = f"{result.total} clips: {result.queued} being rendered, {result.ready} ready."
     if result.missing:
-        text += (f" {result.missing} of the uploaded conditions' clips are not uploaded yet "
-                 "(Uploaded clips page).")  # fmt: skip
+        text += (
+            f" {result.missing} of the uploaded conditions' clips are not uploaded yet "
+            "(Uploaded clips page)."
+        )
     return text

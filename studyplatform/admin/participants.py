@@ -93,8 +93,16 @@ class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
 
 @admin.register(Withdrawal)
 class WithdrawalAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
-    list_display = ("participant_number", "study", "withdrawn_at", "withdrawn_by", "responses",
-                    "events", "personal_answers", "files")  # fmt: skip
+    list_display = (
+        "participant_number",
+        "study",
+        "withdrawn_at",
+        "withdrawn_by",
+        "responses",
+        "events",
+        "personal_answers",
+        "files",
+    )
     list_filter = (("study", OwnStudyFilter),)
     readonly_fields = (*list_display, "reason")
 

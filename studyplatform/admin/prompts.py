@@ -76,8 +76,14 @@ class StudyAslMixin:
             return redirect(request.path)
         prompts = study_prompts(study)
         signed = sum(1 for prompt in prompts if prompt.video is not None)
-        return self._page(request, "asl.html", f"ASL videos of “{study.title}”", study=study,
-                          prompts=prompts, signed=signed)  # fmt: skip
+        return self._page(
+            request,
+            "asl.html",
+            f"ASL videos of “{study.title}”",
+            study=study,
+            prompts=prompts,
+            signed=signed,
+        )
 
 
 def _posted_id(value) -> int:

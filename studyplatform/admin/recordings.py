@@ -42,8 +42,12 @@ class StudyRecordingsMixin:
                 upload = request.FILES.get("recording")
                 if upload is None:
                     raise ValidationError("Choose a video, .pose or BVH file, or record one.")
-                do_attach_recording(item, upload, mirrored="mirrored" in request.POST,
-                                    one_hand="one_hand" in request.POST)  # fmt: skip
+                do_attach_recording(
+                    item,
+                    upload,
+                    mirrored="mirrored" in request.POST,
+                    one_hand="one_hand" in request.POST,
+                )
             except ValidationError as error:
                 if wants_json:
                     return JsonResponse({"error": error.messages[0]}, status=400)
@@ -53,8 +57,13 @@ class StudyRecordingsMixin:
                     return JsonResponse({"saved": True})
                 messages.success(request, f"Recording of {item.key} saved; it is being prepared.")
             return redirect(request.path)
-        return self._page(request, "recordings.html", f"Recordings of “{study.title}”",
-                          study=study, overview=recordings_overview(study))  # fmt: skip
+        return self._page(
+            request,
+            "recordings.html",
+            f"Recordings of “{study.title}”",
+            study=study,
+            overview=recordings_overview(study),
+        )
 
     def recordings_progress_view(self, request: HttpRequest, object_id: str) -> JsonResponse:
         """Return the recordings' capture progress as JSON, for the page to poll."""

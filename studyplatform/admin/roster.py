@@ -10,8 +10,11 @@ from studyplatform.admin.forms import ResultsForm
 from studyplatform.lib.roster import roster
 from studyplatform.models import Participant
 
-REVIEWS = {"approve": Participant.Review.APPROVED, "reject": Participant.Review.REJECTED,
-           "reset": Participant.Review.PENDING}  # fmt: skip
+REVIEWS = {
+    "approve": Participant.Review.APPROVED,
+    "reject": Participant.Review.REJECTED,
+    "reset": Participant.Review.PENDING,
+}
 
 
 class StudyRosterMixin:
@@ -33,8 +36,11 @@ class StudyRosterMixin:
         if request.method == "POST" and can_review:
             review = REVIEWS.get(request.POST.get("review", ""))
             # A participant's number: a 64-bit integer (a longer one names nobody).
-            chosen = [v for v in request.POST.getlist("participant")
-                      if v.isascii() and v.isdigit() and len(v) <= 18]  # fmt: skip
+            chosen = [
+                v
+                for v in request.POST.getlist("participant")
+                if v.isascii() and v.isdigit() and len(v) <= 18
+            ]
             if review is None or not chosen:
                 messages.error(request, "Tick participants and choose Approve or Reject.")
             else:
@@ -46,7 +52,15 @@ class StudyRosterMixin:
         form = ResultsForm(request.GET, demographic_questions=[])
         rows, problem = roster(study, form.options().exclusions)
         finished = sum(r.status == "complete" and r.participant.review != "rejected" for r in rows)
-        return self._page(request, "participants.html", f"Participants of “{study.title}”",
-                          study=study, rows=rows, problem=problem, form=form,
-                          can_review=can_review, finished=finished,
-                          query=request.GET.urlencode())  # fmt: skip
+        return self._page(
+            request,
+            "participants.html",
+            f"Participants of “{study.title}”",
+            study=study,
+            rows=rows,
+            problem=problem,
+            form=form,
+            can_review=can_review,
+            finished=finished,
+            query=request.GET.urlencode(),
+        )

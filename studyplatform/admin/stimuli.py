@@ -30,10 +30,26 @@ class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
     # A clip's record is its provenance: what rendered it, from what, with which result.
     # Nobody edits it; generation writes it and "Retry" re-renders it.
     fields = readonly_fields = (
-        "player", "motion", "condition", "item", "status", "error", "content_hash", "parameters",
-        "engine_version", "duration_ms", "frame_count", "width", "height", "size_bytes",
-        "sha256", "video", "poster", "created_at", "rendered_at",
-    )  # fmt: skip
+        "player",
+        "motion",
+        "condition",
+        "item",
+        "status",
+        "error",
+        "content_hash",
+        "parameters",
+        "engine_version",
+        "duration_ms",
+        "frame_count",
+        "width",
+        "height",
+        "size_bytes",
+        "sha256",
+        "video",
+        "poster",
+        "created_at",
+        "rendered_at",
+    )
     actions = ("retry_stimuli",)
 
     def has_add_permission(self, request) -> bool:
@@ -70,13 +86,15 @@ class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
         return format_html(
             '{} · {}<div class="help">Open exactly what participants saw in Blender, Unity or '
             "three.js (GLB), or the joints' motion in any BVH tool; made again from the "
-            "clip's parameters by this installation's engine.</div>", *links,
-        )  # fmt: skip
+            "clip's parameters by this installation's engine.</div>",
+            *links,
+        )
 
     def get_urls(self):
         view = self.admin_site.admin_view(self.motion_view)
-        own = [path("<path:object_id>/motion.<str:fmt>", view,
-                    name="studyplatform_stimulus_motion")]  # fmt: skip
+        own = [
+            path("<path:object_id>/motion.<str:fmt>", view, name="studyplatform_stimulus_motion")
+        ]
         return own + super().get_urls()
 
     def motion_view(self, request: HttpRequest, object_id: str, fmt: str) -> HttpResponse:

@@ -98,10 +98,18 @@ def _definition_json(study: Study) -> str:
 
 
 @admin.register(Study)
-class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyResultsMixin,
-                 StudyPowerMixin, StudyAslMixin, StudyRecordingsMixin, StudyUploadsMixin,
-                 StudyScopedMixin,
-                 admin.ModelAdmin):  # fmt: skip
+class StudyAdmin(
+    StudyGenerateMixin,
+    StudyDesignMixin,
+    StudyRosterMixin,
+    StudyResultsMixin,
+    StudyPowerMixin,
+    StudyAslMixin,
+    StudyRecordingsMixin,
+    StudyUploadsMixin,
+    StudyScopedMixin,
+    admin.ModelAdmin,
+):
     study_path = ""
     form = StudyForm
     list_display = (
@@ -204,8 +212,9 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
         if study.previous_version is None:
             return str(study.version)
         url = reverse("admin:studyplatform_study_change", args=[study.previous_version.pk])
-        return format_html('{} (made from <a href="{}">{}</a>)', study.version, url,
-                           study.previous_version.title)  # fmt: skip
+        return format_html(
+            '{} (made from <a href="{}">{}</a>)', study.version, url, study.previous_version.title
+        )
 
     @admin.display(description="participant link")
     def participant_link(self, study: Study) -> str:
@@ -275,10 +284,18 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
                 name="studyplatform_study_preview",
             ),
         ]
-        return (own + self.generate_urls() + self.design_urls() + self.roster_urls()
-                + self.results_urls()
-                + self.power_urls() + self.asl_urls() + self.recordings_urls() + self.uploads_urls()
-                + super().get_urls())  # fmt: skip
+        return (
+            own
+            + self.generate_urls()
+            + self.design_urls()
+            + self.roster_urls()
+            + self.results_urls()
+            + self.power_urls()
+            + self.asl_urls()
+            + self.recordings_urls()
+            + self.uploads_urls()
+            + super().get_urls()
+        )
 
     def _get_visible_study(self, request: HttpRequest, object_id: str) -> Study:
         study = self.get_object(request, object_id)
@@ -302,15 +319,24 @@ class StudyAdmin(StudyGenerateMixin, StudyDesignMixin, StudyRosterMixin, StudyRe
 
     def _page(self, request: HttpRequest, template: str, title: str, **context) -> TemplateResponse:
         """Render one of the study admin's own pages with the admin's context."""
-        context = {**self.admin_site.each_context(request), "opts": self.opts, "title": title,
-                   **context}  # fmt: skip
+        context = {
+            **self.admin_site.each_context(request),
+            "opts": self.opts,
+            "title": title,
+            **context,
+        }
         return TemplateResponse(request, f"admin/studyplatform/study/{template}", context)
 
     def preview_view(self, request: HttpRequest, object_id: str) -> TemplateResponse:
         """Show every page of the study as a participant would see it, answers disabled."""
         study = self._get_visible_study(request, object_id)
-        return self._page(request, "preview.html", f"Preview of “{study.title}”", study=study,
-                          preview=build_preview(study))  # fmt: skip
+        return self._page(
+            request,
+            "preview.html",
+            f"Preview of “{study.title}”",
+            study=study,
+            preview=build_preview(study),
+        )
 
     def parameters_schema_view(self, request: HttpRequest) -> HttpResponse:
         """Serve the JSON Schema of condition and item parameters."""

@@ -44,11 +44,17 @@ class StudyUploadsMixin:
                 messages.success(request, done)
             return redirect(request.path)
         conditions, rows = uploads_overview(study)
-        return self._page(request, "uploads.html", f"Uploaded clips of “{study.title}”",
-                          study=study, conditions=conditions, rows=rows,
-                          mismatched=mismatched_pairs(study), pending=pending_uploads(study),
-                          can_change=self.has_change_permission(request, study)
-                          and not study.design_locked)  # fmt: skip
+        return self._page(
+            request,
+            "uploads.html",
+            f"Uploaded clips of “{study.title}”",
+            study=study,
+            conditions=conditions,
+            rows=rows,
+            mismatched=mismatched_pairs(study),
+            pending=pending_uploads(study),
+            can_change=self.has_change_permission(request, study) and not study.design_locked,
+        )
 
     def _upload(self, request: HttpRequest, study) -> str:
         """Carry out the page's POST; return what was done (ValidationError if nothing)."""

@@ -71,8 +71,13 @@ def sign_prompts(study, prompts=SPINE_PROMPTS) -> int:
         request = ClipRequest.from_parameters("sentence", gloss, CLIP)
         clip = render(ClipSpec.from_request(request), clips_folder())
         with open(clip.video, "rb") as handle:
-            video = do_attach_asl_video(study, content_type.pk, target.pk, field_name,
-                                        File(handle, name=f"{clip.video.stem}.mp4"))  # fmt: skip
+            video = do_attach_asl_video(
+                study,
+                content_type.pk,
+                target.pk,
+                field_name,
+                File(handle, name=f"{clip.video.stem}.mp4"),
+            )
         with open(clip.poster, "rb") as handle:
             video.poster.save(f"{clip.poster.stem}.png", File(handle), save=False)
         video.transcript = transcript(gloss)

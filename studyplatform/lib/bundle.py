@@ -123,9 +123,14 @@ class BundleFiles:
     def __init__(self, archive: zipfile.ZipFile | None = None):
         self._archive, self._unpacked = archive, 0
         self._names = (
-            {m.filename[len(FILES):] for m in archive.infolist() if m.filename.startswith(FILES)
-             and not m.is_dir()} if archive is not None else set()
-        )  # fmt: skip
+            {
+                m.filename[len(FILES) :]
+                for m in archive.infolist()
+                if m.filename.startswith(FILES) and not m.is_dir()
+            }
+            if archive is not None
+            else set()
+        )
 
     def __contains__(self, name: object) -> bool:
         return name in self._names
@@ -188,16 +193,21 @@ def read_bundle(source) -> tuple[Any, BundleFiles]:
     except UNREADABLE_ZIP as error:
         raise BundleRejected(f"a zip whose {DEFINITION} cannot be unpacked ({error})") from None
     if len(text) > MAX_DEFINITION_BYTES:
-        raise BundleRejected(f"a zip whose {DEFINITION} is larger than "
-                             f"{MAX_DEFINITION_BYTES // 1024**2} MB")  # fmt: skip
+        raise BundleRejected(
+            f"a zip whose {DEFINITION} is larger than {MAX_DEFINITION_BYTES // 1024**2} MB"
+        )
     try:
         definition = strict_json.loads(text)
     except strict_json.JsonRejected as error:
         raise BundleRejected(f"a zip whose {DEFINITION} is {error}") from None
-    named = {FILES + name for name in definition_files(definition)} if isinstance(
-        definition, dict) else set()  # fmt: skip
+    named = (
+        {FILES + name for name in definition_files(definition)}
+        if isinstance(definition, dict)
+        else set()
+    )
     for member in members:
         if member.filename != DEFINITION and not member.is_dir() and member.filename not in named:
-            raise BundleRejected(f"a zip with a file its {DEFINITION} does not name: "
-                                 f"{member.filename[:200]!r}")  # fmt: skip
+            raise BundleRejected(
+                f"a zip with a file its {DEFINITION} does not name: {member.filename[:200]!r}"
+            )
     return definition, BundleFiles(archive)

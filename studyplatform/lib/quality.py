@@ -178,11 +178,32 @@ def _answered_ms(quality: TrialQuality, rt_ms: int | None, client_ms: int | None
     return fitting[-1] if fitting else quality.visits[-1][0] + rt_ms
 
 
-EVENT_COLUMNS = ("participant", "trial", "clip", "kind", "media_time_s", "client_time_ms",
-                 "received_at", "detail")  # fmt: skip
-PARTICIPANT_COLUMNS = ("participant", "is_pilot", "review", "language", "seed", "enrollment",
-                       "started_at", "consented_at", "finished_at", "device", "user_agent",
-                       "completion_code", "recruitment", "schedule")  # fmt: skip
+EVENT_COLUMNS = (
+    "participant",
+    "trial",
+    "clip",
+    "kind",
+    "media_time_s",
+    "client_time_ms",
+    "received_at",
+    "detail",
+)
+PARTICIPANT_COLUMNS = (
+    "participant",
+    "is_pilot",
+    "review",
+    "language",
+    "seed",
+    "enrollment",
+    "started_at",
+    "consented_at",
+    "finished_at",
+    "device",
+    "user_agent",
+    "completion_code",
+    "recruitment",
+    "schedule",
+)
 
 
 def media_event_rows(study: Study):
@@ -212,8 +233,10 @@ def participant_rows(study: Study):
     """
     participants = study.participants.order_by("started_at", "pk")
     for enrollment, participant in enumerate(participants):
-        times = {name: getattr(participant, name) for name in
-                 ("started_at", "consented_at", "finished_at")}  # fmt: skip
+        times = {
+            name: getattr(participant, name)
+            for name in ("started_at", "consented_at", "finished_at")
+        }
         yield {
             "participant": str(participant.pk),
             "is_pilot": str(int(participant.is_pilot)),

@@ -78,13 +78,15 @@ def recordings_overview(study: Study) -> dict:
             ready.setdefault(recording.item_id, recording)
     for item in study.items.filter(kind=Item.Kind.WORD):
         latest, used = newest.get(item.pk), ready.get(item.pk)
-        words.append({
-            "item": item.pk,
-            "key": item.key,
-            "text": item.text,
-            "used": _describe(used),
-            "latest": _describe(latest) if latest is not None and latest != used else None,
-        })  # fmt: skip
+        words.append(
+            {
+                "item": item.pk,
+                "key": item.key,
+                "text": item.text,
+                "used": _describe(used),
+                "latest": _describe(latest) if latest is not None and latest != used else None,
+            }
+        )
     capturing = sum(1 for r in newest.values() if r.status == Recording.Status.CAPTURING)
     return {
         "words": words,

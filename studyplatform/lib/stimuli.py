@@ -121,9 +121,13 @@ def study_manifest(study: Study) -> list[Entry]:
             clip = RenderedClip(
                 Path(stimulus.video.name).relative_to("stimuli"),
                 Path(stimulus.poster.name).relative_to("stimuli"),
-                stimulus.duration_ms, stimulus.frame_count, stimulus.width, stimulus.height,
-                stimulus.size_bytes, stimulus.sha256,
-            )  # fmt: skip
+                stimulus.duration_ms,
+                stimulus.frame_count,
+                stimulus.width,
+                stimulus.height,
+                stimulus.size_bytes,
+                stimulus.sha256,
+            )
         label = f"{stimulus.condition.key} × {stimulus.item.key}"
         entries.append(Entry(label, ClipSpec.from_dict(stimulus.parameters), clip))
     return entries

@@ -54,8 +54,10 @@ def _check(value: Any, depth: int, strip_nul: bool) -> Any:
             value = value.replace("\x00", "")
         return value
     if isinstance(value, dict):
-        return {_check(key, depth + 1, strip_nul): _check(item, depth + 1, strip_nul)
-                for key, item in value.items()}  # fmt: skip
+        return {
+            _check(key, depth + 1, strip_nul): _check(item, depth + 1, strip_nul)
+            for key, item in value.items()
+        }
     if isinstance(value, list):
         return [_check(item, depth + 1, strip_nul) for item in value]
     return value
@@ -72,8 +74,7 @@ def loads(text: str | bytes, *, strip_nul: bool = False) -> Any:
         except UnicodeDecodeError:
             raise JsonRejected("not UTF-8 text") from None
     try:
-        value = json.loads(text, parse_float=_finite, parse_int=_integer,
-                           parse_constant=_constant)  # fmt: skip
+        value = json.loads(text, parse_float=_finite, parse_int=_integer, parse_constant=_constant)
     except json.JSONDecodeError as error:
         raise JsonRejected(
             f"not valid JSON: {error.msg} at line {error.lineno}, column {error.colno}"

@@ -78,13 +78,15 @@ def mismatched_pairs(study: Study) -> list[str]:
             continue
         where = f"{a.item.key}: {a.condition.key} and {b.condition.key}"
         if (a.width, a.height) != (b.width, b.height):
-            warnings.append(f"{where} differ in frame size ({a.width}×{a.height} and "
-                            f"{b.width}×{b.height}).")  # fmt: skip
+            warnings.append(
+                f"{where} differ in frame size ({a.width}×{a.height} and {b.width}×{b.height})."
+            )
         shorter, longer = sorted((a.duration_ms or 0, b.duration_ms or 0))
         if shorter and longer / shorter > MAX_DURATION_RATIO:
             seconds = f"{a.duration_ms / 1000:.2f} s and {b.duration_ms / 1000:.2f} s"
-            warnings.append(f"{where} differ in length by "
-                            f"{100 * (longer / shorter - 1):.0f} % ({seconds}).")  # fmt: skip
+            warnings.append(
+                f"{where} differ in length by {100 * (longer / shorter - 1):.0f} % ({seconds})."
+            )
     return warnings
 
 

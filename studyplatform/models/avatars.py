@@ -25,9 +25,10 @@ class Avatar(models.Model):
     )
     name = models.CharField(max_length=100)
     file = models.FileField(
-        upload_to="avatars/", storage=private_storage,
+        upload_to="avatars/",
+        storage=private_storage,
         help_text="The avatar as stored: the upload with the bone mapping saved in it.",
-    )  # fmt: skip
+    )
     sha256 = models.CharField("SHA-256 of the file", max_length=64, db_index=True)
     original_name = models.CharField(max_length=255, blank=True)
     licence = models.CharField(
@@ -39,15 +40,17 @@ class Avatar(models.Model):
         max_length=300, blank=True, help_text="Where it comes from: a URL, its author."
     )
     bone_mapping = models.JSONField(
-        default=dict, blank=True,
+        default=dict,
+        blank=True,
         help_text="Your own mapping, avatar joint → engine joint, for joints the engine "
         "does not recognise (an empty engine joint unmaps one). Saved in the file.",
-    )  # fmt: skip
+    )
     report = models.JSONField(
-        default=dict, blank=True,
+        default=dict,
+        blank=True,
         help_text="What the engine found: joints mapped and not, finger bones missing, "
         "face channels it plays, height.",
-    )  # fmt: skip
+    )
     still_rest = models.FileField(upload_to="avatars/", storage=private_storage, blank=True)
     still_letter = models.FileField(upload_to="avatars/", storage=private_storage, blank=True)
     still_face = models.FileField(upload_to="avatars/", storage=private_storage, blank=True)

@@ -23,16 +23,18 @@ class UploadedClip(models.Model):
     poster = models.FileField(upload_to="uploads/", storage=private_storage)
     original_name = models.CharField(max_length=255, help_text="The file's name as uploaded.")
     source_sha256 = models.CharField(
-        "SHA-256 of the file as uploaded", max_length=64,
+        "SHA-256 of the file as uploaded",
+        max_length=64,
         help_text="Differs from the stored file's when it was converted for browsers.",
-    )  # fmt: skip
+    )
     sha256 = models.CharField("SHA-256 of the stored video", max_length=64, db_index=True)
     source_codec = models.CharField(max_length=40, blank=True)
     converted = models.CharField(
-        max_length=20, blank=True,
+        max_length=20,
+        blank=True,
         help_text="How the upload was made playable: '' kept as it came, 'remuxed' "
         "(frames copied into a browser's container), 'transcoded' (re-encoded as H.264).",
-    )  # fmt: skip
+    )
     duration_ms = models.PositiveIntegerField()
     frame_count = models.PositiveIntegerField()
     frame_rate = models.FloatField()
@@ -86,9 +88,13 @@ class Stimulus(models.Model):
     size_bytes = models.PositiveBigIntegerField(null=True, blank=True)
     sha256 = models.CharField("SHA-256 of the video file", max_length=64, blank=True)
     upload = models.ForeignKey(
-        UploadedClip, on_delete=models.SET_NULL, null=True, blank=True, related_name="+",
+        UploadedClip,
+        on_delete=models.SET_NULL,
+        null=True,
+        blank=True,
+        related_name="+",
         help_text="The uploaded file this clip is (conditions of uploaded clips only).",
-    )  # fmt: skip
+    )
     created_at = models.DateTimeField(auto_now_add=True)
     rendered_at = models.DateTimeField(null=True, blank=True)
 

@@ -15,9 +15,13 @@ class Withdrawal(models.Model):
     )
     withdrawn_at = models.DateTimeField(auto_now_add=True)
     withdrawn_by = models.ForeignKey(
-        settings.AUTH_USER_MODEL, on_delete=models.SET_NULL, null=True, blank=True,
-        related_name="+", help_text="The researcher who carried it out; empty: the participant.",
-    )  # fmt: skip
+        settings.AUTH_USER_MODEL,
+        on_delete=models.SET_NULL,
+        null=True,
+        blank=True,
+        related_name="+",
+        help_text="The researcher who carried it out; empty: the participant.",
+    )
     reason = models.CharField(max_length=200, blank=True)
     responses = models.PositiveIntegerField(default=0)
     events = models.PositiveIntegerField(default=0)

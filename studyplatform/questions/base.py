@@ -73,8 +73,14 @@ def parse_number(value: str) -> float:
 
 def empty_values() -> dict:
     """Return the Response answer fields, all empty."""
-    return {"chosen": "", "chosen_position": None, "rating": None, "number": None, "text": "",
-            "score": None}  # fmt: skip
+    return {
+        "chosen": "",
+        "chosen_position": None,
+        "rating": None,
+        "number": None,
+        "text": "",
+        "score": None,
+    }
 
 
 class QuestionType:

@@ -68,8 +68,9 @@ def describe_condition(condition) -> str:
     if getattr(condition, "is_uploaded", False):
         count = condition.uploads.count()
         return f"Uploaded clips ({count} uploaded; none rendered)"
-    described = describe_parameters(as_checked(condition.parameters or {}),
-                                    condition_item_kinds(condition))  # fmt: skip
+    described = describe_parameters(
+        as_checked(condition.parameters or {}), condition_item_kinds(condition)
+    )
     if getattr(condition, "avatar_id", None) is not None:
         # The imported avatar films it: the built-in signer's description does not apply.
         described = [d for d in described if not d.startswith(("Avatar", "avatar"))]

@@ -27,8 +27,11 @@ def bad_request(request: HttpRequest, exception: Exception) -> HttpResponse:
     if isinstance(exception, RequestDataTooBig):
         if _wants_json(request):
             return _json("The request is larger than the server takes.", 413)
-        return HttpResponse("The request is larger than the server takes.", status=413,
-                            content_type="text/plain; charset=utf-8")  # fmt: skip
+        return HttpResponse(
+            "The request is larger than the server takes.",
+            status=413,
+            content_type="text/plain; charset=utf-8",
+        )
     if _wants_json(request):
         return _json("The request could not be read.", 400)
     return defaults.bad_request(request, exception)

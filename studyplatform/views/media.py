@@ -88,8 +88,11 @@ def _may_open(request: HttpRequest, name: str) -> bool:
     if Recording.objects.filter(names_it, item__study__in=studies).exists():
         return True
     # A researcher's avatar (its file and preview stills) is theirs alone.
-    avatars = Avatar.objects.all() if request.user.is_superuser else \
-        Avatar.objects.filter(owner=request.user)  # fmt: skip
+    avatars = (
+        Avatar.objects.all()
+        if request.user.is_superuser
+        else Avatar.objects.filter(owner=request.user)
+    )
     files = ("file", "still_rest", "still_letter", "still_face")
     return avatars.filter(Q.create([(f, name) for f in files], connector=Q.OR)).exists()
 

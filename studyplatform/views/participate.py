@@ -250,8 +250,13 @@ def _submit_page(request: HttpRequest, participant: Participant, number: int, tr
     return errors
 
 
-def _render_page(request: HttpRequest, participant: Participant, number: int, trial: Trial,
-                 errors: dict[str, str]) -> HttpResponse:  # fmt: skip
+def _render_page(
+    request: HttpRequest,
+    participant: Participant,
+    number: int,
+    trial: Trial,
+    errors: dict[str, str],
+) -> HttpResponse:
     """Render page *number* with *errors* (400 when there are any)."""
     study = participant.study
     page_shown = participant_page(participant, number, trial)

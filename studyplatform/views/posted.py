@@ -40,7 +40,9 @@ def json_body(request: HttpRequest, *, strip_nul: bool = True):
     if request.content_type != "application/json":
         raise BodyRejected(
             f"The request must be sent as JSON (application/json), not "
-            f"“{request.content_type or 'nothing'}”.", status=415)  # fmt: skip
+            f"“{request.content_type or 'nothing'}”.",
+            status=415,
+        )
     try:
         return strict_json.loads(request.body or b"null", strip_nul=strip_nul)
     except strict_json.JsonRejected as error:
@@ -115,6 +117,7 @@ def parse_rt_ms(rt_ms) -> int | None:
         if not math.isfinite(value) or (isinstance(rt_ms, str) and not rt_ms.isascii()):
             raise ValueError
     except (ValueError, OverflowError):  # OverflowError: an integer beyond any float
-        raise AnswerRejected(f"The response time {str(rt_ms)[:20]!r} is not a number of "
-                             "milliseconds.") from None  # fmt: skip
+        raise AnswerRejected(
+            f"The response time {str(rt_ms)[:20]!r} is not a number of milliseconds."
+        ) from None
     return max(0, min(int(value), 86_400_000))

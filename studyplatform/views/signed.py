@@ -50,12 +50,18 @@ def upload_signed_answer(
             raise UploadRejected("The chunk does not say where it starts.")
         final = None
         if request.headers.get("X-Upload-Final") == "1":
-            final = parse_final(request.headers.get("X-Upload-Sha256"),
-                                request.headers.get("X-Upload-Duration-Ms"))  # fmt: skip
+            final = parse_final(
+                request.headers.get("X-Upload-Sha256"), request.headers.get("X-Upload-Duration-Ms")
+            )
         stored, response = do_append_signed_answer_chunk(
-            participant, trial, found, request.headers.get("X-Upload-Take", ""),
-            int(offset_text), request.body, final,
-        )  # fmt: skip
+            participant,
+            trial,
+            found,
+            request.headers.get("X-Upload-Take", ""),
+            int(offset_text),
+            request.body,
+            final,
+        )
     except UploadOffsetMismatch as mismatch:
         return JsonResponse({"error": mismatch.messages[0], "offset": mismatch.offset}, status=409)
     except ValidationError as error:

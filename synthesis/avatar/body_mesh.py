@@ -58,39 +58,100 @@ def body_primitives(model: BodyModel, dofs_rad: np.ndarray) -> tuple[Primitive, 
 
     forward = (0.0, 0.0, 1.0)
     primitives: list[Primitive] = [
-        RoundCone("hips", point("hips", (0, -0.06, 0)), point("spine_lower"), 0.145, 0.135,
-                  flatten=0.62, normal=forward),
-        RoundCone("spine_lower", point("spine_lower"), point("spine_middle"), 0.135, 0.14,
-                  blend_m=0.05, flatten=0.6, normal=forward),
-        RoundCone("spine_middle", point("spine_middle"), point("spine_upper"), 0.14, 0.15,
-                  blend_m=0.05, flatten=0.62, normal=forward),
-        RoundCone("spine_upper", point("spine_upper"), point("spine_upper", (0, 0.115, -0.01)),
-                  0.15, 0.11, blend_m=0.05, flatten=0.6, normal=forward),
-    ]  # fmt: skip
+        RoundCone(
+            "hips",
+            point("hips", (0, -0.06, 0)),
+            point("spine_lower"),
+            0.145,
+            0.135,
+            flatten=0.62,
+            normal=forward,
+        ),
+        RoundCone(
+            "spine_lower",
+            point("spine_lower"),
+            point("spine_middle"),
+            0.135,
+            0.14,
+            blend_m=0.05,
+            flatten=0.6,
+            normal=forward,
+        ),
+        RoundCone(
+            "spine_middle",
+            point("spine_middle"),
+            point("spine_upper"),
+            0.14,
+            0.15,
+            blend_m=0.05,
+            flatten=0.62,
+            normal=forward,
+        ),
+        RoundCone(
+            "spine_upper",
+            point("spine_upper"),
+            point("spine_upper", (0, 0.115, -0.01)),
+            0.15,
+            0.11,
+            blend_m=0.05,
+            flatten=0.6,
+            normal=forward,
+        ),
+    ]
     for side in SIDES:
         p = side + "_"
         primitives += [
-            RoundCone(p + "clavicle", point(p + "clavicle", (0, -0.01, -0.02)),
-                      point(p + "shoulder", (0, 0.015, 0)), 0.055, 0.052, blend_m=0.05),
-            RoundCone(p + "shoulder", point(p + "shoulder"), point(p + "elbow"), 0.05, 0.04,
-                      blend_m=0.04),
-        ]  # fmt: skip
+            RoundCone(
+                p + "clavicle",
+                point(p + "clavicle", (0, -0.01, -0.02)),
+                point(p + "shoulder", (0, 0.015, 0)),
+                0.055,
+                0.052,
+                blend_m=0.05,
+            ),
+            RoundCone(
+                p + "shoulder", point(p + "shoulder"), point(p + "elbow"), 0.05, 0.04, blend_m=0.04
+            ),
+        ]
     primitives += [
         RoundCone("neck", point("neck", (0, -0.02, 0)), point("head"), 0.054, 0.05, blend_m=0.03),
-        RoundCone("head", point("head", (0, 0.07, 0.0)), point("head", (0, 0.125, -0.005)),
-                  0.088, 0.09, blend_m=0.03, flatten=0.84, normal=(1.0, 0.0, 0.0)),
-        RoundCone("head", point("head", (0, 0.07, 0.02)), point("head", (0, 0.015, 0.062)),
-                  0.06, 0.03, blend_m=0.03, flatten=0.9, normal=(1.0, 0.0, 0.0)),
-        RoundCone("head", point("head", (0, 0.1, 0.085)), point("head", (0, 0.068, 0.1)),
-                  0.011, 0.013, blend_m=0.012),
-    ]  # fmt: skip
+        RoundCone(
+            "head",
+            point("head", (0, 0.07, 0.0)),
+            point("head", (0, 0.125, -0.005)),
+            0.088,
+            0.09,
+            blend_m=0.03,
+            flatten=0.84,
+            normal=(1.0, 0.0, 0.0),
+        ),
+        RoundCone(
+            "head",
+            point("head", (0, 0.07, 0.02)),
+            point("head", (0, 0.015, 0.062)),
+            0.06,
+            0.03,
+            blend_m=0.03,
+            flatten=0.9,
+            normal=(1.0, 0.0, 0.0),
+        ),
+        RoundCone(
+            "head",
+            point("head", (0, 0.1, 0.085)),
+            point("head", (0, 0.068, 0.1)),
+            0.011,
+            0.013,
+            blend_m=0.012,
+        ),
+    ]
     for side in SIDES:
         primitives += hand_primitives(model, dofs_rad, side, prefix=side + "_")
     return tuple(primitives)
 
 
-def clothing_colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad,
-                     skin_rgb=SKIN_RGB, top_rgb=TOP_RGB):  # fmt: skip
+def clothing_colours(
+    model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad, skin_rgb=SKIN_RGB, top_rgb=TOP_RGB
+):
     """Return the skin's colour edge (see SkinnedPart): skin colour, the signed distance
     (m) into the skin from the edge of the top, and the top's colour.
 
@@ -122,8 +183,11 @@ def clothing_colours(model: BodyModel, vertices_m: np.ndarray, weights, dofs_rad
         into_skin[on_forearm] = CUFF_M - along[on_forearm]
     n = len(vertices_m)
     # Far from any edge the distance only needs its sign.
-    return (np.broadcast_to(np.asarray(skin_rgb), (n, 3)), np.clip(into_skin, -1.0, 1.0),
-            np.broadcast_to(np.asarray(top_rgb), (n, 3)))  # fmt: skip
+    return (
+        np.broadcast_to(np.asarray(skin_rgb), (n, 3)),
+        np.clip(into_skin, -1.0, 1.0),
+        np.broadcast_to(np.asarray(top_rgb), (n, 3)),
+    )
 
 
 @cache
@@ -137,9 +201,11 @@ def body_avatar(dominant: str = "right", voxel_mm: float = 2.5, max_faces: int =
     """
     from synthesis.avatar.store import cached_avatar
 
-    return cached_avatar(f"upper-body-{dominant}-{voxel_mm:g}mm-{max_faces}",
-                         BodyModel(dominant),
-                         lambda: _build_body_avatar(dominant, voxel_mm, max_faces))  # fmt: skip
+    return cached_avatar(
+        f"upper-body-{dominant}-{voxel_mm:g}mm-{max_faces}",
+        BodyModel(dominant),
+        lambda: _build_body_avatar(dominant, voxel_mm, max_faces),
+    )
 
 
 def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar:
@@ -153,13 +219,25 @@ def _build_body_avatar(dominant: str, voxel_mm: float, max_faces: int) -> Avatar
     index = {name: i for i, name in enumerate(model.skeleton.names)}
     weights = face_skin_weights(model, bind, vertices, skin_weights(vertices, primitives, index))
     colours, edge_m, across_rgb = clothing_colours(model, vertices, weights, bind)
-    skin = SkinnedPart("skin", vertices, np.asarray(faces, dtype=np.int64), colours, weights,
-                       edge_m=edge_m, across_rgb=across_rgb)  # fmt: skip
+    skin = SkinnedPart(
+        "skin",
+        vertices,
+        np.asarray(faces, dtype=np.int64),
+        colours,
+        weights,
+        edge_m=edge_m,
+        across_rgb=across_rgb,
+    )
     # Three parts, three draw calls a pass: pyrender's per-draw overhead in Python was a
     # tenth of a frame with the face's features and each hand's nails apart.
-    nails = merge_parts("nails", [
-        rigid_part(f"{side} nails", *hand_nails(model, bind, side, side + "_"), NAIL_RGB)
-        for side in SIDES
-    ], casts_shadow=False)  # fmt: skip
-    return Avatar(f"upper-body-{dominant}", model, bind,
-                  (skin, face_part(model, bind, primitives), nails))  # fmt: skip
+    nails = merge_parts(
+        "nails",
+        [
+            rigid_part(f"{side} nails", *hand_nails(model, bind, side, side + "_"), NAIL_RGB)
+            for side in SIDES
+        ],
+        casts_shadow=False,
+    )
+    return Avatar(
+        f"upper-body-{dominant}", model, bind, (skin, face_part(model, bind, primitives), nails)
+    )

@@ -85,11 +85,19 @@ def _eyeballs(head: _Head) -> SkinnedPart:
     sphere = trimesh.creation.icosphere(subdivisions=3, radius=EYE_RADIUS_M)
     angle = np.degrees(np.arccos(np.clip(sphere.vertices[:, 2] / EYE_RADIUS_M, -1, 1)))
     rgb = np.where((angle < PUPIL_DEG)[:, None], PUPIL_RGB, IRIS_RGB)
-    eyes = _merge("eyes", head, [
-        (sphere.vertices + _sided(EYE_CENTRE_M, side), sphere.faces, rgb,
-         *_rigid(head.index[f"{side}_eye"], len(sphere.vertices)))
-        for side in SIDES
-    ])  # fmt: skip
+    eyes = _merge(
+        "eyes",
+        head,
+        [
+            (
+                sphere.vertices + _sided(EYE_CENTRE_M, side),
+                sphere.faces,
+                rgb,
+                *_rigid(head.index[f"{side}_eye"], len(sphere.vertices)),
+            )
+            for side in SIDES
+        ],
+    )
     # The iris's rim is a colour edge, round whatever the triangles (SkinnedPart).
     rim_m = EYE_RADIUS_M * (np.cos(np.radians(angle)) - np.cos(np.radians(IRIS_DEG)))
     return replace(
@@ -122,8 +130,12 @@ def _grid_faces(rows: int, columns: int) -> np.ndarray:
     """Return two triangles per cell of a rows × columns vertex grid (row-major)."""
     r, c = np.meshgrid(np.arange(rows - 1), np.arange(columns - 1), indexing="ij")
     a = (r * columns + c).ravel()
-    return np.concatenate([np.column_stack([a, a + 1, a + columns]),
-                           np.column_stack([a + 1, a + columns + 1, a + columns])])  # fmt: skip
+    return np.concatenate(
+        [
+            np.column_stack([a, a + 1, a + columns]),
+            np.column_stack([a + 1, a + columns + 1, a + columns]),
+        ]
+    )
 
 
 def _facing(vertices: np.ndarray, faces: np.ndarray, outward: np.ndarray) -> np.ndarray:
@@ -144,13 +156,15 @@ def _lids(head: _Head) -> SkinnedPart:
         upper[row == 0] *= (radius + 0.0009) / radius
         rgb = np.where((row == 0)[:, None], LASH_RGB, SKIN_RGB)
         faces = _facing(upper, faces, upper[faces].mean(axis=1))
-        pieces.append((upper + centre, faces, rgb,
-                       *_rigid(head.index[f"{side}_upper_lid"], len(upper))))  # fmt: skip
+        pieces.append(
+            (upper + centre, faces, rgb, *_rigid(head.index[f"{side}_upper_lid"], len(upper)))
+        )
         lower, faces, row = _shell(radius, LOWER_LID_EDGE_DEG, LOWER_LID_EDGE_DEG - 175.0)
         rgb = np.where((row == 0)[:, None], np.multiply(SKIN_RGB, 0.75), SKIN_RGB)
         faces = _facing(lower, faces, lower[faces].mean(axis=1))
-        pieces.append((lower + centre, faces, rgb,
-                       *_rigid(head.index[f"{side}_lower_lid"], len(lower))))  # fmt: skip
+        pieces.append(
+            (lower + centre, faces, rgb, *_rigid(head.index[f"{side}_lower_lid"], len(lower)))
+        )
     return _merge("eyelids", head, pieces)
 
 
@@ -163,8 +177,10 @@ def _tube(centres: np.ndarray, radii: np.ndarray, depth_share: float = 1.0, arou
     side /= np.linalg.norm(side, axis=1, keepdims=True)
     up = np.cross(side, tangent)
     angle = np.linspace(0, 2 * np.pi, around, endpoint=False)
-    ring = (np.cos(angle)[None, :, None] * side[:, None] * 1.0
-            + np.sin(angle)[None, :, None] * up[:, None] * depth_share)  # fmt: skip
+    ring = (
+        np.cos(angle)[None, :, None] * side[:, None] * 1.0
+        + np.sin(angle)[None, :, None] * up[:, None] * depth_share
+    )
     vertices = (centres[:, None] + radii[:, None, None] * ring).reshape(-1, 3)
     k = len(centres)
     wrapped = np.concatenate([np.arange(around), [0]])
@@ -193,8 +209,9 @@ def _brows(head: _Head) -> SkinnedPart:
         centres = np.column_stack([xy, head.surface_z(xy) + 0.0015])
         radii = 0.0030 * (1.0 - 0.45 * t) + 0.0006
         vertices, faces, _ = _tube(centres, radii, depth_share=0.35)
-        pieces.append((vertices, faces, BROW_RGB,
-                       *_rigid(head.index[f"{side}_brow"], len(vertices))))  # fmt: skip
+        pieces.append(
+            (vertices, faces, BROW_RGB, *_rigid(head.index[f"{side}_brow"], len(vertices)))
+        )
     return _merge("brows", head, pieces)
 
 
@@ -225,8 +242,7 @@ def _mouth(head: _Head) -> SkinnedPart:
     u = x / MOUTH_HALF_WIDTH_M
     pieces = []
     upper_lip, lower_lip = head.index["upper_lip"], head.index["lower_lip"]
-    for offset, radius, joint in ((0.0022, 0.0026, upper_lip),
-                                  (-0.0026, 0.0031, lower_lip)):  # fmt: skip
+    for offset, radius, joint in ((0.0022, 0.0026, upper_lip), (-0.0026, 0.0031, lower_lip)):
         centres = np.column_stack([x, y + offset * (1 - 0.5 * u**2), surface - 0.0006])
         vertices, faces, along = _tube(centres, radius * (1 - 0.55 * u**2) + 0.0004, 0.8)
         joints, weights = _mouth_weights(head, x[along], np.full((len(vertices), 2), joint))
@@ -251,8 +267,9 @@ def _mouth(head: _Head) -> SkinnedPart:
     tongue = trimesh.creation.icosphere(subdivisions=2, radius=1.0)
     behind = float(surface[columns // 2]) - 0.019
     vertices = tongue.vertices * [0.011, 0.004, 0.016] + [0.0, MOUTH_HEIGHT_M + 0.0005, behind]
-    pieces.append((vertices, tongue.faces, TONGUE_RGB,
-                   *_rigid(head.index["tongue"], len(vertices))))  # fmt: skip
+    pieces.append(
+        (vertices, tongue.faces, TONGUE_RGB, *_rigid(head.index["tongue"], len(vertices)))
+    )
     return _merge("mouth", head, pieces)
 
 
@@ -271,10 +288,17 @@ def _piece(name: str, head: _Head, local_m, faces, rgb, joints, weights) -> Skin
     flat = np.linalg.norm(normals, axis=1) < 0.5
     normals[flat] = head.world(np.array([0.0, 0.0, 1.0])) - head.world(np.zeros(3))
     colours = np.broadcast_to(np.asarray(rgb, dtype=np.float64), (len(vertices), 3))
-    return SkinnedPart(name, vertices, faces, np.ascontiguousarray(colours),
-                       SkinWeights(_pad(np.atleast_2d(joints)).astype(np.intp),
-                                   weights / weights.sum(axis=1, keepdims=True)),
-                       normals=normals)  # fmt: skip
+    return SkinnedPart(
+        name,
+        vertices,
+        faces,
+        np.ascontiguousarray(colours),
+        SkinWeights(
+            _pad(np.atleast_2d(joints)).astype(np.intp),
+            weights / weights.sum(axis=1, keepdims=True),
+        ),
+        normals=normals,
+    )
 
 
 def _pad(array: np.ndarray, fill=None) -> np.ndarray:
@@ -288,8 +312,9 @@ def face_part(model, bind_dofs_rad: np.ndarray, primitives) -> SkinnedPart:
     """Return the face's features at the bind pose as one part: eyes, eyelids, brows,
     mouth (one draw call a pass)."""
     head = _Head(model, bind_dofs_rad, primitives)
-    return merge_parts("face", [_eyeballs(head), _lids(head), _brows(head), _mouth(head)],
-                       casts_shadow=False)  # fmt: skip
+    return merge_parts(
+        "face", [_eyeballs(head), _lids(head), _brows(head), _mouth(head)], casts_shadow=False
+    )
 
 
 def face_skin_weights(model, bind_dofs_rad, vertices_m, weights: SkinWeights) -> SkinWeights:

@@ -155,8 +155,11 @@ def hand_nails(
     """
     pose = rig.pose(dofs_rad)
     mirror = MIRROR_X if side == "left" else np.eye(3)
-    radii = {**{f: FINGER_RADII_M[f][3] for f in FINGERS}, "thumb": THUMB_RADII_M[3],
-             **(radii_m or {})}  # fmt: skip
+    radii = {
+        **{f: FINGER_RADII_M[f][3] for f in FINGERS},
+        "thumb": THUMB_RADII_M[3],
+        **(radii_m or {}),
+    }
     vertices, faces, owners = [], [], []
     offset = 0
     for finger, joint, tip, radius in [
@@ -190,8 +193,11 @@ def hand_avatar(side: str = "right", voxel_mm: float = 1.2, max_faces: int = 200
     by :mod:`synthesis.avatar.store`, and once per process in memory)."""
     from synthesis.avatar.store import cached_avatar
 
-    return cached_avatar(f"hand-{side}-{voxel_mm:g}mm-{max_faces}", HandModel(side),
-                         lambda: _build_hand_avatar(side, voxel_mm, max_faces))  # fmt: skip
+    return cached_avatar(
+        f"hand-{side}-{voxel_mm:g}mm-{max_faces}",
+        HandModel(side),
+        lambda: _build_hand_avatar(side, voxel_mm, max_faces),
+    )
 
 
 def _build_hand_avatar(side: str, voxel_mm: float, max_faces: int) -> Avatar:

@@ -37,8 +37,9 @@ class Look:
         if self.avatar not in AVATARS:
             raise ValueError(f"Unknown avatar {self.avatar!r}: use {' or '.join(AVATARS)}.")
         if self.body not in PRESETS and self.body != CUSTOM:
-            raise ValueError(f"Unknown body {self.body!r}: the bodies are "
-                             f"{', '.join(PRESETS)} and {CUSTOM}.")  # fmt: skip
+            raise ValueError(
+                f"Unknown body {self.body!r}: the bodies are {', '.join(PRESETS)} and {CUSTOM}."
+            )
         if self.skin_tone not in SKIN_TONES:
             raise ValueError(f"Unknown skin tone {self.skin_tone!r}: {', '.join(SKIN_TONES)}.")
         if self.raw and self.body != CUSTOM:

@@ -72,10 +72,12 @@ def merge_parts(name: str, parts, casts_shadow: bool = True) -> SkinnedPart:
     edged = any(part.edge_m is not None for part in parts)
 
     def stack(field, fill=None):
-        return np.concatenate([
-            np.asarray(getattr(part, field)) if getattr(part, field) is not None else fill(part)
-            for part in parts
-        ])  # fmt: skip
+        return np.concatenate(
+            [
+                np.asarray(getattr(part, field)) if getattr(part, field) is not None else fill(part)
+                for part in parts
+            ]
+        )
 
     return SkinnedPart(
         name,
@@ -97,8 +99,11 @@ def merge_parts(name: str, parts, casts_shadow: bool = True) -> SkinnedPart:
 def _merge_morphs(parts, offsets) -> Morphs | None:
     """Return the blendshapes of merged *parts* (each keeps its own; a part without one
     of the others' has zero offsets in it), or None if no part has any."""
-    shaped = [(part.morphs, offset) for part, offset in zip(parts, offsets, strict=True)
-              if part.morphs is not None]  # fmt: skip
+    shaped = [
+        (part.morphs, offset)
+        for part, offset in zip(parts, offsets, strict=True)
+        if part.morphs is not None
+    ]
     if not shaped:
         return None
     names = tuple(dict.fromkeys(name for morphs, _ in shaped for name in morphs.names))
@@ -115,8 +120,9 @@ def _merge_morphs(parts, offsets) -> Morphs | None:
     return Morphs(names, vertices, offsets_m, normal_offsets)
 
 
-def rigid_part(name: str, vertices_m, faces, owners, color_rgb, casts_shadow: bool = True
-               ) -> SkinnedPart:  # fmt: skip
+def rigid_part(
+    name: str, vertices_m, faces, owners, color_rgb, casts_shadow: bool = True
+) -> SkinnedPart:
     """Return a part whose every vertex follows one bone (*owners*: joint index per vertex)."""
     weights = np.zeros((len(owners), 4))
     weights[:, 0] = 1.0
@@ -167,13 +173,19 @@ class Avatar:
     def _morph_columns(self) -> list[np.ndarray | None]:
         """Return, per part, the drive's column of each of its blendshapes."""
         names = () if self.drive is None else self.drive.names
-        return [None if part.morphs is None else
-                np.array([names.index(name) for name in part.morphs.names], dtype=np.intp)
-                for part in self.parts]  # fmt: skip
+        return [
+            None
+            if part.morphs is None
+            else np.array([names.index(name) for name in part.morphs.names], dtype=np.intp)
+            for part in self.parts
+        ]
 
-    def deform_pose(self, pose: Pose, select: list[np.ndarray] | None = None,
-                    morph_weights: np.ndarray | None = None
-                    ) -> list[tuple[np.ndarray, np.ndarray]]:  # fmt: skip
+    def deform_pose(
+        self,
+        pose: Pose,
+        select: list[np.ndarray] | None = None,
+        morph_weights: np.ndarray | None = None,
+    ) -> list[tuple[np.ndarray, np.ndarray]]:
         """Return, per part, posed vertices and normals for joint transforms (n_frames, …).
 
         *select*, per part a boolean mask (n,) or indices, poses only those vertices;
@@ -183,8 +195,9 @@ class Avatar:
         transforms = skin_transforms(pose, self.bind_pose)
         select = select if select is not None else [None] * len(self.parts)
         posed = []
-        for part, matrix, columns, k in zip(self.parts, self._weight_matrices,
-                                            self._morph_columns, select, strict=True):  # fmt: skip
+        for part, matrix, columns, k in zip(
+            self.parts, self._weight_matrices, self._morph_columns, select, strict=True
+        ):
             vertices, normals = part.vertices_m, part.normals
             if morph_weights is not None and columns is not None:
                 vertices, normals = part.morphs.rest(vertices, normals, morph_weights[:, columns])

@@ -112,8 +112,11 @@ def _times(linear: np.ndarray, points: np.ndarray) -> np.ndarray:
     Written out by columns: a third faster than einsum's (or matmul's) batched 3×3
     products at a batch of frames of a 10,000-vertex skin (bench/bench_render.py).
     """
-    return (linear[..., 0] * points[..., 0:1] + linear[..., 1] * points[..., 1:2]
-            + linear[..., 2] * points[..., 2:3])  # fmt: skip
+    return (
+        linear[..., 0] * points[..., 0:1]
+        + linear[..., 1] * points[..., 1:2]
+        + linear[..., 2] * points[..., 2:3]
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,8 +133,9 @@ class Morphs:
     offsets_m: np.ndarray
     normal_offsets: np.ndarray
 
-    def rest(self, vertices_m: np.ndarray, normals: np.ndarray,
-             weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    def rest(
+        self, vertices_m: np.ndarray, normals: np.ndarray, weights: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Return each frame's rest vertices and normals (n_frames, n, 3) for blendshape
         *weights* (n_frames, k)."""
         n_frames = len(weights)

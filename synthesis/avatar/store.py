@@ -29,8 +29,9 @@ _DRIVE_FIELDS = ("names", "rising", "falling", "limits")
 _RIG_FIELDS = ("eye_centre_m",)
 
 
-def cached_avatar(key: str, rig, build: Callable[[], Avatar],
-                  libraries: tuple[str, ...] = MESH_LIBRARIES) -> Avatar:  # fmt: skip
+def cached_avatar(
+    key: str, rig, build: Callable[[], Avatar], libraries: tuple[str, ...] = MESH_LIBRARIES
+) -> Avatar:
     """Return the avatar stored under *key* for this engine, built by *build* if it is not
     there (and then stored). *rig* is the avatar's rig (not stored: it is code; the
     fields in ``_RIG_FIELDS`` that the build set are stored and given back to it).
@@ -40,9 +41,12 @@ def cached_avatar(key: str, rig, build: Callable[[], Avatar],
 
 def _arrays(avatar: Avatar) -> dict[str, np.ndarray]:
     """Return *avatar*'s arrays, as stored."""
-    arrays = {"name": np.array(avatar.name), "bind_dofs_rad": avatar.bind_dofs_rad,
-              "part_names": np.array([part.name for part in avatar.parts]),
-              "casts_shadow": np.array([part.casts_shadow for part in avatar.parts])}  # fmt: skip
+    arrays = {
+        "name": np.array(avatar.name),
+        "bind_dofs_rad": avatar.bind_dofs_rad,
+        "part_names": np.array([part.name for part in avatar.parts]),
+        "casts_shadow": np.array([part.casts_shadow for part in avatar.parts]),
+    }
     for k, part in enumerate(avatar.parts):
         for field in _FIELDS:
             arrays[f"{k}.{field}"] = np.asarray(getattr(part, field))
@@ -83,9 +87,17 @@ def _avatar(stored: dict[str, np.ndarray], rig) -> Avatar:
         )
         for k, name in enumerate(stored["part_names"])
     )
-    kept = {field: tuple(float(v) for v in stored[f"rig.{field}"])
-            for field in _RIG_FIELDS if f"rig.{field}" in stored}  # fmt: skip
+    kept = {
+        field: tuple(float(v) for v in stored[f"rig.{field}"])
+        for field in _RIG_FIELDS
+        if f"rig.{field}" in stored
+    }
     if kept:
         rig = dataclasses.replace(rig, **kept)
-    return Avatar(str(stored["name"]), rig, stored["bind_dofs_rad"], parts,
-                  _morphs(stored, "drive", MorphDrive, _DRIVE_FIELDS))  # fmt: skip
+    return Avatar(
+        str(stored["name"]),
+        rig,
+        stored["bind_dofs_rad"],
+        parts,
+        _morphs(stored, "drive", MorphDrive, _DRIVE_FIELDS),
+    )

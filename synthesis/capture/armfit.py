@@ -78,8 +78,10 @@ def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> P
     index = body.skeleton.index
     arms = positions[:, [index(name.lower()) for name in POSE_POINTS]]
     pose = np.concatenate([arms, body_points(body, dofs_rad)[:, list(_HEAD_AND_HIPS)]], axis=1)
-    hands = [positions[:, [index(f"{side}_{joint}") for joint in LANDMARK_JOINTS]]
-             for side in ("left", "right")]  # fmt: skip
+    hands = [
+        positions[:, [index(f"{side}_{joint}") for joint in LANDMARK_JOINTS]]
+        for side in ("left", "right")
+    ]
     points = to_mediapipe(np.concatenate([pose, *hands], axis=1))
     centre = points[:, : len(POSE_POINTS)][:, [0, 3]].mean(axis=1, keepdims=True)
     units = (points - centre) / EXPORT_METRES_PER_UNIT + np.array([EXPORT_SIZE / 2] * 2 + [0.0])
@@ -88,8 +90,15 @@ def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> P
         (HAND_COMPONENTS["left"], LANDMARK_NAMES),
         (HAND_COMPONENTS["right"], LANDMARK_NAMES),
     )
-    return PoseRecording(float(rate_hz), components, units, np.ones(units.shape[:2]),
-                         EXPORT_SIZE, EXPORT_SIZE, EXPORT_METRES_PER_UNIT)  # fmt: skip
+    return PoseRecording(
+        float(rate_hz),
+        components,
+        units,
+        np.ones(units.shape[:2]),
+        EXPORT_SIZE,
+        EXPORT_SIZE,
+        EXPORT_METRES_PER_UNIT,
+    )
 
 
 def _palm_frame(hand: np.ndarray) -> np.ndarray:
@@ -99,8 +108,9 @@ def _palm_frame(hand: np.ndarray) -> np.ndarray:
 
     fingers = hand[:, _MIDDLE_MCP] - hand[:, _WRIST]
     across = hand[:, _INDEX_MCP] - hand[:, _PINKY_MCP]
-    return np.stack([hand_frame(p, f) for p, f in
-                     zip(np.cross(fingers, across), fingers, strict=True)])  # fmt: skip
+    return np.stack(
+        [hand_frame(p, f) for p, f in zip(np.cross(fingers, across), fingers, strict=True)]
+    )
 
 
 def _wrist_in_palm(body: BodyModel, side: str) -> np.ndarray:
@@ -116,14 +126,14 @@ def _wrist_in_palm(body: BodyModel, side: str) -> np.ndarray:
 def _arm_targets(body, side: str, rest, shoulder, arm_points, seen):
     """Return the elbow and wrist targets (n, 3): the landmarks' arm directions from the
     fitted shoulder, scaled to the model's arm length."""
-    model_arm = (np.linalg.norm(rest[_joint(body, side, "elbow")]
-                                - rest[_joint(body, side, "shoulder")])
-                 + np.linalg.norm(rest[_joint(body, side, "wrist")]
-                                  - rest[_joint(body, side, "elbow")]))  # fmt: skip
+    model_arm = np.linalg.norm(
+        rest[_joint(body, side, "elbow")] - rest[_joint(body, side, "shoulder")]
+    ) + np.linalg.norm(rest[_joint(body, side, "wrist")] - rest[_joint(body, side, "elbow")])
     upper = arm_points[:, 1] - arm_points[:, 0]
     lower = arm_points[:, 2] - arm_points[:, 1]
-    observed_arm = np.median(np.linalg.norm(upper[seen], axis=1)
-                             + np.linalg.norm(lower[seen], axis=1))  # fmt: skip
+    observed_arm = np.median(
+        np.linalg.norm(upper[seen], axis=1) + np.linalg.norm(lower[seen], axis=1)
+    )
     scale = model_arm / observed_arm
     elbow_t = shoulder + upper * scale
     return elbow_t, elbow_t + lower * scale
@@ -150,8 +160,9 @@ def _fit_hand_of(body, recording: PoseRecording, side: str, dofs):
     return rotation, dofs
 
 
-def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
-             hands: bool = True) -> ArmFit:  # fmt: skip
+def fit_arms(
+    body: BodyModel, recording: PoseRecording, sides=("right", "left"), hands: bool = True
+) -> ArmFit:
     """Fit *body*'s arms (and with *hands*, fingers and wrists) to *recording*'s landmarks.
 
     Raise PoseFileError if the recording has no pose landmarks or no arm in any frame.
@@ -160,8 +171,9 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
 
     # Holistic's metric pose, where the file has it: its depth is far surer than the
     # image landmarks' (the arm fit only needs directions and proportions).
-    component = POSE_WORLD_COMPONENT if recording.has_component(POSE_WORLD_COMPONENT) else (
-        POSE_COMPONENT)  # fmt: skip
+    component = (
+        POSE_WORLD_COMPONENT if recording.has_component(POSE_WORLD_COMPONENT) else (POSE_COMPONENT)
+    )
     points, confidence = recording.component(component, POSE_POINTS)
     points = to_mediapipe(points)
     n = recording.n_frames
@@ -190,8 +202,9 @@ def fit_arms(body: BodyModel, recording: PoseRecording, sides=("right", "left"),
         swivel = _swivel(shoulder, elbow_t, wrist_t, side)
         dofs = solve_arm(body, dofs, side, wrist_t, rotation, swivel)
         fitted = body.pose(dofs).positions_m
-        for k, (target, part) in enumerate(((shoulder, "shoulder"), (elbow_t, "elbow"),
-                                            (wrist_t, "wrist"))):  # fmt: skip
+        for k, (target, part) in enumerate(
+            ((shoulder, "shoulder"), (elbow_t, "elbow"), (wrist_t, "wrist"))
+        ):
             miss = np.linalg.norm(fitted[:, _joint(body, side, part)] - target, axis=1) * 1000
             residual[:, 3 * column + k] = np.where(seen, miss, np.nan)
     if not fitted_any:

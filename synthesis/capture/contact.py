@@ -24,8 +24,9 @@ def contact_frames(hand: CapturedHand, n: int = N_FRAMES) -> np.ndarray:
     return found[np.unique(np.round(picks).astype(int))]
 
 
-def contact_sheet_png(hand: CapturedHand, video: str | Path, n: int = N_FRAMES,
-                      tile_px: int = TILE_PX) -> bytes:  # fmt: skip
+def contact_sheet_png(
+    hand: CapturedHand, video: str | Path, n: int = N_FRAMES, tile_px: int = TILE_PX
+) -> bytes:
     """Return the contact sheet of *hand* captured from *video*, as PNG bytes."""
     import io
 

@@ -38,8 +38,9 @@ def handshape_features(points: np.ndarray) -> np.ndarray:
         for n, i in enumerate(TIPS)
         for j in TIPS[n + 1 :]
     ]
-    distances += [np.linalg.norm(points[..., i, :] - points[..., WRIST, :], axis=-1) / palm
-                  for i in TIPS]  # fmt: skip
+    distances += [
+        np.linalg.norm(points[..., i, :] - points[..., WRIST, :], axis=-1) / palm for i in TIPS
+    ]
     return np.stack(angles + distances, axis=-1)
 
 

@@ -48,8 +48,11 @@ class HandshapeScore:
     @property
     def fist_confusions(self) -> tuple[tuple[str, str], ...]:
         """Return (letter, taken for) of fist letters taken for another fist letter."""
-        return tuple((k, v) for k, v in self.taken.items()
-                     if k in FIST_LETTERS and v in FIST_LETTERS and k != v)  # fmt: skip
+        return tuple(
+            (k, v)
+            for k, v in self.taken.items()
+            if k in FIST_LETTERS and v in FIST_LETTERS and k != v
+        )
 
     def confusions(self) -> dict[str, list[str]]:
         """Return, per reference letter, the candidates wrongly taken for it (the table)."""
@@ -71,9 +74,11 @@ class HandshapeScore:
     def summary(self) -> str:
         """Return one line: "14 of 26 letters agree (look-alikes as one); fist …"."""
         fists = ", ".join(f"{k} as {v}" for k, v in self.fist_confusions) or "none"
-        return (f"{len(self.agreeing)} of {self.nobs} letters agree with the human ones "
-                f"(look-alikes as one); fist letters taken for another fist letter: "
-                f"{len(self.fist_confusions)} ({fists})")  # fmt: skip
+        return (
+            f"{len(self.agreeing)} of {self.nobs} letters agree with the human ones "
+            f"(look-alikes as one); fist letters taken for another fist letter: "
+            f"{len(self.fist_confusions)} ({fists})"
+        )
 
 
 def score_handshapes(
@@ -102,8 +107,12 @@ def view_of(model: HandModel, points: np.ndarray, confidence: np.ndarray) -> Let
     middle = len(flat) // 2
     scale = calibrate_scale(model, flat, confidence, planar=True)
     fit = fit_hand(model, flat[middle : middle + 1], confidence[middle : middle + 1], scale)
-    return LetterView(handshape_features(flat[middle]), fit.rotations[0], fit.dofs_rad[0],
-                      fit.median_residual_mm())  # fmt: skip
+    return LetterView(
+        handshape_features(flat[middle]),
+        fit.rotations[0],
+        fit.dofs_rad[0],
+        fit.median_residual_mm(),
+    )
 
 
 def seen_as(model: HandModel, dofs_rad: np.ndarray, view: LetterView) -> np.ndarray:

@@ -28,8 +28,13 @@ WRIST, MIDDLE_MCP = 0, 9
 # The palm: the wrist and the four finger MCPs, nearly coplanar.
 PALM_POINTS = (0, 5, 9, 13, 17)
 # DOFs the fit leaves at rest: the free rotation stands for the forearm and wrist.
-FIXED = ("forearm_tilt_side", "forearm_tilt_forward", "forearm_twist", "wrist_deviation",
-         "wrist_flexion")  # fmt: skip
+FIXED = (
+    "forearm_tilt_side",
+    "forearm_tilt_forward",
+    "forearm_twist",
+    "wrist_deviation",
+    "wrist_flexion",
+)
 MIN_CONFIDENCE = 0.2
 STEP_RAD = 1e-4
 # The finger flexion of the curled start, degrees (a loose fist).
@@ -158,8 +163,9 @@ def calibrate_bones(
 class _Problem:
     """One frame's least-squares problem over (rotation vector, free DOFs)."""
 
-    def __init__(self, model: HandModel, bone_scale: np.ndarray | None = None,
-                 coupling: float = 0.0) -> None:  # fmt: skip
+    def __init__(
+        self, model: HandModel, bone_scale: np.ndarray | None = None, coupling: float = 0.0
+    ) -> None:
         self.model = model
         self.bone_scale = bone_scale
         names = model.dof_names
@@ -205,8 +211,9 @@ class _Problem:
         w = np.sqrt(weights)[:, None] * axes
 
         def residuals(x):
-            return np.concatenate([((self.predict(x[None])[0] - target) * w).ravel(),
-                                   self.prior @ x])  # fmt: skip
+            return np.concatenate(
+                [((self.predict(x[None])[0] - target) * w).ravel(), self.prior @ x]
+            )
 
         def jacobian(x):
             probes = np.repeat(x[None], len(x) + 1, axis=0)
@@ -220,8 +227,16 @@ class _Problem:
             return np.vstack([((flat[1:] - flat[0]) / steps[:, None]).T, self.prior])
 
         start = np.clip(start, self.lower + 1e-9, self.upper - 1e-9)
-        return least_squares(residuals, start, jac=jacobian, bounds=(self.lower, self.upper),
-                             method="trf", ftol=1e-6, xtol=1e-6, max_nfev=60)  # fmt: skip
+        return least_squares(
+            residuals,
+            start,
+            jac=jacobian,
+            bounds=(self.lower, self.upper),
+            method="trf",
+            ftol=1e-6,
+            xtol=1e-6,
+            max_nfev=60,
+        )
 
 
 def _initial_rotation(problem: _Problem, target: np.ndarray) -> np.ndarray:
@@ -307,10 +322,16 @@ def _track(problem, solutions, targets, weights, axes, found, points) -> None:
 
 
 def fit_hand(
-    model: HandModel, points: np.ndarray, confidence: np.ndarray | None = None,
-    scale: float | None = None, depth_weight: float = 1.0, bones: bool = False,
-    coupling: float = COUPLING, rate_hz: float | None = None, smooth_s: float = SMOOTH_S,
-) -> HandFit:  # fmt: skip
+    model: HandModel,
+    points: np.ndarray,
+    confidence: np.ndarray | None = None,
+    scale: float | None = None,
+    depth_weight: float = 1.0,
+    bones: bool = False,
+    coupling: float = COUPLING,
+    rate_hz: float | None = None,
+    smooth_s: float = SMOOTH_S,
+) -> HandFit:
     """Fit *model* to landmarks *points* (n_frames, 21, 3) with *confidence* (n_frames, 21).
 
     *points* are in MediaPipe axes (x right, y down, z away from the camera) in any

@@ -29,10 +29,28 @@ EXPORT_SIZE = 1000
 EXPORT_METRES_PER_UNIT = 0.001
 # MediaPipe's hand connections, for viewers of the files (pairs of point indices).
 HAND_LIMBS = (
-    (0, 1), (1, 2), (2, 3), (3, 4), (0, 5), (5, 6), (6, 7), (7, 8), (5, 9), (9, 10), (10, 11),
-    (11, 12), (9, 13), (13, 14), (14, 15), (15, 16), (13, 17), (0, 17), (17, 18), (18, 19),
+    (0, 1),
+    (1, 2),
+    (2, 3),
+    (3, 4),
+    (0, 5),
+    (5, 6),
+    (6, 7),
+    (7, 8),
+    (5, 9),
+    (9, 10),
+    (10, 11),
+    (11, 12),
+    (9, 13),
+    (13, 14),
+    (14, 15),
+    (15, 16),
+    (13, 17),
+    (0, 17),
+    (17, 18),
+    (18, 19),
     (19, 20),
-)  # fmt: skip
+)
 
 
 class PoseFileError(ValueError):
@@ -131,8 +149,9 @@ def parse_pose(data: bytes, source: str = "<pose>") -> PoseRecording:
     except PoseFileError:
         raise
     except Exception as error:  # the reader raises struct, index and value errors alike
-        raise PoseFileError(f"{source}: not a readable .pose file ({type(error).__name__}: "
-                            f"{error}).") from None  # fmt: skip
+        raise PoseFileError(
+            f"{source}: not a readable .pose file ({type(error).__name__}: {error})."
+        ) from None
     n_points = sum(len(names) for _, names in components)
     if raw.ndim != 4 or raw.shape[2] != n_points or raw.shape[1] < 1 or raw.shape[3] < 2:
         raise PoseFileError(f"{source}: its data {raw.shape} does not match its header.")
@@ -167,8 +186,11 @@ def format_pose(recording: PoseRecording) -> bytes:
     header = PoseHeader(0.1, dimensions, components)
     data = recording.points[:, None].astype(np.float32)
     mask = np.repeat((recording.confidence[:, None, :, None] <= 0), 3, axis=-1)
-    body = NumPyPoseBody(recording.fps, np.ma.masked_array(data, mask=mask),
-                         recording.confidence[:, None].astype(np.float32))  # fmt: skip
+    body = NumPyPoseBody(
+        recording.fps,
+        np.ma.masked_array(data, mask=mask),
+        recording.confidence[:, None].astype(np.float32),
+    )
     buffer = io.BytesIO()
     pose_format.Pose(header, body).write(buffer)
     return buffer.getvalue()
@@ -193,5 +215,12 @@ def from_hand_motion(
     marks = np.atleast_3d(landmarks(model, np.atleast_2d(dofs_rad)))
     units = marks / EXPORT_METRES_PER_UNIT + np.array([EXPORT_SIZE / 2, EXPORT_SIZE / 2, 0.0])
     components = ((HAND_COMPONENTS[side], LANDMARK_NAMES),)
-    return PoseRecording(float(rate_hz), components, units, np.ones(units.shape[:2]),
-                         EXPORT_SIZE, EXPORT_SIZE, EXPORT_METRES_PER_UNIT)  # fmt: skip
+    return PoseRecording(
+        float(rate_hz),
+        components,
+        units,
+        np.ones(units.shape[:2]),
+        EXPORT_SIZE,
+        EXPORT_SIZE,
+        EXPORT_METRES_PER_UNIT,
+    )

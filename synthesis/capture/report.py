@@ -14,8 +14,12 @@ from synthesis.capture.posefile import PoseRecording
 from synthesis.capture.recording import CapturedHand
 
 
-def write_report(hand: CapturedHand, recording: PoseRecording, directory: str | Path,
-                 video: str | Path | None = None) -> Path:  # fmt: skip
+def write_report(
+    hand: CapturedHand,
+    recording: PoseRecording,
+    directory: str | Path,
+    video: str | Path | None = None,
+) -> Path:
     """Write quality.json and quality.png (residual and hand found, per frame) into
     *directory*, and with the *video* captured, contact.png (synthesis.capture.contact)."""
     from synthesis.plotting import pyplot

@@ -104,8 +104,11 @@ class _Shares:
     def __init__(self, body: BodyModel) -> None:
         self.body = body
         names = body.dof_names
-        self.columns = [[names.index(f"{joint}_{motion}") for joint in _PARTS[part]]
-                        for part in ("trunk", "head") for motion in _MOTIONS]  # fmt: skip
+        self.columns = [
+            [names.index(f"{joint}_{motion}") for joint in _PARTS[part]]
+            for part in ("trunk", "head")
+            for motion in _MOTIONS
+        ]
         lower, upper = body.limits_rad
         # A shared angle is bounded by the tightest of the joints it is spread over.
         self.low = np.array([max(lower[c]) * len(c) for c in self.columns])
@@ -123,8 +126,9 @@ class _Shares:
         """Return the four directions (n, 4, 3) of postures *shares* (n, 6)."""
         return _directions(body_points(self.body, self.posture(shares)))
 
-    def solve(self, previous: np.ndarray, free: np.ndarray, used: np.ndarray,
-              target: np.ndarray) -> np.ndarray:  # fmt: skip
+    def solve(
+        self, previous: np.ndarray, free: np.ndarray, used: np.ndarray, target: np.ndarray
+    ) -> np.ndarray:
         """Return *previous* (6,) with its *free* shares fitted to the *used* directions."""
         low, high = self.low[free], self.high[free]
 
@@ -140,8 +144,14 @@ class _Shares:
             return ((values[1:] - values[0]) / steps[:, None]).T
 
         start = np.clip(previous[free], low + 1e-9, high - 1e-9)
-        solution = least_squares(lambda x: misses(x[None])[0], start, jac=jacobian,
-                                 bounds=(low, high), xtol=1e-6, ftol=1e-6)  # fmt: skip
+        solution = least_squares(
+            lambda x: misses(x[None])[0],
+            start,
+            jac=jacobian,
+            bounds=(low, high),
+            xtol=1e-6,
+            ftol=1e-6,
+        )
         shares = previous.copy()
         shares[free] = solution.x
         return shares

@@ -102,8 +102,9 @@ def _hands_seen(found, width: int, height: int, one_hand: str | None, sides: dic
     """Return one frame's hands by the signer's side: landmarks in pixels and the score,
     the surer of two that claim one side."""
     seen = {}
-    for marks, handed in zip(found.multi_hand_landmarks or (),
-                             found.multi_handedness or (), strict=True):  # fmt: skip
+    for marks, handed in zip(
+        found.multi_hand_landmarks or (), found.multi_handedness or (), strict=True
+    ):
         label = handed.classification[0]
         side = one_hand or sides.get(label.label)
         if side is None or (side in seen and seen[side][1] >= label.score):
@@ -114,9 +115,12 @@ def _hands_seen(found, width: int, height: int, one_hand: str | None, sides: dic
 
 
 def capture_hands(
-    path: str | Path, mirrored: bool = False, progress: Callable[[int], None] | None = None,
-    model_complexity: int = 1, one_hand: str | None = None,
-) -> PoseRecording:  # fmt: skip
+    path: str | Path,
+    mirrored: bool = False,
+    progress: Callable[[int], None] | None = None,
+    model_complexity: int = 1,
+    one_hand: str | None = None,
+) -> PoseRecording:
     """Return the hands MediaPipe finds in the video at *path*, frame by frame.
 
     *one_hand* ("right" or "left") says the video shows only that hand (a close-up):
@@ -177,8 +181,11 @@ def _add_holistic_frame(rows: dict, found, width: int, height: int, n_points: in
     for side in ("left", "right"):
         marks = getattr(found, f"{side}_hand_landmarks")
         seen = marks is not None
-        xyz = (np.array([(m.x, m.y, m.z) for m in marks.landmark]) * scale if seen
-               else np.zeros((21, 3)))  # fmt: skip
+        xyz = (
+            np.array([(m.x, m.y, m.z) for m in marks.landmark]) * scale
+            if seen
+            else np.zeros((21, 3))
+        )
         rows[side].append(xyz)
         rows[f"{side}_seen"].append(np.full(21, 1.0 if seen else 0.0))
 
@@ -198,12 +205,22 @@ def capture_body(
     holistic = _solution("holistic")
     names = tuple(landmark.name for landmark in holistic.PoseLandmark)
     fps, frames = read_frames(path)
-    rows = {"pose": [], "pose_seen": [], "world": [], "left": [], "right": [],
-            "left_seen": [], "right_seen": []}  # fmt: skip
+    rows = {
+        "pose": [],
+        "pose_seen": [],
+        "world": [],
+        "left": [],
+        "right": [],
+        "left_seen": [],
+        "right_seen": [],
+    }
     width = height = 0
-    with holistic.Holistic(static_image_mode=False, model_complexity=model_complexity,
-                           min_detection_confidence=0.3,
-                           min_tracking_confidence=0.3) as tracker:  # fmt: skip
+    with holistic.Holistic(
+        static_image_mode=False,
+        model_complexity=model_complexity,
+        min_detection_confidence=0.3,
+        min_tracking_confidence=0.3,
+    ) as tracker:
         for number, frame in enumerate(frames, start=1):
             height, width = frame.shape[:2]
             _add_holistic_frame(rows, tracker.process(frame), width, height, len(names))
@@ -223,9 +240,16 @@ def capture_body(
         (HAND_COMPONENTS["left"], LANDMARK_NAMES),
         (HAND_COMPONENTS["right"], LANDMARK_NAMES),
     )
-    data = np.concatenate([np.array(pose), np.array(world), np.array(hands["left"]),
-                           np.array(hands["right"])], axis=1)  # fmt: skip
-    confidence = np.concatenate([np.array(pose_seen), np.array(pose_seen),
-                                 np.array(hands_seen["left"]), np.array(hands_seen["right"])],
-                                axis=1)  # fmt: skip
+    data = np.concatenate(
+        [np.array(pose), np.array(world), np.array(hands["left"]), np.array(hands["right"])], axis=1
+    )
+    confidence = np.concatenate(
+        [
+            np.array(pose_seen),
+            np.array(pose_seen),
+            np.array(hands_seen["left"]),
+            np.array(hands_seen["right"]),
+        ],
+        axis=1,
+    )
     return PoseRecording(fps, components, data, confidence, width, height)

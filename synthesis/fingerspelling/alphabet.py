@@ -213,10 +213,12 @@ def _path(entry: dict, model: HandModel, contacts, where: str, solved) -> np.nda
         if path.shape != (len(keys), len(model.dofs)):
             raise ValueError(f"{where}: a stored path of another shape.")
         return path
-    return np.stack([
-        solve_contacts(model, _angles({**entry, **k.get("pose", {})}, model, where), contacts)
-        for k in keys
-    ])  # fmt: skip
+    return np.stack(
+        [
+            solve_contacts(model, _angles({**entry, **k.get("pose", {})}, model, where), contacts)
+            for k in keys
+        ]
+    )
 
 
 def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Letter:
@@ -262,9 +264,13 @@ def letter(letter: str, side: str = "right") -> Letter:
     if key not in LETTERS:
         raise AlphabetError(f"{letter!r} is not a letter of the ASL manual alphabet (A–Z).")
     model = HandModel(side)
-    return cached(f"letter-{side}-{key}", SOLVER_LIBRARIES,
-                  lambda: parse_letter(key, _data()[key], model), _solution,
-                  lambda stored: parse_letter(key, _data()[key], model, solved=stored))  # fmt: skip
+    return cached(
+        f"letter-{side}-{key}",
+        SOLVER_LIBRARIES,
+        lambda: parse_letter(key, _data()[key], model),
+        _solution,
+        lambda stored: parse_letter(key, _data()[key], model, solved=stored),
+    )
 
 
 def _solution(solved: Letter) -> dict[str, np.ndarray]:

@@ -57,9 +57,15 @@ def _engine_table(args: argparse.Namespace, hand, test, database) -> list[dict]:
     source = f"the engine's spelling of {', '.join(args.words)} from {database.source}"
     print(f"{ENGINE_CONFIGURATION}\n  input: {source}")
     rows = table_3_1(
-        database, hand, test, 120.0, np.random.default_rng(args.seed), source,
-        tuple(args.poses), tuple(args.sizes),
-    )  # fmt: skip
+        database,
+        hand,
+        test,
+        120.0,
+        np.random.default_rng(args.seed),
+        source,
+        tuple(args.poses),
+        tuple(args.sizes),
+    )
     _print_table(rows)
     return rows
 
@@ -83,9 +89,14 @@ def _paper_tables(args: argparse.Namespace, hand) -> list[dict]:
             held_out = human_letters(args.side)
         print(f"{PAPER_CONFIGURATION}\n  input: {held_out.input}\n  published: {PUBLISHED_INPUT}")
         table = paper_table_3_1(
-            held_out, hand, 120.0, np.random.default_rng(args.seed), tuple(args.poses),
-            tuple(args.sizes), args.select_on,
-        )  # fmt: skip
+            held_out,
+            hand,
+            120.0,
+            np.random.default_rng(args.seed),
+            tuple(args.poses),
+            tuple(args.sizes),
+            args.select_on,
+        )
         _print_table(table)
         rows += table
     return rows

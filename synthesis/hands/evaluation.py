@@ -70,9 +70,8 @@ def table_3_1(
             chosen = order[:markers]
             rebuilt = reconstruct_nearest(truth[:, chosen], chosen, clustered, rate_hz)
             rows.append(
-                _row(ENGINE_CONFIGURATION, source, p, chosen, truth, rebuilt, hand,
-                     database.root)
-            )  # fmt: skip
+                _row(ENGINE_CONFIGURATION, source, p, chosen, truth, rebuilt, hand, database.root)
+            )
     return rows
 
 

@@ -24,12 +24,20 @@ import itertools
 import numpy as np
 
 MARKERS = (
-    "thumb_mcp", "thumb_ip", "thumb_tip",
-    "index_mcp", "index_pip", "index_tip",
-    "middle_pip", "middle_tip",
-    "ring_pip", "ring_tip",
-    "pinky_mcp", "pinky_pip", "pinky_tip",
-)  # fmt: skip
+    "thumb_mcp",
+    "thumb_ip",
+    "thumb_tip",
+    "index_mcp",
+    "index_pip",
+    "index_tip",
+    "middle_pip",
+    "middle_tip",
+    "ring_pip",
+    "ring_tip",
+    "pinky_mcp",
+    "pinky_pip",
+    "pinky_tip",
+)
 ROOT = "wrist"
 ROOTS = ("wrist", "forearm")
 
@@ -90,10 +98,12 @@ def marker_distances(query: np.ndarray, database: np.ndarray) -> np.ndarray:
     (n_query, M, 3) and (p, M, 3) → (M, n_query, p), metres.
     """
     query, database = np.asarray(query, float), np.asarray(database, float)
-    return np.stack([
-        np.linalg.norm(query[:, k, None, :] - database[None, :, k, :], axis=-1)
-        for k in range(query.shape[1])
-    ])  # fmt: skip
+    return np.stack(
+        [
+            np.linalg.norm(query[:, k, None, :] - database[None, :, k, :], axis=-1)
+            for k in range(query.shape[1])
+        ]
+    )
 
 
 def search_marker_sets(m: int, database: np.ndarray, test: np.ndarray) -> list[tuple]:

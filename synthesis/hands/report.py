@@ -90,27 +90,46 @@ def _reduction_tables(curves_deg, reduction: Reduction, errors, directory: Path)
     """Write the constant curves, the relations and each curve's error as CSV."""
     means = curves_deg.mean(axis=0)
     irrelevant = [
-        {"curve": n, "range_deg": round(reduction.ranges_deg[n], 3),
-         "mean_deg": round(reduction.constant[n], 3)}
+        {
+            "curve": n,
+            "range_deg": round(reduction.ranges_deg[n], 3),
+            "mean_deg": round(reduction.constant[n], 3),
+        }
         for n in reduction.constant
-    ]  # fmt: skip
+    ]
     relations = [
-        {"dependent": r.dependent, "controlling": r.controller, "metric": r.metric,
-         "rmsd": round(r.rmsd, 3), "pair_rmsd": round(r.pair_rmsd, 3)}
+        {
+            "dependent": r.dependent,
+            "controlling": r.controller,
+            "metric": r.metric,
+            "rmsd": round(r.rmsd, 3),
+            "pair_rmsd": round(r.pair_rmsd, 3),
+        }
         for r in reduction.relations
-    ]  # fmt: skip
+    ]
     curves = [
-        {"curve": n, "role": _role(reduction, n), "mean_deg": round(float(m), 3),
-         "range_deg": round(reduction.ranges_deg[n], 3), "rms_error_deg": round(float(e), 4)}
+        {
+            "curve": n,
+            "role": _role(reduction, n),
+            "mean_deg": round(float(m), 3),
+            "range_deg": round(reduction.ranges_deg[n], 3),
+            "rms_error_deg": round(float(e), 4),
+        }
         for n, m, e in zip(reduction.names, means, errors, strict=True)
-    ]  # fmt: skip
+    ]
     return [
         write_csv(directory / "irrelevant.csv", irrelevant, ["curve", "range_deg", "mean_deg"]),
-        write_csv(directory / "relations.csv", relations,
-                  ["dependent", "controlling", "metric", "rmsd", "pair_rmsd"]),
-        write_csv(directory / "errors.csv", curves,
-                  ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"]),
-    ]  # fmt: skip
+        write_csv(
+            directory / "relations.csv",
+            relations,
+            ["dependent", "controlling", "metric", "rmsd", "pair_rmsd"],
+        ),
+        write_csv(
+            directory / "errors.csv",
+            curves,
+            ["curve", "role", "mean_deg", "range_deg", "rms_error_deg"],
+        ),
+    ]
 
 
 def _reduction_summary(curves_deg, reduction: Reduction, errors, steps, source: str) -> str:
@@ -165,8 +184,14 @@ def _plot_steps(steps: list[dict], path: Path, source: str) -> Path:
     # Neighbouring points' labels alternate above and below so that they do not meet.
     for k, point in enumerate(ordered):
         below = k % 2 == 1
-        axes.annotate("\n".join(points[point]), point, fontsize=7, textcoords="offset points",
-                      xytext=(4, -4 if below else 4), va="top" if below else "bottom")  # fmt: skip
+        axes.annotate(
+            "\n".join(points[point]),
+            point,
+            fontsize=7,
+            textcoords="offset points",
+            xytext=(4, -4 if below else 4),
+            va="top" if below else "bottom",
+        )
     axes.margins(x=0.3, y=0.2)
     axes.set_xlabel("free DOFs")
     axes.set_ylabel("mean reconstruction error (°)")
@@ -268,8 +293,13 @@ def _plot_markers(rows: list[dict], path: Path, title: str) -> Path:
     axes.plot([r["markers"] for r in rows], [r["error_cm"] for r in rows], "o-", label="ours")
     published = [r for r in rows if r["published_cm"] is not None]
     if published:
-        axes.plot([r["markers"] for r in published], [r["published_cm"] for r in published],
-                  "s", fillstyle="none", label="seed 000 Table 3.1, p = 1000")  # fmt: skip
+        axes.plot(
+            [r["markers"] for r in published],
+            [r["published_cm"] for r in published],
+            "s",
+            fillstyle="none",
+            label="seed 000 Table 3.1, p = 1000",
+        )
         axes.legend(fontsize=8)
     axes.set_xlabel("markers kept (PCA rank order)")
     axes.set_ylabel("mean marker error (cm)")

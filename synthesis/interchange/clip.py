@@ -19,16 +19,32 @@ def request_glb(request, build=None, extras: dict | None = None) -> bytes:
 
     build = _built(request, build)
     word = request.text if request.kind == "word" else None
-    avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
-                             request.width, request.height, word, build.look)  # fmt: skip
+    avatar, camera = filming(
+        request.view,
+        request.side,
+        build.motion,
+        request.rate_hz,
+        request.width,
+        request.height,
+        word,
+        build.look,
+    )
     if isinstance(build.motion, np.ndarray):
         pose = avatar.rig.pose(build.motion)
         weights = None if avatar.drive is None else avatar.drive.weights(build.motion)
     else:  # a recording retargeted onto the skeleton: joint transforms, no face
         pose, weights = build.motion, None
-    return avatar_glb(avatar, pose, request.rate_hz, weights, camera, request.width,
-                      request.height, name=f"{request.kind} {request.text}"[:200],
-                      extras=extras)  # fmt: skip
+    return avatar_glb(
+        avatar,
+        pose,
+        request.rate_hz,
+        weights,
+        camera,
+        request.width,
+        request.height,
+        name=f"{request.kind} {request.text}"[:200],
+        extras=extras,
+    )
 
 
 def request_bvh(request, build=None) -> str:

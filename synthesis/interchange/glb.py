@@ -55,14 +55,16 @@ class BufferBuilder:
     def __init__(self, gltf: gl.GLTF2):
         self.gltf, self.chunks, self.length = gltf, [], 0
 
-    def add(self, data: np.ndarray, component: int, target: int | None = None,
-            bounds: bool = False) -> int:  # fmt: skip
+    def add(
+        self, data: np.ndarray, component: int, target: int | None = None, bounds: bool = False
+    ) -> int:
         """Add *data* (count, width) as an accessor; return its index."""
         data = np.ascontiguousarray(data, dtype=_DTYPES[component])
         data = data.reshape(len(data), -1)
         view = self._view(data.tobytes(), target)
-        accessor = gl.Accessor(bufferView=view, componentType=component, count=len(data),
-                               type=_TYPES[data.shape[1]])  # fmt: skip
+        accessor = gl.Accessor(
+            bufferView=view, componentType=component, count=len(data), type=_TYPES[data.shape[1]]
+        )
         if bounds:
             accessor.min = data.min(axis=0).astype(float).tolist()
             accessor.max = data.max(axis=0).astype(float).tolist()
@@ -75,13 +77,19 @@ class BufferBuilder:
         values = np.ascontiguousarray(values, dtype=np.float32)
         sparse = gl.Sparse(
             count=len(rows),
-            indices=gl.AccessorSparseIndices(bufferView=self._view(rows.tobytes()),
-                                             componentType=UINT32),
+            indices=gl.AccessorSparseIndices(
+                bufferView=self._view(rows.tobytes()), componentType=UINT32
+            ),
             values=gl.AccessorSparseValues(bufferView=self._view(values.tobytes())),
-        )  # fmt: skip
-        accessor = gl.Accessor(componentType=FLOAT, count=count, type=gl.VEC3, sparse=sparse,
-                               min=values.min(axis=0).astype(float).tolist(),
-                               max=values.max(axis=0).astype(float).tolist())  # fmt: skip
+        )
+        accessor = gl.Accessor(
+            componentType=FLOAT,
+            count=count,
+            type=gl.VEC3,
+            sparse=sparse,
+            min=values.min(axis=0).astype(float).tolist(),
+            max=values.max(axis=0).astype(float).tolist(),
+        )
         accessor.byteOffset = None  # no buffer view: all zeros but the sparse values
         # Bounds of a morph target include the zeros of the vertices it leaves alone.
         accessor.min = np.minimum(accessor.min, 0.0).tolist()
@@ -114,8 +122,13 @@ def _joint_nodes(gltf: gl.GLTF2, skeleton, bind_q: np.ndarray, bind_t: np.ndarra
     first = len(gltf.nodes)
     bind_q = bind_q / np.linalg.norm(bind_q, axis=-1, keepdims=True)
     for index, joint in enumerate(skeleton.joints):
-        gltf.nodes.append(gl.Node(name=joint.name, rotation=np.clip(bind_q[index], -1, 1).tolist(),
-                                  translation=bind_t[index].tolist()))  # fmt: skip
+        gltf.nodes.append(
+            gl.Node(
+                name=joint.name,
+                rotation=np.clip(bind_q[index], -1, 1).tolist(),
+                translation=bind_t[index].tolist(),
+            )
+        )
     for index, parent in enumerate(parents):
         if parent >= 0:
             gltf.nodes[first + parent].children.append(first + index)
@@ -149,29 +162,39 @@ def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joi
         WEIGHTS_0=buffer.add(weights, FLOAT, gl.ARRAY_BUFFER),
     )
     primitive = gl.Primitive(
-        attributes=attributes, material=material,
-        indices=buffer.add(np.asarray(part.faces).reshape(-1, 1), UINT32,
-                           gl.ELEMENT_ARRAY_BUFFER),
-    )  # fmt: skip
+        attributes=attributes,
+        material=material,
+        indices=buffer.add(np.asarray(part.faces).reshape(-1, 1), UINT32, gl.ELEMENT_ARRAY_BUFFER),
+    )
     # What only the engine draws, for an import of this file to look the same: a colour
     # edge through triangles (a neckline, a cuff) and parts that cast no shadow.
     if part.edge_m is not None:
         setattr(attributes, EDGE, buffer.add(part.edge_m.reshape(-1, 1), FLOAT, gl.ARRAY_BUFFER))
         setattr(attributes, COLOR_INSIDE, buffer.add(part.colors_rgb, FLOAT, gl.ARRAY_BUFFER))
         setattr(attributes, COLOR_ACROSS, buffer.add(part.across_rgb, FLOAT, gl.ARRAY_BUFFER))
-    setattr(attributes, MAIN_JOINT, buffer.add(part.weights.main_joints().reshape(-1, 1),
-                                               FLOAT, gl.ARRAY_BUFFER))  # fmt: skip
-    mesh = gl.Mesh(name=part.name, primitives=[primitive],
-                   extras={"signstudy": {"casts_shadow": bool(part.casts_shadow)}})  # fmt: skip
+    setattr(
+        attributes,
+        MAIN_JOINT,
+        buffer.add(part.weights.main_joints().reshape(-1, 1), FLOAT, gl.ARRAY_BUFFER),
+    )
+    mesh = gl.Mesh(
+        name=part.name,
+        primitives=[primitive],
+        extras={"signstudy": {"casts_shadow": bool(part.casts_shadow)}},
+    )
     if part.morphs is not None:
         count = len(part.vertices_m)
         for k, _ in enumerate(part.morphs.names):
-            primitive.targets.append({
-                "POSITION": buffer.add_sparse(count, part.morphs.vertices,
-                                              part.morphs.offsets_m[k]),
-                "NORMAL": buffer.add_sparse(count, part.morphs.vertices,
-                                            part.morphs.normal_offsets[k]),
-            })  # fmt: skip
+            primitive.targets.append(
+                {
+                    "POSITION": buffer.add_sparse(
+                        count, part.morphs.vertices, part.morphs.offsets_m[k]
+                    ),
+                    "NORMAL": buffer.add_sparse(
+                        count, part.morphs.vertices, part.morphs.normal_offsets[k]
+                    ),
+                }
+            )
         mesh.weights = [0.0] * len(part.morphs.names)
         mesh.extras["targetNames"] = list(part.morphs.names)
     gltf.meshes.append(mesh)
@@ -180,38 +203,58 @@ def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joi
 
 def _camera_node(gltf: gl.GLTF2, camera, width: int, height: int) -> tuple[int, np.ndarray]:
     """Add the camera; return its node and its transforms (frames, 4, 4)."""
-    gltf.cameras.append(gl.Camera(
-        type="perspective", name=camera.name,
-        perspective=gl.Perspective(yfov=float(np.radians(camera.yfov_deg)),
-                                   aspectRatio=width / height, znear=0.01, zfar=100.0),
-    ))  # fmt: skip
+    gltf.cameras.append(
+        gl.Camera(
+            type="perspective",
+            name=camera.name,
+            perspective=gl.Perspective(
+                yfov=float(np.radians(camera.yfov_deg)),
+                aspectRatio=width / height,
+                znear=0.01,
+                zfar=100.0,
+            ),
+        )
+    )
     if isinstance(camera, CameraPath):
-        poses = np.stack([look_at(e, t) for e, t in zip(camera.eye_m, camera.target_m,
-                                                        strict=True)])  # fmt: skip
+        poses = np.stack(
+            [look_at(e, t) for e, t in zip(camera.eye_m, camera.target_m, strict=True)]
+        )
     else:
         poses = camera.pose()[None]
-    node = gl.Node(name=camera.name, camera=len(gltf.cameras) - 1,
-                   translation=poses[0, :3, 3].tolist(),
-                   rotation=Rotation.from_matrix(poses[0, :3, :3]).as_quat().tolist())  # fmt: skip
+    node = gl.Node(
+        name=camera.name,
+        camera=len(gltf.cameras) - 1,
+        translation=poses[0, :3, 3].tolist(),
+        rotation=Rotation.from_matrix(poses[0, :3, :3]).as_quat().tolist(),
+    )
     gltf.nodes.append(node)
     return len(gltf.nodes) - 1, poses
 
 
 def _key(gltf, buffer, times: int, node: int, path: str, values: np.ndarray) -> None:
     animation = gltf.animations[0]
-    animation.samplers.append(gl.AnimationSampler(input=times, interpolation="LINEAR",
-                                                  output=buffer.add(values, FLOAT)))  # fmt: skip
-    animation.channels.append(gl.AnimationChannel(
-        sampler=len(animation.samplers) - 1,
-        target=gl.AnimationChannelTarget(node=node, path=path),
-    ))  # fmt: skip
+    animation.samplers.append(
+        gl.AnimationSampler(input=times, interpolation="LINEAR", output=buffer.add(values, FLOAT))
+    )
+    animation.channels.append(
+        gl.AnimationChannel(
+            sampler=len(animation.samplers) - 1,
+            target=gl.AnimationChannelTarget(node=node, path=path),
+        )
+    )
 
 
 def avatar_glb(
-    avatar, pose: Pose, rate_hz: float, morph_weights: np.ndarray | None = None,
-    camera: CameraPreset | CameraPath | None = None, width: int = 640, height: int = 480,
-    name: str = "clip", extras: dict | None = None,
-) -> bytes:  # fmt: skip
+    avatar,
+    pose: Pose,
+    rate_hz: float,
+    morph_weights: np.ndarray | None = None,
+    camera: CameraPreset | CameraPath | None = None,
+    width: int = 640,
+    height: int = 480,
+    name: str = "clip",
+    extras: dict | None = None,
+) -> bytes:
     """Return a GLB of *avatar* moving through *pose* (global transforms, one per frame)
     at *rate_hz*, its blendshapes at *morph_weights* (frames, the drive's names), filmed
     by *camera*; *extras* (JSON data) is kept in the asset's extras.
@@ -226,27 +269,43 @@ def avatar_glb(
     bind_q, bind_t = local_transforms(parents, avatar.bind_pose)
     roots = _joint_nodes(gltf, skeleton, bind_q[0], bind_t[0])
     joints = list(range(roots[0], roots[0] + len(skeleton.joints)))
-    gltf.skins.append(gl.Skin(name=avatar.name, joints=joints, skeleton=roots[0],
-                              inverseBindMatrices=buffer.add(
-                                  np.swapaxes(inverse_bind_matrices(avatar.bind_pose), 1, 2)
-                                  .reshape(len(joints), 16), FLOAT)))  # fmt: skip
-    gltf.materials.append(gl.Material(
-        name="skin and clothes (vertex colours)", doubleSided=False,
-        pbrMetallicRoughness=gl.PbrMetallicRoughness(baseColorFactor=[1, 1, 1, 1],
-                                                     metallicFactor=0.0, roughnessFactor=0.7),
-    ))  # fmt: skip
+    gltf.skins.append(
+        gl.Skin(
+            name=avatar.name,
+            joints=joints,
+            skeleton=roots[0],
+            inverseBindMatrices=buffer.add(
+                np.swapaxes(inverse_bind_matrices(avatar.bind_pose), 1, 2).reshape(len(joints), 16),
+                FLOAT,
+            ),
+        )
+    )
+    gltf.materials.append(
+        gl.Material(
+            name="skin and clothes (vertex colours)",
+            doubleSided=False,
+            pbrMetallicRoughness=gl.PbrMetallicRoughness(
+                baseColorFactor=[1, 1, 1, 1], metallicFactor=0.0, roughnessFactor=0.7
+            ),
+        )
+    )
     names = () if avatar.drive is None else avatar.drive.names
     scene_nodes = list(roots)
-    times = buffer.add(np.arange(n_frames, dtype=np.float64)[:, None] / rate_hz, FLOAT,
-                       bounds=True)  # fmt: skip
+    times = buffer.add(np.arange(n_frames, dtype=np.float64)[:, None] / rate_hz, FLOAT, bounds=True)
     for part in avatar.parts:
         mesh = _part_mesh(gltf, buffer, part, 0, len(joints))
         gltf.nodes.append(gl.Node(name=part.name, mesh=mesh, skin=0))
         scene_nodes.append(len(gltf.nodes) - 1)
         if part.morphs is not None and morph_weights is not None:
             columns = [names.index(n) for n in part.morphs.names]
-            _key(gltf, buffer, times, scene_nodes[-1], "weights",
-                 np.asarray(morph_weights)[:, columns].reshape(-1, 1))  # fmt: skip
+            _key(
+                gltf,
+                buffer,
+                times,
+                scene_nodes[-1],
+                "weights",
+                np.asarray(morph_weights)[:, columns].reshape(-1, 1),
+            )
     local_q, local_t = local_transforms(parents, pose)
     local_q = continuous(local_q)
     for index, node in enumerate(joints):
@@ -257,8 +316,14 @@ def avatar_glb(
         scene_nodes.append(node)
         if len(poses) > 1:
             _key(gltf, buffer, times, node, "translation", poses[:, :3, 3])
-            _key(gltf, buffer, times, node, "rotation",
-                 Rotation.from_matrix(poses[:, :3, :3]).as_quat())  # fmt: skip
+            _key(
+                gltf,
+                buffer,
+                times,
+                node,
+                "rotation",
+                Rotation.from_matrix(poses[:, :3, :3]).as_quat(),
+            )
     gltf.scenes.append(gl.Scene(name=name, nodes=scene_nodes))
     gltf.scene = 0
     gltf.set_binary_blob(buffer.finish())

@@ -66,8 +66,9 @@ class Fxaa:
         self._texture = GL.glGenTextures(1)
         self._size: tuple[int, int] | None = None
 
-    def apply(self, width: int, height: int, box_px: tuple[int, int, int, int] | None = None
-              ) -> None:  # fmt: skip
+    def apply(
+        self, width: int, height: int, box_px: tuple[int, int, int, int] | None = None
+    ) -> None:
         """Replace the bound framebuffer's colours (*width* × *height*) by their FXAA.
 
         *box_px* (left, bottom, right, top; OpenGL's window pixels, y up) limits the pass
@@ -77,13 +78,26 @@ class Fxaa:
         left, bottom, right, top = (0, 0, width, height) if box_px is None else box_px
         # FXAA's walk along an edge reads up to 19 px (fxaa.frag) beyond what it writes.
         reach = 21
-        copy = (max(left - reach, 0), max(bottom - reach, 0),
-                min(right + reach, width), min(top + reach, height))  # fmt: skip
+        copy = (
+            max(left - reach, 0),
+            max(bottom - reach, 0),
+            min(right + reach, width),
+            min(top + reach, height),
+        )
         GL.glActiveTexture(GL.GL_TEXTURE0)
         GL.glBindTexture(GL.GL_TEXTURE_2D, self._texture)
         if self._size != (width, height):
-            GL.glTexImage2D(GL.GL_TEXTURE_2D, 0, GL.GL_RGBA8, width, height, 0, GL.GL_RGBA,
-                            GL.GL_UNSIGNED_BYTE, None)  # fmt: skip
+            GL.glTexImage2D(
+                GL.GL_TEXTURE_2D,
+                0,
+                GL.GL_RGBA8,
+                width,
+                height,
+                0,
+                GL.GL_RGBA,
+                GL.GL_UNSIGNED_BYTE,
+                None,
+            )
             for parameter, value in (
                 (GL.GL_TEXTURE_MIN_FILTER, GL.GL_LINEAR),
                 (GL.GL_TEXTURE_MAG_FILTER, GL.GL_LINEAR),

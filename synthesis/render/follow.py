@@ -74,8 +74,13 @@ def _runs(still: np.ndarray) -> list[tuple[int, int, bool]]:
     return [(int(a), int(b), bool(still[a])) for a, b in itertools.pairwise(bounds)]
 
 
-def _ease(values_at_rest: np.ndarray, runs, ends: float | None = None,
-          pauses: dict | None = None, ease_frames: float = np.inf) -> np.ndarray:  # fmt: skip
+def _ease(
+    values_at_rest: np.ndarray,
+    runs,
+    ends: float | None = None,
+    pauses: dict | None = None,
+    ease_frames: float = np.inf,
+) -> np.ndarray:
     """Return per frame the value of its still run, eased (smoothstep) across each moving
     run from the still value before it to the one after; before the first still run and
     after the last, from and to *ends* (the nearest still value if None). A moving run
@@ -117,8 +122,11 @@ def _ease_through(u: np.ndarray, first: float, middle: float, last: float, share
     """Ease (smoothstep) from *first* to *middle* over the first *share* of u ∈ [0, 1],
     hold it, and ease on to *last* over the last *share*."""
     into, out_of = np.clip(u / share, 0, 1), np.clip((u - 1) / share + 1, 0, 1)
-    return (first + (middle - first) * into * into * (3 - 2 * into)
-            + (last - middle) * out_of * out_of * (3 - 2 * out_of))  # fmt: skip
+    return (
+        first
+        + (middle - first) * into * into * (3 - 2 * into)
+        + (last - middle) * out_of * out_of * (3 - 2 * out_of)
+    )
 
 
 def _per_run(values: np.ndarray, runs, reduce) -> np.ndarray:
@@ -157,8 +165,10 @@ def follow_hand(
     """
     points = hand_vertices(avatar, motion)
     half = np.tan(np.radians(yfov_deg) / 2)
-    tangents = (half * width / height * (1 - 2 * margin_share * height / width),
-                half * (1 - 2 * margin_share))  # fmt: skip
+    tangents = (
+        half * width / height * (1 - 2 * margin_share * height / width),
+        half * (1 - 2 * margin_share),
+    )
     runs = _still_runs(points, rate_hz)
     extremes = [_extremes(points, tangent, axis) for axis, tangent in enumerate(tangents)]
     needed = _needed(points, extremes, tangents)
@@ -219,8 +229,9 @@ def _distance(avatar: Avatar, scale_poses, needed: np.ndarray, runs, tangents) -
     return float(needed[still].max())
 
 
-def _centre(extremes, tangent: float, eye_z: np.ndarray, runs, rate_hz: float,
-            rest_extremes=None) -> np.ndarray:  # fmt: skip
+def _centre(
+    extremes, tangent: float, eye_z: np.ndarray, runs, rate_hz: float, rest_extremes=None
+) -> np.ndarray:
     """Return the camera's centre along one image axis, per frame: each stretch framed
     from one place where it can be, eased between them, clamped to keep the hand in."""
     upper, lower = extremes
@@ -239,8 +250,12 @@ def _centre(extremes, tangent: float, eye_z: np.ndarray, runs, rate_hz: float,
         for a, b, still in (runs[0], runs[-1]):
             if still:
                 aim[a:b] = ends
-    pauses = {a: (low[a:b].max() + high[a:b].min()) / 2 for a, b, still in runs
-              if not still and (b - a) * 1000 / rate_hz >= LONG_MOVE_MS
-              and low[a:b].max() <= high[a:b].min()}  # fmt: skip
+    pauses = {
+        a: (low[a:b].max() + high[a:b].min()) / 2
+        for a, b, still in runs
+        if not still
+        and (b - a) * 1000 / rate_hz >= LONG_MOVE_MS
+        and low[a:b].max() <= high[a:b].min()
+    }
     eased = _ease(aim, runs, ends, pauses, PAUSE_EASE_MS * rate_hz / 1000)
     return np.clip(eased, low, high)

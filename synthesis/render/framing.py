@@ -55,7 +55,7 @@ class Framing:
             "head_px_min": _least(self.head_px),
             "face_px_min": _least(self.face_px),
             "n_frames": len(self.hand_share),
-        }  # fmt: skip
+        }
 
 
 def _least(values: np.ndarray | None) -> float | None:
@@ -83,23 +83,30 @@ def hand_vertices(avatar: Avatar, motion: np.ndarray | Pose, batch: int = 64) ->
     every frame's arrays)."""
     masks = _owned(avatar, _is_hand)
     total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(np.atleast_2d(motion))
-    return np.concatenate([_posed(avatar, _take(motion, slice(k, k + batch)), masks)
-                           for k in range(0, total, batch)])  # fmt: skip
+    return np.concatenate(
+        [_posed(avatar, _take(motion, slice(k, k + batch)), masks) for k in range(0, total, batch)]
+    )
 
 
-def _project(camera: CameraPreset | CameraPath, points_m: np.ndarray, width: int,
-             height: int) -> np.ndarray:  # fmt: skip
+def _project(
+    camera: CameraPreset | CameraPath, points_m: np.ndarray, width: int, height: int
+) -> np.ndarray:
     """Project points (n_frames, n, 3) through a camera, or frame by frame a path's."""
     if isinstance(camera, CameraPreset):
         return project_px(camera, points_m, width, height)
-    return np.stack([project_px(camera.at(k), frame, width, height)
-                     for k, frame in enumerate(points_m)])  # fmt: skip
+    return np.stack(
+        [project_px(camera.at(k), frame, width, height) for k, frame in enumerate(points_m)]
+    )
 
 
 def measure_framing(
-    avatar: Avatar, camera: CameraPreset | CameraPath, dofs_rad: np.ndarray | Pose,
-    width: int = 640, height: int = 480, frames: np.ndarray | None = None,
-) -> Framing:  # fmt: skip
+    avatar: Avatar,
+    camera: CameraPreset | CameraPath,
+    dofs_rad: np.ndarray | Pose,
+    width: int = 640,
+    height: int = 480,
+    frames: np.ndarray | None = None,
+) -> Framing:
     """Return how *camera* (one, or a path of one per frame) frames *avatar* posed by
     *dofs_rad* (n_frames, n_dofs) or a Pose, at *width* × *height*; *frames* (indices)
     picks the frames to measure (all by default)."""
@@ -114,8 +121,13 @@ def measure_framing(
     hand = _posed(avatar, motion, _owned(avatar, _is_hand))
     pixels = _project(camera, hand, width, height)
     share = (np.nanmax(pixels[..., 1], axis=1) - np.nanmin(pixels[..., 1], axis=1)) / height
-    outside = ((pixels[..., 0] < 0) | (pixels[..., 0] > width) | (pixels[..., 1] < 0)
-               | (pixels[..., 1] > height) | np.isnan(pixels).any(axis=-1)).any(axis=1)  # fmt: skip
+    outside = (
+        (pixels[..., 0] < 0)
+        | (pixels[..., 0] > width)
+        | (pixels[..., 1] < 0)
+        | (pixels[..., 1] > height)
+        | np.isnan(pixels).any(axis=-1)
+    ).any(axis=1)
     heights = []
     head = _owned(avatar, lambda name: name == "head" or name in FACE_JOINT_NAMES)
     for masks in (head, face_vertices(avatar)):
@@ -144,6 +156,9 @@ def face_vertices(avatar: Avatar) -> list[np.ndarray]:
     names = avatar.rig.skeleton.names
     bind = avatar.bind_pose.positions_m[0]
     eyes = (bind[names.index("right_eye")] + bind[names.index("left_eye")]) / 2
-    return [mask & (part.vertices_m[:, 1] < eyes[1] + FOREHEAD_ABOVE_EYES_M)
-            & (part.vertices_m[:, 2] > eyes[2] - EARS_BEHIND_EYES_M)
-            for mask, part in zip(head, avatar.parts, strict=True)]  # fmt: skip
+    return [
+        mask
+        & (part.vertices_m[:, 1] < eyes[1] + FOREHEAD_ABOVE_EYES_M)
+        & (part.vertices_m[:, 2] > eyes[2] - EARS_BEHIND_EYES_M)
+        for mask, part in zip(head, avatar.parts, strict=True)
+    ]

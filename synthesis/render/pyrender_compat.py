@@ -55,8 +55,7 @@ def install_program_cache(pyrender, offscreen, shader_dir: str, extra_defines=No
             super().__init__(shader_dir=shader_dir)
             self._compiled: dict = {}
 
-        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None,
-                        defines=None):  # fmt: skip
+        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None, defines=None):
             defines = {**(defines or {}), **(extra_defines() if extra_defines else {})}
             key = (vertex_shader, fragment_shader, geometry_shader, tuple(sorted(defines.items())))
             if key not in self._compiled:
@@ -136,8 +135,9 @@ def vertex_buffer(primitive) -> int | None:
     return primitive._buffers[0]
 
 
-def render_color(pyrender, offscreen, scene, flags, width: int, height: int,
-                 before_draw=None, after_draw=None) -> np.ndarray:  # fmt: skip
+def render_color(
+    pyrender, offscreen, scene, flags, width: int, height: int, before_draw=None, after_draw=None
+) -> np.ndarray:
     """Draw *scene* with *offscreen* and return its colours (height, width, 3) uint8.
 
     ``OffscreenRenderer.render`` also reads and linearises the depth buffer, a tenth of

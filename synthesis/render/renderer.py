@@ -142,8 +142,10 @@ class Renderer:
         upper body's frame time (bench/bench_render.py).
         """
         kinds = [light.kind for light in self.lights]
-        return {"LIGHT_COUNT_DIRECTIONAL": kinds.count("directional"),
-                "LIGHT_COUNT_POINT": kinds.count("point")}  # fmt: skip
+        return {
+            "LIGHT_COUNT_DIRECTIONAL": kinds.count("directional"),
+            "LIGHT_COUNT_POINT": kinds.count("point"),
+        }
 
     def _light(self, light: Light):
         pyrender = self._pyrender
@@ -249,9 +251,12 @@ class Renderer:
                 if primitive.tangents is not None:
                     raise RuntimeError("In-place vertex updates expect no tangents.")
                 fixed = [primitive.texcoord_0, primitive.texcoord_1, primitive.color_0]
-                self._staging.append(np.hstack(
-                    [primitive.positions, primitive.normals] + [c for c in fixed if c is not None]
-                ).astype(np.float32))  # fmt: skip
+                self._staging.append(
+                    np.hstack(
+                        [primitive.positions, primitive.normals]
+                        + [c for c in fixed if c is not None]
+                    ).astype(np.float32)
+                )
         return self._staging
 
     def frame(self, dofs_rad: np.ndarray) -> np.ndarray:
@@ -263,9 +268,16 @@ class Renderer:
     def _draw(self) -> np.ndarray:
         """Draw the scene and read back its colours, (height, width, 3) uint8."""
         after_draw = self._antialias if self.antialias else None
-        return compat.render_color(self._pyrender, self._renderer, self.scene, self._flags,
-                                   self.width, self.height, before_draw=self._upload,
-                                   after_draw=after_draw)  # fmt: skip
+        return compat.render_color(
+            self._pyrender,
+            self._renderer,
+            self.scene,
+            self._flags,
+            self.width,
+            self.height,
+            before_draw=self._upload,
+            after_draw=after_draw,
+        )
 
     def _antialias(self) -> None:
         """Smooth the drawn frame's edges (context current)."""
@@ -284,8 +296,12 @@ class Renderer:
         """
         # The shown vertices are the primitives' (only an anti-aliased frame needs them).
         positions = [primitive.positions for primitive in self._primitives]
-        extent = np.array([np.min([p.min(axis=0) for p in positions], axis=0),
-                           np.max([p.max(axis=0) for p in positions], axis=0)])  # fmt: skip
+        extent = np.array(
+            [
+                np.min([p.min(axis=0) for p in positions], axis=0),
+                np.max([p.max(axis=0) for p in positions], axis=0),
+            ]
+        )
         corners = extent[np.indices((2, 2, 2)).reshape(3, -1).T, [0, 1, 2]]
         pixels = project_px(self.camera, corners, self.width, self.height)
         if np.isnan(pixels).any():

@@ -56,8 +56,9 @@ class CameraPath:
     def __post_init__(self) -> None:
         eye, target = np.asarray(self.eye_m, float), np.asarray(self.target_m, float)
         if eye.ndim != 2 or eye.shape[1] != 3 or eye.shape != target.shape:
-            raise ValueError(f"A camera path needs (n, 3) eyes and targets, not {eye.shape} "
-                             f"and {target.shape}.")  # fmt: skip
+            raise ValueError(
+                f"A camera path needs (n, 3) eyes and targets, not {eye.shape} and {target.shape}."
+            )
         object.__setattr__(self, "eye_m", eye)
         object.__setattr__(self, "target_m", target)
 
@@ -66,8 +67,9 @@ class CameraPath:
 
     def at(self, frame: int) -> CameraPreset:
         """Return the camera of one frame."""
-        return CameraPreset(self.name, tuple(self.eye_m[frame]), tuple(self.target_m[frame]),
-                            self.yfov_deg)  # fmt: skip
+        return CameraPreset(
+            self.name, tuple(self.eye_m[frame]), tuple(self.target_m[frame]), self.yfov_deg
+        )
 
     def take(self, frames) -> "CameraPath":
         """Return the path of some frames (a slice or indices)."""

@@ -48,11 +48,20 @@ def _h264_writer(path: Path, width: int, height: int, rate_hz: float, crf: int):
             # At CRF 18 "veryfast" keeps a signing clip at 42 dB PSNR (0.5 dB
             # under "medium"), writes smaller files of these flat-shaded
             # frames, and encodes in 40 % less time beside the renderer.
-            "-crf", str(crf), "-preset", "veryfast",
-            "-movflags", "+faststart", "-fflags", "+bitexact",
-            "-flags:v", "+bitexact", "-map_metadata", "-1",
+            "-crf",
+            str(crf),
+            "-preset",
+            "veryfast",
+            "-movflags",
+            "+faststart",
+            "-fflags",
+            "+bitexact",
+            "-flags:v",
+            "+bitexact",
+            "-map_metadata",
+            "-1",
         ],
-    )  # fmt: skip
+    )
 
 
 def write_mp4(

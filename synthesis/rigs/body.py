@@ -100,9 +100,16 @@ def _arm(side: str) -> tuple[list[JointSpec], list[Dof]]:
         if dof.name in _FOREARM_PLACEMENT:
             continue
         dofs.append(
-            Dof(p + dof.name, p + dof.joint, dof.axis, dof.sign, dof.min_deg, dof.max_deg,
-                dof.literature)
-        )  # fmt: skip
+            Dof(
+                p + dof.name,
+                p + dof.joint,
+                dof.axis,
+                dof.sign,
+                dof.min_deg,
+                dof.max_deg,
+                dof.literature,
+            )
+        )
     return joints, dofs
 
 
@@ -152,8 +159,9 @@ class BodyModel(Rig):
             [index.get(f"{side}_{name}", -1) for name in HandModel(side).dof_names], dtype=np.intp
         )
 
-    def with_hand(self, dofs_rad: np.ndarray, side: str, hand_dofs_rad: np.ndarray,
-                  digits_only: bool = False) -> np.ndarray:  # fmt: skip
+    def with_hand(
+        self, dofs_rad: np.ndarray, side: str, hand_dofs_rad: np.ndarray, digits_only: bool = False
+    ) -> np.ndarray:
         """Return body DOF vectors with one hand set from hand-model DOF vectors.
 
         With *digits_only* the forearm twist and the wrist keep their values (an arm

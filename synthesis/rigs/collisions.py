@@ -83,8 +83,10 @@ def finger_intersections(
     depths = overlap_depths_m(model, dofs_rad)
     names = _pairs(model)[3]
     frames, pairs = np.nonzero(depths > tolerance_m)
-    found = [Intersection(int(f), *names[p], float(depths[f, p]))
-             for f, p in zip(frames, pairs, strict=True)]  # fmt: skip
+    found = [
+        Intersection(int(f), *names[p], float(depths[f, p]))
+        for f, p in zip(frames, pairs, strict=True)
+    ]
     return sorted(found, key=lambda hit: (hit.frame, -hit.depth_m))
 
 
@@ -146,7 +148,9 @@ def overlap_depths_m(model: HandModel, dofs_rad: np.ndarray) -> np.ndarray:
     first, second, radii, _ = _pairs(model)
     positions = model.pose(np.atleast_2d(dofs_rad)).positions_m
     distance = segment_distances(
-        positions[:, first[:, 0]], positions[:, first[:, 1]],
-        positions[:, second[:, 0]], positions[:, second[:, 1]],
-    )  # fmt: skip
+        positions[:, first[:, 0]],
+        positions[:, first[:, 1]],
+        positions[:, second[:, 0]],
+        positions[:, second[:, 1]],
+    )
     return radii - distance

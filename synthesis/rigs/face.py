@@ -96,8 +96,10 @@ def face_dofs() -> tuple[Dof, ...]:
         for name, joint, axis, sign, low, high in _SIDED_DOFS:
             dof = Dof(f"{side}_{name}", f"{side}_{joint}", axis, sign, low, high, f"{side}_{name}")
             dofs.append(mirror_dof(dof) if side == "left" else dof)
-    dofs += [Dof(name, joint, axis, sign, low, high, name)
-             for name, joint, axis, sign, low, high in _MIDLINE_DOFS]  # fmt: skip
+    dofs += [
+        Dof(name, joint, axis, sign, low, high, name)
+        for name, joint, axis, sign, low, high in _MIDLINE_DOFS
+    ]
     return tuple(dofs)
 
 
@@ -114,8 +116,12 @@ def is_face_dof(name: str) -> bool:
 def gaze_degrees(turn_deg: float, pitch_deg: float = 0.0) -> dict[str, float]:
     """Return both eyes' DOFs (degrees) for a gaze *turn_deg* toward the signer's left
     (negative: right) and *pitch_deg* down (negative: up)."""
-    return {"right_eye_turn": turn_deg, "left_eye_turn": -turn_deg,
-            "right_eye_pitch": pitch_deg, "left_eye_pitch": pitch_deg}  # fmt: skip
+    return {
+        "right_eye_turn": turn_deg,
+        "left_eye_turn": -turn_deg,
+        "right_eye_pitch": pitch_deg,
+        "left_eye_pitch": pitch_deg,
+    }
 
 
 def both(**degrees: float) -> dict[str, float]:
@@ -144,15 +150,28 @@ EXPRESSIONS = MappingProxyType(
         "spread lips": both(mouth_corner_out=3.5, mouth_corner_up=1.5),
         # Corners up and the cheeks lifting the lower lids, the jaw just open (issue 52:
         # HAPPY as spread lips and a squint barely moved the human's face).
-        "smile": {**both(mouth_corner_up=4.0, mouth_corner_out=1.5, lower_lid_raise=12),
-                  "jaw_open": 2.0},
-        "rounded lips (OO)": {**both(mouth_corner_out=-2.2), "jaw_open": 3.0,
-                              "upper_lip_forward": 6.0, "lower_lip_forward": 6.0},
-        "pursed lips (MM)": {**both(mouth_corner_out=-1.5), "upper_lip_forward": 3.0,
-                             "lower_lip_forward": 3.0, "jaw_open": -1.0},
+        "smile": {
+            **both(mouth_corner_up=4.0, mouth_corner_out=1.5, lower_lid_raise=12),
+            "jaw_open": 2.0,
+        },
+        "rounded lips (OO)": {
+            **both(mouth_corner_out=-2.2),
+            "jaw_open": 3.0,
+            "upper_lip_forward": 6.0,
+            "lower_lip_forward": 6.0,
+        },
+        "pursed lips (MM)": {
+            **both(mouth_corner_out=-1.5),
+            "upper_lip_forward": 3.0,
+            "lower_lip_forward": 3.0,
+            "jaw_open": -1.0,
+        },
         "CHA": {"jaw_open": 12.0, **both(mouth_corner_out=1.5, brow_raise=2)},
         "TH": {"jaw_open": 2.5, "tongue_out": 4.5, "lower_lip_forward": 1.0},
-        "puffed cheeks": {**both(cheek_puff=4.0, mouth_corner_out=-1.0),
-                          "upper_lip_forward": 2.0, "lower_lip_forward": 2.0},
+        "puffed cheeks": {
+            **both(cheek_puff=4.0, mouth_corner_out=-1.0),
+            "upper_lip_forward": 2.0,
+            "lower_lip_forward": 2.0,
+        },
     }
-)  # fmt: skip
+)

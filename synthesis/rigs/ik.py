@@ -130,8 +130,9 @@ def solve_arm(
     shoulder = pose.positions_m[:, index(p + "shoulder")]
     clavicle = quat_to_matrix(pose.quaternions[:, index(p + "clavicle")])
     to_target = wrist - shoulder
-    distance = np.clip(np.linalg.norm(to_target, axis=1), abs(upper - fore) + 1e-4,
-                       upper + fore - 1e-4)[:, None]  # fmt: skip
+    distance = np.clip(
+        np.linalg.norm(to_target, axis=1), abs(upper - fore) + 1e-4, upper + fore - 1e-4
+    )[:, None]
     n = _unit(to_target)
     swivel = np.broadcast_to(np.asarray(swivel_rad, dtype=float), (n_keys,))[:, None]
     swing = _swing(n, swivel, side)
@@ -162,8 +163,9 @@ _BETTER_RAD = np.radians(10.0)
 _MISSED_RAD = np.radians(20.0)
 
 
-def hand_turn_error(body: BodyModel, dofs_rad: np.ndarray, side: str,
-                    hand_rotation: np.ndarray) -> np.ndarray:  # fmt: skip
+def hand_turn_error(
+    body: BodyModel, dofs_rad: np.ndarray, side: str, hand_rotation: np.ndarray
+) -> np.ndarray:
     """Return the angle (rad, (n,)) between the wrists' world frames and *hand_rotation*."""
     pose = body.pose(np.atleast_2d(dofs_rad))
     found = quat_to_matrix(pose.quaternions[:, body.skeleton.index(f"{side}_wrist")])
@@ -172,8 +174,14 @@ def hand_turn_error(body: BodyModel, dofs_rad: np.ndarray, side: str,
     return np.arccos(np.clip(cosine, -1.0, 1.0))
 
 
-def solve_arm_turning(body: BodyModel, dofs_rad: np.ndarray, side: str, wrist_m: np.ndarray,
-                      hand_rotation: np.ndarray, swivel_rad) -> np.ndarray:  # fmt: skip
+def solve_arm_turning(
+    body: BodyModel,
+    dofs_rad: np.ndarray,
+    side: str,
+    wrist_m: np.ndarray,
+    hand_rotation: np.ndarray,
+    swivel_rad,
+) -> np.ndarray:
     """Return :func:`solve_arm`'s DOFs (n, n_dofs), but where the joint limits keep a key's
     hand from turning as asked with its swivel, with the elbow where it turns closest.
 

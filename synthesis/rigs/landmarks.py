@@ -17,15 +17,25 @@ LANDMARK_JOINTS = (
     "thumb_mcp",
     "thumb_ip",
     "thumb_tip",
-    *(f"{finger}_{joint}" for finger in ("index", "middle", "ring", "pinky")
-      for joint in ("mcp", "pip", "dip", "tip")),
-)  # fmt: skip
+    *(
+        f"{finger}_{joint}"
+        for finger in ("index", "middle", "ring", "pinky")
+        for joint in ("mcp", "pip", "dip", "tip")
+    ),
+)
 # MediaPipe's own names for the landmarks, in order.
 LANDMARK_NAMES = (
-    "WRIST", "THUMB_CMC", "THUMB_MCP", "THUMB_IP", "THUMB_TIP",
-    *(f"{finger}_{joint}" for finger in ("INDEX_FINGER", "MIDDLE_FINGER", "RING_FINGER", "PINKY")
-      for joint in ("MCP", "PIP", "DIP", "TIP")),
-)  # fmt: skip
+    "WRIST",
+    "THUMB_CMC",
+    "THUMB_MCP",
+    "THUMB_IP",
+    "THUMB_TIP",
+    *(
+        f"{finger}_{joint}"
+        for finger in ("INDEX_FINGER", "MIDDLE_FINGER", "RING_FINGER", "PINKY")
+        for joint in ("MCP", "PIP", "DIP", "TIP")
+    ),
+)
 PALM_CENTRE = (0, 5, 9, 13, 17)
 # Engine world (x right, y up, z to the viewer) → MediaPipe (x right, y down, z away).
 _TO_MEDIAPIPE = np.array([1.0, -1.0, -1.0])
@@ -37,8 +47,9 @@ def to_mediapipe(points: np.ndarray) -> np.ndarray:
     return np.asarray(points, dtype=np.float64) * _TO_MEDIAPIPE
 
 
-def landmarks(model: HandModel, dofs_rad: np.ndarray,
-              bone_scale: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
+def landmarks(
+    model: HandModel, dofs_rad: np.ndarray, bone_scale: np.ndarray | None = None
+) -> np.ndarray:
     """Return landmarks (21, 3) for a DOF vector, or (n_frames, 21, 3) for (n_frames, n_dofs).
 
     *bone_scale* (n_joints,) as :meth:`synthesis.rigs.rig.Rig.pose` takes it.

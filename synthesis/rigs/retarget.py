@@ -61,10 +61,13 @@ def _same_skeleton(source, target) -> bool:
     """
     if len(source) != len(target) or not np.array_equal(source.parents, target.parents):
         return False
-    named = all(a.name == b.name or (a.is_end_site and b.is_end_site)
-                for a, b in zip(source.joints, target.joints, strict=True))  # fmt: skip
-    return named and np.allclose(source.offsets * source.metres_per_unit,
-                                 target.offsets * target.metres_per_unit, atol=1e-6)  # fmt: skip
+    named = all(
+        a.name == b.name or (a.is_end_site and b.is_end_site)
+        for a, b in zip(source.joints, target.joints, strict=True)
+    )
+    return named and np.allclose(
+        source.offsets * source.metres_per_unit, target.offsets * target.metres_per_unit, atol=1e-6
+    )
 
 
 def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> Pose:
@@ -83,12 +86,24 @@ def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> P
         )
     rest_values = np.zeros((1, source_skeleton.channel_count))
     source_rest = forward_kinematics(Motion(source_skeleton, rest_values, 1.0))
-    return transfer_pose(forward_kinematics(motion), source_rest, source_skeleton.parents,
-                         pairs, target.parents, rig.pose(rig.neutral()))  # fmt: skip
+    return transfer_pose(
+        forward_kinematics(motion),
+        source_rest,
+        source_skeleton.parents,
+        pairs,
+        target.parents,
+        rig.pose(rig.neutral()),
+    )
 
 
-def transfer_pose(source: Pose, source_rest: Pose, source_parents: np.ndarray,
-                  pairs: dict[int, int], parents: np.ndarray, rest: Pose) -> Pose:  # fmt: skip
+def transfer_pose(
+    source: Pose,
+    source_rest: Pose,
+    source_parents: np.ndarray,
+    pairs: dict[int, int],
+    parents: np.ndarray,
+    rest: Pose,
+) -> Pose:
     """Return a skeleton's global transforms (n_frames, …) following *source*'s.
 
     *pairs* maps each target joint to its source joint; *source_rest* and *rest* (one

@@ -167,14 +167,16 @@ class Rig:
                 f"{', '.join(theirs[:4])}…; expected {', '.join(mine[:4])}…)."
             )
         matrix, rest_q = self._angle_map
-        rest = Rotation.from_quat(np.broadcast_to(rest_q, (motion.n_frames, *rest_q.shape))
-                                  .reshape(-1, 4))  # fmt: skip
+        rest = Rotation.from_quat(
+            np.broadcast_to(rest_q, (motion.n_frames, *rest_q.shape)).reshape(-1, 4)
+        )
         local = Rotation.from_quat(motion.local_quaternions().reshape(-1, 4))
         angles = euler_angles(rest.inv() * local, "ZXY").reshape(motion.n_frames, -1, 3)
         # ZXY angles name each rotation twice, (z, x, y) and (z + π, π − x, y + π); the
         # decomposition keeps |x| ≤ 90°, but a finger flexes further. Take the smaller.
-        other = np.stack([angles[..., 0] + np.pi, np.pi - angles[..., 1],
-                          angles[..., 2] + np.pi], axis=-1)  # fmt: skip
+        other = np.stack(
+            [angles[..., 0] + np.pi, np.pi - angles[..., 1], angles[..., 2] + np.pi], axis=-1
+        )
         other = (other + np.pi) % (2 * np.pi) - np.pi
         smaller = np.abs(other).sum(axis=-1) < np.abs(angles).sum(axis=-1)
         angles = np.where(smaller[..., None], other, angles)

@@ -66,8 +66,9 @@ class KeySolver:
                 dofs[self.names.index(f"{joint}_{name}")] += np.radians(value) * weight
         for name, value in head_deg.items():
             dofs[self.names.index(f"head_{name}")] += np.radians(value)
-        gaze = gaze_degrees(GAZE_SHARE * head_deg.get("rotation", 0.0),
-                            GAZE_SHARE * head_deg.get("flexion", 0.0))  # fmt: skip
+        gaze = gaze_degrees(
+            GAZE_SHARE * head_deg.get("rotation", 0.0), GAZE_SHARE * head_deg.get("flexion", 0.0)
+        )
         for name, value in gaze.items():
             dofs[self.names.index(name)] += np.radians(value)
         return dofs
@@ -90,8 +91,9 @@ class KeySolver:
             rotations = np.stack([hand_frame(p, f) for p, f in zip(palms, fingers, strict=True)])
             swivels = np.array([h.swivel_rad for h in hands])
             solved = solve_arm_turning(self.body, solved, side, targets, rotations, swivels)
-            solved = self.body.with_hand(solved, side, np.stack([h.shape_rad for h in hands]),
-                                         digits_only=True)  # fmt: skip
+            solved = self.body.with_hand(
+                solved, side, np.stack([h.shape_rad for h in hands]), digits_only=True
+            )
         return dofs + (solved - posed)
 
     def trunks(self, keys: list[Key]) -> np.ndarray:
@@ -154,8 +156,9 @@ class KeySolver:
         """Return the automated spine and clavicle DOFs (n_keys, n_dofs) from the targets."""
         right = np.stack([k.hands["right"].at_m for k in keys])
         left = np.stack([k.hands["left"].at_m for k in keys])
-        motion = spine_motion(right, left, self.shoulders["right"], self.shoulders["left"],
-                              self.params)  # fmt: skip
+        motion = spine_motion(
+            right, left, self.shoulders["right"], self.shoulders["left"], self.params
+        )
         out = np.zeros((len(keys), len(self.names)))
         for joint, angles in motion.spine_angles(self.params).items():
             for column, name in enumerate(("flexion", "side_bend", "rotation")):

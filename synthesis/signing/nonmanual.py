@@ -103,9 +103,14 @@ def parse_markers(entries) -> dict[str, Marker]:
                 raise NonmanualError(f"{where}: unknown head angle {swing.get('angle')!r}.")
             oscillation = (dof, float(swing.get("deg", 8.0)), float(swing.get("hz", 2.0)))
         markers[str(name)] = Marker(
-            str(name), str(entry.get("label", name)), face, head, oscillation,
-            float(entry.get("onset_ms", 150.0)), float(entry.get("offset_ms", 200.0)),
-        )  # fmt: skip
+            str(name),
+            str(entry.get("label", name)),
+            face,
+            head,
+            oscillation,
+            float(entry.get("onset_ms", 150.0)),
+            float(entry.get("offset_ms", 200.0)),
+        )
     return markers
 
 

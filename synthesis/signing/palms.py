@@ -32,8 +32,7 @@ class KeyMiss:
     miss_m: float
 
 
-def key_misses(text: str, library: SignLibrary | None = None,
-               spine: bool = True) -> list[KeyMiss]:  # fmt: skip
+def key_misses(text: str, library: SignLibrary | None = None, spine: bool = True) -> list[KeyMiss]:
     """Return every key's palm and wrist misses for the glosses of *text* (right-handed)."""
     keys, _ = timeline(parse_glosses(text), library or default_library())
     solver = KeySolver(BodyModel("right"), SpineParams())
@@ -48,6 +47,5 @@ def key_misses(text: str, library: SignLibrary | None = None,
         for key, normal, place, target, wanted in solved:
             cosine = np.clip(normal @ wanted / np.linalg.norm(wanted), -1.0, 1.0)
             miss = np.linalg.norm(place - target)
-            misses.append(KeyMiss(key.ms, side, float(np.degrees(np.arccos(cosine))),
-                                  float(miss)))  # fmt: skip
+            misses.append(KeyMiss(key.ms, side, float(np.degrees(np.arccos(cosine))), float(miss)))
     return misses

@@ -149,8 +149,7 @@ def _spelled_keys(token: str, library: SignLibrary, rest: dict, t: float) -> lis
     for character in token.split("-"):
         hand = library.hand("right", {**spelling, "shape": character}, token)
         pose = {"right": hand, "left": rest["left"]}
-        keys += [Key(t, pose, {}, {}),
-                 Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]  # fmt: skip
+        keys += [Key(t, pose, {}, {}), Key(t + float(spelling.get("hold_ms", 110)), pose, {}, {})]
         t = keys[-1].ms + float(spelling.get("transition_ms", 110))
     return keys
 
@@ -170,8 +169,9 @@ def _sign_keys(sign, rest: dict, t: float) -> list[Key]:
     return keys
 
 
-def timeline(glosses, library: SignLibrary,
-              gaps_ms=None) -> tuple[list[Key], list[tuple[float, float]]]:  # fmt: skip
+def timeline(
+    glosses, library: SignLibrary, gaps_ms=None
+) -> tuple[list[Key], list[tuple[float, float]]]:
     """Return the sentence's keys in time order, holds written out as repeated keys, and
     each token's first and last key (ms).
 
@@ -179,8 +179,9 @@ def timeline(glosses, library: SignLibrary,
     ``transition_ms`` by default).
     """
     if gaps_ms is not None and len(gaps_ms) != len(glosses) - 1:
-        raise SignError(f"{len(glosses)} signs have {len(glosses) - 1} transitions, "
-                        f"not {len(gaps_ms)}.")  # fmt: skip
+        raise SignError(
+            f"{len(glosses)} signs have {len(glosses) - 1} transitions, not {len(gaps_ms)}."
+        )
     gaps = list(gaps_ms) if gaps_ms is not None else [library.transition_ms] * (len(glosses) - 1)
     rest = {side: library.hand(side, library.rest, "rest") for side in ("right", "left")}
     keys = [Key(0.0, dict(rest), {}, {}), Key(REST_HOLD_MS, dict(rest), {}, {})]
@@ -193,8 +194,9 @@ def timeline(glosses, library: SignLibrary,
         else:
             keys += _sign_keys(library.sign(token), rest, t)
         tokens_ms.append((keys[first].ms, keys[-1].ms))
-        t = keys[-1].ms + (gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps)
-                           else library.transition_ms)  # fmt: skip
+        t = keys[-1].ms + (
+            gaps[len(tokens_ms) - 1] if len(tokens_ms) <= len(gaps) else library.transition_ms
+        )
     keys += [Key(t, dict(rest), {}, {}), Key(t + REST_HOLD_MS, dict(rest), {}, {})]
     return keys, tokens_ms
 
@@ -285,8 +287,18 @@ def synthesize(
         rng = np.random.default_rng(options.seed)
         dofs = dofs + options.liveliness.sample(body, count, options.rate_hz, rng)
     lively = body.clip(dofs)
-    return Sentence(body, lively, automated, options.rate_hz, times_s, glosses, tracks, blinks,
-                    np.array(tokens_ms).reshape(-1, 2) / 1000.0, lively - quiet)  # fmt: skip
+    return Sentence(
+        body,
+        lively,
+        automated,
+        options.rate_hz,
+        times_s,
+        glosses,
+        tracks,
+        blinks,
+        np.array(tokens_ms).reshape(-1, 2) / 1000.0,
+        lively - quiet,
+    )
 
 
 def _tracks(glosses, spans, tokens_ms, library: SignLibrary) -> tuple[Track, ...]:
@@ -299,6 +311,7 @@ def _tracks(glosses, spans, tokens_ms, library: SignLibrary) -> tuple[Track, ...
         if span.marker not in library.nonmanuals:
             known = ", ".join(sorted(library.nonmanuals))
             raise SignError(f"Unknown non-manual signal {span.marker!r} (known: {known}).")
-        tracks.append(Track(span.marker, tokens_ms[span.first][0], tokens_ms[span.last][1],
-                            span.intensity))  # fmt: skip
+        tracks.append(
+            Track(span.marker, tokens_ms[span.first][0], tokens_ms[span.last][1], span.intensity)
+        )
     return tuple(sorted(tracks, key=lambda track: (track.start_ms, track.marker)))

@@ -9,8 +9,11 @@ import numpy as np
 
 from synthesis.signing.sentence import SPINE_JOINTS, Sentence
 
-ANGLES = (("flexion", "forward bend"), ("side_bend", "side bend (to the left +)"),
-          ("rotation", "twist (right shoulder forward +)"))  # fmt: skip
+ANGLES = (
+    ("flexion", "forward bend"),
+    ("side_bend", "side bend (to the left +)"),
+    ("rotation", "twist (right shoulder forward +)"),
+)
 
 
 def torso_angles(sentence: Sentence) -> dict[str, np.ndarray]:

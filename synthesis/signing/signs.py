@@ -32,8 +32,13 @@ DIRECTIONS = {
     "left": (-1.0, 0.0, 0.0),
 }
 # Hand DOFs a handshape sets: the digits; the wrist and forearm follow the orientation.
-_PLACEMENT = ("forearm_tilt_side", "forearm_tilt_forward", "forearm_twist", "wrist_deviation",
-              "wrist_flexion")  # fmt: skip
+_PLACEMENT = (
+    "forearm_tilt_side",
+    "forearm_tilt_forward",
+    "forearm_twist",
+    "wrist_deviation",
+    "wrist_flexion",
+)
 KEYED_DOFS = ("flexion", "side_bend", "rotation")
 
 
@@ -135,8 +140,11 @@ class SignLibrary:
 def _direction(value, side: str, where: str) -> np.ndarray:
     if isinstance(value, str):
         inward = "left" if side == "right" else "right"
-        named = {**DIRECTIONS, "in": DIRECTIONS[inward],
-                 "out": DIRECTIONS["right" if side == "right" else "left"]}  # fmt: skip
+        named = {
+            **DIRECTIONS,
+            "in": DIRECTIONS[inward],
+            "out": DIRECTIONS["right" if side == "right" else "left"],
+        }
         if value not in named:
             raise SignError(f"{where}: unknown direction {value!r}.")
         return np.array(named[value])
@@ -174,9 +182,15 @@ def parse_library(data) -> SignLibrary:
         nonmanuals = parse_markers(data.get("nonmanuals"))
     except (NonmanualError, TypeError, ValueError, AttributeError) as error:
         raise SignError(f"Non-manual signals: {error}") from None
-    library = SignLibrary({}, data.get("rest") or {}, data.get("spelling") or {},
-                          float(data.get("transition_ms", 200)), shapes,
-                          dict(data.get("locations") or {}), nonmanuals)  # fmt: skip
+    library = SignLibrary(
+        {},
+        data.get("rest") or {},
+        data.get("spelling") or {},
+        float(data.get("transition_ms", 200)),
+        shapes,
+        dict(data.get("locations") or {}),
+        nonmanuals,
+    )
     for gloss, entry in (data.get("signs") or {}).items():
         _add_sign(library, str(gloss).upper(), entry or {})
     return library
@@ -204,8 +218,9 @@ def _add_sign(library: SignLibrary, gloss: str, entry: dict) -> None:
 
 def _sign_key(library: SignLibrary, key: dict, where: str) -> SignKey:
     """Return one key of a sign: its hands, time, hold and spine and head angles."""
-    hands = {side: library.hand(side, key[side], where)
-             for side in ("right", "left") if side in key}  # fmt: skip
+    hands = {
+        side: library.hand(side, key[side], where) for side in ("right", "left") if side in key
+    }
     for part in ("spine", "head"):
         unknown = set(key.get(part) or {}) - set(KEYED_DOFS)
         if unknown:

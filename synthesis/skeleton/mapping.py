@@ -44,13 +44,28 @@ def _side_names(side: str, cap: str, short: str) -> dict[str, dict[str, str]]:
         },
     }
     digit_names = {
-        "humanik": {"thumb": "Thumb", "index": "Index", "middle": "Middle", "ring": "Ring",
-                    "pinky": "Pinky"},
-        "xsens": {"thumb": "First", "index": "Second", "middle": "Third", "ring": "Fourth",
-                  "pinky": "Fifth"},
-        "blender": {"thumb": "thumb", "index": "f_index", "middle": "f_middle",
-                    "ring": "f_ring", "pinky": "f_pinky"},
-    }  # fmt: skip
+        "humanik": {
+            "thumb": "Thumb",
+            "index": "Index",
+            "middle": "Middle",
+            "ring": "Ring",
+            "pinky": "Pinky",
+        },
+        "xsens": {
+            "thumb": "First",
+            "index": "Second",
+            "middle": "Third",
+            "ring": "Fourth",
+            "pinky": "Fifth",
+        },
+        "blender": {
+            "thumb": "thumb",
+            "index": "f_index",
+            "middle": "f_middle",
+            "ring": "f_ring",
+            "pinky": "f_pinky",
+        },
+    }
     xsens_segments = {"thumb": ("CMC", "MCP", "IP", "Tip"), "finger": ("MCP", "PIP", "DIP", "Tip")}
     for digit in ("thumb", *_DIGITS_FINGERS):
         joints = _THUMB_JOINTS if digit == "thumb" else _FINGER_JOINTS
@@ -67,24 +82,49 @@ def _side_names(side: str, cap: str, short: str) -> dict[str, dict[str, str]]:
 
 def _tables() -> dict[str, dict[str, str]]:
     trunk = {
-        "humanik": {"hips": "Hips", "spine_lower": "Spine", "spine_middle": "Spine1",
-                    "spine_upper": "Spine2", "neck": "Neck", "head": "Head"},
-        "xsens": {"hips": "Pelvis", "spine_lower": "L3", "spine_middle": "T12",
-                  "spine_upper": "T8", "neck": "Neck", "head": "Head"},
-        "blender": {"hips": "spine", "spine_lower": "spine.001", "spine_middle": "spine.002",
-                    "spine_upper": "spine.003", "neck": "spine.004", "head": "spine.006"},
-    }  # fmt: skip
+        "humanik": {
+            "hips": "Hips",
+            "spine_lower": "Spine",
+            "spine_middle": "Spine1",
+            "spine_upper": "Spine2",
+            "neck": "Neck",
+            "head": "Head",
+        },
+        "xsens": {
+            "hips": "Pelvis",
+            "spine_lower": "L3",
+            "spine_middle": "T12",
+            "spine_upper": "T8",
+            "neck": "Neck",
+            "head": "Head",
+        },
+        "blender": {
+            "hips": "spine",
+            "spine_lower": "spine.001",
+            "spine_middle": "spine.002",
+            "spine_upper": "spine.003",
+            "neck": "spine.004",
+            "head": "spine.006",
+        },
+    }
     for side, cap, short in (("right", "Right", "R"), ("left", "Left", "L")):
         for convention, names in _side_names(side, cap, short).items():
             trunk[convention].update(names)
     # The CMU database's ASF/AMC converted to BVH: HumanIK's arms, but a spine of
     # LowerBack, Spine, Spine1 and a neck of Neck (on Spine1, zero length) and Neck1.
     trunk["cmu"] = {
-        "hips": "Hips", "spine_lower": "LowerBack", "spine_middle": "Spine",
-        "spine_upper": "Spine1", "neck": "Neck1", "head": "Head",
-        **{k: v for k, v in trunk["humanik"].items() if k.endswith(
-            ("clavicle", "shoulder", "elbow", "wrist"))},
-    }  # fmt: skip
+        "hips": "Hips",
+        "spine_lower": "LowerBack",
+        "spine_middle": "Spine",
+        "spine_upper": "Spine1",
+        "neck": "Neck1",
+        "head": "Head",
+        **{
+            k: v
+            for k, v in trunk["humanik"].items()
+            if k.endswith(("clavicle", "shoulder", "elbow", "wrist"))
+        },
+    }
     # Our own BVH files use the canonical names themselves; a hand alone drops the side.
     trunk["signstudy"] = {name: name for name in trunk["humanik"]}
     trunk["signstudy-hand"] = {

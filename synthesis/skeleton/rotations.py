@@ -89,12 +89,18 @@ def quat_to_matrix(q: np.ndarray) -> np.ndarray:
     wx, wy, wz = w * x, w * y, w * z
     matrix = np.stack(
         (
-            1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy),
-            2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx),
-            2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy),
+            1 - 2 * (yy + zz),
+            2 * (xy - wz),
+            2 * (xz + wy),
+            2 * (xy + wz),
+            1 - 2 * (xx + zz),
+            2 * (yz - wx),
+            2 * (xz - wy),
+            2 * (yz + wx),
+            1 - 2 * (xx + yy),
         ),
         axis=-1,
-    )  # fmt: skip
+    )
     return matrix.reshape((*matrix.shape[:-1], 3, 3))
 
 

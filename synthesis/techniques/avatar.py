@@ -30,8 +30,9 @@ def _raw(values) -> tuple[tuple[str, float], ...]:
 
 
 def _look(values) -> Look:
-    return Look(values["avatar"], values["body"], values["skin_tone"], _raw(values),
-                values["avatar_file"])  # fmt: skip
+    return Look(
+        values["avatar"], values["body"], values["skin_tone"], _raw(values), values["avatar_file"]
+    )
 
 
 def _apply(build: Build) -> Build:
@@ -49,19 +50,28 @@ def _apply(build: Build) -> Build:
 
 def _check(values) -> None:
     raw = _raw(values)
-    if values["avatar_file"] and (values["avatar"] != "human" or values["body"] != DEFAULT_PRESET
-                                  or values["skin_tone"] != DEFAULT_SKIN_TONE or raw):  # fmt: skip
-        raise ClipError("avatar_file films the clip with its own avatar: leave avatar, body, "
-                        "skin_tone and the macro values at their defaults.")  # fmt: skip
+    if values["avatar_file"] and (
+        values["avatar"] != "human"
+        or values["body"] != DEFAULT_PRESET
+        or values["skin_tone"] != DEFAULT_SKIN_TONE
+        or raw
+    ):
+        raise ClipError(
+            "avatar_file films the clip with its own avatar: leave avatar, body, "
+            "skin_tone and the macro values at their defaults."
+        )
     if values["avatar"] == "simple" and (
         values["body"] != DEFAULT_PRESET or values["skin_tone"] != DEFAULT_SKIN_TONE or raw
     ):
-        raise ClipError("The simple avatar has one body and skin tone; body, skin_tone and "
-                        "the macro values choose the human avatar's.")  # fmt: skip
+        raise ClipError(
+            "The simple avatar has one body and skin tone; body, skin_tone and "
+            "the macro values choose the human avatar's."
+        )
     if raw and values["body"] != CUSTOM:
         given = ", ".join(f"body_{name}" for name, _ in raw)
-        raise ClipError(f"{given} shape a body only when body is {CUSTOM}; "
-                        f"{values['body']} is a preset.")  # fmt: skip
+        raise ClipError(
+            f"{given} shape a body only when body is {CUSTOM}; {values['body']} is a preset."
+        )
 
 
 def _summary(values) -> str:

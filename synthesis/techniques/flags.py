@@ -39,10 +39,11 @@ def add_technique_flags(command: argparse.ArgumentParser, kind: str) -> None:
             elif parameter.type == "file":
                 options.update(type=str, metavar="FILE")
             else:
-                options.update(type=int if parameter.type == "int" else float,
-                               metavar=parameter.units.upper() or "N")  # fmt: skip
-            group.add_argument(_flag(parameter.name), help=help_text.replace("%", "%%"),
-                               **options)  # fmt: skip
+                options.update(
+                    type=int if parameter.type == "int" else float,
+                    metavar=parameter.units.upper() or "N",
+                )
+            group.add_argument(_flag(parameter.name), help=help_text.replace("%", "%%"), **options)
 
 
 def technique_values(args: argparse.Namespace) -> dict:
@@ -63,6 +64,7 @@ def techniques_help() -> str:
     for technique in REGISTRY.techniques:
         kinds = ", ".join(sorted(technique.kinds))
         names = ", ".join(p.name for p in technique.parameters)
-        lines.append(f"  {technique.name:<11} {technique.label} [{kinds}; {technique.source}]: "
-                     f"{names}")  # fmt: skip
+        lines.append(
+            f"  {technique.name:<11} {technique.label} [{kinds}; {technique.source}]: {names}"
+        )
     return "\n".join(lines)

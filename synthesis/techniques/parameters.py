@@ -97,8 +97,13 @@ class Parameter:
 
     def schema(self) -> dict:
         """Return this parameter as a JSON Schema property (the study file's schema)."""
-        kind = {"choice": "string", "bool": "boolean", "int": "integer", "float": "number",
-                "file": "string"}[self.type]  # fmt: skip
+        kind = {
+            "choice": "string",
+            "bool": "boolean",
+            "int": "integer",
+            "float": "number",
+            "file": "string",
+        }[self.type]
         schema: dict[str, Any] = {"type": kind, "default": self.default, "description": self.help}
         if self.choices:
             schema["enum"] = list(self.choices)

@@ -18,15 +18,27 @@ from synthesis.techniques.parameters import ClipError, Parameter
 VIEWS = ("hand", "upper-body")
 
 REQUEST_PARAMETERS = (
-    Parameter("view", "choice", "hand", "Camera and avatar: the hand close-up or the upper body.",
-              choices=VIEWS, labels={"hand": "hand close-up", "upper-body": "upper body"}),
+    Parameter(
+        "view",
+        "choice",
+        "hand",
+        "Camera and avatar: the hand close-up or the upper body.",
+        choices=VIEWS,
+        labels={"hand": "hand close-up", "upper-body": "upper body"},
+    ),
     Parameter("side", "choice", "right", "The signer's dominant hand.", choices=("right", "left")),
     Parameter("width", "int", 640, "Clip width.", minimum=16, maximum=3840, units="px"),
     Parameter("height", "int", 480, "Clip height.", minimum=16, maximum=2160, units="px"),
     Parameter("rate_hz", "float", 60.0, "Frame rate.", minimum=1, maximum=240, units="Hz"),
-    Parameter("seed", "int", 0, "Seed of the item's performance and noise (shared by its "
-              "conditions).", minimum=0, maximum=2**63 - 1),
-)  # fmt: skip
+    Parameter(
+        "seed",
+        "int",
+        0,
+        "Seed of the item's performance and noise (shared by its conditions).",
+        minimum=0,
+        maximum=2**63 - 1,
+    ),
+)
 FIELDS = tuple(p.name for p in REQUEST_PARAMETERS)
 
 
@@ -95,8 +107,12 @@ class ClipRequest:
 
     def to_dict(self) -> dict:
         """Return the request as plain JSON values."""
-        return {"kind": self.kind, "text": self.text, "parameters": dict(self.parameters),
-                **{name: getattr(self, name) for name in FIELDS}}  # fmt: skip
+        return {
+            "kind": self.kind,
+            "text": self.text,
+            "parameters": dict(self.parameters),
+            **{name: getattr(self, name) for name in FIELDS},
+        }
 
     def files(self) -> list[Path]:
         """Return the files the techniques read (their content shapes the clip)."""
@@ -194,8 +210,16 @@ def avatar_and_camera(view: str, side: str, look=None, width: int = 640, height:
     return avatar, camera
 
 
-def filming(view: str, side: str, motion, rate_hz: float, width: int, height: int,
-            word: str | None = None, look=None):  # fmt: skip
+def filming(
+    view: str,
+    side: str,
+    motion,
+    rate_hz: float,
+    width: int,
+    height: int,
+    word: str | None = None,
+    look=None,
+):
     """Return the avatar of *view* (in *look*) and the camera that films *motion* (DOF
     vectors or a Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`)
     at the scale that fits every letter of *word* (so all conditions of a word share it)
@@ -214,24 +238,47 @@ def filming(view: str, side: str, motion, rate_hz: float, width: int, height: in
         if word:
             shapes = [letter(c, side) for c in word_letters(word)]
             # A J's or Z's path keys too: the camera keeps a path in view from one place.
-            letters = np.vstack([s.dofs_rad if s.path_rad is None else s.path_rad
-                                 for s in shapes] + [rest_pose(side)[None]])  # fmt: skip
-        camera = follow_hand(avatar, motion, camera, rate_hz, width, height,
-                             scale_poses=letters, rest_pose=rest_pose(side))  # fmt: skip
+            letters = np.vstack(
+                [s.dofs_rad if s.path_rad is None else s.path_rad for s in shapes]
+                + [rest_pose(side)[None]]
+            )
+        camera = follow_hand(
+            avatar,
+            motion,
+            camera,
+            rate_hz,
+            width,
+            height,
+            scale_poses=letters,
+            rest_pose=rest_pose(side),
+        )
     return avatar, camera
 
 
 def film(request: ClipRequest, build: Build):
     """Return the avatar and camera that film *build*'s motion as *request* asks."""
     word = request.text if request.kind == "word" else None
-    return filming(request.view, request.side, build.motion, request.rate_hz, request.width,
-                   request.height, word, build.look)  # fmt: skip
+    return filming(
+        request.view,
+        request.side,
+        build.motion,
+        request.rate_hz,
+        request.width,
+        request.height,
+        word,
+        build.look,
+    )
 
 
 def render_request(
-    request: ClipRequest, out: str | Path, poster: str | Path | None = None,
-    progress=None, workers: int = 1, build: Build | None = None, filmed=None,
-):  # fmt: skip
+    request: ClipRequest,
+    out: str | Path,
+    poster: str | Path | None = None,
+    progress=None,
+    workers: int = 1,
+    build: Build | None = None,
+    filmed=None,
+):
     """Render *request* to an MP4 at *out* (and a poster PNG); return the video's facts.
 
     *build* is the request's motion and *filmed* its (avatar, camera), when the caller
@@ -242,6 +289,14 @@ def render_request(
     build = build or build_motion(request)
     avatar, camera = filmed or film(request, build)
     return render_clip(
-        avatar, build.motion, camera, out, request.rate_hz, poster=poster, width=request.width,
-        height=request.height, progress=progress, workers=workers,
-    )  # fmt: skip
+        avatar,
+        build.motion,
+        camera,
+        out,
+        request.rate_hz,
+        poster=poster,
+        width=request.width,
+        height=request.height,
+        progress=progress,
+        workers=workers,
+    )

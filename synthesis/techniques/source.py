@@ -78,8 +78,10 @@ def _check(values) -> None:
             "the word (--recording FILE.bvh)."
         )
     if values["recording"] and values["source"] != "recording":
-        raise ClipError(f"recording is set but source is {values['source']!r}: set source "
-                        "to 'recording' or leave recording empty.")  # fmt: skip
+        raise ClipError(
+            f"recording is set but source is {values['source']!r}: set source "
+            "to 'recording' or leave recording empty."
+        )
 
 
 def _apply(build: Build) -> Build:
@@ -89,12 +91,14 @@ def _apply(build: Build) -> Build:
     request, values = build.request, build.request.parameters
     if values["source"] == "simulated":
         # One performance per item, shared by its conditions: only the timing differs.
-        performance = Recording.simulate(request.text, request.seed, variable_model(values),
-                                         request.side, request.rate_hz)  # fmt: skip
+        performance = Recording.simulate(
+            request.text, request.seed, variable_model(values), request.side, request.rate_hz
+        )
         return build.but(performance=performance)
     if values["source"] == "recording":
-        return build.but(performance=Recording.read(values["recording"], request.text,
-                                                    request.side))  # fmt: skip
+        return build.but(
+            performance=Recording.read(values["recording"], request.text, request.side)
+        )
     return build
 
 

@@ -67,8 +67,11 @@ def word_timing(values, text: str, performance=None):
     if values["timing_file"]:
         return _read_timing_file(values["timing_file"], word)
     timing = values["timing"]
-    constant = {"hold_ms": values["hold_ms"], "last_hold_ms": values["last_hold_ms"],
-                "transition_ms": values["transition_ms"]}  # fmt: skip
+    constant = {
+        "hold_ms": values["hold_ms"],
+        "last_hold_ms": values["last_hold_ms"],
+        "transition_ms": values["transition_ms"],
+    }
     if timing == "mocap":
         # As performed: the holds only describe it, and a recording whose holds cannot
         # be found still plays (None).

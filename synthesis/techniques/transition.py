@@ -65,8 +65,9 @@ def _apply(build: Build) -> Build:
                 raise ClipError(str(error)) from None
         else:
             try:
-                dofs, _ = blend_sentence(build.request.text, build.options, build.library,
-                                         overlap_ms=fixed)  # fmt: skip
+                dofs, _ = blend_sentence(
+                    build.request.text, build.options, build.library, overlap_ms=fixed
+                )
             except ValueError as error:
                 raise ClipError(str(error)) from None
         return build.but(motion=np.asarray(dofs))

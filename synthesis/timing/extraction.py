@@ -283,10 +283,14 @@ def _moves_in_and_out(angles, velocity, anchors, rise: float) -> tuple[bool, boo
     """
     steps = np.linalg.norm(np.diff(angles[anchors], axis=0), axis=1)
     far = LEAD_DISTANCE * (float(np.median(steps)) if len(steps) else 0.0)
-    moves_in = (velocity[: anchors[0] + 1].max() >= velocity[anchors[0]] + rise
-                and np.linalg.norm(angles[0] - angles[anchors[0]]) > far)  # fmt: skip
-    moves_out = (velocity[anchors[-1] :].max() >= velocity[anchors[-1]] + rise
-                 and np.linalg.norm(angles[-1] - angles[anchors[-1]]) > far)  # fmt: skip
+    moves_in = (
+        velocity[: anchors[0] + 1].max() >= velocity[anchors[0]] + rise
+        and np.linalg.norm(angles[0] - angles[anchors[0]]) > far
+    )
+    moves_out = (
+        velocity[anchors[-1] :].max() >= velocity[anchors[-1]] + rise
+        and np.linalg.norm(angles[-1] - angles[anchors[-1]]) > far
+    )
     return bool(moves_in), bool(moves_out)
 
 
@@ -334,7 +338,6 @@ def _boundaries(
         # carry the moves, with the noise of two joint angles rather than of all of them.
         directions = [window[0] - poses[k], window[-1] - poses[k]]
         units = np.stack([d / max(np.linalg.norm(d), 1e-12) for d in directions], axis=1)
-        ta, td = fit_hold((window - poses[k]) @ units, before[k] is not None,
-                          after[k] is not None)  # fmt: skip
+        ta, td = fit_hold((window - poses[k]) @ units, before[k] is not None, after[k] is not None)
         bounds.append((lo + ta, lo + td))
     return bounds

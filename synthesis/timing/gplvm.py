@@ -24,8 +24,9 @@ class GplvmMissing(ImportError):
     """GPy, which fits the GPLVM, is not installed."""
 
 
-def embed(poses: np.ndarray, latent_dims: int = LATENT_DIMS,
-          max_iterations: int = MAX_ITERATIONS) -> np.ndarray:  # fmt: skip
+def embed(
+    poses: np.ndarray, latent_dims: int = LATENT_DIMS, max_iterations: int = MAX_ITERATIONS
+) -> np.ndarray:
     """Return the GPLVM's latent points (n, latent_dims) of *poses* (n, d), PCA-initialised."""
     try:
         import GPy

@@ -29,14 +29,25 @@ def timeline_figure(timings: dict[str, WordTiming]):
     for row, (condition, timing) in enumerate(timings.items()):
         colour = COLOURS.get(condition, "#555555")
         starts = timing.hold_starts_ms()
-        axes.broken_barh(list(zip(starts, timing.hold_ms, strict=True)), (row - 0.3, 0.6),
-                         facecolors=colour)  # fmt: skip
-        moves = [(s + h, t) for s, h, t in zip(starts, timing.hold_ms, timing.transition_ms,
-                                               strict=False)]  # fmt: skip
+        axes.broken_barh(
+            list(zip(starts, timing.hold_ms, strict=True)), (row - 0.3, 0.6), facecolors=colour
+        )
+        moves = [
+            (s + h, t)
+            for s, h, t in zip(starts, timing.hold_ms, timing.transition_ms, strict=False)
+        ]
         axes.broken_barh(moves, (row - 0.15, 0.3), facecolors=colour, alpha=0.3)
         for start, hold, name in zip(starts, timing.hold_ms, timing.letters, strict=True):
-            axes.text(start + hold / 2, row, name, ha="center", va="center", color="white",
-                      fontsize=8, fontweight="bold")  # fmt: skip
+            axes.text(
+                start + hold / 2,
+                row,
+                name,
+                ha="center",
+                va="center",
+                color="white",
+                fontsize=8,
+                fontweight="bold",
+            )
         axes.text(timing.total_ms + 20, row, f"{timing.total_ms:.0f} ms", va="center", fontsize=8)
     axes.set_yticks(range(len(timings)), list(timings))
     axes.invert_yaxis()
@@ -58,8 +69,11 @@ def trajectory_figure(motions: dict[str, np.ndarray], rate_hz: float, word: str)
 
     plt = pyplot()
     names = HandModel().dof_names
-    flexion = [i for i, name in enumerate(names) if name.endswith("_flexion")
-               and not name.startswith("wrist")]  # fmt: skip
+    flexion = [
+        i
+        for i, name in enumerate(names)
+        if name.endswith("_flexion") and not name.startswith("wrist")
+    ]
     figure, axes = plt.subplots(figsize=(8, 3.2))
     for condition, dofs in motions.items():
         times = np.arange(len(dofs)) / rate_hz

@@ -85,8 +85,7 @@ class Recording:
 
         Its holds are the simulation's own (known exactly), not extracted.
         """
-        motion, truth = simulate_recording(word, np.random.default_rng(seed), model, side,
-                                           rate_hz)  # fmt: skip
+        motion, truth = simulate_recording(word, np.random.default_rng(seed), model, side, rate_hz)
         metadata = {"rate_hz": rate_hz, "simulated": True, "seed": seed}
         timing = replace(truth, metadata=metadata)
         bounds = hold_times_s(timing, LEAD_MS)

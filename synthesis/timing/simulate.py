@@ -49,11 +49,14 @@ class CaptureNoise:
     def sample(self, n_frames: int, n_dofs: int, rate_hz: float, rng: np.random.Generator):
         """Return noise (n_frames, n_dofs) in radians."""
         total = np.zeros((n_frames, n_dofs))
-        for rms_deg, cutoff_hz in ((self.sensor_deg, self.sensor_hz),
-                                   (self.wander_deg, self.wander_hz)):  # fmt: skip
+        for rms_deg, cutoff_hz in (
+            (self.sensor_deg, self.sensor_hz),
+            (self.wander_deg, self.wander_hz),
+        ):
             if rms_deg > 0:
-                total += np.radians(rms_deg) * band_limited_noise(n_frames, n_dofs, cutoff_hz,
-                                                                  rate_hz, rng)  # fmt: skip
+                total += np.radians(rms_deg) * band_limited_noise(
+                    n_frames, n_dofs, cutoff_hz, rate_hz, rng
+                )
         return total
 
 

@@ -88,8 +88,12 @@ def hold_samples(holds: list[Annotation]) -> list[tuple[dict[str, str], float]]:
 
 
 # Seed 000 §4.2: leave-one-out on 304 recorded holds with 9 features (its best).
-PUBLISHED_HOLDS = {"holds": 304, "accuracy": 0.75, "mean_abs_error_ms": 13.82,
-                   "mean_difference_ms": 8.17}  # fmt: skip
+PUBLISHED_HOLDS = {
+    "holds": 304,
+    "accuracy": 0.75,
+    "mean_abs_error_ms": 13.82,
+    "mean_difference_ms": 8.17,
+}
 # Seed 000 §4.3: Huenerfauth's constant holds against the same 304 recorded holds, per hold:
 # mean |error| and mean recorded − predicted (negative: the constant model is slower).
 PUBLISHED_CONSTANT = {"mean_abs_error_ms": 170.9, "mean_difference_ms": -167.7}
@@ -201,8 +205,9 @@ def transition_distances(
     transitions: list[Annotation], metric: str = "rmsd", space: str = DEFAULT_SPACE
 ) -> np.ndarray:
     """Return each annotated transition's pose distance, from its letter to the next."""
-    return np.array([letter_distance(t.word[t.index], t.word[t.index + 1], metric, space)
-                     for t in transitions])  # fmt: skip
+    return np.array(
+        [letter_distance(t.word[t.index], t.word[t.index + 1], metric, space) for t in transitions]
+    )
 
 
 def train(
@@ -224,8 +229,9 @@ def train(
     samples = hold_samples(holds)
     classifier = HoldClassifier.fit(samples, features)
     times = np.array([t.duration_ms for t in transitions])
-    line = TransitionModel.fit(transition_distances(transitions, metric, space), times, metric,
-                               space)  # fmt: skip
+    line = TransitionModel.fit(
+        transition_distances(transitions, metric, space), times, metric, space
+    )
     report = TrainingReport(
         classifier.leave_one_out(samples), line, source, constant_ms=constant_hold_errors(samples)
     )

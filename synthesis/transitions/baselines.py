@@ -22,8 +22,12 @@ def hermite_points(p0, p1, t0, t1, s: np.ndarray) -> np.ndarray:
     """
     s = np.asarray(s, dtype=float)[:, None]
     p0, p1, t0, t1 = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (p0, p1, t0, t1))
-    return ((2 * s**3 - 3 * s**2 + 1) * p0 + (s**3 - 2 * s**2 + s) * t0
-            + (-2 * s**3 + 3 * s**2) * p1 + (s**3 - s**2) * t1)  # fmt: skip
+    return (
+        (2 * s**3 - 3 * s**2 + 1) * p0
+        + (s**3 - 2 * s**2 + s) * t0
+        + (-2 * s**3 + 3 * s**2) * p1
+        + (s**3 - s**2) * t1
+    )
 
 
 def _along(slope: float, length: float) -> np.ndarray:
@@ -32,8 +36,9 @@ def _along(slope: float, length: float) -> np.ndarray:
     return length * direction
 
 
-def simple_hermite_transition(v0: float, slope0: float, v1: float, slope1: float,
-                              n_frames: int, samples: int = 512) -> np.ndarray:  # fmt: skip
+def simple_hermite_transition(
+    v0: float, slope0: float, v1: float, slope1: float, n_frames: int, samples: int = 512
+) -> np.ndarray:
     """Return seed 001's *simple Hermite* over the gap's *n_frames* (§4.1).
 
     A 2-D Hermite curve in (frame, value) from the first sign's last frame to the second
@@ -42,8 +47,13 @@ def simple_hermite_transition(v0: float, slope0: float, v1: float, slope1: float
     sampled densely and read at the whole frames 1 … n.
     """
     length = (n_frames + 1) / 2
-    points = hermite_points([0.0, v0], [n_frames + 1.0, v1], _along(slope0, length),
-                            _along(slope1, length), np.linspace(0, 1, samples))  # fmt: skip
+    points = hermite_points(
+        [0.0, v0],
+        [n_frames + 1.0, v1],
+        _along(slope0, length),
+        _along(slope1, length),
+        np.linspace(0, 1, samples),
+    )
     frames, values = points[:, 0], points[:, 1]
     if np.any(np.diff(frames) <= 0):
         raise ValueError("The signs' slopes turn the curve back in time; shorten them.")

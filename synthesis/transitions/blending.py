@@ -20,8 +20,10 @@ def blend_offsets(lengths, overlap: int) -> np.ndarray:
     """
     lengths = np.asarray(lengths, dtype=int)
     if np.any(lengths < 2 * overlap):
-        raise ValueError(f"Every sign needs at least {2 * overlap} frames: an attack and a "
-                         f"decay of {overlap} each.")  # fmt: skip
+        raise ValueError(
+            f"Every sign needs at least {2 * overlap} frames: an attack and a "
+            f"decay of {overlap} each."
+        )
     return np.concatenate([[0], np.cumsum(lengths[:-1] - overlap)])
 
 

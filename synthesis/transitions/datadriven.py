@@ -94,8 +94,7 @@ def fit_entry(
             hermite = joined(skewed_hermite(curve, v0, v1, duration), slope_in[c], slope_out[c])
             out[:, c] = hermite.evaluate(frames)
         elif model == "bspline":
-            spline = join_bspline(skewed_spline(curve, v0, v1), slope_in[c], slope_out[c],
-                                  duration)  # fmt: skip
+            spline = join_bspline(skewed_spline(curve, v0, v1), slope_in[c], slope_out[c], duration)
             out[:, c] = spline(frames / duration)
         else:
             raise ValueError(f"A stored transition fits as 'hermite' or 'bspline', not {model!r}.")

@@ -121,8 +121,9 @@ def _directions(smoothed: np.ndarray, frames: np.ndarray) -> np.ndarray:
     return np.column_stack([np.ones_like(slope), slope]) / np.hypot(1.0, slope)[:, None]
 
 
-def grid_rmse(x: np.ndarray, y: np.ndarray, d0: np.ndarray, d1: np.ndarray, k0: np.ndarray,
-              k1: np.ndarray) -> np.ndarray:  # fmt: skip
+def grid_rmse(
+    x: np.ndarray, y: np.ndarray, d0: np.ndarray, d1: np.ndarray, k0: np.ndarray, k1: np.ndarray
+) -> np.ndarray:
     """Return the RMSE of the segment drawn with every tangent length pair (len(k0), len(k1)).
 
     Eq. A.8's curve, sampled densely, is read at the segment's frames; a pair whose
@@ -147,8 +148,9 @@ def grid_rmse(x: np.ndarray, y: np.ndarray, d0: np.ndarray, d1: np.ndarray, k0: 
     # one sorted array to search.
     span = 2.0 * (np.abs(cx).max() + np.abs(x).max() + 1.0)
     rows = np.arange(len(cx))[:, None]
-    found = np.searchsorted((cx + rows * span).ravel(), (x[None, :] + rows * span).ravel(),
-                            side="right").reshape(len(cx), -1)  # fmt: skip
+    found = np.searchsorted(
+        (cx + rows * span).ravel(), (x[None, :] + rows * span).ravel(), side="right"
+    ).reshape(len(cx), -1)
     index = np.clip(found - 1 - rows * SAMPLES, 0, SAMPLES - 2)
     xa, xb = cx[rows, index], cx[rows, index + 1]
     ya, yb = cy[rows, index], cy[rows, index + 1]
@@ -158,9 +160,13 @@ def grid_rmse(x: np.ndarray, y: np.ndarray, d0: np.ndarray, d1: np.ndarray, k0: 
 
 
 def fit_segment(
-    x: np.ndarray, y: np.ndarray, d0: np.ndarray, d1: np.ndarray, steps: int = TANGENT_STEPS,
+    x: np.ndarray,
+    y: np.ndarray,
+    d0: np.ndarray,
+    d1: np.ndarray,
+    steps: int = TANGENT_STEPS,
     coarse: int = COARSE_STRIDE,
-) -> tuple[np.ndarray, np.ndarray, float]:  # fmt: skip
+) -> tuple[np.ndarray, np.ndarray, float]:
     """Return the tangents (t0, t1) and RMSE of one segment's best fit (Eq. A.8–A.11).
 
     *x*, *y*: the segment's samples, first and last being its ends; *d0*, *d1*: unit

@@ -53,8 +53,9 @@ class Segmentation:
     def transitions(self) -> tuple[tuple[Segment, Segment, Segment], ...]:
         """Return each transition with the signs before and after it."""
         found = []
-        for before, middle, after in zip(self.segments, self.segments[1:], self.segments[2:],
-                                         strict=False):  # fmt: skip
+        for before, middle, after in zip(
+            self.segments, self.segments[1:], self.segments[2:], strict=False
+        ):
             if middle.kind == "transition" and before.kind == after.kind == "sign":
                 found.append((before, middle, after))
         return tuple(found)
@@ -80,9 +81,13 @@ def _segment(raw: dict, where: str) -> Segment:
     label = raw.get("label", "")
     if not isinstance(label, str):
         raise SegmentationError(f"{where}: the label is not text.")
-    return Segment(kind, _integer(raw["order"], f"{where}: order"),
-                   _integer(raw["start"], f"{where}: start"),
-                   _integer(raw["end"], f"{where}: end"), label)  # fmt: skip
+    return Segment(
+        kind,
+        _integer(raw["order"], f"{where}: order"),
+        _integer(raw["start"], f"{where}: start"),
+        _integer(raw["end"], f"{where}: end"),
+        label,
+    )
 
 
 def check_segmentation(segmentation: Segmentation, n_frames: int | None = None) -> Segmentation:
@@ -138,8 +143,9 @@ def _from_xml(text: str) -> list[Segmentation]:
         else:  # the seed's original layout: elements named by their sign
             name = element.tag
             raws = [_original(child) for child in element]
-        segments = tuple(_segment(raw, f"Sentence {name}, segment {i}")
-                         for i, raw in enumerate(raws, 1))  # fmt: skip
+        segments = tuple(
+            _segment(raw, f"Sentence {name}, segment {i}") for i, raw in enumerate(raws, 1)
+        )
         sentences.append(check_segmentation(Segmentation(name, segments)))
     return sentences
 
@@ -155,8 +161,13 @@ def _original(child) -> dict:
         kind = "rest"
     else:
         kind = None
-    return {"type": kind, "order": child.get("pos"), "start": child.get("start"),
-            "end": child.get("end"), "label": child.tag}  # fmt: skip
+    return {
+        "type": kind,
+        "order": child.get("pos"),
+        "start": child.get("start"),
+        "end": child.get("end"),
+        "label": child.tag,
+    }
 
 
 def _from_json(text: str) -> list[Segmentation]:
@@ -175,8 +186,9 @@ def _from_json(text: str) -> list[Segmentation]:
         for i, raw in enumerate(raws, 1):
             if not isinstance(raw, dict):
                 raise SegmentationError(f"Sentence {name}, segment {i}: not an object.")
-        segments = tuple(_segment(raw, f"Sentence {name}, segment {i}")
-                         for i, raw in enumerate(raws, 1))  # fmt: skip
+        segments = tuple(
+            _segment(raw, f"Sentence {name}, segment {i}") for i, raw in enumerate(raws, 1)
+        )
         sentences.append(check_segmentation(Segmentation(name, segments)))
     return sentences
 

@@ -11,8 +11,9 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 
-def skew_values(y: np.ndarray, x: np.ndarray, delta_total: float, v0: float,
-                v1: float) -> np.ndarray:  # fmt: skip
+def skew_values(
+    y: np.ndarray, x: np.ndarray, delta_total: float, v0: float, v1: float
+) -> np.ndarray:
     """Return ``y' = (y − y0)·ΔY + (Δv − (yN − y0)·ΔY)·x + v0`` (seed 001 Eq. 3.8).
 
     *y*: normalized values (n,), first y0 and last yN; *x*: normalized times (n,) from 0
@@ -24,8 +25,15 @@ def skew_values(y: np.ndarray, x: np.ndarray, delta_total: float, v0: float,
     return (y - y0) * delta_total + ((v1 - v0) - (y_n - y0) * delta_total) * x + v0
 
 
-def skew_tangents(tangents: np.ndarray, y0: float, y_n: float, delta_total: float,
-                  v0: float, v1: float, duration: float) -> np.ndarray:  # fmt: skip
+def skew_tangents(
+    tangents: np.ndarray,
+    y0: float,
+    y_n: float,
+    delta_total: float,
+    v0: float,
+    v1: float,
+    duration: float,
+) -> np.ndarray:
     """Return Hermite tangents [t_x, t_y] skewed like their curve (seed 001 Eq. 3.9–3.10).
 
     ``t_x' = t_x · t`` and ``t_y' = t_y·ΔY + (Δv − (yN − y0)·ΔY)·t_x``: the skew adds

@@ -43,8 +43,18 @@ def test_report_writes_every_output(tmp_path):
     data = json.loads((out / "results.json").read_text())
     pair = data["pairwise"]["pairs"][0]
     # results.json speaks the result objects' vocabulary (issue 39), the tables a reader's.
-    assert {"a", "b", "a_wins", "b_wins", "ties", "statistic", "pvalue",
-            "pvalue_one_sided_majority", "nobs", "apa"} <= set(pair)  # fmt: skip
+    assert {
+        "a",
+        "b",
+        "a_wins",
+        "b_wins",
+        "ties",
+        "statistic",
+        "pvalue",
+        "pvalue_one_sided_majority",
+        "nobs",
+        "apa",
+    } <= set(pair)
     assert {"condition", "shown", "chosen", "win_rate", "share", "sem"} <= set(
         data["pairwise"]["conditions"][0]
     )

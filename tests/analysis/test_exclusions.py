@@ -50,7 +50,10 @@ def test_filter_on_a_missing_column_is_named(table):
 def test_participants_are_listed_by_id_with_every_reason(table):
     _kept, report = apply_exclusions(table)
     assert report.excluded_participants == {
-        "P01": ["pilot"], "P02": ["attention_failed"], "P03": ["incomplete"]}  # fmt: skip
+        "P01": ["pilot"],
+        "P02": ["attention_failed"],
+        "P03": ["incomplete"],
+    }
 
 
 def _behaviour(frame):

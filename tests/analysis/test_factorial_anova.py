@@ -28,8 +28,12 @@ def test_every_effect_is_rs():
             continue
         ours = effects[name]
         assert (ours.df_num, ours.df_den) == (expected["df_num"], expected["df_den"])
-        for field, theirs in (("statistic", "F"), ("pvalue", "p"), ("pvalue_gg", "p_gg"),
-                              ("pvalue_hf", "p_hf")):  # fmt: skip
+        for field, theirs in (
+            ("statistic", "F"),
+            ("pvalue", "p"),
+            ("pvalue_gg", "p_gg"),
+            ("pvalue_hf", "p_hf"),
+        ):
             assert getattr(ours, field) == pytest.approx(expected[theirs], rel=1e-9), field
         if expected["df_num"] >= 2:
             assert ours.mauchly_w == pytest.approx(expected["mauchly_w"], rel=1e-9)

@@ -45,8 +45,9 @@ def _walk(mine, theirs, path: str):
     if isinstance(theirs, dict):
         for key, value in theirs.items():
             if not isinstance(value, str):
-                yield from _walk(mine.get(key) if isinstance(mine, dict) else None, value,
-                                 f"{path}.{key}")  # fmt: skip
+                yield from _walk(
+                    mine.get(key) if isinstance(mine, dict) else None, value, f"{path}.{key}"
+                )
     elif isinstance(theirs, list) and theirs and isinstance(theirs[0], dict):
         for entry in theirs:
             name = _identity(entry)

@@ -43,17 +43,43 @@ def _pairs(rows: list[dict]) -> dict:
 
 def test_every_statistic_has_a_table(written):
     out, names, _ = written
-    for name in ("pairs", "posthoc", "wilcoxon", "rating_conditions", "rating_comparisons",
-                 "rating_condition_comparisons", "intelligibility_conditions",
-                 "intelligibility_comparisons"):  # fmt: skip
+    for name in (
+        "pairs",
+        "posthoc",
+        "wilcoxon",
+        "rating_conditions",
+        "rating_comparisons",
+        "rating_condition_comparisons",
+        "intelligibility_conditions",
+        "intelligibility_comparisons",
+    ):
         assert {f"{name}.csv", f"{name}.md", f"{name}.tex"} <= set(names), name
     assert list(pd.read_csv(out / "posthoc.csv").columns) == [
-        "a", "b", "t", "df", "p", "p_adjusted", "dz", "dz_ci_low", "dz_ci_high",
-        "mean_difference", "ci_low", "ci_high", "apa",
-    ]  # fmt: skip
+        "a",
+        "b",
+        "t",
+        "df",
+        "p",
+        "p_adjusted",
+        "dz",
+        "dz_ci_low",
+        "dz_ci_high",
+        "mean_difference",
+        "ci_low",
+        "ci_high",
+        "apa",
+    ]
     assert list(pd.read_csv(out / "wilcoxon.csv").columns) == [
-        "a", "b", "V", "p", "p_adjusted", "method", "rank_biserial", "n", "apa",
-    ]  # fmt: skip
+        "a",
+        "b",
+        "V",
+        "p",
+        "p_adjusted",
+        "method",
+        "rank_biserial",
+        "n",
+        "apa",
+    ]
 
 
 def test_binomial_tests_match_r(written):
@@ -61,8 +87,10 @@ def test_binomial_tests_match_r(written):
     for expected in R["pairs"]:
         row = ours[(expected["a"], expected["b"])]
         assert (row["a_wins"], row["b_wins"], row["ties"]) == (
-            expected["a_wins"], expected["b_wins"], expected["ties"],
-        )  # fmt: skip
+            expected["a_wins"],
+            expected["b_wins"],
+            expected["ties"],
+        )
         assert row["p_two_sided"] == close(expected["p"], rel=TOLERANCE)
         assert row["p_adjusted"] == close(expected["p_adjusted"], rel=TOLERANCE)
 
@@ -110,11 +138,17 @@ def test_condition_comparisons_across_items_match_r(written, measure):
     ours = _pairs(_table(written[0], f"{name}_comparisons"))
     for expected in R[measure]["comparisons"]:
         row = ours[(expected["a"], expected["b"])]
-        for column, theirs in (("t", "t"), ("t_p", "p"), ("t_p_adjusted", "t_p_adjusted"),
-                               ("dz", "dz"), ("mean_difference", "mean_difference"),
-                               ("wilcoxon_V", "wilcoxon_V"), ("wilcoxon_p", "wilcoxon_p"),
-                               ("wilcoxon_p_adjusted", "wilcoxon_p_adjusted"),
-                               ("rank_biserial", "rank_biserial")):  # fmt: skip
+        for column, theirs in (
+            ("t", "t"),
+            ("t_p", "p"),
+            ("t_p_adjusted", "t_p_adjusted"),
+            ("dz", "dz"),
+            ("mean_difference", "mean_difference"),
+            ("wilcoxon_V", "wilcoxon_V"),
+            ("wilcoxon_p", "wilcoxon_p"),
+            ("wilcoxon_p_adjusted", "wilcoxon_p_adjusted"),
+            ("rank_biserial", "rank_biserial"),
+        ):
             assert row[column] == close(expected[theirs], rel=TOLERANCE), column
         assert (row["ci_low"], row["ci_high"]) == close(expected["ci"], rel=TOLERANCE)
         assert (row["dz_ci_low"], row["dz_ci_high"]) == close(expected["dz_ci"], abs=1e-7)
@@ -125,8 +159,10 @@ def test_report_names_conditions_by_label_and_keeps_the_keys(written):
     data = json.loads((out / "results.json").read_text())
     assert data["design"]["conditions"] == ["Bayesian timing", "Constant timing", "Motion capture"]
     assert data["design"]["condition_keys"] == {
-        "Bayesian timing": "bayes", "Constant timing": "ctl", "Motion capture": "mocap",
-    }  # fmt: skip
+        "Bayesian timing": "bayes",
+        "Constant timing": "ctl",
+        "Motion capture": "mocap",
+    }
     assert data["design"]["items"] == ["GUITAR", "MY-HOUSE", "TOY-CAR"]
     assert data["design"]["practice_items"] == ["HELLO"]
     html = (out / "report.html").read_text()
@@ -140,8 +176,11 @@ def test_report_html_prints_every_apa_line_and_no_placeholders(written):
     html = (out / "report.html").read_text()
     data = json.loads((out / "results.json").read_text())
     lines = [t["apa"] for t in data["pairwise"]["posthoc"] + data["pairwise"]["wilcoxon"]]
-    for name in ("rating_comparisons", "rating_condition_comparisons",
-                 "intelligibility_comparisons"):  # fmt: skip
+    for name in (
+        "rating_comparisons",
+        "rating_condition_comparisons",
+        "intelligibility_comparisons",
+    ):
         lines += [c["apa"] for c in data[name]]
     for line in lines:
         assert line.replace("<", "&lt;") in html, line

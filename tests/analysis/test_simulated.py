@@ -26,10 +26,18 @@ def rating_rows() -> pd.DataFrame:
     for condition, values in ((KEY, [4, 5, 4, 3]), ("Variable", [3, 3, 2, 4])):
         for participant, value in enumerate(values):
             row = dict.fromkeys(COLUMNS, "")
-            row.update(participant=f"R{participant}", study="fingerspelling", block="ratings",
-                       trial=f"rate-{condition}", item="GUITAR", kind="rating",
-                       condition_a=condition, question="natural", rating=str(value),
-                       condition_simulated=KEY if condition == KEY else "")  # fmt: skip
+            row.update(
+                participant=f"R{participant}",
+                study="fingerspelling",
+                block="ratings",
+                trial=f"rate-{condition}",
+                item="GUITAR",
+                kind="rating",
+                condition_a=condition,
+                question="natural",
+                rating=str(value),
+                condition_simulated=KEY if condition == KEY else "",
+            )
             rows.append(row)
     return pd.DataFrame(rows)
 
@@ -44,8 +52,9 @@ def test_checking_the_table_names_simulated_conditions_everywhere_they_appear():
 
 def test_a_condition_order_may_name_the_simulated_condition_by_its_key():
     table = check_responses(with_simulated_mocap(table_5_2_rows()))
-    options = ReportOptions(conditions=(KEY, "Variable", "Constant", "Normalized"),
-                            mixed_models=False)  # fmt: skip
+    options = ReportOptions(
+        conditions=(KEY, "Variable", "Constant", "Normalized"), mixed_models=False
+    )
     report = build_report(table, options)
     assert next(c.condition for c in report.pairwise.conditions) == LABEL
     assert report.design["simulated_conditions"] == [LABEL]
@@ -66,8 +75,17 @@ def test_every_output_of_the_command_line_report_says_simulated(tmp_path):
                 naming.append(path.name)
                 # every mention carries the label (LaTeX escapes nothing in it)
                 assert text.count(KEY) == text.count(LABEL), path.name
-    for name in ("results.json", "report.html", "pairs.csv", "pairs.tex", "pairs.md",
-                 "conditions.csv", "conditions.tex", "items.tex", "ratings.tex"):  # fmt: skip
+    for name in (
+        "results.json",
+        "report.html",
+        "pairs.csv",
+        "pairs.tex",
+        "pairs.md",
+        "conditions.csv",
+        "conditions.tex",
+        "items.tex",
+        "ratings.tex",
+    ):
         assert name in naming
     html = (out / "report.html").read_text()
     assert 'class="simulated"' in html and "not recorded human motion" in html

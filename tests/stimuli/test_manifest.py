@@ -35,8 +35,10 @@ def test_bad_specifications_are_named():
 
 
 def test_a_manifest_renders_the_study_again(tmp_path, renderable):
-    entries = [Entry(f"{t} × AB", ClipSpec("word", "AB", {"timing": t}, seed=3, **TINY))
-               for t in ("simple", "constant")]  # fmt: skip
+    entries = [
+        Entry(f"{t} × AB", ClipSpec("word", "AB", {"timing": t}, seed=3, **TINY))
+        for t in ("simple", "constant")
+    ]
     done, rendered = generate(entries, tmp_path / "clips")
     assert rendered == 2
     manifest = write_manifest(done, tmp_path / "manifest.json", study="demo")

@@ -63,8 +63,9 @@ def test_latin_square_needs_items_in_multiples_of_the_conditions():
 
 
 def test_practice_comes_first_and_attention_checks_last_and_neither_is_counted():
-    pages = plan_pages(spec(Design.BALANCED_PAIRS, practice_items=("EXAMPLE",), attention_checks=2,
-                            seed=4))  # fmt: skip
+    pages = plan_pages(
+        spec(Design.BALANCED_PAIRS, practice_items=("EXAMPLE",), attention_checks=2, seed=4)
+    )
     assert pages[0].practice and pages[0].item == "EXAMPLE"
     assert pages[0].condition_a != pages[0].condition_b
     checks = pages[-2:]
@@ -73,8 +74,9 @@ def test_practice_comes_first_and_attention_checks_last_and_neither_is_counted()
     assert (summary.pages, summary.practice_pages, summary.attention_checks) == (21, 1, 2)
     assert sum(summary.item_counts.values()) == 18
     # The same seed draws the same checks.
-    again = plan_pages(spec(Design.BALANCED_PAIRS, practice_items=("EXAMPLE",),
-                            attention_checks=2, seed=4))  # fmt: skip
+    again = plan_pages(
+        spec(Design.BALANCED_PAIRS, practice_items=("EXAMPLE",), attention_checks=2, seed=4)
+    )
     assert again == pages
 
 

@@ -45,16 +45,18 @@ class Attacker:
     def cookie(self, name: str) -> str | None:
         return next((c.value for c in self.jar if c.name == name), None)
 
-    def request(self, method: str, path: str, body: bytes | None = None,
-                headers: dict | None = None) -> Answer:  # fmt: skip
+    def request(
+        self, method: str, path: str, body: bytes | None = None, headers: dict | None = None
+    ) -> Answer:
         headers = {"Referer": self.base + "/", **(headers or {})}
         if self.address:
             headers["X-Forwarded-For"] = self.address
         token = self.cookie("csrftoken")
         if token and method == "POST":
             headers.setdefault("X-CSRFToken", token)
-        request = urllib.request.Request(self.base + path, data=body, method=method,
-                                         headers=headers)  # fmt: skip
+        request = urllib.request.Request(
+            self.base + path, data=body, method=method, headers=headers
+        )
         try:
             with self.opener.open(request, timeout=60) as response:
                 return Answer(response.status, dict(response.headers), response.read())
@@ -66,14 +68,16 @@ class Attacker:
 
     def post_json(self, path: str, data) -> Answer:
         body = data if isinstance(data, bytes) else json.dumps(data).encode()
-        return self.request("POST", path, body, {"Content-Type": "application/json",
-                                                 "Accept": "application/json"})  # fmt: skip
+        return self.request(
+            "POST", path, body, {"Content-Type": "application/json", "Accept": "application/json"}
+        )
 
     def post_form(self, path: str, fields: dict) -> Answer:
         token = self.cookie("csrftoken") or ""
         body = urllib.parse.urlencode({"csrfmiddlewaretoken": token, **fields}, doseq=True)
-        return self.request("POST", path, body.encode(),
-                            {"Content-Type": "application/x-www-form-urlencoded"})  # fmt: skip
+        return self.request(
+            "POST", path, body.encode(), {"Content-Type": "application/x-www-form-urlencoded"}
+        )
 
     def post_file(
         self,
@@ -87,11 +91,16 @@ class Attacker:
         boundary = "----signstudy-attack-boundary"
         parts = []
         for key, value in {"csrfmiddlewaretoken": self.cookie("csrftoken") or "", **fields}.items():
-            parts.append(f'--{boundary}\r\nContent-Disposition: form-data; name="{key}"\r\n\r\n'
-                         f"{value}\r\n".encode())  # fmt: skip
-        parts.append(f'--{boundary}\r\nContent-Disposition: form-data; name="{name}"; '
-                     f'filename="{filename}"\r\nContent-Type: application/zip\r\n\r\n'.encode()
-                     + content + b"\r\n")  # fmt: skip
+            parts.append(
+                f'--{boundary}\r\nContent-Disposition: form-data; name="{key}"\r\n\r\n'
+                f"{value}\r\n".encode()
+            )
+        parts.append(
+            f'--{boundary}\r\nContent-Disposition: form-data; name="{name}"; '
+            f'filename="{filename}"\r\nContent-Type: application/zip\r\n\r\n'.encode()
+            + content
+            + b"\r\n"
+        )
         parts.append(f"--{boundary}--\r\n".encode())
         content_type = f"multipart/form-data; boundary={boundary}"
         headers = {"Content-Type": content_type, **(headers or {})}
@@ -111,8 +120,12 @@ class Attacker:
         return match.group(1)
 
 
-def bundle(definition: dict, files: dict[str, bytes], extra: dict[str, bytes] | None = None,
-           compress: bool = True) -> bytes:  # fmt: skip
+def bundle(
+    definition: dict,
+    files: dict[str, bytes],
+    extra: dict[str, bytes] | None = None,
+    compress: bool = True,
+) -> bytes:
     """Return a study bundle zip of *definition* and its files (and *extra* members)."""
     buffer = io.BytesIO()
     method = zipfile.ZIP_DEFLATED if compress else zipfile.ZIP_STORED

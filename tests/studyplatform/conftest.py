@@ -33,8 +33,9 @@ def one_clip(renderable, tmp_path_factory):
     """Render one small real clip (the example word) once for the session."""
     from stimuli.clips import ClipSpec, render
 
-    spec = ClipSpec("word", "DOOR", {"timing": "constant"}, seed=1, width=96, height=72,
-                    rate_hz=20.0)  # fmt: skip
+    spec = ClipSpec(
+        "word", "DOOR", {"timing": "constant"}, seed=1, width=96, height=72, rate_hz=20.0
+    )
     return render(spec, tmp_path_factory.mktemp("clip"))
 
 

@@ -64,8 +64,9 @@ def test_import_form_reports_a_bad_file(page, live_server, researcher, tmp_path)
     expect(page.get_by_text("Not imported: Not a study definition")).to_be_visible()
 
 
-def test_stimuli_page_shows_progress_live(page, live_server, researcher, settings, tmp_path,
-                                          renderable):  # fmt: skip
+def test_stimuli_page_shows_progress_live(
+    page, live_server, researcher, settings, tmp_path, renderable
+):
     """The progress bar follows clips as a worker renders them, and names a failure."""
     from studyplatform.actions.stimuli import do_generate_stimuli
     from studyplatform.models import Stimulus, Study, Trial
@@ -154,8 +155,9 @@ def test_a_word_is_recorded_with_the_camera_and_a_file_uploaded(
         row = page.locator("tr", has=page.get_by_role("rowheader", name=words[1]))
         row.get_by_label("File").set_input_files(str(fbx))
         row.get_by_role("button", name="Upload").click()
-        expect(row.locator(".errornote")).to_contain_text("Cannot map this skeleton",
-                                                           timeout=60_000)  # fmt: skip
+        expect(row.locator(".errornote")).to_contain_text(
+            "Cannot map this skeleton", timeout=60_000
+        )
     page.screenshot(path=SCREENSHOTS / "admin-recordings-motion.png", full_page=True)
 
 

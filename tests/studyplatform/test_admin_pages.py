@@ -215,16 +215,24 @@ def test_new_inline_rows_come_after_the_others_unless_a_position_is_typed(spine)
     formset_class = inlineformset_factory(
         Question, AnswerOption, formset=PositionedFormSet, fields=("position", "value", "label")
     )
-    data = {"options-TOTAL_FORMS": str(len(existing) + 3),
-            "options-INITIAL_FORMS": str(len(existing))}  # fmt: skip
+    data = {
+        "options-TOTAL_FORMS": str(len(existing) + 3),
+        "options-INITIAL_FORMS": str(len(existing)),
+    }
     for index, option in enumerate(existing):
-        data |= {f"options-{index}-id": str(option.pk), f"options-{index}-position":
-                 str(option.position), f"options-{index}-value": str(option.value),
-                 f"options-{index}-label": option.label}  # fmt: skip
+        data |= {
+            f"options-{index}-id": str(option.pk),
+            f"options-{index}-position": str(option.position),
+            f"options-{index}-value": str(option.value),
+            f"options-{index}-label": option.label,
+        }
     new = [("0", "7", "Added first"), ("0", "8", "Added second"), ("-1", "9", "Put first")]
     for index, (position, value, label) in enumerate(new, len(existing)):
-        data |= {f"options-{index}-position": position, f"options-{index}-value": value,
-                 f"options-{index}-label": label}  # fmt: skip
+        data |= {
+            f"options-{index}-position": position,
+            f"options-{index}-value": value,
+            f"options-{index}-label": label,
+        }
     formset = formset_class(data, instance=question)
     assert formset.is_valid(), formset.errors
     formset.save()

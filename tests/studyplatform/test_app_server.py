@@ -32,18 +32,27 @@ def _database_url() -> str:
     settings = connection.settings_dict
     if connection.vendor == "sqlite":
         return f"sqlite:///{settings['NAME']}"
-    return (f"postgres://{settings['USER']}@{settings['HOST'] or '127.0.0.1'}:"
-            f"{settings['PORT'] or 5432}/{settings['NAME']}")  # fmt: skip
+    return (
+        f"postgres://{settings['USER']}@{settings['HOST'] or '127.0.0.1'}:"
+        f"{settings['PORT'] or 5432}/{settings['NAME']}"
+    )
 
 
 @pytest.fixture
 def server(tmp_path):
     """gunicorn on a free port over this test's database, with collected static files."""
     env = {k: v for k, v in os.environ.items() if not k.startswith(("SIGNSTUDY_", "CELERY_"))}
-    env.update(SIGNSTUDY_VAR_DIR=str(tmp_path), DATABASE_URL=_database_url(),
-               SIGNSTUDY_MEDIA_ROOT=str(tmp_path / "media"))  # fmt: skip
-    subprocess.run([sys.executable, "manage.py", "collectstatic", "--noinput", "-v0"], cwd=ROOT,
-                   env=env, check=True)  # fmt: skip
+    env.update(
+        SIGNSTUDY_VAR_DIR=str(tmp_path),
+        DATABASE_URL=_database_url(),
+        SIGNSTUDY_MEDIA_ROOT=str(tmp_path / "media"),
+    )
+    subprocess.run(
+        [sys.executable, "manage.py", "collectstatic", "--noinput", "-v0"],
+        cwd=ROOT,
+        env=env,
+        check=True,
+    )
     app = AppServer(env, workers=2, threads=4)
     app.media_root = tmp_path / "media"
     app.start()

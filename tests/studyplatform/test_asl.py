@@ -21,17 +21,27 @@ def media(settings, tmp_path):
 
 def _post(client, study, obj, field_name, name="consent.webm", data=WEBM):
     url = reverse("admin:studyplatform_study_asl", args=[study.pk])
-    return client.post(url, {
-        "content_type": ContentType.objects.get_for_model(obj).pk, "object_id": obj.pk,
-        "field_name": field_name, "video": SimpleUploadedFile(name, data, "video/webm"),
-    }, follow=True)  # fmt: skip
+    return client.post(
+        url,
+        {
+            "content_type": ContentType.objects.get_for_model(obj).pk,
+            "object_id": obj.pk,
+            "field_name": field_name,
+            "video": SimpleUploadedFile(name, data, "video/webm"),
+        },
+        follow=True,
+    )
 
 
 def test_every_text_participants_read_is_listed(spine):
     prompts = study_prompts(spine)
     where = {(p.obj._meta.model_name, p.field_name) for p in prompts}
-    assert {("study", "consent_text"), ("question", "text"), ("answeroption", "label"),
-            ("study", "thank_you_text")} <= where  # fmt: skip
+    assert {
+        ("study", "consent_text"),
+        ("question", "text"),
+        ("answeroption", "label"),
+        ("study", "thank_you_text"),
+    } <= where
     assert ("block", "title") not in where  # headings: the signed intro carries them
     assert all(p.text for p in prompts)  # empty texts need no video
     assert not any(p.video for p in prompts)
@@ -65,8 +75,9 @@ def test_replacing_a_video_deletes_the_old_file_unless_a_copy_still_uses_it(
 
     def attach(study, name):
         with django_capture_on_commit_callbacks(execute=True):
-            return do_attach_asl_video(study, kind, study.pk, "consent_text",
-                                       SimpleUploadedFile(name, WEBM, "video/webm"))  # fmt: skip
+            return do_attach_asl_video(
+                study, kind, study.pk, "consent_text", SimpleUploadedFile(name, WEBM, "video/webm")
+            )
 
     original = attach(fingerspelling, "consent.webm")
     with django_capture_on_commit_callbacks(execute=True):
@@ -82,12 +93,19 @@ def test_replacing_a_video_deletes_the_old_file_unless_a_copy_still_uses_it(
 
 def test_bad_uploads_are_refused(client, alice, bob, fingerspelling, spine, media):
     client.force_login(alice)
-    not_video = _post(client, fingerspelling, fingerspelling, "consent_text", name="notes.txt",
-                      data=b"some notes")  # fmt: skip
+    not_video = _post(
+        client, fingerspelling, fingerspelling, "consent_text", name="notes.txt", data=b"some notes"
+    )
     assert "Not saved: “notes.txt” is not a video file (judged by its content)" in not_video.text
     # A page named as a video is judged by what it is, too (issue 33).
-    page = _post(client, fingerspelling, fingerspelling, "consent_text", name="consent.webm",
-                 data=b"\x1a\x45\xdf\xa3<html><script>alert(1)</script></html>")  # fmt: skip
+    page = _post(
+        client,
+        fingerspelling,
+        fingerspelling,
+        "consent_text",
+        name="consent.webm",
+        data=b"\x1a\x45\xdf\xa3<html><script>alert(1)</script></html>",
+    )
     assert "does not decode as a video" in page.text
     wrong_field = _post(client, fingerspelling, fingerspelling, "slug")
     assert "“slug” is not a text participants read" in wrong_field.text
@@ -128,8 +146,9 @@ def test_coverage_counts_only_texts_participants_meet(spine):
     assert "Never asked" not in texts and "Rate the clarity of the sentence." in texts
     preferred = Question.objects.get(study=spine, key="preferred")
     assert not preferred.allow_no_difference
-    assert not any(p.obj == preferred and p.field_name == "no_difference_label"
-                   for p in study_prompts(spine))  # fmt: skip
+    assert not any(
+        p.obj == preferred and p.field_name == "no_difference_label" for p in study_prompts(spine)
+    )
     assert unused.pk
 
 
@@ -137,9 +156,11 @@ def test_a_signed_template_signs_consent_in_every_study_it_is_attached_to(
     client, bob, spine, media
 ):
     template = SignedTemplate.objects.create(
-        owner=bob, kind=SignedTemplate.Kind.CONSENT, name="Lab consent",
+        owner=bob,
+        kind=SignedTemplate.Kind.CONSENT,
+        name="Lab consent",
         video=SimpleUploadedFile("consent.webm", WEBM, "video/webm"),
-    )  # fmt: skip
+    )
     spine.signed_templates.add(template)
     consent = next(p for p in study_prompts(spine) if p.field_name == "consent_text")
     assert consent.video == template and consent.from_template
@@ -157,5 +178,7 @@ def test_researchers_see_only_their_own_templates(client, alice, bob, media):
     page = client.get(reverse("admin:studyplatform_signedtemplate_changelist")).text
     assert "Bob&#x27;s next" not in page and "Bob's next" not in page
     client.force_login(bob)
-    assert "Bob&#x27;s next" in client.get(
-        reverse("admin:studyplatform_signedtemplate_changelist")).text  # fmt: skip
+    assert (
+        "Bob&#x27;s next"
+        in client.get(reverse("admin:studyplatform_signedtemplate_changelist")).text
+    )

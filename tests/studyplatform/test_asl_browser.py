@@ -55,9 +55,12 @@ def signed_spine(spine, bob, clips_dir, one_clip):
     for option in Question.objects.get(study=spine, key="clarity").options.all():
         _sign(spine, option, "label")
     template = SignedTemplate.objects.create(
-        owner=bob, kind=SignedTemplate.Kind.NEXT, name="Next (lab)", transcript="Next page",
+        owner=bob,
+        kind=SignedTemplate.Kind.NEXT,
+        name="Next (lab)",
+        transcript="Next page",
         video=SimpleUploadedFile("next.webm", tiny_webm(), "video/webm"),
-    )  # fmt: skip
+    )
     spine.signed_templates.add(template)
     return spine
 

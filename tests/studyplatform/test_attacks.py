@@ -49,9 +49,17 @@ def test_1_a_bundle_cannot_plant_a_page_or_a_script(live_server, fingerspelling,
     """A zip whose ASL "video" is HTML and "poster" is JavaScript is refused, whatever names."""
     js_name = hashlib.sha256(SCRIPT).hexdigest()[:32]
     html = f'<script src="/media/asl/{js_name}.js"></script>'.encode()
-    definition = _definition(fingerspelling, [{"target": ["study", None],
-                             "field_name": "description", "video": "asl/consent.html",
-                             "poster": "asl/consent.js"}])  # fmt: skip
+    definition = _definition(
+        fingerspelling,
+        [
+            {
+                "target": ["study", None],
+                "field_name": "description",
+                "video": "asl/consent.html",
+                "poster": "asl/consent.js",
+            }
+        ],
+    )
     researcher = Attacker(live_server.url)
     assert researcher.sign_in("bob", "pw-bob").status == 302
     researcher.get(IMPORT)
@@ -64,8 +72,12 @@ def test_1_a_bundle_cannot_plant_a_page_or_a_script(live_server, fingerspelling,
     assert not list(media.rglob("*.js")) and not list(media.rglob("*.html"))
 
 
-def test_1_a_planted_page_never_runs_for_a_superuser_in_chromium(server, browser, settings,  # noqa: F811
-                                                                 fingerspelling):  # fmt: skip
+def test_1_a_planted_page_never_runs_for_a_superuser_in_chromium(
+    server,  # noqa: F811 (the fixture imported above)
+    browser,
+    settings,
+    fingerspelling,
+):
     """Files put in media by any other way: not served (.html, .js), or served as what their
     extension says with a sandbox (a page saved as .webm), so no script runs.
 
@@ -102,9 +114,22 @@ def test_1_a_planted_page_never_runs_for_a_superuser_in_chromium(server, browser
 def _video(seconds: int = 4) -> bytes:
     import imageio_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-f", "lavfi",
-               "-i", f"testsrc=size=320x240:rate=25:duration={seconds}", "-c:v", "libvpx",
-               "-b:v", "800k", "-f", "webm", "pipe:1"]  # fmt: skip
+    command = [
+        imageio_ffmpeg.get_ffmpeg_exe(),
+        "-v",
+        "error",
+        "-f",
+        "lavfi",
+        "-i",
+        f"testsrc=size=320x240:rate=25:duration={seconds}",
+        "-c:v",
+        "libvpx",
+        "-b:v",
+        "800k",
+        "-f",
+        "webm",
+        "pipe:1",
+    ]
     return subprocess.run(command, capture_output=True, check=True).stdout
 
 
@@ -113,9 +138,13 @@ def _signed_page(participant) -> int:
 
 
 def _send(who: Attacker, token, number, take, data, offset, final=False, sha=None):
-    headers = {"Content-Type": "application/octet-stream", "Accept": "application/json",
-               "X-Upload-Take": take, "X-Upload-Offset": str(offset),
-               "X-Upload-Final": "1" if final else "0"}  # fmt: skip
+    headers = {
+        "Content-Type": "application/octet-stream",
+        "Accept": "application/json",
+        "X-Upload-Take": take,
+        "X-Upload-Offset": str(offset),
+        "X-Upload-Final": "1" if final else "0",
+    }
     if final:
         headers["X-Upload-Sha256"] = sha or hashlib.sha256(data).hexdigest()
     return who.request("POST", f"/p/{token}/{number}/signed/comments/", data, headers)
@@ -143,15 +172,32 @@ def test_2_a_resumed_upload_never_splices_a_discarded_take(at_signed_answer):
     assert _send(who, token, number, TAKE_1, take_1[:40_000], 0).json()["offset"] == 40_000
     # The participant records again; take 2's first chunk is lost; the client asks where
     # take 2 stands: nowhere. Sending take 2 from byte 40,000 is refused.
-    where = who.get(f"/p/{token}/{number}/signed/comments/?take={TAKE_2}",
-                    Accept="application/json")  # fmt: skip
+    where = who.get(
+        f"/p/{token}/{number}/signed/comments/?take={TAKE_2}", Accept="application/json"
+    )
     assert where.json() == {"offset": 0}
-    spliced = _send(who, token, number, TAKE_2, take_2[40_000:], 40_000, final=True,
-                    sha=hashlib.sha256(take_2).hexdigest())  # fmt: skip
+    spliced = _send(
+        who,
+        token,
+        number,
+        TAKE_2,
+        take_2[40_000:],
+        40_000,
+        final=True,
+        sha=hashlib.sha256(take_2).hexdigest(),
+    )
     assert spliced.status == 409 and spliced.json()["offset"] == 0
     # Under take 1's id, take 2's tail does not match what the browser says it sent.
-    forged = _send(who, token, number, TAKE_1, take_2[40_000:], 40_000, final=True,
-                   sha=hashlib.sha256(take_2).hexdigest())  # fmt: skip
+    forged = _send(
+        who,
+        token,
+        number,
+        TAKE_1,
+        take_2[40_000:],
+        40_000,
+        final=True,
+        sha=hashlib.sha256(take_2).hexdigest(),
+    )
     assert forged.status == 400 and "checksum" in forged.json()["error"]
     assert not Response.objects.filter(participant=participant).exclude(video="").exists()
     # Take 2 sent whole is saved as itself, and leaves no part behind.
@@ -165,10 +211,24 @@ def test_7_a_truncated_recording_is_refused(at_signed_answer):
     who, participant, number = at_signed_answer
     import imageio_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-f", "lavfi",
-               "-i", "testsrc=size=160x120:rate=15:duration=3", "-c:v", "libx264",
-               "-pix_fmt", "yuv420p", "-movflags", "+faststart+frag_keyframe+empty_moov",
-               "-f", "mp4", "pipe:1"]  # fmt: skip
+    command = [
+        imageio_ffmpeg.get_ffmpeg_exe(),
+        "-v",
+        "error",
+        "-f",
+        "lavfi",
+        "-i",
+        "testsrc=size=160x120:rate=15:duration=3",
+        "-c:v",
+        "libx264",
+        "-pix_fmt",
+        "yuv420p",
+        "-movflags",
+        "+faststart+frag_keyframe+empty_moov",
+        "-f",
+        "mp4",
+        "pipe:1",
+    ]
     mp4 = subprocess.run(command, capture_output=True, check=True).stdout
     for cut in (mp4[: len(mp4) // 3], tiny_webm()[: len(tiny_webm()) // 3]):
         refused = _send(who, participant.token, number, TAKE_1, cut, 0, final=True)
@@ -231,9 +291,17 @@ def _zero_member_zip(definition: dict, member: str, size: int) -> bytes:
 
 
 def test_5_a_zip_bomb_is_refused_with_flat_memory(live_server, fingerspelling, bob, media):
-    definition = _definition(fingerspelling, [{"target": ["study", None],
-                             "field_name": "description", "video": "asl/bomb.webm",
-                             "poster": ""}])  # fmt: skip
+    definition = _definition(
+        fingerspelling,
+        [
+            {
+                "target": ["study", None],
+                "field_name": "description",
+                "video": "asl/bomb.webm",
+                "poster": "",
+            }
+        ],
+    )
     bomb = _zero_member_zip(definition, "files/asl/bomb.webm", 1 << 30)
     assert len(bomb) < 2 << 20  # about a megabyte that unpacks to a gigabyte
     unnamed = _zero_member_zip(definition, "files/asl/other.bin", 1 << 20)
@@ -253,15 +321,23 @@ def test_5_a_zip_bomb_is_refused_with_flat_memory(live_server, fingerspelling, b
     assert not Study.objects.filter(slug__startswith="planted").exists()
 
 
-NULLABLE_NOT = ("description", "consent_text", "thank_you_text", "completion_code",
-                "redirect_url", "design")  # fmt: skip
+NULLABLE_NOT = (
+    "description",
+    "consent_text",
+    "thank_you_text",
+    "completion_code",
+    "redirect_url",
+    "design",
+)
 
 
 def test_6_no_crafted_request_gets_a_server_error(live_server, fingerspelling, bob, media):
     participant_http = Attacker(live_server.url)
     assert participant_http.get("/p/%00/").status == 400
-    assert participant_http.request("POST", f"/s/{fingerspelling.slug}/?a=%00",
-                                    b"consent=yes").status == 400  # fmt: skip
+    assert (
+        participant_http.request("POST", f"/s/{fingerspelling.slug}/?a=%00", b"consent=yes").status
+        == 400
+    )
     token = participant_http.enroll(fingerspelling.slug)
     events = f"/p/{token}/events/"
     nul = participant_http.post_json(
@@ -289,13 +365,16 @@ def test_6_no_crafted_request_gets_a_server_error(live_server, fingerspelling, b
     for field, value in crafted:
         definition = json.loads(json.dumps(base))
         definition["study"][field] = value
-        answer = researcher.post_file(IMPORT, {}, "definition", "d.json",
-                                      json.dumps(definition).encode())  # fmt: skip
+        answer = researcher.post_file(
+            IMPORT, {}, "definition", "d.json", json.dumps(definition).encode()
+        )
         assert answer.status == 400, (field, answer.status)
-    for change in (lambda d: d["conditions"][0].update(parameters=[1, 2]),
-                   lambda d: d["conditions"][0]["parameters"].update(rate_hz=int("9" * 4000)),
-                   lambda d: d["questions"][0]["options"][0].update(value=2**40),
-                   lambda d: d["questions"][0].update(min_value=5, max_value=1)):  # fmt: skip
+    for change in (
+        lambda d: d["conditions"][0].update(parameters=[1, 2]),
+        lambda d: d["conditions"][0]["parameters"].update(rate_hz=int("9" * 4000)),
+        lambda d: d["questions"][0]["options"][0].update(value=2**40),
+        lambda d: d["questions"][0].update(min_value=5, max_value=1),
+    ):
         definition = json.loads(json.dumps(base))
         change(definition)
         text = json.dumps(definition).encode()
@@ -327,9 +406,12 @@ def test_7_the_asl_page_names_no_python_internals(live_server, fingerspelling, a
     owner.sign_in("alice", "pw-alice")
     url = f"/admin/studyplatform/study/{fingerspelling.pk}/asl/"
     owner.get(url)
-    answer = owner.request("POST", url, b"content_type=x&object_id=1e9&field_name=text",
-                           {"Content-Type": "application/x-www-form-urlencoded",
-                            "Accept": "application/json"})  # fmt: skip
+    answer = owner.request(
+        "POST",
+        url,
+        b"content_type=x&object_id=1e9&field_name=text",
+        {"Content-Type": "application/x-www-form-urlencoded", "Accept": "application/json"},
+    )
     assert answer.status == 400
     assert answer.json()["error"] == "This text is not part of the study."
 

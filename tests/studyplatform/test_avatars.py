@@ -32,8 +32,13 @@ def _upload(owner, data: bytes, capture, name: str = "tiny.glb", stills: bool = 
 def test_an_uploaded_avatar_is_stored_reported_on_and_previewed(
     bob, settings, django_capture_on_commit_callbacks, renderable
 ):
-    avatar = _upload(bob, humanoid_glb(vrm=True, morphs=("browInnerUp",)),
-                     django_capture_on_commit_callbacks, "tiny.vrm", stills=True)  # fmt: skip
+    avatar = _upload(
+        bob,
+        humanoid_glb(vrm=True, morphs=("browInnerUp",)),
+        django_capture_on_commit_callbacks,
+        "tiny.vrm",
+        stills=True,
+    )
     assert avatar.status == Avatar.Status.READY, avatar.error
     assert avatar.name == "Tiny signer" and avatar.licence == "CC0"  # VRM meta's name
     assert avatar.file.name == f"avatars/{avatar.sha256}.glb"
@@ -131,15 +136,24 @@ def test_the_admin_uploads_an_avatar_and_names_a_refusal(
 ):
     client.force_login(bob)
     with django_capture_on_commit_callbacks(execute=False):
-        response = client.post("/admin/studyplatform/avatar/add/", {
-            "upload": SimpleUploadedFile("mine.glb", humanoid_glb()), "name": "Mine",
-            "licence": "CC0", "source": "",
-        })  # fmt: skip
+        response = client.post(
+            "/admin/studyplatform/avatar/add/",
+            {
+                "upload": SimpleUploadedFile("mine.glb", humanoid_glb()),
+                "name": "Mine",
+                "licence": "CC0",
+                "source": "",
+            },
+        )
     assert response.status_code == 302, response.content[:2000]
     assert Avatar.objects.get().name == "Mine"
-    response = client.post("/admin/studyplatform/avatar/add/", {
-        "upload": SimpleUploadedFile("bad.glb", humanoid_glb(skin=False)), "name": "Bad",
-        "licence": "CC0",
-    })  # fmt: skip
+    response = client.post(
+        "/admin/studyplatform/avatar/add/",
+        {
+            "upload": SimpleUploadedFile("bad.glb", humanoid_glb(skin=False)),
+            "name": "Bad",
+            "licence": "CC0",
+        },
+    )
     assert response.status_code == 400 and "has no skin" in response.text  # the form again
     assert Avatar.objects.count() == 1

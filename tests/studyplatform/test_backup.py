@@ -25,12 +25,19 @@ def _snapshot() -> dict:
     }
 
 
-def test_backup_and_restore_give_back_every_row_and_file(client, at_comments, fingerspelling,
-                                                         tmp_path, settings):  # fmt: skip
+def test_backup_and_restore_give_back_every_row_and_file(
+    client, at_comments, fingerspelling, tmp_path, settings
+):
     participant, number = at_comments
     assert _chunk(client, participant, number, tiny_webm(), 0, final=True).json()["saved"]
-    _save(client, participant, page=1, trial=participant.schedule[0]["trial"],
-          question="age", value="2")  # fmt: skip
+    _save(
+        client,
+        participant,
+        page=1,
+        trial=participant.schedule[0]["trial"],
+        question="age",
+        value="2",
+    )
     stimulus = tmp_path / "stimuli" / "clip.mp4"  # at_comments put MEDIA_ROOT at tmp_path
     stimulus.parent.mkdir()
     stimulus.write_bytes(b"a public clip")

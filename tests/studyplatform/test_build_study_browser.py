@@ -78,8 +78,11 @@ def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_report
     _sign_in(page, url)
     page.get_by_label("Title").fill("Timing from scratch")
     page.get_by_label("Slug").fill("timing-from-scratch")
-    _add_rows(page, "Condition", [{"key": "constant", "label": "Constant"},
-                                  {"key": "variable", "label": "Variable"}])  # fmt: skip
+    _add_rows(
+        page,
+        "Condition",
+        [{"key": "constant", "label": "Constant"}, {"key": "variable", "label": "Variable"}],
+    )
     _add_rows(page, "Item", [{"key": "CAT", "text": "CAT"}, {"key": "DOG", "text": "DOG"}])
     page.get_by_role("button", name="Save and continue editing").click()
     page.wait_for_load_state("load")

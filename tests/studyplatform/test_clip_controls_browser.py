@@ -28,10 +28,13 @@ def _tab_stops_to_next(page) -> list[str]:
     stops = []
     for _ in range(40):
         page.keyboard.press("Tab")
-        stops.append(page.evaluate(
-            "document.activeElement.closest('figure.clip') ? 'clip' : "
-            "document.activeElement.id || document.activeElement.name || "
-            "document.activeElement.className"))  # fmt: skip
+        stops.append(
+            page.evaluate(
+                "document.activeElement.closest('figure.clip') ? 'clip' : "
+                "document.activeElement.id || document.activeElement.name || "
+                "document.activeElement.className"
+            )
+        )
         if stops[-1] == "next-button":
             return stops
     raise AssertionError(f"Tab never reached Next: {stops}")
@@ -40,8 +43,10 @@ def _tab_stops_to_next(page) -> list[str]:
 def test_each_clip_is_one_tab_stop_played_and_scrubbed_with_keys(page, comparison_url):
     page.goto(comparison_url)
     _wait_ready(page)
-    assert page.evaluate("Array.from(document.querySelectorAll('video.stimulus'))"
-                         ".every(v => !v.controls && v.tabIndex === -1)")  # fmt: skip
+    assert page.evaluate(
+        "Array.from(document.querySelectorAll('video.stimulus'))"
+        ".every(v => !v.controls && v.tabIndex === -1)"
+    )
     # Skip link, Clip 1, Clip 2, the answers (one radio group), Previous, Next: the
     # browser's control bars took 5 stops per clip (16 Tabs to Next, issue 20).
     stops = _tab_stops_to_next(page)
@@ -55,8 +60,10 @@ def test_each_clip_is_one_tab_stop_played_and_scrubbed_with_keys(page, compariso
     page.wait_for_function("document.querySelector('video.stimulus').paused")
     # The arrow keys ask the clip to move (headless Chromium reports the test server's
     # clips as not seekable, so the position itself is not checked here).
-    page.evaluate("window._seeks = 0; document.querySelector('video.stimulus')"
-                  ".addEventListener('seeking', () => window._seeks++)")  # fmt: skip
+    page.evaluate(
+        "window._seeks = 0; document.querySelector('video.stimulus')"
+        ".addEventListener('seeking', () => window._seeks++)"
+    )
     page.keyboard.press("ArrowRight")
     page.wait_for_function("window._seeks === 1")
     expect(page.locator(".play-count").first).to_contain_text("paused at")
@@ -67,8 +74,9 @@ def test_each_clip_is_one_tab_stop_played_and_scrubbed_with_keys(page, compariso
 
 @pytest.mark.parametrize(("width", "height"), [(390, 460), (844, 390)])
 def test_two_clips_sit_side_by_side_on_a_phone(browser, comparison_url, width, height):
-    context = browser.new_context(viewport={"width": width, "height": height}, bypass_csp=True,
-                                  is_mobile=True, has_touch=True)  # fmt: skip
+    context = browser.new_context(
+        viewport={"width": width, "height": height}, bypass_csp=True, is_mobile=True, has_touch=True
+    )
     try:
         page = context.new_page()
         page.goto(comparison_url)

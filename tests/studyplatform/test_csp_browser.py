@@ -21,8 +21,10 @@ def strict_page(browser, _django_db_helper):
     context = browser.new_context(viewport={"width": 1280, "height": 900})
     page = context.new_page()
     page.violations = []
-    page.on("console", lambda msg: "Content Security Policy" in msg.text
-            and page.violations.append(msg.text))  # fmt: skip
+    page.on(
+        "console",
+        lambda msg: "Content Security Policy" in msg.text and page.violations.append(msg.text),
+    )
     page.on("pageerror", lambda error: page.violations.append(str(error)))
     yield page
     close_context(context)
@@ -46,8 +48,9 @@ def test_participant_and_admin_pages_run_under_the_policy(
     participant = Participant.objects.get()
     assert Response.objects.filter(participant=participant, question__key="age").exists()
 
-    page.context.add_cookies([{"name": "sessionid", "value": _session_of(alice),
-                               "url": live_server.url}])  # fmt: skip
+    page.context.add_cookies(
+        [{"name": "sessionid", "value": _session_of(alice), "url": live_server.url}]
+    )
     stimuli = reverse("admin:studyplatform_study_stimuli", args=[fingerspelling.pk])
     page.goto(live_server.url + stimuli)
     page.wait_for_selector("#stimuli-bar")

@@ -30,16 +30,19 @@ WORDS = ("CAT", "DOG", "BIRD", "FISH")
 def fresh(alice):
     """A study as a researcher starts one: two timing conditions, four words, a practice word."""
     study = Study.objects.create(owner=alice, slug="fresh", title="Fresh study")
-    Condition.objects.create(study=study, key="constant", label="Constant", position=1,
-                             parameters={"timing": "constant"})  # fmt: skip
-    Condition.objects.create(study=study, key="variable", label="Variable", position=2,
-                             parameters={"timing": "variable"})  # fmt: skip
+    Condition.objects.create(
+        study=study, key="constant", label="Constant", position=1, parameters={"timing": "constant"}
+    )
+    Condition.objects.create(
+        study=study, key="variable", label="Variable", position=2, parameters={"timing": "variable"}
+    )
     for position, word in enumerate(WORDS, 1):
         Item.objects.create(study=study, key=word, text=word, position=position)
     Item.objects.create(study=study, key="EXAMPLE", text="HELLO", is_practice=True, position=9)
     closing = Block.objects.create(study=study, key="closing", kind=Block.Kind.CLOSING, position=1)
-    comments = Question.objects.create(study=study, key="comments", kind="open", text="Comments?",
-                                       required=False)  # fmt: skip
+    comments = Question.objects.create(
+        study=study, key="comments", kind="open", text="Comments?", required=False
+    )
     trial = Trial.objects.create(study=study, block=closing, key="closing", kind="open")
     trial.questions.add(comments)
     return study
@@ -121,8 +124,9 @@ def test_only_a_draft_is_built_and_answered_pages_are_never_deleted(fresh):
     do_build_design(fresh, spec())
     participant = Participant.objects.create(study=fresh, is_pilot=True)
     trial = Trial.objects.filter(block__key="trials").first()
-    Response.objects.create(participant=participant, trial=trial, question=trial.questions.get(),
-                            chosen="constant")  # fmt: skip
+    Response.objects.create(
+        participant=participant, trial=trial, question=trial.questions.get(), chosen="constant"
+    )
     fresh.refresh_from_db()
     with pytest.raises(DesignRejected, match="have answers"):
         do_build_design(fresh, spec(Design.ALL_PAIRS), list(trial.questions.all()))
@@ -152,11 +156,17 @@ def test_the_builder_page_builds_from_ticked_boxes(fresh, client, alice):
     page = client.get(url)
     assert page.status_code == 200 and b"Design builder" in page.content
     ids = lambda model, **f: [o.pk for o in model.objects.filter(study=fresh, **f)]  # noqa: E731
-    response = client.post(url, {
-        "design": "balanced_pairs", "conditions": ids(Condition),
-        "items": ids(Item, is_practice=False), "practice_items": ids(Item, is_practice=True),
-        "attention_checks": "1", "randomize_order": "on",
-    })  # fmt: skip
+    response = client.post(
+        url,
+        {
+            "design": "balanced_pairs",
+            "conditions": ids(Condition),
+            "items": ids(Item, is_practice=False),
+            "practice_items": ids(Item, is_practice=True),
+            "attention_checks": "1",
+            "randomize_order": "on",
+        },
+    )
     assert response.status_code == 302
     summary = client.get(url).content.decode()
     assert 'id="summary-pages">7<' in summary and "Balanced" in summary
@@ -167,10 +177,15 @@ def test_the_builder_page_names_what_is_wrong(fresh, client, alice):
     client.force_login(alice)
     url = reverse("admin:studyplatform_study_design", args=[fresh.pk])
     three = [i.pk for i in Item.objects.filter(study=fresh, is_practice=False)][:3]
-    response = client.post(url, {
-        "design": "balanced_pairs", "conditions": [c.pk for c in fresh.conditions.all()],
-        "items": three, "attention_checks": "0",
-    })  # fmt: skip
+    response = client.post(
+        url,
+        {
+            "design": "balanced_pairs",
+            "conditions": [c.pk for c in fresh.conditions.all()],
+            "items": three,
+            "attention_checks": "0",
+        },
+    )
     assert response.status_code == 200
     assert "even number of items; got 3" in response.content.decode()
     assert not Trial.objects.filter(block__key="trials").exists()
@@ -246,6 +261,12 @@ def test_a_study_with_identical_clips_is_not_opened_unless_intended(same_twice, 
 
 def _no_inline_changes() -> dict:
     """Return management forms saying the post changes no conditions, items, trials…."""
-    prefixes = ("conditions", "items", "questions", "blocks", "trials",
-                "studyplatform-aslvideo-content_type-object_id")  # fmt: skip
+    prefixes = (
+        "conditions",
+        "items",
+        "questions",
+        "blocks",
+        "trials",
+        "studyplatform-aslvideo-content_type-object_id",
+    )
     return {f"{p}-{f}": 0 for p in prefixes for f in ("TOTAL_FORMS", "INITIAL_FORMS")}

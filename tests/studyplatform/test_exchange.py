@@ -70,8 +70,7 @@ def test_asl_videos_travel_with_the_definition(fingerspelling, alice, settings, 
     assert _without_slug(export_study(imported)) == _without_slug(exported)
 
 
-def test_an_import_may_not_name_another_researchers_file(fingerspelling, bob, settings,
-                                                          tmp_path):  # fmt: skip
+def test_an_import_may_not_name_another_researchers_file(fingerspelling, bob, settings, tmp_path):
     """Issue 19: an import could name any media file, which replacing it then deleted."""
     settings.MEDIA_ROOT = tmp_path
     name = default_storage.save("asl/consent.webm", ContentFile(tiny_webm()))
@@ -81,8 +80,9 @@ def test_an_import_may_not_name_another_researchers_file(fingerspelling, bob, se
     # Another researcher's file reads as one that is not there (issue 33: the two messages
     # told whether a file of that name existed): left out, with the same warning.
     result = do_import_study(exported, owner=bob)
-    assert result.warnings == ("asl_videos[0]: video file 'asl/consent.webm' is not in "
-                               "media; left out.",)  # fmt: skip
+    assert result.warnings == (
+        "asl_videos[0]: video file 'asl/consent.webm' is not in media; left out.",
+    )
     assert not result.study.asl_videos.exists() and AslVideo.objects.count() == 1
     result.study.delete()
     assert Study.objects.count() == studies
@@ -208,8 +208,13 @@ def test_not_an_object_is_rejected(alice):
 )
 def test_an_asl_video_pointing_out_of_its_folder_is_refused(fingerspelling, bob, field, name):
     data = export_study(fingerspelling)
-    row = {"target": ["study", None], "field_name": "consent_text", "transcript": "",
-           "video": "asl/fine.mp4", "poster": ""}  # fmt: skip
+    row = {
+        "target": ["study", None],
+        "field_name": "consent_text",
+        "transcript": "",
+        "video": "asl/fine.mp4",
+        "poster": "",
+    }
     data["asl_videos"] = [{**row, field: name}]
     with pytest.raises(StudyImportError, match=rf"asl_videos\[0\]\.{field}: .* is not an ASL"):
         do_import_study(data, owner=bob, slug="elsewhere")
@@ -219,8 +224,15 @@ def test_an_asl_video_pointing_out_of_its_folder_is_refused(fingerspelling, bob,
 def test_an_asl_video_with_a_malformed_target_is_refused(fingerspelling, bob):
     """Regression (issue 19): a list where the model's name belongs was a server error."""
     data = export_study(fingerspelling)
-    data["asl_videos"] = [{"target": [["study"], None], "field_name": "consent_text",
-                           "transcript": "", "video": "asl/fine.mp4", "poster": ""}]  # fmt: skip
+    data["asl_videos"] = [
+        {
+            "target": [["study"], None],
+            "field_name": "consent_text",
+            "transcript": "",
+            "video": "asl/fine.mp4",
+            "poster": "",
+        }
+    ]
     with pytest.raises(StudyImportError, match=r"asl_videos\[0\]\.target: unknown model"):
         do_import_study(data, owner=bob, slug="elsewhere")
     assert not Study.objects.filter(slug="elsewhere").exists()
@@ -262,8 +274,9 @@ def test_an_import_commits_in_short_transactions(fingerspelling, bob):
 
     data = export_study(fingerspelling)
     template = data["conditions"][0]
-    data["conditions"] += [{**template, "key": f"extra-{n}", "label": f"Extra {n}"}
-                           for n in range(450)]  # fmt: skip
+    data["conditions"] += [
+        {**template, "key": f"extra-{n}", "label": f"Extra {n}"} for n in range(450)
+    ]
     commits: list[int] = []
     saves_before_commit: list[int] = []
     waiting = []

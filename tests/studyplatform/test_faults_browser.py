@@ -28,8 +28,11 @@ def _until(page, condition, timeout_s: float = 30.0) -> None:
 def _fail(status: int, when=lambda body: True):
     def handle(route):
         if when(route.request.post_data or ""):
-            route.fulfill(status=status, content_type="application/json",
-                          body='{"error": "simulated server fault"}')  # fmt: skip
+            route.fulfill(
+                status=status,
+                content_type="application/json",
+                body='{"error": "simulated server fault"}',
+            )
         else:
             route.continue_()
 
@@ -74,8 +77,7 @@ def test_the_page_survives_server_errors(page, live_server, fingerspelling, clip
     page.locator(".play-button").first.click()
     plays = MediaEvent.objects.filter(participant=participant, kind="play", trial__key=second)
     _until(page, plays.exists)
-    shown = MediaEvent.objects.filter(participant=participant, kind="page_shown",
-                                      trial__key=second)  # fmt: skip
+    shown = MediaEvent.objects.filter(participant=participant, kind="page_shown", trial__key=second)
     assert not shown.exists()
     page.unroute("**/events/")  # the server recovers: the held-back event arrives, once
     _until(page, shown.exists)

@@ -26,10 +26,40 @@ pytestmark = pytest.mark.django_db
 PARTICIPANT_REQUESTS = 500
 IMPORTS = 200
 
-HOSTILE_TEXT = ["", "\x00", "a\x00b", "\u202eevil", "\ud7ff", "x" * 5000, "<script>", "=1+1",
-                "../../etc/passwd", "%00", "1e999", "NaN", "\t\n", "١٢٣", " "]  # fmt: skip
-HOSTILE_NUMBERS = [0, -1, 1, 2, 3, 2**31, 2**40, 2**63 - 1, -(2**63), 1.0, 1.5, -0.0, 1e308,
-                   True, False]  # fmt: skip
+HOSTILE_TEXT = [
+    "",
+    "\x00",
+    "a\x00b",
+    "\u202eevil",
+    "\ud7ff",
+    "x" * 5000,
+    "<script>",
+    "=1+1",
+    "../../etc/passwd",
+    "%00",
+    "1e999",
+    "NaN",
+    "\t\n",
+    "١٢٣",
+    " ",
+]
+HOSTILE_NUMBERS = [
+    0,
+    -1,
+    1,
+    2,
+    3,
+    2**31,
+    2**40,
+    2**63 - 1,
+    -(2**63),
+    1.0,
+    1.5,
+    -0.0,
+    1e308,
+    True,
+    False,
+]
 
 
 def _value(rng: random.Random, depth: int = 0):
@@ -45,8 +75,10 @@ def _value(rng: random.Random, depth: int = 0):
         return rng.choice(["1", "2", "yes", "left", "right", "a", "page_shown", "play"])
     if kind == 4:
         return [_value(rng, depth + 1) for _ in range(rng.randrange(4))]
-    return {rng.choice([*HOSTILE_TEXT, "kind", "page", "clip"]): _value(rng, depth + 1)
-            for _ in range(rng.randrange(4))}  # fmt: skip
+    return {
+        rng.choice([*HOSTILE_TEXT, "kind", "page", "clip"]): _value(rng, depth + 1)
+        for _ in range(rng.randrange(4))
+    }
 
 
 def _raw_json(rng: random.Random, value) -> bytes:
@@ -66,25 +98,38 @@ def _participant_request(rng: random.Random, client: Client, token: str, page: d
     choice = rng.randrange(9)
     json_type = "application/json" if rng.random() < 0.9 else rng.choice(["text/plain", ""])
     if choice == 0:
-        body = {"page": rng.choice([page["page"], _value(rng)]),
-                "trial": rng.choice([page["trial"], _value(rng)]),
-                "question": rng.choice([page["question"], _value(rng)]),
-                "value": _value(rng), "rt_ms": _value(rng)}  # fmt: skip
+        body = {
+            "page": rng.choice([page["page"], _value(rng)]),
+            "trial": rng.choice([page["trial"], _value(rng)]),
+            "question": rng.choice([page["question"], _value(rng)]),
+            "value": _value(rng),
+            "rt_ms": _value(rng),
+        }
         return client.post(base + "answer/", _raw_json(rng, body), content_type=json_type)
     if choice == 1:
-        events = [{"kind": rng.choice(["play", "ended", "page_shown", _value(rng)]),
-                   "page": rng.choice([1, _value(rng)]), "clip": rng.choice([1, 2, _value(rng)]),
-                   "media_time_s": _value(rng), "client_time_ms": _value(rng),
-                   "detail": _value(rng)} for _ in range(rng.randrange(1, 4))]  # fmt: skip
+        events = [
+            {
+                "kind": rng.choice(["play", "ended", "page_shown", _value(rng)]),
+                "page": rng.choice([1, _value(rng)]),
+                "clip": rng.choice([1, 2, _value(rng)]),
+                "media_time_s": _value(rng),
+                "client_time_ms": _value(rng),
+                "detail": _value(rng),
+            }
+            for _ in range(rng.randrange(1, 4))
+        ]
         body = {"events": events} if rng.random() < 0.9 else _value(rng)
         return client.post(base + "events/", _raw_json(rng, body), content_type=json_type)
     if choice == 2:
-        headers = {"X-Upload-Take": rng.choice(["", "0b7c6f2e-4a1d-4e8b-9c3f-5d2a1b0e9f81",
-                                                "\x00", "x" * 100]),
-                   "X-Upload-Offset": rng.choice(["0", "-1", "1e3", "99999999999999999999", ""]),
-                   "X-Upload-Final": rng.choice(["0", "1"]),
-                   "X-Upload-Sha256": rng.choice(["", "0" * 64, "zz"]),
-                   "X-Upload-Duration-Ms": rng.choice(["", "NaN", "-5", "1e400"])}  # fmt: skip
+        headers = {
+            "X-Upload-Take": rng.choice(
+                ["", "0b7c6f2e-4a1d-4e8b-9c3f-5d2a1b0e9f81", "\x00", "x" * 100]
+            ),
+            "X-Upload-Offset": rng.choice(["0", "-1", "1e3", "99999999999999999999", ""]),
+            "X-Upload-Final": rng.choice(["0", "1"]),
+            "X-Upload-Sha256": rng.choice(["", "0" * 64, "zz"]),
+            "X-Upload-Duration-Ms": rng.choice(["", "NaN", "-5", "1e400"]),
+        }
         body = rng.randbytes(rng.randrange(1, 2000))
         number = rng.choice([page["page"], 0, 10**12])
         url = f"{base}{number}/signed/{rng.choice(['comments', 'x'])}/"
@@ -93,8 +138,10 @@ def _participant_request(rng: random.Random, client: Client, token: str, page: d
         query = rng.choice(["a=1", "x=%00"])
         return client.get(f"{base}{rng.choice([1, 2, 0, 10**15])}/?{query}")
     if choice == 4:
-        form = {f"q-{rng.choice([page['question'], 'x'])}": str(_value(rng)),
-                "nav": rng.choice(["next", "back", "\x00"])}  # fmt: skip
+        form = {
+            f"q-{rng.choice([page['question'], 'x'])}": str(_value(rng)),
+            "nav": rng.choice(["next", "back", "\x00"]),
+        }
         return client.post(f"{base}{page['page']}/", form)
     if choice == 5:
         return client.post(base + "language/", {"language": str(_value(rng))})
@@ -110,23 +157,35 @@ def _victims(fingerspelling, client_of_victim):
     """Return a snapshot of what the fuzzing must not change: a study and an answer."""
     return {
         "study": export_study(Study.objects.get(pk=fingerspelling.pk)),
-        "responses": sorted(Response.objects.filter(participant=client_of_victim)
-                            .values_list("pk", "text", "rating", "chosen", "number", "revision")),
+        "responses": sorted(
+            Response.objects.filter(participant=client_of_victim).values_list(
+                "pk", "text", "rating", "chosen", "number", "revision"
+            )
+        ),
         "events": MediaEvent.objects.filter(participant=client_of_victim).count(),
-        "participant": Participant.objects.filter(pk=client_of_victim.pk).values(
-            "position", "reached", "finished_at", "language").get(),
-    }  # fmt: skip
+        "participant": Participant.objects.filter(pk=client_of_victim.pk)
+        .values("position", "reached", "finished_at", "language")
+        .get(),
+    }
 
 
 def test_crafted_participant_requests_never_fail_the_server(client, fingerspelling):
     victim = _start(Client(), fingerspelling)
-    Client().post(f"/p/{victim.token}/answer/", json.dumps(
-        {"page": 1, "trial": victim.schedule[0]["trial"], "question": "age", "value": "2"}),
-        content_type="application/json")  # fmt: skip
+    Client().post(
+        f"/p/{victim.token}/answer/",
+        json.dumps(
+            {"page": 1, "trial": victim.schedule[0]["trial"], "question": "age", "value": "2"}
+        ),
+        content_type="application/json",
+    )
     before = _victims(fingerspelling, victim)
     attacker = _start(client, fingerspelling)
-    page = {"page": 1, "trial": attacker.schedule[0]["trial"], "question": "age",
-            "slug": fingerspelling.slug}  # fmt: skip
+    page = {
+        "page": 1,
+        "trial": attacker.schedule[0]["trial"],
+        "question": "age",
+        "slug": fingerspelling.slug,
+    }
     client.raise_request_exception = False
     rng = random.Random(33)
     statuses = Counter()
@@ -143,8 +202,19 @@ def test_crafted_participant_requests_never_fail_the_server(client, fingerspelli
 def _mutate(rng: random.Random, definition: dict) -> dict:
     data = copy.deepcopy(definition)
     for _ in range(rng.randrange(1, 4)):
-        section = rng.choice(["study", "conditions", "items", "questions", "blocks", "trials",
-                              "asl_videos", "format", "version"])  # fmt: skip
+        section = rng.choice(
+            [
+                "study",
+                "conditions",
+                "items",
+                "questions",
+                "blocks",
+                "trials",
+                "asl_videos",
+                "format",
+                "version",
+            ]
+        )
         if section in ("format", "version") or rng.random() < 0.05:
             data[section] = _value(rng)
             continue

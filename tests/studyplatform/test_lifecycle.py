@@ -63,8 +63,12 @@ def test_an_open_studys_design_is_locked_in_the_models_and_the_admin(opened, cli
     assert 'id="design-locked-note"' in study_page and "Make a new version" in study_page
     assert 'name="conditions-0-key"' not in study_page  # the inlines show, unchangeable
     trial = Trial.objects.filter(study=opened).first()
-    assert client.post(reverse("admin:studyplatform_trial_delete", args=[trial.pk]),
-                       {"post": "yes"}).status_code == 403  # fmt: skip
+    assert (
+        client.post(
+            reverse("admin:studyplatform_trial_delete", args=[trial.pk]), {"post": "yes"}
+        ).status_code
+        == 403
+    )
 
 
 def test_the_lock_follows_the_data_not_the_status(opened, client, alice):

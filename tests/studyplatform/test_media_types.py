@@ -11,9 +11,19 @@ def _with_a_repeated_timestamp(source: Path, target: Path) -> None:
     """Copy *source* giving its sixth frame the fifth's timestamp, as a busy Chromium does."""
     import imageio_ffmpeg
 
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-y", "-i", str(source),
-               "-c", "copy", "-bsf:v", "setts=ts='if(eq(N,5),PREV_OUTPTS,PTS)'",
-               str(target)]  # fmt: skip
+    command = [
+        imageio_ffmpeg.get_ffmpeg_exe(),
+        "-v",
+        "error",
+        "-y",
+        "-i",
+        str(source),
+        "-c",
+        "copy",
+        "-bsf:v",
+        "setts=ts='if(eq(N,5),PREV_OUTPTS,PTS)'",
+        str(target),
+    ]
     subprocess.run(command, capture_output=True, check=True)
 
 

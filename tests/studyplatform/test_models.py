@@ -13,8 +13,13 @@ pytestmark = pytest.mark.django_db
 @pytest.fixture(autouse=True)
 def _editable_demos(request):
     """These tests validate design objects of the demo studies, which only a draft allows."""
-    as_draft(*(request.getfixturevalue(n) for n in ("fingerspelling", "spine")
-               if n in request.fixturenames))  # fmt: skip
+    as_draft(
+        *(
+            request.getfixturevalue(n)
+            for n in ("fingerspelling", "spine")
+            if n in request.fixturenames
+        )
+    )
 
 
 def test_comparison_needs_two_clips(fingerspelling):

@@ -49,8 +49,9 @@ def test_the_stimulus_page_offers_the_clips_motion_as_glb_and_bvh(client, bob, a
     assert client.get(f"/admin/studyplatform/stimulus/{clip.pk}/motion.glb").status_code == 404
 
 
-def test_an_uploaded_clip_has_no_motion_and_the_command_writes_one(client, bob, spine, clip,
-                                                                   tmp_path):  # fmt: skip
+def test_an_uploaded_clip_has_no_motion_and_the_command_writes_one(
+    client, bob, spine, clip, tmp_path
+):
     as_draft(spine)
     Condition.objects.filter(key="spine-off").update(source="uploaded", parameters={})
     do_generate_stimuli(spine, enqueue=False)

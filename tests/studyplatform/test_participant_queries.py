@@ -67,11 +67,20 @@ def _take_study(client, study) -> dict[str, list[list[str]]]:
         trial = Trial.objects.get(study=study, key=entry["trial"])
         form = {"nav": "next"}
         for key, value in _answers(trial).items():
-            body = {"page": number, "trial": trial.key, "question": key, "value": value,
-                    "rt_ms": 900}  # fmt: skip
-            saved, queries = _count(client.post, answer_url, json.dumps(body),
-                                    content_type="application/json",
-                                    HTTP_ACCEPT="application/json")  # fmt: skip
+            body = {
+                "page": number,
+                "trial": trial.key,
+                "question": key,
+                "value": value,
+                "rt_ms": 900,
+            }
+            saved, queries = _count(
+                client.post,
+                answer_url,
+                json.dumps(body),
+                content_type="application/json",
+                HTTP_ACCEPT="application/json",
+            )
             assert saved.status_code == 200, saved.content[:300]
             sql["save"].append(queries)
             form[f"q-{key}"] = value

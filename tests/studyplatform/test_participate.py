@@ -201,16 +201,30 @@ def test_a_tampered_answer_is_rejected_and_changes_nothing(
         ('"extra": ' + "[" * 40 + "]" * 40, "not in the expected form"),
     ],
 )
-def test_a_crafted_answer_gets_a_message_and_changes_nothing(client, fingerspelling, body,
-                                                            message):  # fmt: skip
+def test_a_crafted_answer_gets_a_message_and_changes_nothing(client, fingerspelling, body, message):
     """Regression (issue 19): each of these was a server error (500)."""
     participant = _start(client, fingerspelling)
     trial = participant.schedule[0]["trial"]
     fields = {"page": 1, "trial": trial, "question": "age", "value": "3"}
-    raw = "{" + ", ".join([*(f"{json.dumps(k)}: {json.dumps(v)}" for k, v in fields.items()
-                             if f'"{k}"' not in body), body]) + "}"  # fmt: skip
-    rejected = client.post(reverse("participant_answer", args=[participant.token]), raw,
-                           content_type="application/json")  # fmt: skip
+    raw = (
+        "{"
+        + ", ".join(
+            [
+                *(
+                    f"{json.dumps(k)}: {json.dumps(v)}"
+                    for k, v in fields.items()
+                    if f'"{k}"' not in body
+                ),
+                body,
+            ]
+        )
+        + "}"
+    )
+    rejected = client.post(
+        reverse("participant_answer", args=[participant.token]),
+        raw,
+        content_type="application/json",
+    )
     assert rejected.status_code == 400
     assert message in rejected.json()["error"]
     assert not Response.objects.exists()
@@ -233,8 +247,7 @@ def test_a_crafted_answer_gets_a_message_and_changes_nothing(client, fingerspell
         ('{"kind": "page_shown", "page": 1, "client_time_ms": Infinity}', "JSON with Infinity"),
     ],
 )
-def test_a_crafted_event_gets_a_message_and_logs_nothing(client, fingerspelling, event,
-                                                         message):  # fmt: skip
+def test_a_crafted_event_gets_a_message_and_logs_nothing(client, fingerspelling, event, message):
     """Regression (issue 19): non-finite and huge client times were server errors."""
     participant = _start(client, fingerspelling)
     url = reverse("participant_events", args=[participant.token])
@@ -315,8 +328,14 @@ def test_going_back_is_a_study_option(client, fingerspelling):
     _answer_page(client, participant, 1)
     earlier = client.get(reverse("participant_page", args=[participant.token, 1]))
     assert earlier["Location"] == url  # the earlier page is closed: back to the current one
-    refused = _save(client, participant, page=1, trial=participant.schedule[0]["trial"],
-                    question="age", value="2")  # fmt: skip
+    refused = _save(
+        client,
+        participant,
+        page=1,
+        trial=participant.schedule[0]["trial"],
+        question="age",
+        value="2",
+    )
     assert "does not let you change answers" in refused.json()["error"]
 
 
@@ -335,8 +354,14 @@ def test_time_limit_and_one_sitting_close_the_session(client, fingerspelling):
     )
     closed = client.get(url)
     assert closed.status_code == 410 and "time limit of 30 minutes has passed" in closed.text
-    refused = _save(client, participant, page=1, trial=participant.schedule[0]["trial"],
-                    question="age", value="2")  # fmt: skip
+    refused = _save(
+        client,
+        participant,
+        page=1,
+        trial=participant.schedule[0]["trial"],
+        question="age",
+        value="2",
+    )
     assert "time limit" in refused.json()["error"] and not Response.objects.exists()
 
 
@@ -476,12 +501,24 @@ WEBM = tiny_webm()
 TAKE = "0b7c6f2e-4a1d-4e8b-9c3f-5d2a1b0e9f81"
 
 
-def _chunk(client, participant, number, data, offset, final=False, question="comments",
-           take=TAKE, whole=None):  # fmt: skip
+def _chunk(
+    client,
+    participant,
+    number,
+    data,
+    offset,
+    final=False,
+    question="comments",
+    take=TAKE,
+    whole=None,
+):
     """Send a chunk of take *take*; a final one says the SHA-256 of *whole* (default *data*)."""
     url = reverse("participant_signed_answer", args=[participant.token, number, question])
-    headers = {"X-Upload-Take": take, "X-Upload-Offset": str(offset),
-               "X-Upload-Final": "1" if final else "0"}  # fmt: skip
+    headers = {
+        "X-Upload-Take": take,
+        "X-Upload-Offset": str(offset),
+        "X-Upload-Final": "1" if final else "0",
+    }
     if final:
         headers["X-Upload-Sha256"] = hashlib.sha256(data if whole is None else whole).hexdigest()
     return client.post(url, data, content_type="application/octet-stream", headers=headers)
@@ -519,8 +556,9 @@ def test_a_bad_signed_answer_is_refused(client, at_comments):
     assert "not asked on this page" in other.json()["error"]
     no_offset = client.post(
         reverse("participant_signed_answer", args=[participant.token, number, "comments"]),
-        WEBM, content_type="application/octet-stream",
-    )  # fmt: skip
+        WEBM,
+        content_type="application/octet-stream",
+    )
     assert "does not say where it starts" in no_offset.json()["error"]
     assert not Response.objects.exists()
 
@@ -538,10 +576,15 @@ def test_next_waits_for_every_clip_watched_to_the_end(client, fingerspelling):
     for form in ({"nav": "next"}, {"nav": "next", "q-most-natural": "1"}):
         refused = client.post(url, form)
         assert refused.status_code == 400 and "watch each clip to its end" in refused.text
-    events = [{"kind": "ended", "page": number, "clip": clip, "client_time_ms": 5000 + clip}
-              for clip in (1, 2)]  # fmt: skip
-    client.post(reverse("participant_events", args=[participant.token]),
-                json.dumps({"events": events}), content_type="application/json")  # fmt: skip
+    events = [
+        {"kind": "ended", "page": number, "clip": clip, "client_time_ms": 5000 + clip}
+        for clip in (1, 2)
+    ]
+    client.post(
+        reverse("participant_events", args=[participant.token]),
+        json.dumps({"events": events}),
+        content_type="application/json",
+    )
     assert client.post(url, {"nav": "next"}).status_code == 302
 
 

@@ -29,11 +29,17 @@ def _with_clips(study, clip, media_root: Path) -> None:
         shutil.copy(path, folder / path.name)
     for condition, item in needed_pairs(study):
         Stimulus.objects.create(
-            condition=condition, item=item, content_hash=clip_spec(condition, item).content_hash(),
-            status=Stimulus.Status.READY, video=f"stimuli/{clip.video.name}",
-            poster=f"stimuli/{clip.poster.name}", width=clip.width, height=clip.height,
-            duration_ms=clip.duration_ms, frame_count=clip.frame_count,
-        )  # fmt: skip
+            condition=condition,
+            item=item,
+            content_hash=clip_spec(condition, item).content_hash(),
+            status=Stimulus.Status.READY,
+            video=f"stimuli/{clip.video.name}",
+            poster=f"stimuli/{clip.poster.name}",
+            width=clip.width,
+            height=clip.height,
+            duration_ms=clip.duration_ms,
+            frame_count=clip.frame_count,
+        )
 
 
 def _current(page):
@@ -209,9 +215,9 @@ def test_spine_study_by_keyboard_on_a_phone(browser, live_server, spine, clips_d
     """Keyboard only, in a phone-sized window, ASL first: the whole study."""
     _with_clips(spine, one_clip, clips_dir)
     played = 0
-    context = browser.new_context(viewport={"width": 390, "height": 844}, is_mobile=True,
-                                  bypass_csp=True,
-                                  has_touch=True)  # fmt: skip
+    context = browser.new_context(
+        viewport={"width": 390, "height": 844}, is_mobile=True, bypass_csp=True, has_touch=True
+    )
     page = context.new_page()
     errors = []
     page.on("pageerror", lambda error: errors.append(str(error)))
@@ -280,8 +286,11 @@ def _serious_violations(page) -> list[str]:
     ]
 
 
-@pytest.mark.parametrize("layout", [{"width": 1280, "height": 800}, {"width": 390, "height": 844}],
-                         ids=["desktop", "phone"])  # fmt: skip
+@pytest.mark.parametrize(
+    "layout",
+    [{"width": 1280, "height": 800}, {"width": 390, "height": 844}],
+    ids=["desktop", "phone"],
+)
 def test_every_page_type_passes_an_accessibility_scan(
     page, live_server, fingerspelling, spine, clips_dir, one_clip, layout
 ):
@@ -385,8 +394,9 @@ def test_a_signed_answer_is_recorded_and_sent_through_a_dropped_connection(
     expect(page.get_by_role("button", name="Record again")).to_be_visible()
 
 
-def test_replay_limit_and_watching_to_the_end(page, live_server, fingerspelling, clips_dir,
-                                              one_clip):  # fmt: skip
+def test_replay_limit_and_watching_to_the_end(
+    page, live_server, fingerspelling, clips_dir, one_clip
+):
     """One play per clip; the answers open once both clips were watched to the end."""
     from studyplatform.actions import do_enroll_participant
 
@@ -420,8 +430,9 @@ def test_replay_limit_and_watching_to_the_end(page, live_server, fingerspelling,
     assert sorted(ended.values_list("clip_position", flat=True)) == [1, 2]
 
 
-def test_the_time_left_counts_down_and_the_page_closes_at_the_limit(page, live_server,
-                                                                   fingerspelling):  # fmt: skip
+def test_the_time_left_counts_down_and_the_page_closes_at_the_limit(
+    page, live_server, fingerspelling
+):
     """The timer turns prominent five minutes before the limit, and at the limit the page
     reloads into the server's "time is up" message."""
     from datetime import timedelta

@@ -23,10 +23,11 @@ def _participant_with_everything(client, at_comments):
     participant, number = at_comments
     assert _chunk(client, participant, number, tiny_webm(), 0, final=True).json()["saved"]
     trial = participant.schedule[number - 1]["trial"]
-    client.post(reverse("participant_events", args=[participant.token]),
-                json.dumps({"events": [{"kind": "page_shown", "page": number,
-                                        "client_time_ms": 1}]}),
-                content_type="application/json")  # fmt: skip
+    client.post(
+        reverse("participant_events", args=[participant.token]),
+        json.dumps({"events": [{"kind": "page_shown", "page": number, "client_time_ms": 1}]}),
+        content_type="application/json",
+    )
     video = Response.objects.get(participant=participant, trial__key=trial).video
     return participant, video
 
@@ -52,8 +53,9 @@ def test_deleting_in_the_admin_is_a_withdrawal(client, at_comments, bob):
     participant, video = _participant_with_everything(client, at_comments)
     client.force_login(bob)  # the spine study's owner
     url = reverse("admin:studyplatform_participant_changelist")
-    done = client.post(url, {"action": "delete_selected", "_selected_action": [participant.pk],
-                             "post": "yes"})  # fmt: skip
+    done = client.post(
+        url, {"action": "delete_selected", "_selected_action": [participant.pk], "post": "yes"}
+    )
     assert done.status_code == 302
     assert not Participant.objects.exists() and not video.storage.exists(video.name)
     assert Withdrawal.objects.get().withdrawn_by == bob

@@ -7,8 +7,9 @@ from studyplatform.models import MediaEvent, Participant, Trial
 
 
 def event(pk, kind, at, trial=1, clip=None, **detail):
-    return MediaEvent(pk=pk, kind=kind, client_time_ms=at, trial_id=trial, clip_position=clip,
-                      detail=detail)  # fmt: skip
+    return MediaEvent(
+        pk=pk, kind=kind, client_time_ms=at, trial_id=trial, clip_position=clip, detail=detail
+    )
 
 
 def test_visits_plays_ends_errors_and_viewport():
@@ -37,23 +38,29 @@ def test_visits_plays_ends_errors_and_viewport():
 @pytest.mark.django_db
 def test_cells_of_an_answer_given_before_the_second_clip_ended(fingerspelling):
     trial = Trial.objects.get(study=fingerspelling, key="cmp-01")
-    participant = Participant(study=fingerspelling, user_agent="Mozilla/5.0 (iPhone) Mobile",
-                              schedule=[{"trial": "practice-1"}, {"trial": "cmp-01"}])  # fmt: skip
-    quality = participant_quality([
-        event(1, "page_shown", 1_000, trial=trial.pk, width=800, height=600),
-        event(2, "play", 1_100, trial=trial.pk, clip=1),
-        event(3, "ended", 3_000, trial=trial.pk, clip=1),
-        event(4, "play", 3_100, trial=trial.pk, clip=2),
-        event(5, "ended", 5_000, trial=trial.pk, clip=2),
-    ])[trial.pk]  # fmt: skip
+    participant = Participant(
+        study=fingerspelling,
+        user_agent="Mozilla/5.0 (iPhone) Mobile",
+        schedule=[{"trial": "practice-1"}, {"trial": "cmp-01"}],
+    )
+    quality = participant_quality(
+        [
+            event(1, "page_shown", 1_000, trial=trial.pk, width=800, height=600),
+            event(2, "play", 1_100, trial=trial.pk, clip=1),
+            event(3, "ended", 3_000, trial=trial.pk, clip=1),
+            event(4, "play", 3_100, trial=trial.pk, clip=2),
+            event(5, "ended", 5_000, trial=trial.pk, clip=2),
+        ]
+    )[trial.pk]
     orders = page_orders(participant)
-    early = quality_cells(participant, trial, quality, rt_ms=3_500, answered_at=None,
-                          orders=orders)  # fmt: skip
+    early = quality_cells(participant, trial, quality, rt_ms=3_500, answered_at=None, orders=orders)
     assert early["answered_before_end"] == "1" and early["page_order"] == "2"
     assert (early["clip1_plays"], early["clip2_ended"], early["replays"]) == ("1", "1", "0")
     assert early["device"] == "phone" and early["viewport"] == "800x600"
-    assert quality_cells(participant, trial, quality, 4_500, None, orders)[
-        "answered_before_end"] == "0"  # fmt: skip
+    assert (
+        quality_cells(participant, trial, quality, 4_500, None, orders)["answered_before_end"]
+        == "0"
+    )
     nothing = quality_cells(participant, trial, None, 4_500, None, orders)
     assert nothing["clip1_plays"] == "" and nothing["page_order"] == "2"
 
@@ -90,13 +97,17 @@ def test_a_page_shown_again_counts_from_the_showing_the_answer_was_given_in(fing
     after = quality_cells(participant, trial, quality, 6_900, None, orders, client_ms=13_000)
     assert after["answered_before_end"] == "0"
     # Without the browser's time, the showing the response time fits in is used.
-    assert quality_cells(participant, trial, quality, 6_900, None, orders)[
-        "answered_before_end"] == "0"  # fmt: skip
+    assert (
+        quality_cells(participant, trial, quality, 6_900, None, orders)["answered_before_end"]
+        == "0"
+    )
     # An answer before clip 2 ended is still early, either way.
     early = quality_cells(participant, trial, quality, 4_900, None, orders, client_ms=11_000)
     assert early["answered_before_end"] == "1"
-    assert quality_cells(participant, trial, quality, 4_900, None, orders)[
-        "answered_before_end"] == "1"  # fmt: skip
+    assert (
+        quality_cells(participant, trial, quality, 4_900, None, orders)["answered_before_end"]
+        == "1"
+    )
 
 
 @pytest.mark.django_db
@@ -104,12 +115,14 @@ def test_a_clip_that_ended_in_an_earlier_showing_counts(fingerspelling):
     """Both clips watched, then Back to the page and the answer changed without replaying."""
     trial = Trial.objects.get(study=fingerspelling, key="cmp-01")
     participant = Participant(study=fingerspelling, schedule=[{"trial": "cmp-01"}])
-    quality = participant_quality([
-        event(1, "page_shown", 1_000, trial=trial.pk),
-        event(2, "ended", 3_000, trial=trial.pk, clip=1),
-        event(3, "ended", 5_000, trial=trial.pk, clip=2),
-        event(4, "page_shown", 6_000, trial=99),
-        event(5, "page_shown", 8_000, trial=trial.pk),
-    ])[trial.pk]  # fmt: skip
+    quality = participant_quality(
+        [
+            event(1, "page_shown", 1_000, trial=trial.pk),
+            event(2, "ended", 3_000, trial=trial.pk, clip=1),
+            event(3, "ended", 5_000, trial=trial.pk, clip=2),
+            event(4, "page_shown", 6_000, trial=99),
+            event(5, "page_shown", 8_000, trial=trial.pk),
+        ]
+    )[trial.pk]
     cells = quality_cells(participant, trial, quality, 500, None, page_orders(participant), 8_500)
     assert cells["answered_before_end"] == "0"

@@ -104,7 +104,11 @@ def test_play_counts_and_ends_match_the_browser_and_the_speeder_is_excluded(
     for key in ("cmp-01", "cmp-02"):
         row = rows.loc[(str(speeder.pk), key)]
         assert (row.clip1_plays, row.clip2_plays, row.clip1_ended, row.clip2_ended) == (
-            "0", "0", "0", "0")  # fmt: skip
+            "0",
+            "0",
+            "0",
+            "0",
+        )
         assert row.answered_before_end == "1" and row.shown_at
     table = read_responses(io.StringIO(text))
     kept, report = apply_exclusions(table, ExclusionRules(answered_before_end=True))
@@ -155,8 +159,12 @@ def test_a_reloaded_page_answered_after_its_clips_is_not_flagged(browser, live_s
         close_context(context)
     frame = pd.read_csv(io.StringIO(tidy_csv(two_pages)), dtype=str, keep_default_na=False)
     rows = frame[frame["participant"].eq(str(participant.pk))].set_index("trial")
-    assert MediaEvent.objects.filter(participant=participant, trial__key=first,
-                                     kind="page_shown").count() == 2  # fmt: skip
+    assert (
+        MediaEvent.objects.filter(
+            participant=participant, trial__key=first, kind="page_shown"
+        ).count()
+        == 2
+    )
     assert (rows.loc[first, "clip1_ended"], rows.loc[first, "clip2_ended"]) == ("1", "1")
     assert rows.loc[first, "answered_before_end"] == "0"
     assert rows.loc[second, "answered_before_end"] == "1"

@@ -47,8 +47,9 @@ def test_a_type_parses_what_its_widget_posts(kind, value, expected):
     assert question_type(kind).parse(Question(kind=kind), value) == expected
 
 
-@pytest.mark.parametrize(("kind", "value"), [("pairwise", "x"), ("likert", "1.5"),
-                                             ("number", "nan"), ("number", "inf")])  # fmt: skip
+@pytest.mark.parametrize(
+    ("kind", "value"), [("pairwise", "x"), ("likert", "1.5"), ("number", "nan"), ("number", "inf")]
+)
 def test_a_type_refuses_a_post_that_is_not_an_answer(kind, value):
     with pytest.raises(ValueError):
         question_type(kind).parse(Question(kind=kind), value)
@@ -56,8 +57,14 @@ def test_a_type_refuses_a_post_that_is_not_an_answer(kind, value):
 
 def test_settings_that_do_not_apply_to_the_kind_are_named(fingerspelling):
     as_draft(fingerspelling)
-    question = Question(study=fingerspelling, key="q", kind="likert", text="?",
-                        allow_no_difference=True, is_personal=True)  # fmt: skip
+    question = Question(
+        study=fingerspelling,
+        key="q",
+        kind="likert",
+        text="?",
+        allow_no_difference=True,
+        is_personal=True,
+    )
     with pytest.raises(Exception) as raised:
         question.full_clean()
     assert set(raised.value.message_dict) == {"allow_no_difference", "is_personal"}
@@ -107,8 +114,9 @@ def test_a_formula_answer_is_exported_as_text_and_read_back_unchanged(spine):
         do_save_response(do_enroll_participant(spine), comments, question, Answer(text=text))
     exported = tidy_csv(spine)
     cells = [row["text"] for row in csv.DictReader(io.StringIO(exported)) if row["text"]]
-    assert sorted(cells) == sorted(['\'=HYPERLINK("http://example.org","click")', "''quoted",
-                                    "'+1 (555) 0100", "-2"])  # fmt: skip
+    assert sorted(cells) == sorted(
+        ['\'=HYPERLINK("http://example.org","click")', "''quoted", "'+1 (555) 0100", "-2"]
+    )
     table = read_responses(io.StringIO(exported))
     assert sorted(table.loc[table["text"].ne(""), "text"]) == sorted(answers)
 

@@ -151,11 +151,20 @@ def test_bad_uploads_are_named_and_store_nothing(fingerspelling, media, name, da
 def test_a_pose_file_without_hands_is_refused(fingerspelling, media):
     model = HandModel()
     recording = from_hand_motion(model, np.zeros((3, len(model.dofs))), 10)
-    empty = format_pose(type(recording)(recording.fps, recording.components, recording.points,
-                                        np.zeros_like(recording.confidence), 10, 10))  # fmt: skip
+    empty = format_pose(
+        type(recording)(
+            recording.fps,
+            recording.components,
+            recording.points,
+            np.zeros_like(recording.confidence),
+            10,
+            10,
+        )
+    )
     with pytest.raises(RecordingRejected, match="no hand"):
-        do_attach_recording(fingerspelling.items.get(key="HEAVEN"),
-                            SimpleUploadedFile("HEAVEN.pose", empty))  # fmt: skip
+        do_attach_recording(
+            fingerspelling.items.get(key="HEAVEN"), SimpleUploadedFile("HEAVEN.pose", empty)
+        )
 
 
 def test_only_words_take_recordings(spine, media):
@@ -166,8 +175,12 @@ def test_only_words_take_recordings(spine, media):
 
 def test_a_condition_on_each_words_recording_names_a_word_without_one(fingerspelling, media):
     as_draft(fingerspelling)
-    condition = Condition(study=fingerspelling, key="captured", label="Captured",
-                          parameters={"source": "recording", "timing": "mocap"})  # fmt: skip
+    condition = Condition(
+        study=fingerspelling,
+        key="captured",
+        label="Captured",
+        parameters={"source": "recording", "timing": "mocap"},
+    )
     condition.full_clean()  # valid: each word's own recording is found when rendering
     condition.save()
     trial = Trial.objects.filter(block__study=fingerspelling, kind="pairwise").first()
@@ -185,8 +198,10 @@ def test_a_video_is_captured_into_landmarks_with_progress(
 
     video = tmp_path / "AB.mp4"
     request = ClipRequest.from_parameters(
-        "word", "AB", {"timing": "constant", "view": "hand", "width": 320, "height": 240,
-                       "rate_hz": 15.0})  # fmt: skip
+        "word",
+        "AB",
+        {"timing": "constant", "view": "hand", "width": 320, "height": 240, "rate_hz": 15.0},
+    )
     render_request(request, video)
     item = Item.objects.create(study=fingerspelling, key="AB", text="AB")
     upload = SimpleUploadedFile("AB.mp4", video.read_bytes())
@@ -221,8 +236,9 @@ def test_the_recordings_page_uploads_and_reports_progress(
     heaven = next(word for word in progress["words"] if word["key"] == "HEAVEN")
     assert heaven["used"]["status"] == "ready" and progress["capturing"] == 0
     # A bad file is named; a word of another study, or another researcher, is refused.
-    bad = client.post(url, {"item": item.pk, "recording": SimpleUploadedFile("a.txt", b"x")},
-                      follow=True)  # fmt: skip
+    bad = client.post(
+        url, {"item": item.pk, "recording": SimpleUploadedFile("a.txt", b"x")}, follow=True
+    )
     assert "Not saved: “a.txt” is not a recording" in bad.text
     client.force_login(bob)
     assert client.get(url).status_code == 404
@@ -266,7 +282,8 @@ def test_a_copied_study_keeps_its_words_recordings_and_shares_their_files(
         do_delete_recordings([original])
     assert (media / copied.motion.name).exists()
     assert clip_spec(copy.conditions.get(key="mocap"), copied.item).parameters["recording"] == (
-        copied.motion.path)  # fmt: skip
+        copied.motion.path
+    )
 
 
 def test_an_imported_recording_whose_file_is_missing_is_left_out_by_name(
@@ -310,8 +327,9 @@ def test_a_tampered_recording_in_a_definition_is_refused_by_name(
 
 
 @pytest.mark.skipif(shutil.which("assimp") is None, reason="assimp-utils is not installed")
-def test_glb_and_fbx_motion_come_in_as_bvh(fingerspelling, django_capture_on_commit_callbacks,
-                                          tmp_path):  # fmt: skip
+def test_glb_and_fbx_motion_come_in_as_bvh(
+    fingerspelling, django_capture_on_commit_callbacks, tmp_path
+):
     # A word's motion exported by the engine as GLB comes back as a BVH recording; the
     # FBX of assimp's test models reads (through assimp) but its skeleton is no hand.
     from synthesis.interchange import request_glb

@@ -185,8 +185,11 @@ def test_results_page_shows_every_test_with_its_interval_and_apa(bob_client, spi
     summaries = data["rating_conditions"]
     assert {s["condition"] for s in summaries} == {"Spine on", "Spine off (control)"}
     assert {s["measure"] for s in summaries} == {
-        "clarity", "grammaticality", "understandability", "naturalness",
-    }  # fmt: skip
+        "clarity",
+        "grammaticality",
+        "understandability",
+        "naturalness",
+    }
     comparisons = data["rating_condition_comparisons"]
     assert len(comparisons) == 4 and all(c["nobs"] == 6 for c in comparisons)
     for comparison in comparisons:
@@ -273,10 +276,18 @@ def test_everything_holds_media_events_seeds_and_schedules(bob_client, spine):
     trial = spine.trials.get(key=taken[0].schedule[number - 1]["trial"])
     taken[0].reached = len(taken[0].schedule)
     taken[0].save()
-    do_log_media_events(taken[0], [
-        {"kind": "page_shown", "page": number, "client_time_ms": 1_000, "detail": {"width": 800}},
-        {"kind": "play", "page": number, "clip": None, "client_time_ms": 1_500},
-    ])  # fmt: skip
+    do_log_media_events(
+        taken[0],
+        [
+            {
+                "kind": "page_shown",
+                "page": number,
+                "client_time_ms": 1_000,
+                "detail": {"width": 800},
+            },
+            {"kind": "play", "page": number, "clip": None, "client_time_ms": 1_500},
+        ],
+    )
     everything = bob_client.get(
         reverse("admin:studyplatform_study_results_everything", args=[spine.pk])
     )
@@ -284,7 +295,9 @@ def test_everything_holds_media_events_seeds_and_schedules(bob_client, spine):
     events = list(csv_module.DictReader(io.StringIO(archive.read("media_events.csv").decode())))
     who = str(taken[0].pk)
     assert [(e["participant"], e["trial"], e["kind"]) for e in events] == [
-        (who, trial.key, "page_shown"), (who, trial.key, "play")]  # fmt: skip
+        (who, trial.key, "page_shown"),
+        (who, trial.key, "play"),
+    ]
     assert json.loads(events[0]["detail"]) == {"width": 800}
     rows = list(csv_module.DictReader(io.StringIO(archive.read("participants.csv").decode())))
     by_id = {row["participant"]: row for row in rows}

@@ -19,17 +19,16 @@ LOGIN = "/admin/login/"
 
 
 def _sign_in(client, username: str, password: str):
-    return client.post(LOGIN, {"username": username, "password": password,
-                               "next": "/admin/"})  # fmt: skip
+    return client.post(LOGIN, {"username": username, "password": password, "next": "/admin/"})
 
 
 def _from(client, address: str, username: str, password: str):
-    return client.post(LOGIN, {"username": username, "password": password, "next": "/admin/"},
-                       REMOTE_ADDR=address)  # fmt: skip
+    return client.post(
+        LOGIN, {"username": username, "password": password, "next": "/admin/"}, REMOTE_ADDR=address
+    )
 
 
-def test_the_tenth_wrong_password_locks_the_account_and_the_address(client, alice, bob,
-                                                                    settings):  # fmt: skip
+def test_the_tenth_wrong_password_locks_the_account_and_the_address(client, alice, bob, settings):
     """Issue 33: the settings said the 11th failure locks (the 10th did), and a guesser
     with several addresses had ten tries at each."""
     assert settings.AXES_FAILURE_LIMIT == 10
@@ -136,8 +135,13 @@ def test_pages_carry_a_content_security_policy(client, fingerspelling, alice):
     participant = _start(client, fingerspelling)
     page = client.get(reverse("participant_page", args=[participant.token, 1]))
     policy = page["Content-Security-Policy"]
-    for directive in ("default-src 'self'", "script-src 'self'", "object-src 'none'",
-                      "frame-ancestors 'none'", "form-action 'self'"):  # fmt: skip
+    for directive in (
+        "default-src 'self'",
+        "script-src 'self'",
+        "object-src 'none'",
+        "frame-ancestors 'none'",
+        "form-action 'self'",
+    ):
         assert directive in policy
     assert "unsafe-eval" not in policy and "'unsafe-inline'" not in policy.split("style-src")[0]
     client.force_login(alice)
@@ -151,12 +155,18 @@ def test_the_deployment_check_is_clean_with_https(tmp_path):
     # Neither the test database nor the browser tests' async switch is a deployment's.
     skip = ("SIGNSTUDY_", "DATABASE_URL", "DJANGO_ALLOW_ASYNC_UNSAFE")
     env = {k: v for k, v in os.environ.items() if not k.startswith(skip)}
-    env.update(SIGNSTUDY_VAR_DIR=str(tmp_path), SIGNSTUDY_HTTPS="1",
-               SIGNSTUDY_ALLOWED_HOSTS="study.example.org")  # fmt: skip
+    env.update(
+        SIGNSTUDY_VAR_DIR=str(tmp_path),
+        SIGNSTUDY_HTTPS="1",
+        SIGNSTUDY_ALLOWED_HOSTS="study.example.org",
+    )
     check = subprocess.run(
         [sys.executable, "manage.py", "check", "--deploy", "--fail-level", "WARNING"],
-        cwd=ROOT, env=env, capture_output=True, text=True,
-    )  # fmt: skip
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+    )
     assert check.returncode == 0, check.stdout + check.stderr
     assert "System check identified no issues (0 silenced)" in check.stdout or (
         "identified no issues" in check.stdout

@@ -52,9 +52,15 @@ def test_a_signed_answer_is_in_the_csv_and_the_everything_zip(
     expect(page.locator("#signed-size")).to_have_text(
         f"1 signed answer ({len(stored) / 1e6:.1f} MB)"
     )
-    rows = list(csv.DictReader(io.StringIO(page.request.get(
-        f"{live_server.url}/admin/studyplatform/study/{spine.pk}/results/responses.csv").text()
-    )))  # fmt: skip
+    rows = list(
+        csv.DictReader(
+            io.StringIO(
+                page.request.get(
+                    f"{live_server.url}/admin/studyplatform/study/{spine.pk}/results/responses.csv"
+                ).text()
+            )
+        )
+    )
     (row,) = [r for r in rows if r["question"] == "comments"]
     assert row["video_sha256"] == digest
     fetched = page.request.get(f"{live_server.url}{row['video_url']}")

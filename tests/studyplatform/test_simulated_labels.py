@@ -76,8 +76,9 @@ def test_the_results_page_and_every_report_file_say_simulated(answered, client, 
         archive = zipfile.ZipFile(io.BytesIO(download.content))
         checked = []
         for member in archive.namelist():
-            if member.startswith("report/") and member.endswith((".json", ".html", ".csv",
-                                                                 ".tex", ".md")):  # fmt: skip
+            if member.startswith("report/") and member.endswith(
+                (".json", ".html", ".csv", ".tex", ".md")
+            ):
                 text = _without_methods(archive.read(member).decode())
                 if NAME in text:
                     checked.append(member)

@@ -123,8 +123,7 @@ def test_the_command_takes_several_studies_and_checks_them_all_first(small_study
         call_command("generate_stimuli", small_study.slug, "nope")
     assert not Stimulus.objects.exists()  # nothing recorded before every slug was found
     with pytest.raises(CommandError, match="--manifest writes one study's manifest"):
-        call_command("generate_stimuli", small_study.slug, small_study.slug,
-                     "--manifest", "m.json")  # fmt: skip
+        call_command("generate_stimuli", small_study.slug, small_study.slug, "--manifest", "m.json")
 
 
 def _wait_for_clips(client, url, timeout_s: float = 180.0) -> dict:
@@ -146,8 +145,9 @@ def test_the_admin_action_renders_in_a_background_process_and_shows_progress(
 
     client.force_login(alice)
     changelist = reverse("admin:studyplatform_study_changelist")
-    response = client.post(changelist, {"action": "generate_stimuli",
-                                        "_selected_action": [small_study.pk]})  # fmt: skip
+    response = client.post(
+        changelist, {"action": "generate_stimuli", "_selected_action": [small_study.pk]}
+    )
     page = reverse("admin:studyplatform_study_stimuli", args=[small_study.pk])
     assert response.status_code == 302 and response["Location"] == page
     progress_url = reverse("admin:studyplatform_study_stimuli_progress", args=[small_study.pk])
@@ -156,7 +156,11 @@ def test_the_admin_action_renders_in_a_background_process_and_shows_progress(
     assert b"stimuli-bar" in client.get(page).content
     progress = _wait_for_clips(client, progress_url)
     assert (progress["total"], progress["done"], progress["failed"], progress["percent"]) == (
-        2, 2, 0, 100)  # fmt: skip
+        2,
+        2,
+        0,
+        100,
+    )
     for stimulus in Stimulus.objects.all():
         assert count_frames(stimulus.video.path) == stimulus.frame_count
     client.force_login(bob)  # another researcher's study is not there for bob

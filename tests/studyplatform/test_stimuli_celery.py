@@ -74,11 +74,24 @@ def _worker(tmp_path: Path, media: Path, private: Path | None = None):
     }
     log = open(tmp_path / "worker.log", "ab")  # noqa: SIM115 - closed below
     process = subprocess.Popen(
-        [sys.executable, "-m", "celery", "-A", "studyplatform.celery", "worker",
-         "--pool=prefork", "--concurrency=1", "--loglevel=INFO", "--without-gossip",
-         "--without-mingle"],
-        cwd=ROOT, env=environment, stdout=log, stderr=subprocess.STDOUT,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "celery",
+            "-A",
+            "studyplatform.celery",
+            "worker",
+            "--pool=prefork",
+            "--concurrency=1",
+            "--loglevel=INFO",
+            "--without-gossip",
+            "--without-mingle",
+        ],
+        cwd=ROOT,
+        env=environment,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
     try:
         yield process
     finally:
@@ -119,8 +132,12 @@ def test_a_real_worker_renders_a_small_study(broker, one_clip_study, tmp_path, r
     with _worker(tmp_path, tmp_path / "media"):
         result = do_generate_stimuli(one_clip_study)
         assert result.queued == 2
-        _wait_for(lambda: _statuses(result.stimulus_ids) == ["ready", "ready"], 240,
-                  "both clips to be rendered", tmp_path / "worker.log")  # fmt: skip
+        _wait_for(
+            lambda: _statuses(result.stimulus_ids) == ["ready", "ready"],
+            240,
+            "both clips to be rendered",
+            tmp_path / "worker.log",
+        )
     for stimulus in Stimulus.objects.filter(pk__in=result.stimulus_ids):
         assert (tmp_path / "media" / stimulus.video.name).stat().st_size == stimulus.size_bytes
 
@@ -132,10 +149,15 @@ def test_a_worker_killed_mid_render_leaves_nothing_marked_done(
     with _worker(tmp_path, media) as worker:
         result = do_generate_stimuli(one_clip_study)
         log = tmp_path / "worker.log"
-        _wait_for(lambda: "rendering" in _statuses(result.stimulus_ids), 120,
-                  "a clip to start rendering", log)  # fmt: skip
-        children = subprocess.run(["pgrep", "-P", str(worker.pid)], capture_output=True,
-                                  text=True).stdout.split()  # fmt: skip
+        _wait_for(
+            lambda: "rendering" in _statuses(result.stimulus_ids),
+            120,
+            "a clip to start rendering",
+            log,
+        )
+        children = subprocess.run(
+            ["pgrep", "-P", str(worker.pid)], capture_output=True, text=True
+        ).stdout.split()
         assert children, "the prefork worker has no child process"
         for child in children:
             os.kill(int(child), signal.SIGKILL)
@@ -143,8 +165,12 @@ def test_a_worker_killed_mid_render_leaves_nothing_marked_done(
         killed = Stimulus.objects.get(pk__in=result.stimulus_ids, status="rendering")
         assert not killed.video and not (media / "stimuli" / f"{killed.content_hash}.mp4").exists()
         # The job was not acknowledged: the worker hands it to a new child, which finishes.
-        _wait_for(lambda: _statuses(result.stimulus_ids) == ["ready", "ready"], 240,
-                  "the killed job to be redone", log)  # fmt: skip
+        _wait_for(
+            lambda: _statuses(result.stimulus_ids) == ["ready", "ready"],
+            240,
+            "the killed job to be redone",
+            log,
+        )
     assert "WorkerLostError" in log.read_text() or "lost" in log.read_text().lower()
 
 

@@ -125,15 +125,22 @@ def test_the_inline_json_field_is_checked_on_save(alice_client, fingerspelling):
 @pytest.mark.parametrize(
     ("where", "change", "message"),
     [
-        ("conditions", {"parameters": {"spin": False}}, r"conditions\[0\]: parameters: Unknown "
-                                                        "parameter 'spin'"),
+        (
+            "conditions",
+            {"parameters": {"spin": False}},
+            r"conditions\[0\]: parameters: Unknown "
+            "parameter 'spin'",
+        ),
         ("conditions", {"parameters": {"spine": "yes"}}, "spine must be true or false"),
-        ("conditions", {"parameters": {"timing": "constant"}}, "Condition 'spine-on' cannot "
-                                                               "render this item"),
+        (
+            "conditions",
+            {"parameters": {"timing": "constant"}},
+            "Condition 'spine-on' cannot render this item",
+        ),
         ("items", {"kind": "poem"}, r"items\[0\]: kind: .*poem"),
         ("items", {"parameters": {"seed": -1}}, "seed must be at least 0"),
     ],
-)  # fmt: skip
+)
 def test_import_refuses_bad_parameters_naming_them(alice, spine, where, change, message):
     data = export_study(spine)
     data[where][0].update(change)

@@ -34,15 +34,34 @@ pytestmark = pytest.mark.django_db
 
 
 @functools.lru_cache(maxsize=64)  # the same pattern is asked for by many tests
-def make_video(codec: str = "libx264", size: str = "320x240", seconds: float = 2.0,
-               container: str = "mp4", faststart: bool = True) -> bytes:  # fmt: skip
+def make_video(
+    codec: str = "libx264",
+    size: str = "320x240",
+    seconds: float = 2.0,
+    container: str = "mp4",
+    faststart: bool = True,
+) -> bytes:
     """Return a test-pattern video made by ffmpeg."""
     extra = ["-pix_fmt", "yuv420p"] if codec == "libx264" else []
     if container == "mp4" and faststart:
         extra += ["-movflags", "+faststart"]
-    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-f", "lavfi",
-               "-i", f"testsrc=size={size}:rate=25", "-t", str(seconds), "-c:v", codec,
-               *extra, "-f", container, "-"]  # fmt: skip
+    command = [
+        imageio_ffmpeg.get_ffmpeg_exe(),
+        "-v",
+        "error",
+        "-f",
+        "lavfi",
+        "-i",
+        f"testsrc=size={size}:rate=25",
+        "-t",
+        str(seconds),
+        "-c:v",
+        codec,
+        *extra,
+        "-f",
+        container,
+        "-",
+    ]
     if container in ("mp4", "mov"):  # these need a seekable output: a temporary file
         import tempfile
 
@@ -102,8 +121,9 @@ def test_what_a_browser_might_not_play_becomes_an_h264_mp4_with_its_index_first(
     mixed, settings, codec, container, faststart, converted
 ):
     data = make_video(codec, container=container, faststart=faststart)
-    clip = do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S2"),
-                          upload(data, f"S2.{container}"))  # fmt: skip
+    clip = do_upload_clip(
+        _condition(mixed, "spine-off"), mixed.items.get(key="S2"), upload(data, f"S2.{container}")
+    )
     assert clip.converted == converted and clip.video.name.endswith(".mp4")
     assert clip.source_sha256 == hashlib.sha256(data).hexdigest() != clip.sha256
     stored = _private(settings) / clip.video.name
@@ -117,14 +137,16 @@ def test_what_a_browser_might_not_play_becomes_an_h264_mp4_with_its_index_first(
 
 def test_an_odd_sized_video_is_cropped_by_one_pixel_for_h264(mixed):
     data = make_video("mpeg4", size="321x241", container="mov", faststart=False)
-    clip = do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S3"),
-                          upload(data, "odd.mov"))  # fmt: skip
+    clip = do_upload_clip(
+        _condition(mixed, "spine-off"), mixed.items.get(key="S3"), upload(data, "odd.mov")
+    )
     assert (clip.width, clip.height, clip.converted) == (320, 240, "transcoded")
 
 
 def test_a_webm_stays_a_webm(mixed, settings):
-    clip = do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S4"),
-                          upload(tiny_webm(), "S4.webm"))  # fmt: skip
+    clip = do_upload_clip(
+        _condition(mixed, "spine-off"), mixed.items.get(key="S4"), upload(tiny_webm(), "S4.webm")
+    )
     assert clip.video.name.endswith(".webm") and clip.source_codec == "vp8"
     assert clip.frame_count == 15 and clip.width == 160
 
@@ -144,16 +166,20 @@ def _nothing_stored(settings) -> None:
 )
 def test_what_is_not_a_whole_video_is_refused_naming_it(mixed, settings, data, message):
     with pytest.raises(ClipUploadRejected, match=message):
-        do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
-                       upload(data, "bad.mp4"))  # fmt: skip
+        do_upload_clip(
+            _condition(mixed, "spine-off"), mixed.items.get(key="S1"), upload(data, "bad.mp4")
+        )
     _nothing_stored(settings)
 
 
 def test_a_video_cut_short_is_refused(mixed, settings):
     data = make_video(seconds=3.0, faststart=True)
     with pytest.raises(ClipUploadRejected, match="does not decode to its end"):
-        do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
-                       upload(data[: len(data) // 2], "cut.mp4"))  # fmt: skip
+        do_upload_clip(
+            _condition(mixed, "spine-off"),
+            mixed.items.get(key="S1"),
+            upload(data[: len(data) // 2], "cut.mp4"),
+        )
     _nothing_stored(settings)
 
 
@@ -162,11 +188,15 @@ def test_an_oversized_upload_and_a_rendered_condition_are_refused(mixed, setting
 
     monkeypatch.setattr(clips, "MAX_CLIP_BYTES", 1000)
     with pytest.raises(ClipUploadRejected, match="larger than"):
-        do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
-                       upload(make_video(), "big.mp4"))  # fmt: skip
+        do_upload_clip(
+            _condition(mixed, "spine-off"),
+            mixed.items.get(key="S1"),
+            upload(make_video(), "big.mp4"),
+        )
     with pytest.raises(ClipUploadRejected, match="renders its clips"):
-        do_upload_clip(_condition(mixed, "spine-on"), mixed.items.get(key="S1"),
-                       upload(make_video(), "S1.mp4"))  # fmt: skip
+        do_upload_clip(
+            _condition(mixed, "spine-on"), mixed.items.get(key="S1"), upload(make_video(), "S1.mp4")
+        )
     _nothing_stored(settings)
 
 
@@ -202,25 +232,35 @@ def test_a_zip_with_a_manifest_uploads_every_clip_it_names(mixed):
     )
     clips = do_import_clips(mixed, _zip(files, manifest))
     assert len(clips) == 5 and UploadedClip.objects.count() == 5
-    assert {c.item.key: c.duration_ms for c in clips} == {f"S{n}": 1000 + 200 * n
-                                                           for n in range(1, 6)}  # fmt: skip
+    assert {c.item.key: c.duration_ms for c in clips} == {
+        f"S{n}": 1000 + 200 * n for n in range(1, 6)
+    }
 
 
 @pytest.mark.parametrize(
     ("manifest", "files", "message"),
     [
-        ("item,condition,file\nS1,spine-off,S1.mp4\nS2,spine-off,gone.mp4\n", ["S1.mp4"],
-         r"line 3: the zip has no file 'gone.mp4'"),
+        (
+            "item,condition,file\nS1,spine-off,S1.mp4\nS2,spine-off,gone.mp4\n",
+            ["S1.mp4"],
+            r"line 3: the zip has no file 'gone.mp4'",
+        ),
         ("item,file\nS1,S1.mp4\n", ["S1.mp4"], "no condition column"),
         ("item,condition,file\nS9,spine-off,S1.mp4\n", ["S1.mp4"], "no item 'S9'"),
         ("item,condition,file\nS1,spine-on,S1.mp4\n", ["S1.mp4"], "renders its clips"),
-        ("item,condition,file\nS1,spine-off,S1.mp4\nS1,spine-off,S1.mp4\n", ["S1.mp4"],
-         "a second clip of S1"),
+        (
+            "item,condition,file\nS1,spine-off,S1.mp4\nS1,spine-off,S1.mp4\n",
+            ["S1.mp4"],
+            "a second clip of S1",
+        ),
         (None, ["S1.mp4"], "no manifest.csv"),
-        ("item,condition,file\nS1,spine-off,S1.mp4\nS2,spine-off,bad.mp4\n",
-         ["S1.mp4", "bad.mp4"], "bad.mp4 is not a video"),
+        (
+            "item,condition,file\nS1,spine-off,S1.mp4\nS2,spine-off,bad.mp4\n",
+            ["S1.mp4", "bad.mp4"],
+            "bad.mp4 is not a video",
+        ),
     ],
-)  # fmt: skip
+)
 def test_a_zip_that_is_wrong_anywhere_stores_nothing(mixed, settings, manifest, files, message):
     good = make_video(seconds=1.0)
     contents = {name: (b"not a video at all" if name == "bad.mp4" else good) for name in files}
@@ -230,8 +270,11 @@ def test_a_zip_that_is_wrong_anywhere_stores_nothing(mixed, settings, manifest, 
 
 
 def test_a_zip_bomb_and_a_non_zip_are_refused(mixed, settings):
-    bomb = _zip({"S1.mp4": b"\x00" * (64 * 1024**2)}, "item,condition,file\nS1,spine-off,S1.mp4\n",
-                zipfile.ZIP_DEFLATED)  # fmt: skip
+    bomb = _zip(
+        {"S1.mp4": b"\x00" * (64 * 1024**2)},
+        "item,condition,file\nS1,spine-off,S1.mp4\n",
+        zipfile.ZIP_DEFLATED,
+    )
     assert len(bomb.getvalue()) < 1024**2
     with pytest.raises(ClipUploadRejected, match="zip bomb"):
         do_import_clips(mixed, bomb)
@@ -267,11 +310,25 @@ def test_pairs_compared_are_warned_of_when_length_or_size_differ(mixed):
     on, off = _condition(mixed, "spine-on"), _condition(mixed, "spine-off")
     item = mixed.items.get(key="S1")
     block = mixed.blocks.order_by("position").last()
-    Trial.objects.create(study=mixed, block=block, key="pair-s1", kind="pairwise", item=item,
-                         condition_a=on, condition_b=off)  # fmt: skip
+    Trial.objects.create(
+        study=mixed,
+        block=block,
+        key="pair-s1",
+        kind="pairwise",
+        item=item,
+        condition_a=on,
+        condition_b=off,
+    )
     do_upload_clip(off, item, upload(make_video(size="640x360", seconds=3.0)))
-    Stimulus.objects.create(condition=on, item=item, status="ready", content_hash="x" * 64,
-                            width=640, height=480, duration_ms=2000)  # fmt: skip
+    Stimulus.objects.create(
+        condition=on,
+        item=item,
+        status="ready",
+        content_hash="x" * 64,
+        width=640,
+        height=480,
+        duration_ms=2000,
+    )
     warnings = mismatched_pairs(mixed)
     assert warnings == [
         "S1: spine-on and spine-off differ in frame size (640×480 and 640×360).",
@@ -280,8 +337,9 @@ def test_pairs_compared_are_warned_of_when_length_or_size_differ(mixed):
 
 
 def test_an_uploaded_clip_is_private_until_the_study_takes_participants(mixed, client, bob, alice):
-    clip = do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
-                          upload(make_video()))  # fmt: skip
+    clip = do_upload_clip(
+        _condition(mixed, "spine-off"), mixed.items.get(key="S1"), upload(make_video())
+    )
     url = f"/clips/{clip.video.name}"
     assert client.get(url).status_code == 404  # a draft: nobody outside its researchers
     client.force_login(alice)
@@ -301,8 +359,9 @@ def test_an_uploaded_clip_is_private_until_the_study_takes_participants(mixed, c
 
 
 def test_a_copy_of_the_study_keeps_its_uploaded_clips(mixed, bob):
-    clip = do_upload_clip(_condition(mixed, "spine-off"), mixed.items.get(key="S1"),
-                          upload(make_video()))  # fmt: skip
+    clip = do_upload_clip(
+        _condition(mixed, "spine-off"), mixed.items.get(key="S1"), upload(make_video())
+    )
     copy = do_duplicate_study(mixed, owner=bob)
     copied = UploadedClip.objects.get(condition__study=copy)
     assert copied.condition.source == "uploaded" and copied.item.key == "S1"

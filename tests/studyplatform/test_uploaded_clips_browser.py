@@ -113,8 +113,9 @@ def test_a_study_mixing_uploaded_and_rendered_clips_is_built_taken_and_analysed(
     generate_and_open(page, url, study)
     assert outsider.request.get(f"{url}/clips/{clip.video.name}").status == 200
     outsider.close()
-    assert set(Stimulus.objects.filter(condition__study=study).values_list("status", flat=True)) \
-        == {"ready"}  # fmt: skip
+    assert set(
+        Stimulus.objects.filter(condition__study=study).values_list("status", flat=True)
+    ) == {"ready"}
 
     # Motion out: the rendered clip's page offers what participants saw as GLB and BVH.
     rendered = Stimulus.objects.get(condition__key="avatar", item__key="CAT")
@@ -155,8 +156,10 @@ def test_a_study_mixing_uploaded_and_rendered_clips_is_built_taken_and_analysed(
             stimulus = Stimulus.objects.get(condition=condition, item=trial.item)
             assert row[f"clip{number}_sha256"] == stimulus.sha256 != ""
             if condition.source == "uploaded":
-                assert stimulus.sha256 == UploadedClip.objects.get(
-                    condition=condition, item=trial.item).sha256  # fmt: skip
+                assert (
+                    stimulus.sha256
+                    == UploadedClip.objects.get(condition=condition, item=trial.item).sha256
+                )
 
     # The report analyses both conditions and says which clips were uploaded.
     archive = download_report(page, url, study)

@@ -12,18 +12,35 @@ from synthesis.interchange.glb import FLOAT, UINT16, UINT32, BufferBuilder
 
 # HumanIK name, parent, position (m) in T-pose, facing +Z; the character's left is +X.
 TRUNK = [
-    ("Hips", None, (0, 1.0, 0)), ("Spine", "Hips", (0, 1.1, 0)),
-    ("Spine1", "Spine", (0, 1.22, 0)), ("Spine2", "Spine1", (0, 1.34, 0)),
-    ("Neck", "Spine2", (0, 1.5, 0)), ("Head", "Neck", (0, 1.6, 0)),
-]  # fmt: skip
+    ("Hips", None, (0, 1.0, 0)),
+    ("Spine", "Hips", (0, 1.1, 0)),
+    ("Spine1", "Spine", (0, 1.22, 0)),
+    ("Spine2", "Spine1", (0, 1.34, 0)),
+    ("Neck", "Spine2", (0, 1.5, 0)),
+    ("Head", "Neck", (0, 1.6, 0)),
+]
 VRM_NAMES = {
-    "Hips": "hips", "Spine": "spine", "Spine1": "chest", "Spine2": "upperChest",
-    "Neck": "neck", "Head": "head",
-}  # fmt: skip
-DIGITS = {"Thumb": (0.03, -0.01, 0.04), "Index": (0.09, 0, 0.03), "Middle": (0.095, 0, 0.01),
-          "Ring": (0.09, 0, -0.01), "Pinky": (0.08, 0, -0.03)}  # fmt: skip
-VRM_DIGITS = {"Thumb": ("Metacarpal", "Proximal", "Distal"), "Index": "Index",
-              "Middle": "Middle", "Ring": "Ring", "Pinky": "Little"}  # fmt: skip
+    "Hips": "hips",
+    "Spine": "spine",
+    "Spine1": "chest",
+    "Spine2": "upperChest",
+    "Neck": "neck",
+    "Head": "head",
+}
+DIGITS = {
+    "Thumb": (0.03, -0.01, 0.04),
+    "Index": (0.09, 0, 0.03),
+    "Middle": (0.095, 0, 0.01),
+    "Ring": (0.09, 0, -0.01),
+    "Pinky": (0.08, 0, -0.03),
+}
+VRM_DIGITS = {
+    "Thumb": ("Metacarpal", "Proximal", "Distal"),
+    "Index": "Index",
+    "Middle": "Middle",
+    "Ring": "Ring",
+    "Pinky": "Little",
+}
 
 
 def bones(fingers: bool = True) -> list[tuple[str, str | None, tuple, str]]:
@@ -31,10 +48,12 @@ def bones(fingers: bool = True) -> list[tuple[str, str | None, tuple, str]]:
     out = [(name, parent, position, VRM_NAMES[name]) for name, parent, position in TRUNK]
     for cap, sign in (("Left", 1.0), ("Right", -1.0)):
         lower = cap.lower()
-        arm = [(f"{cap}Shoulder", "Spine2", (0.03 * sign, 1.45, 0), f"{lower}Shoulder"),
-               (f"{cap}Arm", f"{cap}Shoulder", (0.17 * sign, 1.45, 0), f"{lower}UpperArm"),
-               (f"{cap}ForeArm", f"{cap}Arm", (0.45 * sign, 1.45, 0), f"{lower}LowerArm"),
-               (f"{cap}Hand", f"{cap}ForeArm", (0.70 * sign, 1.45, 0), f"{lower}Hand")]  # fmt: skip
+        arm = [
+            (f"{cap}Shoulder", "Spine2", (0.03 * sign, 1.45, 0), f"{lower}Shoulder"),
+            (f"{cap}Arm", f"{cap}Shoulder", (0.17 * sign, 1.45, 0), f"{lower}UpperArm"),
+            (f"{cap}ForeArm", f"{cap}Arm", (0.45 * sign, 1.45, 0), f"{lower}LowerArm"),
+            (f"{cap}Hand", f"{cap}ForeArm", (0.70 * sign, 1.45, 0), f"{lower}Hand"),
+        ]
         out += arm
         if not fingers:
             continue
@@ -55,17 +74,32 @@ def bones(fingers: bool = True) -> list[tuple[str, str | None, tuple, str]]:
 
 def _box(centre: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
     corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
-    faces = np.array([
-        [0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
-        [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3],
-    ])  # fmt: skip
+    faces = np.array(
+        [
+            [0, 1, 3],
+            [0, 3, 2],
+            [4, 6, 7],
+            [4, 7, 5],
+            [0, 4, 5],
+            [0, 5, 1],
+            [2, 3, 7],
+            [2, 7, 6],
+            [0, 2, 6],
+            [0, 6, 4],
+            [1, 5, 7],
+            [1, 7, 3],
+        ]
+    )
     return centre + half * corners, faces
 
 
 def humanoid_glb(
-    fingers: bool = True, vrm: bool = False, skin: bool = True,
-    morphs: tuple[str, ...] = (), expressions: dict | None = None,
-) -> bytes:  # fmt: skip
+    fingers: bool = True,
+    vrm: bool = False,
+    skin: bool = True,
+    morphs: tuple[str, ...] = (),
+    expressions: dict | None = None,
+) -> bytes:
     """Return a T-posed humanoid as GLB (VRM 1.0 with *vrm*), a box skinned to each bone;
     *morphs* names morph targets that lift the head box; *expressions* (VRM preset →
     morph target index) binds VRM expressions to them; without *skin*, no skin at all."""
@@ -90,14 +124,16 @@ def humanoid_glb(
     vertices, faces = np.concatenate(vertices), np.concatenate(faces)
     attributes = gl.Attributes(POSITION=buffer.add(vertices, FLOAT, gl.ARRAY_BUFFER, bounds=True))
     if skin:
-        attributes.JOINTS_0 = buffer.add(np.column_stack([bone, np.zeros((len(bone), 3))]),
-                                         UINT16, gl.ARRAY_BUFFER)  # fmt: skip
+        attributes.JOINTS_0 = buffer.add(
+            np.column_stack([bone, np.zeros((len(bone), 3))]), UINT16, gl.ARRAY_BUFFER
+        )
         weights = np.zeros((len(bone), 4))
         weights[:, 0] = 1.0
         attributes.WEIGHTS_0 = buffer.add(weights, FLOAT, gl.ARRAY_BUFFER)
-    primitive = gl.Primitive(attributes=attributes,
-                             indices=buffer.add(faces.reshape(-1, 1), UINT32,
-                                                gl.ELEMENT_ARRAY_BUFFER))  # fmt: skip
+    primitive = gl.Primitive(
+        attributes=attributes,
+        indices=buffer.add(faces.reshape(-1, 1), UINT32, gl.ELEMENT_ARRAY_BUFFER),
+    )
     mesh = gl.Mesh(name="body", primitives=[primitive])
     head = names.index("Head")
     for _ in morphs:  # each lifts the head's box (names only tell them apart)
@@ -112,24 +148,39 @@ def humanoid_glb(
     inverse[:, :3, 3] = -np.array([positions[n] for n in names])
     if skin:
         matrices = buffer.add(np.swapaxes(inverse, 1, 2).reshape(-1, 16), FLOAT)
-        gltf.skins.append(gl.Skin(joints=list(range(len(joints))), skeleton=0,
-                                  inverseBindMatrices=matrices))  # fmt: skip
+        gltf.skins.append(
+            gl.Skin(joints=list(range(len(joints))), skeleton=0, inverseBindMatrices=matrices)
+        )
     gltf.nodes.append(gl.Node(name="body", mesh=0, skin=0 if skin else None))
     gltf.scenes.append(gl.Scene(nodes=[0, len(gltf.nodes) - 1]))
     gltf.scene = 0
     if vrm:
         gltf.extensionsUsed = ["VRMC_vrm"]
-        gltf.extensions = {"VRMC_vrm": {
-            "specVersion": "1.0",
-            "meta": {"name": "Tiny signer", "authors": ["SignStudy tests"],
-                     "licenseUrl": "https://vrm.dev/licenses/1.0/"},
-            "humanoid": {"humanBones": {vrm_name: {"node": index}
-                                        for index, (_, _, _, vrm_name) in enumerate(joints)}},
-            "expressions": {"preset": {
-                name: {"morphTargetBinds": [{"node": len(gltf.nodes) - 1, "index": index,
-                                             "weight": 1.0}]}
-                for name, index in (expressions or {}).items()
-            }},
-        }}  # fmt: skip
+        gltf.extensions = {
+            "VRMC_vrm": {
+                "specVersion": "1.0",
+                "meta": {
+                    "name": "Tiny signer",
+                    "authors": ["SignStudy tests"],
+                    "licenseUrl": "https://vrm.dev/licenses/1.0/",
+                },
+                "humanoid": {
+                    "humanBones": {
+                        vrm_name: {"node": index}
+                        for index, (_, _, _, vrm_name) in enumerate(joints)
+                    }
+                },
+                "expressions": {
+                    "preset": {
+                        name: {
+                            "morphTargetBinds": [
+                                {"node": len(gltf.nodes) - 1, "index": index, "weight": 1.0}
+                            ]
+                        }
+                        for name, index in (expressions or {}).items()
+                    }
+                },
+            }
+        }
     gltf.set_binary_blob(buffer.finish())
     return b"".join(gltf.save_to_bytes())

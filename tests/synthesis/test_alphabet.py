@@ -60,11 +60,21 @@ def _curled(p, finger: str) -> bool:
 @pytest.mark.parametrize(
     "key, extended",
     [
-        ("A", ""), ("S", ""), ("E", ""), ("B", "index middle ring pinky"), ("D", "index"),
-        ("F", "middle ring pinky"), ("I", "pinky"), ("L", "index"), ("U", "index middle"),
-        ("V", "index middle"), ("W", "index middle ring"), ("Y", "pinky"), ("R", "index middle"),
+        ("A", ""),
+        ("S", ""),
+        ("E", ""),
+        ("B", "index middle ring pinky"),
+        ("D", "index"),
+        ("F", "middle ring pinky"),
+        ("I", "pinky"),
+        ("L", "index"),
+        ("U", "index middle"),
+        ("V", "index middle"),
+        ("W", "index middle ring"),
+        ("Y", "pinky"),
+        ("R", "index middle"),
     ],
-)  # fmt: skip
+)
 def test_extended_and_curled_fingers(points, key, extended):
     p = points[key]
     for finger in ("index", "middle", "ring", "pinky"):

@@ -18,8 +18,11 @@ SENTENCE = "INFORM-YOU BLUE MY FAVORITE COLOR."
 @cache
 def _signed():
     """The spine-off sentence at 30 fps: the trunk at rest (its forward bends are not fitted)."""
-    build = build_motion(ClipRequest.from_parameters(
-        "sentence", SENTENCE, {"rate_hz": 30.0, "spine": False, "liveliness": False}))  # fmt: skip
+    build = build_motion(
+        ClipRequest.from_parameters(
+            "sentence", SENTENCE, {"rate_hz": 30.0, "spine": False, "liveliness": False}
+        )
+    )
     return build.rig, np.asarray(build.motion)
 
 
@@ -28,21 +31,28 @@ def test_a_sentence_exported_as_pose_landmarks_fits_back():
     recording = parse_pose(format_pose(from_body_motion(body, truth, 30.0)))
     assert "NOSE" in dict(recording.components)["POSE_LANDMARKS"]
     assert {c for c, _ in recording.components} == {
-        "POSE_LANDMARKS", "LEFT_HAND_LANDMARKS", "RIGHT_HAND_LANDMARKS"}  # fmt: skip
+        "POSE_LANDMARKS",
+        "LEFT_HAND_LANDMARKS",
+        "RIGHT_HAND_LANDMARKS",
+    }
     fit = fit_arms(body, recording)
     assert fit.found.all() and np.nanmax(fit.residual_mm) < 1.0
     true_pose, fitted_pose = body.pose(truth), body.pose(fit.dofs_rad)
     for side in ("right", "left"):
         for joint in ("elbow", "wrist", "index_tip", "thumb_tip"):
             j = body.skeleton.index(f"{side}_{joint}")
-            miss_mm = np.linalg.norm(fitted_pose.positions_m[:, j] - true_pose.positions_m[:, j],
-                                     axis=1) * 1000  # fmt: skip
+            miss_mm = (
+                np.linalg.norm(fitted_pose.positions_m[:, j] - true_pose.positions_m[:, j], axis=1)
+                * 1000
+            )
             assert np.median(miss_mm) < 2.0 and miss_mm.max() < 10.0, (side, joint)
         w = body.skeleton.index(f"{side}_wrist")
         turned = np.transpose(quat_to_matrix(true_pose.quaternions[:, w]), (0, 2, 1)) @ (
-            quat_to_matrix(fitted_pose.quaternions[:, w]))  # fmt: skip
-        angle_deg = np.degrees(np.arccos(np.clip((np.trace(turned, axis1=1, axis2=2) - 1) / 2,
-                                                 -1, 1)))  # fmt: skip
+            quat_to_matrix(fitted_pose.quaternions[:, w])
+        )
+        angle_deg = np.degrees(
+            np.arccos(np.clip((np.trace(turned, axis1=1, axis2=2) - 1) / 2, -1, 1))
+        )
         assert np.median(angle_deg) < 1.0, side
 
 
@@ -50,9 +60,13 @@ def test_a_signer_turning_and_tilting_is_fitted_where_the_landmarks_show_it():
     """The spine-on sentence, with the head turned and tilted on top: turns and side
     bends come back, forward bends stay at rest (trunkfit._FITTED says why). The comfort
     variant twists both ways, over 20° here; the seed's printed twist turns one way."""
-    build = build_motion(ClipRequest.from_parameters(
-        "sentence", SENTENCE, {"rate_hz": 30.0, "spine": True, "liveliness": False,
-                               "spine_formula": "comfort"}))  # fmt: skip
+    build = build_motion(
+        ClipRequest.from_parameters(
+            "sentence",
+            SENTENCE,
+            {"rate_hz": 30.0, "spine": True, "liveliness": False, "spine_formula": "comfort"},
+        )
+    )
     body, truth = build.rig, np.array(build.motion)
     names = body.dof_names
     frames = np.linspace(0.0, 1.0, len(truth))
@@ -68,16 +82,26 @@ def test_a_signer_turning_and_tilting_is_fitted_where_the_landmarks_show_it():
 
     spine_turn = summed(truth, "spine", "rotation")
     assert np.ptp(spine_turn) > 20  # the spine extension turns the trunk
-    for part, motion in (("spine", "rotation"), ("neck", "rotation"), ("head", "rotation"),
-                         ("neck", "side_bend"), ("head", "side_bend")):  # fmt: skip
+    for part, motion in (
+        ("spine", "rotation"),
+        ("neck", "rotation"),
+        ("head", "rotation"),
+        ("neck", "side_bend"),
+        ("head", "side_bend"),
+    ):
         miss = np.abs(summed(fit.dofs_rad, part, motion) - summed(truth, part, motion))
         # Measured: 0.5° for the spine's turn, 0.3° for the head's, 0.0° for its tilt.
         assert np.median(miss) < 1.5, (part, motion)
     assert not summed(fit.dofs_rad, "spine", "flexion").any()
     # The arms hang from the turned shoulders: the hands land where they were.
     wrist = body.skeleton.index("right_wrist")
-    miss_mm = np.linalg.norm(body.pose(fit.dofs_rad).positions_m[:, wrist]
-                             - body.pose(truth).positions_m[:, wrist], axis=1) * 1000  # fmt: skip
+    miss_mm = (
+        np.linalg.norm(
+            body.pose(fit.dofs_rad).positions_m[:, wrist] - body.pose(truth).positions_m[:, wrist],
+            axis=1,
+        )
+        * 1000
+    )
     # Measured: 11 mm (the trunk's forward bends, kept at rest, move the shoulders).
     assert np.median(miss_mm) < 15.0
 
@@ -88,8 +112,14 @@ def test_files_without_arms_are_refused_by_name():
     with pytest.raises(PoseFileError, match="no component POSE_LANDMARKS"):
         fit_arms(body, hand)
     recording = from_body_motion(body, truth[:3], 30.0)
-    unseen = type(recording)(recording.fps, recording.components, recording.points,
-                             np.zeros_like(recording.confidence), 10, 10)  # fmt: skip
+    unseen = type(recording)(
+        recording.fps,
+        recording.components,
+        recording.points,
+        np.zeros_like(recording.confidence),
+        10,
+        10,
+    )
     with pytest.raises(PoseFileError, match="No arm was found"):
         fit_arms(body, unseen)
 
@@ -99,9 +129,35 @@ def test_the_command_line_exports_a_sentence_and_renders_it_back(tmp_path, rende
     from synthesis.skeleton.bvh import read_bvh
 
     pose, bvh, out = tmp_path / "s.pose", tmp_path / "s.bvh", tmp_path / "s.mp4"
-    assert main(["sentence", "MY FAVORITE COLOR.", "--rate", "15", "--export-pose", str(pose),
-                 "--export-bvh", str(bvh)]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "sentence",
+                "MY FAVORITE COLOR.",
+                "--rate",
+                "15",
+                "--export-pose",
+                str(pose),
+                "--export-bvh",
+                str(bvh),
+            ]
+        )
+        == 0
+    )
     assert read_bvh(bvh).n_frames == parse_pose(pose.read_bytes()).n_frames > 10
-    assert main(["render-pose-file", str(pose), "--view", "upper-body", "--out", str(out),
-                 "--size", "96x72"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "render-pose-file",
+                str(pose),
+                "--view",
+                "upper-body",
+                "--out",
+                str(out),
+                "--size",
+                "96x72",
+            ]
+        )
+        == 0
+    )
     assert count_frames(out) == read_bvh(bvh).n_frames

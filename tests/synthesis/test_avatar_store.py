@@ -26,10 +26,16 @@ def _builder():
         model = HandModel()
         vertices = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0, 0, 0.01]])
         faces = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
-        part = rigid_part("nails", vertices, faces, np.full(4, 3), (0.8, 0.6, 0.6),
-                          casts_shadow=False)  # fmt: skip
-        edged = dataclasses.replace(part, name="cuffed", edge_m=vertices[:, 0] - 0.005,
-                                    across_rgb=np.zeros((4, 3)), casts_shadow=True)  # fmt: skip
+        part = rigid_part(
+            "nails", vertices, faces, np.full(4, 3), (0.8, 0.6, 0.6), casts_shadow=False
+        )
+        edged = dataclasses.replace(
+            part,
+            name="cuffed",
+            edge_m=vertices[:, 0] - 0.005,
+            across_rgb=np.zeros((4, 3)),
+            casts_shadow=True,
+        )
         return Avatar("tiny", model, model.neutral(), (part, edged))
 
     return build, calls

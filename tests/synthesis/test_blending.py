@@ -15,10 +15,16 @@ def test_each_sign_starts_one_overlap_before_the_last_ends():
 
 def test_weights_sum_to_one_and_signs_keep_their_bodies():
     rest = np.zeros(3)
-    first = np.vstack([np.linspace(rest, [1, 1, 1], 10), np.ones((30, 3)),
-                       np.linspace([1, 1, 1], rest, 10)])  # fmt: skip
-    second = np.vstack([np.linspace(rest, [-1, 0, 2], 10), np.tile([-1, 0, 2], (30, 1)),
-                        np.linspace([-1, 0, 2], rest, 10)])  # fmt: skip
+    first = np.vstack(
+        [np.linspace(rest, [1, 1, 1], 10), np.ones((30, 3)), np.linspace([1, 1, 1], rest, 10)]
+    )
+    second = np.vstack(
+        [
+            np.linspace(rest, [-1, 0, 2], 10),
+            np.tile([-1, 0, 2], (30, 1)),
+            np.linspace([-1, 0, 2], rest, 10),
+        ]
+    )
     blended = blend_signs([first, second], overlap=10)
     assert blended.shape == (50 + 50 - 10, 3)
     np.testing.assert_allclose(blended[10:40], first[10:40])  # first body untouched

@@ -67,8 +67,9 @@ def test_a_letter_keeps_its_handshape_on_the_body():
     a = np.array([alone[hand.skeleton.index(n)] for n in names])
     b = np.array([on_body[body.skeleton.index("right_" + n)] for n in names])
     a, b = a - a.mean(axis=0), b - b.mean(axis=0)
-    assert np.allclose(np.linalg.svd(a, compute_uv=False), np.linalg.svd(b, compute_uv=False),
-                       atol=1e-9)  # fmt: skip
+    assert np.allclose(
+        np.linalg.svd(a, compute_uv=False), np.linalg.svd(b, compute_uv=False), atol=1e-9
+    )
     wrist = on_body[body.skeleton.index("right_wrist")]
     assert wrist[1] > 1.2 and wrist[2] > 0.1  # held up in front of the chest
 

@@ -131,8 +131,9 @@ def test_a_whole_recording_is_tracked_from_its_stillest_frame():
         points, confidence = read_pose(human_letters()[letter]).hand("right")
         fit = fit_hand(model, points, confidence)
         middle = len(points) // 2
-        marks = np.einsum("ij,kj->ki", fit.rotations[middle],
-                          landmarks(model, fit.dofs_rad[middle]))  # fmt: skip
+        marks = np.einsum(
+            "ij,kj->ki", fit.rotations[middle], landmarks(model, fit.dofs_rad[middle])
+        )
         assert nearest_handshape(handshape_features(marks * [1, 1, 0]), human) == letter
 
 

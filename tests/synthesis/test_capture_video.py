@@ -29,8 +29,14 @@ def clip(tmp_path_factory):
     243 and E's 630 of 800; bench/bench_capture.py --avatar human: 9.9° over the study
     words against the simple hand's 7.6°), an open point of issue 36.
     """
-    request = ClipRequest("word", "ABLE", {"timing": "constant", "avatar": "simple"},
-                          rate_hz=30, width=480, height=360)  # fmt: skip
+    request = ClipRequest(
+        "word",
+        "ABLE",
+        {"timing": "constant", "avatar": "simple"},
+        rate_hz=30,
+        width=480,
+        height=360,
+    )
     build = build_motion(request)
     path = tmp_path_factory.mktemp("capture") / "able.mp4"
     render_request(request, path, build=build)
@@ -43,8 +49,11 @@ def test_a_rendered_hand_is_captured_and_fitted_back(clip):
     assert recording.found_hands()["right"] > 0.9
     hand = captured_hand(recording, "right")
     model = HandModel()
-    fingers = [i for i, n in enumerate(model.dof_names)
-               if "flexion" in n and not n.startswith(("thumb", "wrist"))]  # fmt: skip
+    fingers = [
+        i
+        for i, n in enumerate(model.dof_names)
+        if "flexion" in n and not n.startswith(("thumb", "wrist"))
+    ]
     n = min(len(truth), len(hand.fit.dofs_rad))
     error_deg = np.degrees(np.abs(hand.fit.dofs_rad[:n, fingers] - truth[:n, fingers]))
     # Measured: median 9.2° (9.5° on the machine of 2026-12-05) on this short clip of
@@ -58,8 +67,24 @@ def test_a_rendered_hand_is_captured_and_fitted_back(clip):
 def test_capture_on_the_command_line_writes_pose_bvh_report_and_timing(clip, tmp_path, capsys):
     path, _ = clip
     pose, bvh, report = tmp_path / "able.pose", tmp_path / "able.bvh", tmp_path / "report"
-    assert main(["capture", str(path), "--one-hand", "--word", "ABLE", "--out", str(pose),
-                 "--bvh", str(bvh), "--report", str(report)]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "capture",
+                str(path),
+                "--one-hand",
+                "--word",
+                "ABLE",
+                "--out",
+                str(pose),
+                "--bvh",
+                str(bvh),
+                "--report",
+                str(report),
+            ]
+        )
+        == 0
+    )
     printed = capsys.readouterr().out
     timing = json.loads(printed[printed.index("{") :])
     assert timing["word"] == "ABLE" and len(timing["hold_ms"]) == 4
@@ -102,10 +127,17 @@ def test_a_rendered_signer_is_captured_with_holistic_and_its_arms_fitted(tmp_pat
     from synthesis.capture.armfit import fit_arms
 
     request = ClipRequest.from_parameters(
-        "sentence", "MY FAVORITE COLOR.",
-        {"rate_hz": 10.0, "spine": False, "liveliness": False, "width": 480, "height": 360,
-         "avatar": "simple"},
-    )  # fmt: skip
+        "sentence",
+        "MY FAVORITE COLOR.",
+        {
+            "rate_hz": 10.0,
+            "spine": False,
+            "liveliness": False,
+            "width": 480,
+            "height": 360,
+            "avatar": "simple",
+        },
+    )
     build = build_motion(request)
     path = tmp_path / "signer.mp4"
     render_request(request, path, build=build)

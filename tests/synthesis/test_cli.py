@@ -24,9 +24,19 @@ def test_render_pose_writes_a_png(tmp_path, capsys):
 def test_spell_writes_an_mp4_with_the_expected_frame_count(tmp_path):
     out, poster = tmp_path / "ab.mp4", tmp_path / "ab.png"
     code = main(
-        ["spell", "AB", "--out", str(out), "--poster", str(poster), "--size", "96x72",
-         "--rate", "30"]
-    )  # fmt: skip
+        [
+            "spell",
+            "AB",
+            "--out",
+            str(out),
+            "--poster",
+            str(poster),
+            "--size",
+            "96x72",
+            "--rate",
+            "30",
+        ]
+    )
     assert code == 0
     assert count_frames(out) == len(spell("AB", rate_hz=30))
     assert iio.imread(poster).shape == (72, 96, 3)
@@ -71,8 +81,23 @@ def test_spell_prints_the_constant_timing_and_renders_a_saved_one(tmp_path, caps
     fast = WordTiming(("O", "K"), (100, 100), (100,), "mine")
     saved.write_text(json.dumps(fast.to_dict()))
     out = tmp_path / "ok.mp4"
-    assert main(["spell", "OK", "--timing-file", str(saved), "--out", str(out), "--rate", "30",
-                 "--size", "64x48"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "spell",
+                "OK",
+                "--timing-file",
+                str(saved),
+                "--out",
+                str(out),
+                "--rate",
+                "30",
+                "--size",
+                "64x48",
+            ]
+        )
+        == 0
+    )
     assert count_frames(out) == len(spell("OK", rate_hz=30, timing=fast))
     assert main(["spell", "NO", "--timing-file", str(saved), "--timing-only"]) == 2
     assert "times OK, not NO" in capsys.readouterr().err
@@ -96,14 +121,42 @@ def test_spell_retimes_a_recording_for_each_condition(tmp_path, capsys):
 
     model = HandModel()
     recording = tmp_path / "david.bvh"
-    write_bvh(Motion(model.skeleton, model.channel_values(spell("DAVID", lead_ms=300)), 1 / 60),
-             recording)  # fmt: skip
-    assert main(["spell", "DAVID", "--condition", "mocap", "--recording", str(recording),
-                 "--timing-only"]) == 0  # fmt: skip
+    write_bvh(
+        Motion(model.skeleton, model.channel_values(spell("DAVID", lead_ms=300)), 1 / 60), recording
+    )
+    assert (
+        main(
+            [
+                "spell",
+                "DAVID",
+                "--condition",
+                "mocap",
+                "--recording",
+                str(recording),
+                "--timing-only",
+            ]
+        )
+        == 0
+    )
     assert json.loads(capsys.readouterr().out)["condition"] == "mocap"
     out = tmp_path / "constant.mp4"
-    assert main(["spell", "DAVID", "--condition", "constant", "--recording", str(recording),
-                 "--out", str(out), "--size", "64x48"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "spell",
+                "DAVID",
+                "--condition",
+                "constant",
+                "--recording",
+                str(recording),
+                "--out",
+                str(out),
+                "--size",
+                "64x48",
+            ]
+        )
+        == 0
+    )
     # The recording's lead-in and lead-out (300 ms of movement after 100 ms of rest, each)
     # framed the new timing.
     expected_s = constant_timing("DAVID").total_ms / 1000 + 2 * (0.3 + REST_HOLD_MS / 1000)
@@ -115,12 +168,10 @@ def test_spell_retimes_a_recording_for_each_condition(tmp_path, capsys):
 def test_spell_with_a_simulated_capture(tmp_path, capsys):
     import json
 
-    assert main(["spell", "DAVID", "--condition", "mocap", "--simulate", "7",
-                 "--timing-only"]) == 0  # fmt: skip
+    assert main(["spell", "DAVID", "--condition", "mocap", "--simulate", "7", "--timing-only"]) == 0
     timing = json.loads(capsys.readouterr().out)
     assert timing["condition"] == "mocap" and timing["metadata"]["simulated"] is True
-    assert main(["spell", "DAVID", "--condition", "mocap", "--simulate", "7",
-                 "--timing-only"]) == 0  # fmt: skip
+    assert main(["spell", "DAVID", "--condition", "mocap", "--simulate", "7", "--timing-only"]) == 0
     assert json.loads(capsys.readouterr().out) == timing  # the seed fixes the take
     assert main(["spell", "DAVID", "--simulate", "7", "--recording", "x.bvh"]) == 2
     assert "not both" in capsys.readouterr().err
@@ -128,8 +179,25 @@ def test_spell_with_a_simulated_capture(tmp_path, capsys):
 
 def test_sentence_renders_and_plots_the_spine_conditions(tmp_path, renderable):
     out, plot = tmp_path / "s.mp4", tmp_path / "torso.png"
-    assert main(["sentence", "ME GET", "--spine", "off", "--out", str(out), "--size", "64x48",
-                 "--plot", str(plot), "--rate", "30"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "sentence",
+                "ME GET",
+                "--spine",
+                "off",
+                "--out",
+                str(out),
+                "--size",
+                "64x48",
+                "--plot",
+                str(plot),
+                "--rate",
+                "30",
+            ]
+        )
+        == 0
+    )
     assert count_frames(out) > 30 and plot.stat().st_size > 10_000
     assert main(["sentence", "ME FLY", "--out", str(out)]) == 2
 

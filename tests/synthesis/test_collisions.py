@@ -24,8 +24,9 @@ def test_crossing_and_parallel_segments():
         np.array([-1.0, 0, 0]), np.array([1.0, 0, 0]), np.array([0, -1.0, 0]), np.array([0, 1.0, 0])
     )
     assert crossing == 0.0
-    parallel = segment_distances(origin, np.array([1.0, 0, 0]), np.array([0, 0.3, 0]),
-                                 np.array([1.0, 0.3, 0]))  # fmt: skip
+    parallel = segment_distances(
+        origin, np.array([1.0, 0, 0]), np.array([0, 0.3, 0]), np.array([1.0, 0.3, 0])
+    )
     assert abs(parallel - 0.3) < 1e-12
 
 

@@ -65,9 +65,17 @@ def test_no_sign_puts_a_fingertip_inside_the_human_signer(human, gloss, formula)
 
 # Signs whose dominant hand touches the body, and where (BROTHER's thumb at the
 # forehead stopped 98 mm away before its index was raised: the arm could not reach).
-TOUCHING = {"ME": "trunk", "I": "trunk", "MY": "trunk", "FAVORITE": "head",
-            "REMEMBER": "head", "INFORM-YOU": "head", "BROTHER": "head", "HAPPY": "trunk",
-            "HAVE": "trunk"}  # fmt: skip
+TOUCHING = {
+    "ME": "trunk",
+    "I": "trunk",
+    "MY": "trunk",
+    "FAVORITE": "head",
+    "REMEMBER": "head",
+    "INFORM-YOU": "head",
+    "BROTHER": "head",
+    "HAPPY": "trunk",
+    "HAVE": "trunk",
+}
 # Between the skins of hand and body at the closest; measured 1–11 mm.
 TOUCH_GAP_MM = 12.0
 

@@ -56,8 +56,9 @@ def test_each_face_bone_moves_its_feature_the_way_its_name_says(avatar):
     assert (opened[lower_lip, 1] - rest[lower_lip, 1]).mean() < -0.012
     upper_lid = _owned(avatar, "face", "right_upper_lid")
     shut = _part(avatar, "face", EXPRESSIONS["blink"])
-    centre = avatar.rig.pose(avatar.bind_dofs_rad).positions_m[0, avatar.rig.skeleton.index(
-        "right_eye")]  # fmt: skip
+    centre = avatar.rig.pose(avatar.bind_dofs_rad).positions_m[
+        0, avatar.rig.skeleton.index("right_eye")
+    ]
     front = upper_lid & (rest[:, 2] > centre[2] + 0.008)
     assert shut[front, 1].min() < centre[1] < rest[front, 1].min()
     # A gaze to the signer's left turns both eyes' fronts toward +x.

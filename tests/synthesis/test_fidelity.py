@@ -48,8 +48,7 @@ def test_our_alphabet_against_real_signers():
     human = {k: v.features for k, v in views.items()}
     # Each human letter seen as itself is taken for itself: the views are consistent.
     assert score_handshapes(human, human).agreeing == tuple(files)
-    ours = score_handshapes({k: seen_as(model, letter_pose(k), v) for k, v in views.items()},
-                            human)  # fmt: skip
+    ours = score_handshapes({k: seen_as(model, letter_pose(k), v) for k, v in views.items()}, human)
     assert len(ours.agreeing) >= 20, ours.summary()
     assert len(ours.fist_confusions) <= 2, ours.summary()
     # Our hand can show them all: the human letters fitted onto it agree.

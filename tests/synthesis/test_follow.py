@@ -53,8 +53,9 @@ def test_the_camera_holds_still_on_letters_and_leaves_a_z_its_path(avatar):
     # The fingertip draws the Z; the camera moves a seventh as far meanwhile at most
     # (measured: 5 cm against 54 cm).
     tip = avatar.rig.skeleton.index("index_tip")
-    drawn_m = np.linalg.norm(np.diff(avatar.rig.pose(motion[start:end]).positions_m[:, tip, :2],
-                                     axis=0), axis=1).sum()  # fmt: skip
+    drawn_m = np.linalg.norm(
+        np.diff(avatar.rig.pose(motion[start:end]).positions_m[:, tip, :2], axis=0), axis=1
+    ).sum()
     assert drawn_m > 0.05
     assert moved_m[start:end].sum() < 0.15 * drawn_m
     # Between letters the camera pans (up to 56 mm a frame in PSYCHIATRY); once the hand
@@ -88,8 +89,11 @@ def test_conditions_of_a_word_open_and_close_on_the_same_frame():
     from synthesis.techniques import filming
 
     ends = []
-    for parameters in ({"timing": "constant"}, {"timing": "variable"},
-                       {"timing": "mocap", "source": "simulated"}):  # fmt: skip
+    for parameters in (
+        {"timing": "constant"},
+        {"timing": "variable"},
+        {"timing": "mocap", "source": "simulated"},
+    ):
         request = ClipRequest("word", "DAVID", parameters, rate_hz=RATE_HZ)
         motion = build_motion(request).motion
         avatar, path = filming("hand", "right", motion, RATE_HZ, 640, 480, "DAVID")

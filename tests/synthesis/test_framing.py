@@ -53,8 +53,7 @@ def test_the_16_9_signing_view_holds_every_demo_sentence_and_a_large_face():
             values = {"rate_hz": 15.0, "width": 1280, "height": 720, "spine": spine}
             request = ClipRequest.from_parameters("sentence", text, values)
             motion = np.asarray(build_motion(request).motion)
-            avatar, camera = filming(request.view, request.side, motion, request.rate_hz,
-                                     1280, 720)  # fmt: skip
+            avatar, camera = filming(request.view, request.side, motion, request.rate_hz, 1280, 720)
             framing = measure_framing(avatar, camera, motion, 1280, 720)
             assert not framing.hand_outside.any(), (text, spine)
             smallest.append(np.nanmin(framing.face_px))

@@ -46,14 +46,17 @@ class GlbReader:
         if accessor.bufferView is None:
             values = np.zeros((accessor.count, width))
         else:
-            values = self._view(accessor.bufferView, accessor.componentType, width,
-                                accessor.count).astype(float)  # fmt: skip
+            values = self._view(
+                accessor.bufferView, accessor.componentType, width, accessor.count
+            ).astype(float)
         if accessor.sparse is not None:
             sparse = accessor.sparse
-            rows = self._view(sparse.indices.bufferView, sparse.indices.componentType, 1,
-                              sparse.count)[:, 0]  # fmt: skip
-            values[rows] = self._view(sparse.values.bufferView, accessor.componentType, width,
-                                      sparse.count)  # fmt: skip
+            rows = self._view(
+                sparse.indices.bufferView, sparse.indices.componentType, 1, sparse.count
+            )[:, 0]
+            values[rows] = self._view(
+                sparse.values.bufferView, accessor.componentType, width, sparse.count
+            )
         return values
 
     def channels(self, frame: int) -> dict[tuple[int, str], np.ndarray]:
@@ -86,8 +89,9 @@ class GlbReader:
         animated = self.channels(frame)
         skin = self.gltf.skins[0]
         inverse = self.read(skin.inverseBindMatrices).reshape(-1, 4, 4).transpose(0, 2, 1)
-        joints = np.stack([self.global_matrix(j, animated) @ inverse[k]
-                           for k, j in enumerate(skin.joints)])  # fmt: skip
+        joints = np.stack(
+            [self.global_matrix(j, animated) @ inverse[k] for k, j in enumerate(skin.joints)]
+        )
         result = {}
         for index, node in enumerate(self.gltf.nodes):
             if node.mesh is None:
@@ -109,8 +113,16 @@ def _clip(kind: str, text: str, **parameters):
     request = ClipRequest.from_parameters(kind, text, {"rate_hz": 15.0, **parameters})
     build = build_motion(request)
     word = text if kind == "word" else None
-    avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
-                             request.width, request.height, word, build.look)  # fmt: skip
+    avatar, camera = filming(
+        request.view,
+        request.side,
+        build.motion,
+        request.rate_hz,
+        request.width,
+        request.height,
+        word,
+        build.look,
+    )
     return request, build, avatar, camera
 
 
@@ -142,15 +154,19 @@ def test_the_face_moves_by_its_morph_targets_and_the_camera_is_the_clips():
     request, build, avatar, camera = _clip("sentence", "[rhq WHERE] SURPRISE")
     reader = GlbReader(request_glb(request, build))
     meshes = reader.gltf.meshes
-    face_nodes = [i for i, n in enumerate(reader.gltf.nodes)
-                  if n.mesh is not None and meshes[n.mesh].primitives[0].targets]  # fmt: skip
+    face_nodes = [
+        i
+        for i, n in enumerate(reader.gltf.nodes)
+        if n.mesh is not None and meshes[n.mesh].primitives[0].targets
+    ]
     assert face_nodes, "no mesh carries the face's blendshapes"
     mesh = reader.gltf.meshes[reader.gltf.nodes[face_nodes[0]].mesh]
     # Every blendshape the face's channels drive (ARKit names), keyed per frame.
     assert "browInnerUp" in mesh.extras["targetNames"]
     assert set(mesh.extras["targetNames"]) <= set(avatar.drive.names)
-    weights = np.stack([reader.channels(f)[(face_nodes[0], "weights")]
-                        for f in range(len(build.motion))])  # fmt: skip
+    weights = np.stack(
+        [reader.channels(f)[(face_nodes[0], "weights")] for f in range(len(build.motion))]
+    )
     assert weights.max() > 0.5  # the question's brows, the surprise
     (camera_node,) = [i for i, n in enumerate(reader.gltf.nodes) if n.camera is not None]
     np.testing.assert_allclose(reader.global_matrix(camera_node, {}), camera.pose(), atol=1e-6)
@@ -161,8 +177,7 @@ def test_the_face_moves_by_its_morph_targets_and_the_camera_is_the_clips():
 
 def test_any_gltf_reader_opens_it():
     request, build, _, _ = _clip("word", "AB")
-    scene = trimesh.load(trimesh.util.wrap_as_stream(request_glb(request, build)),
-                         file_type="glb")  # fmt: skip
+    scene = trimesh.load(trimesh.util.wrap_as_stream(request_glb(request, build)), file_type="glb")
     assert len(scene.geometry) == 2 and scene.bounds is not None
 
 

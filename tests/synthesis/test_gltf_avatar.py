@@ -48,8 +48,16 @@ def test_the_engines_avatar_exported_and_imported_films_the_same_pixels(
 
     def frames(request, build) -> np.ndarray:
         word = request.text if request.kind == "word" else None
-        avatar, camera = filming(request.view, request.side, build.motion, request.rate_hz,
-                                 request.width, request.height, word, build.look)  # fmt: skip
+        avatar, camera = filming(
+            request.view,
+            request.side,
+            build.motion,
+            request.rate_hz,
+            request.width,
+            request.height,
+            word,
+            build.look,
+        )
         with Renderer(avatar, camera, width=request.width, height=request.height) as renderer:
             return np.stack([renderer.frame(dofs) for dofs in build.motion]).astype(int)
 
@@ -57,8 +65,9 @@ def test_the_engines_avatar_exported_and_imported_films_the_same_pixels(
     build = build_motion(request)
     glb = tmp_path / "signer.glb"
     glb.write_bytes(request_glb(request, build))
-    imported = ClipRequest.from_parameters(kind, text, {**SMALL, "view": view,
-                                                        "avatar_file": str(glb)})  # fmt: skip
+    imported = ClipRequest.from_parameters(
+        kind, text, {**SMALL, "view": view, "avatar_file": str(glb)}
+    )
     imported_build = build_motion(imported)
     builtin, read_back = frames(request, build), frames(imported, imported_build)
     assert builtin.shape == read_back.shape
@@ -98,8 +107,13 @@ def test_a_plain_glb_with_arkit_names_plays_them_too(tmp_path):
 
 def test_vrm_expressions_play_the_face_channels_they_stand_for(tmp_path):
     path = tmp_path / "tiny.vrm"
-    path.write_bytes(humanoid_glb(vrm=True, morphs=("Fcl_EYE_Close", "Fcl_MTH_A", "Other"),
-                                  expressions={"blink": 0, "aa": 1}))  # fmt: skip
+    path.write_bytes(
+        humanoid_glb(
+            vrm=True,
+            morphs=("Fcl_EYE_Close", "Fcl_MTH_A", "Other"),
+            expressions={"blink": 0, "aa": 1},
+        )
+    )
     avatar = avatar_for("upper-body", "right", Look(file=str(path)))
     assert set(avatar.drive.names) == {"eyeBlinkLeft", "jawOpen"}  # blink, aa
     rig = avatar.rig.engine
@@ -125,11 +139,15 @@ def test_a_humanoid_follows_the_engines_arms(tmp_path, vrm):
     prefix = "J_Bip_" if vrm else ""
     for ours, theirs in (("right_elbow", "RightForeArm"), ("left_elbow", "LeftForeArm")):
         child = {"right_elbow": "right_wrist", "left_elbow": "left_wrist"}[ours]
-        a = engine.positions_m[:, build.rig.skeleton.index(child)] - \
-            engine.positions_m[:, build.rig.skeleton.index(ours)]  # fmt: skip
+        a = (
+            engine.positions_m[:, build.rig.skeleton.index(child)]
+            - engine.positions_m[:, build.rig.skeleton.index(ours)]
+        )
         hand = theirs.replace("ForeArm", "Hand")
-        b = imported.positions_m[:, names.index(prefix + hand)] - \
-            imported.positions_m[:, names.index(prefix + theirs)]  # fmt: skip
+        b = (
+            imported.positions_m[:, names.index(prefix + hand)]
+            - imported.positions_m[:, names.index(prefix + theirs)]
+        )
         cosine = np.sum(a * b, axis=1) / np.linalg.norm(a, axis=1) / np.linalg.norm(b, axis=1)
         assert np.degrees(np.arccos(np.clip(cosine, -1, 1))).max() < 1.0
     if vrm:
@@ -139,8 +157,9 @@ def test_a_humanoid_follows_the_engines_arms(tmp_path, vrm):
 def test_a_humanoid_without_fingers_signs_sentences_but_cannot_fingerspell(tmp_path, renderable):
     path = tmp_path / "mittens.glb"
     path.write_bytes(humanoid_glb(fingers=False))
-    sentence = ClipRequest.from_parameters("sentence", "ME HAPPY",
-                                           {**SMALL, "avatar_file": str(path)})  # fmt: skip
+    sentence = ClipRequest.from_parameters(
+        "sentence", "ME HAPPY", {**SMALL, "avatar_file": str(path)}
+    )
     info = render_request(sentence, tmp_path / "s.mp4")
     assert info.n_frames > 5
     word = ClipRequest.from_parameters("word", "AB", {**SMALL, "avatar_file": str(path)})

@@ -147,8 +147,10 @@ def test_the_close_up_hand_is_the_body_avatars_hand():
 
     # The body's right hand's nails: the features' vertices its distal joints carry.
     names, features = body.rig.skeleton.names, body.parts[1]
-    tips = [names.index(f"right_{d}") for d in ("thumb_ip", "index_dip", "middle_dip",
-                                                   "ring_dip", "pinky_dip")]  # fmt: skip
+    tips = [
+        names.index(f"right_{d}")
+        for d in ("thumb_ip", "index_dip", "middle_dip", "ring_dip", "pinky_dip")
+    ]
     on_body = np.flatnonzero(np.isin(features.weights.joints[:, 0], tips))
     ours = from_wrist(hand, shape, "wrist", (1, slice(None)))
     theirs = from_wrist(body, dofs, "right_wrist", (1, on_body))
@@ -184,9 +186,11 @@ def test_a_custom_body_is_shaped_by_its_macro_values():
     )
     area = [np.ptp(shape[waist, 0]) * np.ptp(shape[waist, 2]) for shape in (default, heavy)]
     assert area[1] > 1.15 * area[0]
-    refused = {"only when body is custom": {"body_weight": 0.9},
-               "at least 0.5": {"body": "custom", "body_age": 0.2},
-               "simple avatar": {"avatar": "simple", "body_gender": 1.0}}  # fmt: skip
+    refused = {
+        "only when body is custom": {"body_weight": 0.9},
+        "at least 0.5": {"body": "custom", "body_age": 0.2},
+        "simple avatar": {"avatar": "simple", "body_gender": 1.0},
+    }
     for message, wrong in refused.items():
         with pytest.raises(ClipError, match=message):
             ClipRequest.from_parameters("sentence", "HAPPY", wrong)

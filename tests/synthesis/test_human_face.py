@@ -56,8 +56,9 @@ def _read_faces(size: tuple[int, int], names) -> tuple[dict, dict]:
     with Renderer(avatar, signing_view("right", *size), width=size[0], height=size[1]) as renderer:
         for name in names:
             frames[name] = renderer.frame(avatar.rig.from_degrees(EXPRESSIONS[name]))
-            with solutions.holistic.Holistic(static_image_mode=True,
-                                             refine_face_landmarks=True) as model:  # fmt: skip
+            with solutions.holistic.Holistic(
+                static_image_mode=True, refine_face_landmarks=True
+            ) as model:
                 points = _landmarks(model, frames[name])
             assert points is not None, f"no face found in {name!r} at {size}"
             measured[name] = _measures(points)
@@ -101,11 +102,14 @@ def test_mediapipe_finds_the_face_through_sad_s_hands():
         "sentence", "SAD.", {"rate_hz": 30.0, "width": 640, "height": 480, "spine": True}
     )
     motion = np.asarray(build_motion(request).motion)
-    avatar, camera = filming(request.view, request.side, motion, request.rate_hz, 640, 480,
-                             look=Look())  # fmt: skip
+    avatar, camera = filming(
+        request.view, request.side, motion, request.rate_hz, 640, 480, look=Look()
+    )
     missed = []
-    with (Renderer(avatar, camera, width=640, height=480) as renderer,
-          solutions.holistic.Holistic(static_image_mode=False) as model):  # fmt: skip
+    with (
+        Renderer(avatar, camera, width=640, height=480) as renderer,
+        solutions.holistic.Holistic(static_image_mode=False) as model,
+    ):
         for number, dofs in enumerate(motion):
             if model.process(renderer.frame(dofs)).face_landmarks is None:
                 missed.append(number)

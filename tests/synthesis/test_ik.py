@@ -12,10 +12,15 @@ BODY = BodyModel()
 def _random_arm_poses(rng, side: str, n: int) -> np.ndarray:
     """Return body DOFs with one arm at random angles inside comfortable limits."""
     dofs = np.tile(BODY.neutral(), (n, 1))
-    ranges = {"shoulder_flexion": (10, 100), "shoulder_abduction": (0, 60),
-              "shoulder_rotation": (-30, 40), "elbow_flexion": (30, 120),
-              "forearm_twist": (-40, 40), "wrist_flexion": (-30, 30),
-              "wrist_deviation": (-10, 10)}  # fmt: skip
+    ranges = {
+        "shoulder_flexion": (10, 100),
+        "shoulder_abduction": (0, 60),
+        "shoulder_rotation": (-30, 40),
+        "elbow_flexion": (30, 120),
+        "forearm_twist": (-40, 40),
+        "wrist_flexion": (-30, 30),
+        "wrist_deviation": (-10, 10),
+    }
     for name, (low, high) in ranges.items():
         dofs[:, BODY.dof_names.index(f"{side}_{name}")] = np.radians(rng.uniform(low, high, n))
     return dofs
@@ -45,8 +50,12 @@ def test_reaches_the_wrist_and_hand_of_reachable_poses():
 def test_swivel_lifts_the_elbow_away_from_the_body():
     index = BODY.skeleton.index
     target = np.array([-0.12, 1.25, 0.30])
-    elbows = [BODY.pose(solve_arm(BODY, BODY.neutral(), "right", target, None, s))
-              .positions_m[0, index("right_elbow")] for s in (0.0, 0.5, 1.0)]  # fmt: skip
+    elbows = [
+        BODY.pose(solve_arm(BODY, BODY.neutral(), "right", target, None, s)).positions_m[
+            0, index("right_elbow")
+        ]
+        for s in (0.0, 0.5, 1.0)
+    ]
     heights = [e[1] for e in elbows]
     outward = [-e[0] for e in elbows]  # the right elbow goes out to −x
     assert heights[0] < heights[1] < heights[2]

@@ -67,8 +67,9 @@ def test_assembled_signs_are_played_as_recorded(lexicon_path):
     for gloss, (start, end) in zip(GLOSSES, sentence.token_frames(), strict=True):
         # To the last bit but for a wrist at its limit, which the clip to the limits
         # writes as the limit's own float (one unit in the last place apart).
-        np.testing.assert_allclose(sentence.dofs_rad[start : end + 1], lexicon.sign(gloss).sign,
-                                   rtol=0, atol=1e-15)  # fmt: skip
+        np.testing.assert_allclose(
+            sentence.dofs_rad[start : end + 1], lexicon.sign(gloss).sign, rtol=0, atol=1e-15
+        )
     gaps = np.diff(sentence.token_frames().ravel())[1::2]
     assert list(gaps) == [36, 36]  # 300 ms at 120 Hz between last and first sign frames
 

@@ -18,12 +18,11 @@ from synthesis.skeleton.skeleton import Joint, Skeleton
 def _renamed(skeleton: Skeleton, names: dict[str, str], prefix: str = "") -> Skeleton:
     return Skeleton(
         tuple(
-            Joint(prefix + names.get(j.name, j.name), j.parent, j.offset, j.channels,
-                  j.is_end_site)
+            Joint(prefix + names.get(j.name, j.name), j.parent, j.offset, j.channels, j.is_end_site)
             for j in skeleton.joints
         ),
         skeleton.length_unit,
-    )  # fmt: skip
+    )
 
 
 @pytest.mark.parametrize(
@@ -73,8 +72,15 @@ def _world_aligned_copy(model, dofs: np.ndarray) -> Motion:
         channels = joint.channels
         if parents[i] < 0:
             channels = ("Xposition", "Yposition", "Zposition", *channels)
-        joints.append(Joint("mixamorig:" + names.get(joint.name, joint.name), joint.parent,
-                            tuple(offset * 100), channels, joint.is_end_site))  # fmt: skip
+        joints.append(
+            Joint(
+                "mixamorig:" + names.get(joint.name, joint.name),
+                joint.parent,
+                tuple(offset * 100),
+                channels,
+                joint.is_end_site,
+            )
+        )
     skeleton = Skeleton(tuple(joints), "cm")
     pose = model.pose(dofs)
     world = quat_multiply(pose.quaternions, rest_q * [-1, -1, -1, 1])

@@ -24,7 +24,10 @@ def test_spans_nest_and_phrase_boundaries_follow_punctuation():
     plain, spans, boundaries = parse_spans("[top [q:0.5 HAVE C-A-R]], I LOST [rhq WHERE].")
     assert plain == "HAVE C-A-R , I LOST WHERE ."
     assert [(s.marker, s.first, s.last, s.intensity) for s in spans] == [
-        ("q", 0, 1, 0.5), ("top", 0, 1, 1.0), ("rhq", 4, 4, 1.0)]  # fmt: skip
+        ("q", 0, 1, 0.5),
+        ("top", 0, 1, 1.0),
+        ("rhq", 4, 4, 1.0),
+    ]
     assert boundaries == {1, 4}
     # A dash between glosses ends a phrase; a hyphenated gloss does not.
     assert parse_spans("GIVE-ME — SAD!")[2] == {0, 1}
@@ -57,8 +60,9 @@ def test_the_envelope_rises_before_the_span_holds_and_falls_after():
     marker = Marker("q", "question", onset_ms=200, offset_ms=100)
     track = Track("q", 1000, 2000, 0.8)
     at = np.array([700, 800, 900, 1000, 1500, 2000, 2050, 2100, 2200])
-    np.testing.assert_allclose(envelope(at, track, marker),
-                               [0, 0, 0.4, 0.8, 0.8, 0.8, 0.4, 0, 0], atol=1e-12)  # fmt: skip
+    np.testing.assert_allclose(
+        envelope(at, track, marker), [0, 0, 0.4, 0.8, 0.8, 0.8, 0.4, 0, 0], atol=1e-12
+    )
 
 
 def _channel(sentence, name: str) -> np.ndarray:
@@ -66,8 +70,10 @@ def _channel(sentence, name: str) -> np.ndarray:
 
 
 def _frames(sentence, start_ms: float, end_ms: float) -> slice:
-    return slice(int(np.ceil(start_ms / 1000 * sentence.rate_hz)),
-                 int(np.floor(end_ms / 1000 * sentence.rate_hz)) + 1)  # fmt: skip
+    return slice(
+        int(np.ceil(start_ms / 1000 * sentence.rate_hz)),
+        int(np.floor(end_ms / 1000 * sentence.rate_hz)) + 1,
+    )
 
 
 def test_a_yes_no_question_raises_the_brows_over_its_span_only():
@@ -106,8 +112,9 @@ def test_face_off_and_neutral_differ_from_on_only_in_face_channels(text):
         other = synthesize(text, SentenceOptions(face=mode))
         np.testing.assert_array_equal(other.dofs_rad[:, ~face], on.dofs_rad[:, ~face])
         assert not other.tracks
-    assert np.abs(on.dofs_rad[:, face] - synthesize(text, SentenceOptions(face="off")).dofs_rad[
-        :, face]).max() > np.radians(5)  # fmt: skip
+    assert np.abs(
+        on.dofs_rad[:, face] - synthesize(text, SentenceOptions(face="off")).dofs_rad[:, face]
+    ).max() > np.radians(5)
     off = synthesize(text, SentenceOptions(face="off"))
     assert not off.dofs_rad[:, [is_face_dof(n) for n in off.body.dof_names]].any()
     neutral = synthesize(text, SentenceOptions(face="neutral"))
@@ -135,8 +142,11 @@ def test_a_left_handed_signer_mirrors_the_signals():
 
 
 def test_the_library_refuses_an_unknown_signal_and_pose_naming_them():
-    base = {"format": "signstudy.sign-library", "version": 1,
-            "signs": {"ME": {"keys": [{"right": {"at": [0.1, 0.2, 0.0]}}]}}}  # fmt: skip
+    base = {
+        "format": "signstudy.sign-library",
+        "version": 1,
+        "signs": {"ME": {"keys": [{"right": {"at": [0.1, 0.2, 0.0]}}]}},
+    }
     with pytest.raises(SignError, match="ME: unknown non-manual signal 'wow'"):
         parse_library({**base, "signs": {"ME": {**base["signs"]["ME"], "nonmanual": "wow"}}})
     with pytest.raises(SignError, match="unknown face pose or channel 'grin'"):

@@ -76,12 +76,18 @@ def test_motion_through_assimp_retargets_as_the_bvh_itself():
     a, b = retarget(direct, body), retarget(converted, body)
     n = min(direct.n_frames, converted.n_frames)
     names = body.skeleton.names
-    for joint, child in (("right_elbow", "right_wrist"), ("left_shoulder", "left_elbow"),
-                         ("spine_middle", "spine_upper")):  # fmt: skip
+    for joint, child in (
+        ("right_elbow", "right_wrist"),
+        ("left_shoulder", "left_elbow"),
+        ("spine_middle", "spine_upper"),
+    ):
         ours = a.positions_m[:n, names.index(child)] - a.positions_m[:n, names.index(joint)]
         theirs = b.positions_m[:n, names.index(child)] - b.positions_m[:n, names.index(joint)]
-        cosine = np.sum(ours * theirs, axis=1) / np.linalg.norm(ours, axis=1) / \
-            np.linalg.norm(theirs, axis=1)  # fmt: skip
+        cosine = (
+            np.sum(ours * theirs, axis=1)
+            / np.linalg.norm(ours, axis=1)
+            / np.linalg.norm(theirs, axis=1)
+        )
         assert np.degrees(np.arccos(np.clip(cosine, -1, 1))).max() < 0.05, joint
 
 

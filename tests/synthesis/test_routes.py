@@ -22,8 +22,7 @@ from synthesis.rigs.collisions import finger_crossings, overlap_depths_m
 from synthesis.rigs.hand import HandModel
 from synthesis.timing import constant_timing, normalized_constant_timing, published_model
 
-STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL",
-               "VICTOR")  # fmt: skip
+STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
 
 
 def test_the_straight_way_from_h_to_a_drives_the_thumb_through_the_fingers():
@@ -47,8 +46,9 @@ def test_no_finger_passes_through_another_in_the_study_words(side):
     for word in STUDY_WORDS:
         variable = timing_model.timing(word)
         timings = (variable, constant_timing(word), normalized_constant_timing(word, variable))
-        own = overlap_depths_m(model, np.stack([letter(c, side).dofs_rad for c in word]
-                                               + [rest_pose(side)])).max(axis=0)  # fmt: skip
+        own = overlap_depths_m(
+            model, np.stack([letter(c, side).dofs_rad for c in word] + [rest_pose(side)])
+        ).max(axis=0)
         for timing in timings:
             frames = spell(word, side, rate_hz=240, timing=timing)
             assert finger_crossings(model, frames) == [], (word, timing.condition)
@@ -58,8 +58,7 @@ def test_no_finger_passes_through_another_in_the_study_words(side):
 
 def test_the_shipped_table_matches_the_alphabet():
     """Regenerate with scripts/letter_routes.py when this fails after an alphabet edit."""
-    pairs = {a + b for word in STUDY_WORDS for a, b in zip(REST + word, word + REST,
-                                                           strict=True)}  # fmt: skip
+    pairs = {a + b for word in STUDY_WORDS for a, b in zip(REST + word, word + REST, strict=True)}
     for pair in sorted(pairs):
         if pair[0] != pair[1]:
             assert letter_route(*pair) == choose_route(end_pose(pair[0]), start_pose(pair[1]))
@@ -70,8 +69,15 @@ def test_the_shipped_table_matches_the_alphabet():
 def test_routes_have_their_intermediate_poses():
     a, b = letter("A").dofs_rad, letter("T").dofs_rad
     counts = {route: len(route_poses(route, a, b)) for route in ROUTES}
-    assert counts == {"direct": 0, "fingers_first": 1, "thumb_first": 1, "thumb_out": 1,
-                      "open_thumb_out": 2, "open_spread": 2, "open_wide": 3}  # fmt: skip
+    assert counts == {
+        "direct": 0,
+        "fingers_first": 1,
+        "thumb_first": 1,
+        "thumb_out": 1,
+        "open_thumb_out": 2,
+        "open_spread": 2,
+        "open_wide": 3,
+    }
     assert letter_route("L", "L") == "direct"  # a doubled letter only slides
     path = route_path(a, b, route_poses("open_wide", a, b))
     assert np.allclose(path[0], a) and np.allclose(path[-1], b)

@@ -36,9 +36,13 @@ def test_flattened_cone_is_thinner_along_its_normal():
 
 def test_plate_distance_inside_outside_and_rim():
     plate = RoundedPlate(
-        "p", (0, 0, 0), (1, 0, 0), (0, 1, 0), ((-0.04, -0.04), (0.04, -0.04), (0.04, 0.04),
-                                               (-0.04, 0.04)), 0.01,
-    )  # fmt: skip
+        "p",
+        (0, 0, 0),
+        (1, 0, 0),
+        (0, 1, 0),
+        ((-0.04, -0.04), (0.04, -0.04), (0.04, 0.04), (-0.04, 0.04)),
+        0.01,
+    )
     points = np.array([[0, 0, 0], [0, 0, 0.02], [0.06, 0, 0], [0.039, 0, 0]])
     assert np.allclose(plate.distance(points), [-0.01, 0.01, 0.01, -0.01], atol=1e-12)
 

@@ -37,12 +37,26 @@ def test_on_and_off_differ_only_in_spine_clavicle_and_the_arms_that_follow(text,
     on = synthesize(text, SentenceOptions(spine=True, params=params))
     off = synthesize(text, SentenceOptions(spine=False))
     assert on.dofs_rad.shape == off.dofs_rad.shape
-    changed = {name for name, d in zip(on.body.dof_names,
-                                       np.abs(on.dofs_rad - off.dofs_rad).max(axis=0),
-                                       strict=True) if d > 1e-12}  # fmt: skip
-    allowed = ("spine_", "right_clavicle", "left_clavicle", "right_shoulder", "left_shoulder",
-               "right_elbow", "left_elbow", "right_forearm", "left_forearm", "right_wrist",
-               "left_wrist")  # fmt: skip
+    changed = {
+        name
+        for name, d in zip(
+            on.body.dof_names, np.abs(on.dofs_rad - off.dofs_rad).max(axis=0), strict=True
+        )
+        if d > 1e-12
+    }
+    allowed = (
+        "spine_",
+        "right_clavicle",
+        "left_clavicle",
+        "right_shoulder",
+        "left_shoulder",
+        "right_elbow",
+        "left_elbow",
+        "right_forearm",
+        "left_forearm",
+        "right_wrist",
+        "left_wrist",
+    )
     assert changed and all(name.startswith(allowed) for name in changed)
     assert any(name.startswith("spine_") for name in changed)
     # The hands are where the signs put them in both: in held postures in the signing
@@ -101,8 +115,13 @@ def test_a_left_handed_signer_mirrors_the_right_handed_one():
 
 
 def test_glosses_and_bad_sentences():
-    assert parse_glosses("BUT SURPRISE — MY C-A-R, BIG!") == ("BUT", "SURPRISE", "MY", "C-A-R",
-                                                              "BIG")  # fmt: skip
+    assert parse_glosses("BUT SURPRISE — MY C-A-R, BIG!") == (
+        "BUT",
+        "SURPRISE",
+        "MY",
+        "C-A-R",
+        "BIG",
+    )
     with pytest.raises(SignError, match="'FLY' is not in the sign library"):
         synthesize("ME FLY")
     with pytest.raises(SignError, match="empty"):

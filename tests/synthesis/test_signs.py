@@ -18,14 +18,31 @@ def test_the_shipped_library_has_every_sign_of_the_story():
 
 
 def _library(signs, **extra):
-    return {"format": "signstudy.sign-library", "version": 1, "signs": signs,
-            "locations": {"neutral": [0.1, 0.3, -0.2]}, **extra}  # fmt: skip
+    return {
+        "format": "signstudy.sign-library",
+        "version": 1,
+        "signs": signs,
+        "locations": {"neutral": [0.1, 0.3, -0.2]},
+        **extra,
+    }
 
 
 def test_a_left_hand_is_written_as_a_right_hand_and_mirrored():
-    library = parse_library(_library({"X": {"keys": [
-        {"ms": 0, "right": {"at": "neutral", "palm": "in"},
-         "left": {"at": "neutral", "palm": "in"}}]}}))  # fmt: skip
+    library = parse_library(
+        _library(
+            {
+                "X": {
+                    "keys": [
+                        {
+                            "ms": 0,
+                            "right": {"at": "neutral", "palm": "in"},
+                            "left": {"at": "neutral", "palm": "in"},
+                        }
+                    ]
+                }
+            }
+        )
+    )
     key = library.sign("x")[0]
     assert key.hands["right"].at_m[0] == 0.1 and key.hands["left"].at_m[0] == -0.1
     assert key.hands["right"].palm[0] == -1 and key.hands["left"].palm[0] == 1

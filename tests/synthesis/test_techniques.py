@@ -58,8 +58,10 @@ def test_a_registered_toy_technique_is_validated_offered_hashed_and_applied(caps
         hashed = ClipSpec("word", "AB", {"timing": "constant"})
         assert hashed.parameters["slowdown"] == 1 and hashed.content_hash() != plain.content_hash()
         slow = build_motion(request).motion
-        assert main(["spell", "AB", "--condition", "constant", "--slowdown", "3",
-                     "--timing-only"]) == 0  # fmt: skip
+        assert (
+            main(["spell", "AB", "--condition", "constant", "--slowdown", "3", "--timing-only"])
+            == 0
+        )
         capsys.readouterr()
     normal = build_motion(ClipRequest("word", "AB", {"timing": "constant"})).motion
     assert len(slow) == 2 * len(normal)
@@ -75,15 +77,19 @@ def test_a_registered_toy_technique_is_validated_offered_hashed_and_applied(caps
         ("sentence", {"spine": "no"}, "spine must be true or false, not 'no'"),
         ("word", {"hold_ms": True}, "hold_ms must be a number, not True"),
         ("word", {"hold_ms": float("nan")}, "hold_ms must be a finite number"),
-        ("word", {"spine": False}, r"'spine' \(Automated spine motion\) does not apply to a "
-                                   "fingerspelled word"),
+        (
+            "word",
+            {"spine": False},
+            r"'spine' \(Automated spine motion\) does not apply to a "
+            "fingerspelled word",
+        ),
         ("poem", {}, "Unknown item kind 'poem'"),
         ("word", {"timing": "mocap"}, "timing 'mocap' plays a performance"),
         ("word", {"source": "recording"}, "source 'recording' needs the recording"),
         ("sentence", {"view": "hand"}, "renders in the upper-body view"),
         ("word", {"rate_hz": 0}, "rate_hz must be at least 1 Hz"),
     ],
-)  # fmt: skip
+)
 def test_bad_parameters_are_refused_naming_them(kind, parameters, message):
     with pytest.raises(ClipError, match=message):
         validate_parameters(kind, parameters)
@@ -124,8 +130,12 @@ def test_the_schema_lists_every_parameter_and_refuses_others():
     assert schema["sign_pair"]["properties"] == schema["sentence"]["properties"]
     assert schema["word"]["additionalProperties"] is False
     assert schema["word"]["properties"]["timing"]["enum"] == [
-        "mocap", "variable", "constant", "normalized", "simple",
-    ]  # fmt: skip
+        "mocap",
+        "variable",
+        "constant",
+        "normalized",
+        "simple",
+    ]
     assert schema["sentence"]["properties"]["spine"]["type"] == "boolean"
 
 
@@ -142,8 +152,13 @@ def test_techniques_describe_a_condition_in_plain_words():
 
 
 def test_the_cli_lists_the_techniques(capsys):
-    result = subprocess.run([sys.executable, "-m", "synthesis", "--help"], cwd=ROOT,
-                            capture_output=True, text=True, check=True)  # fmt: skip
+    result = subprocess.run(
+        [sys.executable, "-m", "synthesis", "--help"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     for technique in REGISTRY.techniques:
         assert technique.label in result.stdout
     assert main(["techniques", "--json"]) == 0
@@ -155,10 +170,19 @@ def test_the_timing_names_are_listed_in_one_place():
     from synthesis.timing.recordings import MODEL_TIMINGS
 
     result = subprocess.run(
-        ["grep", "-rlnE", "--exclude-dir=migrations", '"(mocap|variable)", "(variable|constant)"',
-         "synthesis", "stimuli", "studyplatform"],
-        cwd=ROOT, capture_output=True, text=True,
-    )  # fmt: skip
+        [
+            "grep",
+            "-rlnE",
+            "--exclude-dir=migrations",
+            '"(mocap|variable)", "(variable|constant)"',
+            "synthesis",
+            "stimuli",
+            "studyplatform",
+        ],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     assert result.stdout.split() == ["synthesis/timing/recordings.py"]
     assert TIMINGS[1:-1] == MODEL_TIMINGS and (TIMINGS[0], TIMINGS[-1]) == ("mocap", "simple")
 
@@ -177,8 +201,14 @@ def test_a_clip_hash_changes_with_the_files_a_clip_comes_from_and_no_others(tmp_
 
     def digests() -> list[str]:
         env = {"PYTHONPATH": f"{tmp_path}:{ROOT}", "PATH": "/usr/bin:/bin"}
-        result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env,
-                                capture_output=True, text=True, check=True)  # fmt: skip
+        result = subprocess.run(
+            [sys.executable, "-c", code],
+            cwd=tmp_path,
+            env=env,
+            capture_output=True,
+            text=True,
+            check=True,
+        )
         return result.stdout.split()
 
     def change(path) -> None:

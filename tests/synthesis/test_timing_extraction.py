@@ -17,8 +17,7 @@ from synthesis.timing import (
     simulate_recording,
 )
 
-STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL",
-               "VICTOR")  # fmt: skip
+STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
 
 
 def _hold_errors(
@@ -30,8 +29,9 @@ def _hold_errors(
     for seed in range(takes):
         rng = np.random.default_rng(seed)
         for word in STUDY_WORDS:
-            motion, truth = simulate_recording(word, rng, model, rate_hz=rate_hz, noise=noise,
-                                               lead_ms=lead_ms)  # fmt: skip
+            motion, truth = simulate_recording(
+                word, rng, model, rate_hz=rate_hz, noise=noise, lead_ms=lead_ms
+            )
             found = extract(motion, word)
             assert found.timing.letters == truth.letters
             bounds = found.hold_bounds_s

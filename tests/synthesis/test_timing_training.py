@@ -32,8 +32,10 @@ def _write_annotations(folder, rng):
 def test_train_end_to_end_reports_leave_one_out_and_fit(tmp_path, capsys):
     holds, transitions = _write_annotations(tmp_path, np.random.default_rng(4))
     out = tmp_path / "model.json"
-    assert main(["train", "--holds", str(holds), "--transitions", str(transitions),
-                 "--out", str(out)]) == 0  # fmt: skip
+    assert (
+        main(["train", "--holds", str(holds), "--transitions", str(transitions), "--out", str(out)])
+        == 0
+    )
     printed = capsys.readouterr().out
     assert "leave-one-out accuracy" in printed and "mean error" in printed
     # Issue 38: the published leave-one-out beside ours, and what our input was.
@@ -70,18 +72,54 @@ def test_csv_problems_are_named_with_their_line(tmp_path, capsys):
     holds, transitions = _write_annotations(tmp_path, np.random.default_rng(5))
     lacking = tmp_path / "lacking.csv"
     lacking.write_text("word,index\nCAT,0\n")
-    assert main(["train", "--holds", str(lacking), "--transitions", str(transitions),
-                 "--out", str(tmp_path / "m.json")]) == 2  # fmt: skip
+    assert (
+        main(
+            [
+                "train",
+                "--holds",
+                str(lacking),
+                "--transitions",
+                str(transitions),
+                "--out",
+                str(tmp_path / "m.json"),
+            ]
+        )
+        == 2
+    )
     assert "missing column(s) hold_ms" in capsys.readouterr().err
     wrong = tmp_path / "wrong.csv"
     wrong.write_text("word,index,letter,hold_ms\nCAT,0,C,80\nCAT,1,E,90\n")
-    assert main(["train", "--holds", str(wrong), "--transitions", str(transitions),
-                 "--out", str(tmp_path / "m.json")]) == 2  # fmt: skip
+    assert (
+        main(
+            [
+                "train",
+                "--holds",
+                str(wrong),
+                "--transitions",
+                str(transitions),
+                "--out",
+                str(tmp_path / "m.json"),
+            ]
+        )
+        == 2
+    )
     assert "line 3: letter 1 of CAT is A, not E" in capsys.readouterr().err
     beyond = tmp_path / "beyond.csv"
     beyond.write_text("word,index,transition_ms\nCAT,2,200\n")
-    assert main(["train", "--holds", str(holds), "--transitions", str(beyond),
-                 "--out", str(tmp_path / "m.json")]) == 2  # fmt: skip
+    assert (
+        main(
+            [
+                "train",
+                "--holds",
+                str(holds),
+                "--transitions",
+                str(beyond),
+                "--out",
+                str(tmp_path / "m.json"),
+            ]
+        )
+        == 2
+    )
     assert "line 2: no letter 2 in 'CAT'" in capsys.readouterr().err
     assert not (tmp_path / "m.json").exists()
 

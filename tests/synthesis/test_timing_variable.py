@@ -20,16 +20,23 @@ from synthesis.timing import (
 from synthesis.timing.bayes import CLASSES_MS, hold_class
 from synthesis.timing.defaults import VOCABULARY, has_double, published_holds
 
-STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL",
-               "VICTOR")  # fmt: skip
+STUDY_WORDS = ("GUITAR", "HEAVEN", "ARREST", "ELEPHANT", "PSYCHIATRY", "DAVID", "MICHAEL", "VICTOR")
 
 
 def test_features_of_table_4_2():
     values = letter_features("arrest", 2)
     assert values == {
-        "letter": "R", "word_length": "6", "previous": "R", "following": "E", "place": "middle",
-        "index": "2", "vowel": "consonant", "double": "double", "shape": "open", "word": "ARREST",
-    }  # fmt: skip
+        "letter": "R",
+        "word_length": "6",
+        "previous": "R",
+        "following": "E",
+        "place": "middle",
+        "index": "2",
+        "vowel": "consonant",
+        "double": "double",
+        "shape": "open",
+        "word": "ARREST",
+    }
     assert letter_features("A", 0)["place"] == "first"
     assert letter_features("CAT", 2)["following"] == "#"
 
@@ -47,8 +54,10 @@ def test_classifier_learns_a_feature_and_smooths_unseen_values():
     assert model.predict_ms({"letter": "A"}) == pytest.approx(50.0, abs=4.2)
     assert model.predict_ms({"letter": "B"}) == pytest.approx(200.0, abs=4.2)
     # A letter never seen gives no evidence: the prior decides (a tie, first class wins).
-    assert model.predict_ms({"letter": "Z"}) in (CLASSES_MS[hold_class(50)],
-                                                 CLASSES_MS[hold_class(200)])  # fmt: skip
+    assert model.predict_ms({"letter": "Z"}) in (
+        CLASSES_MS[hold_class(50)],
+        CLASSES_MS[hold_class(200)],
+    )
 
 
 def test_a_class_without_training_holds_is_unlikely_not_impossible():
@@ -136,8 +145,9 @@ def test_default_model_shows_the_published_regularities():
         last.append(timing.hold_ms[-1])
         others.extend(timing.hold_ms[:-1])
     assert np.mean(last) > 1.2 * np.mean(others)  # the last letter is held longer
-    by_length = {n: np.mean([np.mean(t.hold_ms) for w, t in timings.items() if len(w) == n])
-                 for n in (3, 4)}  # fmt: skip
+    by_length = {
+        n: np.mean([np.mean(t.hold_ms) for w, t in timings.items() if len(w) == n]) for n in (3, 4)
+    }
     long = np.mean([np.mean(t.hold_ms) for w, t in timings.items() if len(w) >= 5])
     assert by_length[3] > by_length[4] > long  # shorter holds in longer words
     per_letter = {w: t.total_ms / len(w) for w, t in timings.items()}
@@ -175,8 +185,12 @@ def test_leave_one_out_reports_on_every_hold():
     result = HoldClassifier.fit(samples).leave_one_out(samples)
     assert result.nobs == len(samples) and 0 < result.accuracy < 1
     assert 0 < result.mean_abs_error_ms < 60
-    assert set(result.to_dict()) == {"accuracy", "mean_abs_error_ms", "mean_signed_error_ms",
-                                     "nobs"}  # fmt: skip
+    assert set(result.to_dict()) == {
+        "accuracy",
+        "mean_abs_error_ms",
+        "mean_signed_error_ms",
+        "nobs",
+    }
 
 
 def test_the_gplvm_distance_runs_from_0_to_1_between_letters():

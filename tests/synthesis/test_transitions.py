@@ -75,14 +75,16 @@ def test_skewed_tangents_are_the_skewed_curves_derivative():
     tangents = np.column_stack([np.ones(3), slopes])
     duration, delta_total, v0, v1 = 0.6, 0.9, 0.2, 0.7
     skewed = skew_tangents(tangents, y[0], y[-1], delta_total, v0, v1, duration)
-    curve = CubicHermiteSpline(x * duration, skew_values(y, x, delta_total, v0, v1),
-                               skewed[:, 1] / skewed[:, 0])  # fmt: skip
+    curve = CubicHermiteSpline(
+        x * duration, skew_values(y, x, delta_total, v0, v1), skewed[:, 1] / skewed[:, 0]
+    )
     original = CubicHermiteSpline(x, y, slopes)
     fine = np.linspace(0, 1, 200)
     np.testing.assert_allclose(
-        curve(fine * duration), skew_values(original(fine), fine, delta_total, v0, v1),
+        curve(fine * duration),
+        skew_values(original(fine), fine, delta_total, v0, v1),
         atol=1e-12,
-    )  # fmt: skip
+    )
 
 
 def test_basis_peaks_and_the_b_spline_skew_on_coefficients():
@@ -163,6 +165,9 @@ def test_the_baselines_join_the_signs():
     assert 1.0 - curve[-1] == pytest.approx(-0.02, abs=0.01)
     # With the slope of the straight line it is that line.
     slope = 1.0 / 41
-    np.testing.assert_allclose(simple_hermite_transition(0.0, slope, 1.0, slope, 40),
-                               linear_transition(0.0, 1.0, 40), atol=1e-3)  # fmt: skip
+    np.testing.assert_allclose(
+        simple_hermite_transition(0.0, slope, 1.0, slope, 40),
+        linear_transition(0.0, 1.0, 40),
+        atol=1e-3,
+    )
     assert rmse_deg(np.radians([1.0, 2.0]), np.radians([1.0, 4.0])) == pytest.approx(np.sqrt(2))

@@ -30,8 +30,9 @@ def served(tmp_path):
 def test_rendered_clip_plays_in_chromium(served, page):
     folder, url = served
     motion = spell("OK", rate_hz=60)
-    info = render_clip(hand_avatar("right"), motion, hand_close_up(), folder / "ok.mp4",
-                       width=160, height=120)  # fmt: skip
+    info = render_clip(
+        hand_avatar("right"), motion, hand_close_up(), folder / "ok.mp4", width=160, height=120
+    )
     assert count_frames(folder / "ok.mp4") == len(motion) == info.n_frames
     (folder / "index.html").write_text(
         '<!doctype html><title>clip</title><link rel="icon" href="data:,">'

@@ -16,8 +16,11 @@ class Command(BaseCommand):
     )
 
     def add_arguments(self, parser):
-        parser.add_argument("out", nargs="?", help="the archive to write "
-                            "(default: var/backups/signstudy-<time>.tar.gz)")  # fmt: skip
+        parser.add_argument(
+            "out",
+            nargs="?",
+            help="the archive to write (default: var/backups/signstudy-<time>.tar.gz)",
+        )
 
     def handle(self, *args, out=None, **options):
         from django.conf import settings
@@ -25,5 +28,7 @@ class Command(BaseCommand):
         stamp = timezone.now().strftime("%Y%m%d-%H%M%S")
         path = Path(out) if out else settings.VAR_DIR / "backups" / f"signstudy-{stamp}.tar.gz"
         summary = make_backup(path)
-        self.stdout.write(f"Backed up {summary.rows} rows and {summary.files} files "
-                          f"({summary.bytes / 1e6:.1f} MB) to {path}.")  # fmt: skip
+        self.stdout.write(
+            f"Backed up {summary.rows} rows and {summary.files} files "
+            f"({summary.bytes / 1e6:.1f} MB) to {path}."
+        )

@@ -16,14 +16,20 @@ class Command(BaseCommand):
         parser.add_argument("study", help="the study's slug")
         parser.add_argument("condition", help="the condition's key")
         parser.add_argument("item", help="the item's key")
-        parser.add_argument("--out", type=Path, required=True,
-                            help="FILE.glb or FILE.bvh (the extension chooses)")  # fmt: skip
+        parser.add_argument(
+            "--out", type=Path, required=True, help="FILE.glb or FILE.bvh (the extension chooses)"
+        )
 
     def handle(self, *args, **options):
-        stimulus = Stimulus.objects.filter(
-            condition__study__slug=options["study"], condition__key=options["condition"],
-            item__key=options["item"],
-        ).select_related("condition__study", "item").first()  # fmt: skip
+        stimulus = (
+            Stimulus.objects.filter(
+                condition__study__slug=options["study"],
+                condition__key=options["condition"],
+                item__key=options["item"],
+            )
+            .select_related("condition__study", "item")
+            .first()
+        )
         if stimulus is None:
             raise CommandError("No such clip: check the study's slug, condition and item keys.")
         out = options["out"]

@@ -21,31 +21,46 @@ class Command(BaseCommand):
 
     def add_arguments(self, parser) -> None:
         parser.add_argument("studies", nargs="*", metavar="study", help="the studies' slugs")
-        parser.add_argument("--workers", type=int, default=1,
-                            help="local rendering processes (when no broker is set)")  # fmt: skip
+        parser.add_argument(
+            "--workers",
+            type=int,
+            default=1,
+            help="local rendering processes (when no broker is set)",
+        )
         parser.add_argument("--force", action="store_true", help="render every clip again")
         parser.add_argument(
-            "--rerender-open", action="store_true",
+            "--rerender-open",
+            action="store_true",
             help="on an open or closed study, re-render clips whose specification changed "
             "(another engine or new parameters); refused without it",
-        )  # fmt: skip
+        )
         parser.add_argument(
-            "--allow-identical", action="store_true",
+            "--allow-identical",
+            action="store_true",
             help="render even where two conditions of an item would give identical clips",
-        )  # fmt: skip
+        )
         parser.add_argument(
-            "--manifest", type=Path, metavar="PATH",
+            "--manifest",
+            type=Path,
+            metavar="PATH",
             help="write the study's stimulus manifest (JSON) here afterwards",
-        )  # fmt: skip
+        )
         parser.add_argument(
-            "--from-manifest", type=Path, metavar="PATH",
+            "--from-manifest",
+            type=Path,
+            metavar="PATH",
             help="render a manifest's clips into the media folder (no study)",
-        )  # fmt: skip
-        parser.add_argument("--timeout", type=float, default=3600.0,
-                            help="seconds to wait for queued jobs (with a broker)")  # fmt: skip
+        )
+        parser.add_argument(
+            "--timeout",
+            type=float,
+            default=3600.0,
+            help="seconds to wait for queued jobs (with a broker)",
+        )
 
-    def handle(self, *args, studies: list[str], workers: int, force: bool, timeout: float,
-               **options):  # fmt: skip
+    def handle(
+        self, *args, studies: list[str], workers: int, force: bool, timeout: float, **options
+    ):
         if options["from_manifest"] is not None:
             return self._render_manifest(options["from_manifest"])
         if not studies:
@@ -61,18 +76,27 @@ class Command(BaseCommand):
                     found, force, workers, options["rerender_open"], options["allow_identical"]
                 )
             else:
-                results = [do_generate_stimuli(study, force=force,
-                                               rerender_open=options["rerender_open"],
-                                               allow_identical=options["allow_identical"])
-                           for study in found]  # fmt: skip
+                results = [
+                    do_generate_stimuli(
+                        study,
+                        force=force,
+                        rerender_open=options["rerender_open"],
+                        allow_identical=options["allow_identical"],
+                    )
+                    for study in found
+                ]
                 if not eager:
                     self._wait([pk for result in results for pk in result.stimulus_ids], timeout)
         except ClipError as error:
             raise CommandError(str(error)) from None
         failures = self._report(found, results, time.perf_counter() - started)
         if options["manifest"] is not None:
-            path = write_manifest(study_manifest(found[0]), options["manifest"], found[0].slug,
-                                  uploaded_manifest(found[0]))  # fmt: skip
+            path = write_manifest(
+                study_manifest(found[0]),
+                options["manifest"],
+                found[0].slug,
+                uploaded_manifest(found[0]),
+            )
             self.stdout.write(f"manifest written to {path}")
         if failures:
             raise CommandError(f"{failures} clip(s) failed; retry them from the admin.")
@@ -90,8 +114,9 @@ class Command(BaseCommand):
         """Print each study's clips and failures; return how many failed."""
         failures = 0
         for study, result in zip(found, results, strict=True):
-            failed = Stimulus.objects.filter(pk__in=result.stimulus_ids,
-                                             status=Stimulus.Status.FAILED)  # fmt: skip
+            failed = Stimulus.objects.filter(
+                pk__in=result.stimulus_ids, status=Stimulus.Status.FAILED
+            )
             for stimulus in failed:
                 self.stderr.write(f"  failed: {stimulus} — {stimulus.error}")
             failures += failed.count()
@@ -116,17 +141,29 @@ class Command(BaseCommand):
         done, rendered = generate(entries, directory, report)
         self.stdout.write(f"{path}: {len(done)} clips, {rendered} rendered, into {directory}")
 
-    def _render_with_pool(self, studies: list[Study], force: bool, workers: int,
-                          rerender_open: bool, allow_identical: bool) -> list:  # fmt: skip
+    def _render_with_pool(
+        self,
+        studies: list[Study],
+        force: bool,
+        workers: int,
+        rerender_open: bool,
+        allow_identical: bool,
+    ) -> list:
         """Record the studies' clips without queueing, then render them in *workers*
         processes, one pool for all (a pool per study would leave processes idle as each
         study ends)."""
         from studyplatform.render_pool import render_many
 
-        results = [do_generate_stimuli(study, force=force, enqueue=False,
-                                       rerender_open=rerender_open,
-                                       allow_identical=allow_identical)
-                   for study in studies]  # fmt: skip
+        results = [
+            do_generate_stimuli(
+                study,
+                force=force,
+                enqueue=False,
+                rerender_open=rerender_open,
+                allow_identical=allow_identical,
+            )
+            for study in studies
+        ]
 
         def report(number: int, total: int, status: str) -> None:
             self.stdout.write(f"  {number}/{total} {status}")

@@ -9,8 +9,10 @@ from studyplatform.lib.bundle import BundleRejected, read_bundle
 
 
 class Command(BaseCommand):
-    help = ("Import a study definition (JSON, or a .zip bundle with its media) as a new study "
-            "owned by --owner.")  # fmt: skip
+    help = (
+        "Import a study definition (JSON, or a .zip bundle with its media) as a new study "
+        "owned by --owner."
+    )
 
     def add_arguments(self, parser) -> None:
         parser.add_argument("file")

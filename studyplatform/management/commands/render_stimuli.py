@@ -13,9 +13,11 @@ class Command(BaseCommand):
     def add_arguments(self, parser) -> None:
         parser.add_argument("ids", nargs="+", type=int, metavar="id")
         parser.add_argument(
-            "--workers", type=int, default=min(4, os.cpu_count() or 1),
+            "--workers",
+            type=int,
+            default=min(4, os.cpu_count() or 1),
             help="rendering processes (default: the cores, at most 4)",
-        )  # fmt: skip
+        )
 
     def handle(self, *args, ids: list[int], workers: int, **options) -> None:
         def report(number: int, total: int, status: str) -> None:

@@ -102,8 +102,10 @@ def read_target(path: Path) -> tuple[np.ndarray, np.ndarray]:
             if len(fields) == 4 and not line.startswith("#"):
                 indices.append(fields[0])
                 offsets.append(fields[1:])
-    return (np.array(indices, dtype=np.int64),
-            np.array(offsets, dtype=np.float64).reshape(-1, 3) * METRES_PER_UNIT)  # fmt: skip
+    return (
+        np.array(indices, dtype=np.int64),
+        np.array(offsets, dtype=np.float64).reshape(-1, 3) * METRES_PER_UNIT,
+    )
 
 
 @cache

@@ -95,8 +95,9 @@ def quad_triangles(quads: np.ndarray, kept: np.ndarray) -> np.ndarray:
     return np.concatenate([whole[:, [0, 1, 2]], whole[:, [0, 2, 3]]])
 
 
-def skin_weights(table: dict, vertices_mh: np.ndarray, rig: BodyModel, matches: dict,
-                 engine: dict) -> SkinWeights:  # fmt: skip
+def skin_weights(
+    table: dict, vertices_mh: np.ndarray, rig: BodyModel, matches: dict, engine: dict
+) -> SkinWeights:
     """Return the engine joints' weights: MakeHuman's, each bone's to the joint that
     carries it, but a digit's laid out again along the engine's joints of the digit (by
     each vertex's share of the digit's length), since MakeHuman's finger joints sit
@@ -160,20 +161,25 @@ def _transforms(skeleton, matches, engine: dict) -> tuple[dict, Affine]:
     for side in SIDES:
         s, p, match = SIDE_SUFFIX[side], side + "_", matches[side]
         arm = match.arm
-        for bones, (a, b) in ((("upperarm01", "upperarm02"), ("shoulder", "elbow")),
-                              (("lowerarm01", "lowerarm02"), ("elbow", "wrist"))):  # fmt: skip
+        for bones, (a, b) in (
+            (("upperarm01", "upperarm02"), ("shoulder", "elbow")),
+            (("lowerarm01", "lowerarm02"), ("elbow", "wrist")),
+        ):
             segment = segment_affine(arm[p + a], arm[p + b], engine[p + a], engine[p + b], across)
             transforms.update({bone + s: segment for bone in bones})
         points = joint_points(match)
         names = [p + n for n in ("wrist", "index_mcp", "pinky_mcp", "middle_mcp")]
         frame_mh = palm_frame(*(points[n] for n in names), side)
         frame_e = palm_frame(*(engine[n] for n in names), side)
-        width = (np.linalg.norm(engine[names[1]] - engine[names[2]])
-                 / np.linalg.norm(points[names[1]] - points[names[2]]))  # fmt: skip
-        length = (np.linalg.norm(engine[names[3]] - engine[names[0]])
-                  / np.linalg.norm(points[names[3]] - points[names[0]]))  # fmt: skip
-        palm = frame_affine(frame_mh, frame_e, points[names[0]], engine[names[0]],
-                            (width, length, width))  # fmt: skip
+        width = np.linalg.norm(engine[names[1]] - engine[names[2]]) / np.linalg.norm(
+            points[names[1]] - points[names[2]]
+        )
+        length = np.linalg.norm(engine[names[3]] - engine[names[0]]) / np.linalg.norm(
+            points[names[3]] - points[names[0]]
+        )
+        palm = frame_affine(
+            frame_mh, frame_e, points[names[0]], engine[names[0]], (width, length, width)
+        )
         transforms.update(
             {
                 bone + s: palm
@@ -201,8 +207,9 @@ def warp_body(body: str | Phenotype, dominant: str) -> Warped:
     kept = body[shaped[body, 1] > skeleton.head("spine05")[1] - CUT_BELOW_PELVIS_M]
     table = bone_weights(weights, kept)
     warped = blend_warp(shaped[kept], table, transforms)
-    eyes = np.array([head(sphere_fit(shaped[mesh.group(f"helper-{s}-eye")])[0][None])[0]
-                     for s in ("r", "l")])  # fmt: skip
+    eyes = np.array(
+        [head(sphere_fit(shaped[mesh.group(f"helper-{s}-eye")])[0][None])[0] for s in ("r", "l")]
+    )
     helpers = {name: (mesh.group(name), head(shaped[mesh.group(name)])) for name in HELPERS}
     return Warped(
         rig,

@@ -18,8 +18,10 @@ from synthesis.avatar.skinning import MorphDrive
 
 def _both(shape: str, dof: str, sign: int, full_deg: float, share: float = 1.0) -> dict:
     """Return a sided blendshape pair, each raised by its own side's DOF."""
-    return {f"{shape}{side.title()}": ((f"{side}_{dof}", sign, full_deg, share),)
-            for side in ("right", "left")}  # fmt: skip
+    return {
+        f"{shape}{side.title()}": ((f"{side}_{dof}", sign, full_deg, share),)
+        for side in ("right", "left")
+    }
 
 
 def _shared(dof: str, sign: int, full_deg: float, share: float = 0.5) -> tuple:

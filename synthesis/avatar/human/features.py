@@ -36,8 +36,9 @@ def _normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return np.asarray(trimesh.Trimesh(vertices, faces, process=False).vertex_normals)
 
 
-def face_morphs(indices: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
-                scale: float) -> Morphs:  # fmt: skip
+def face_morphs(
+    indices: np.ndarray, vertices: np.ndarray, faces: np.ndarray, scale: float
+) -> Morphs:
     """Return the ARKit blendshapes of the mesh vertices *indices* (base-mesh numbers),
     whose warped positions are *vertices*, offsets scaled by the head's *scale*."""
     row = {int(v): k for k, v in enumerate(indices)}
@@ -50,8 +51,9 @@ def face_morphs(indices: np.ndarray, vertices: np.ndarray, faces: np.ndarray,
                 offsets[k, row[int(vertex)]] = scale * offset
     touched = np.flatnonzero(np.abs(offsets).sum(axis=(0, 2)) > 0)
     base = _normals(vertices, faces)
-    normal_offsets = np.stack([_normals(vertices + offsets[k], faces)[touched] - base[touched]
-                               for k in range(len(names))])  # fmt: skip
+    normal_offsets = np.stack(
+        [_normals(vertices + offsets[k], faces)[touched] - base[touched] for k in range(len(names))]
+    )
     return Morphs(names, touched, offsets[:, touched], normal_offsets)
 
 
@@ -61,8 +63,7 @@ def _rows_of(morphs: Morphs, rows: np.ndarray) -> Morphs:
     inside = [(k, where[int(r)]) for k, r in enumerate(rows) if int(r) in where]
     mine = np.array([k for k, _ in inside], dtype=np.intp)
     theirs = np.array([t for _, t in inside], dtype=np.intp)
-    return Morphs(morphs.names, mine, morphs.offsets_m[:, theirs],
-                  morphs.normal_offsets[:, theirs])  # fmt: skip
+    return Morphs(morphs.names, mine, morphs.offsets_m[:, theirs], morphs.normal_offsets[:, theirs])
 
 
 def features(warped: Warped, skin: SkinnedPart, head_joint: int) -> SkinnedPart:
@@ -74,25 +75,32 @@ def features(warped: Warped, skin: SkinnedPart, head_joint: int) -> SkinnedPart:
     """
     scale = warped.head.linear[0, 0]
     on_head = (skin.weights.joints[:, 0] == head_joint)[skin.faces].all(axis=1)
-    brow = np.min([brow_distance(skin.vertices_m, eye, scale=scale) for eye in warped.eyes_m],
-                  axis=0)  # fmt: skip
+    brow = np.min(
+        [brow_distance(skin.vertices_m, eye, scale=scale) for eye in warped.eyes_m], axis=0
+    )
     hair = np.maximum(hair_distance(skin.vertices_m, warped.eyes_m, scale), -brow)
     skin_rgb = np.asarray(skin.colors_rgb[0])
     parts = []
     for distance, lift in ((brow, BROW_LIFT_M), (hair, HAIR_LIFT_M)):
         chosen = on_head & (distance[skin.faces] < 0).any(axis=1)
         vertices, faces, rows = shell(skin.vertices_m, skin.normals, skin.faces, chosen, lift)
-        parts.append(SkinnedPart(
-            "shell", vertices, faces, np.broadcast_to(skin_rgb, (len(vertices), 3)),
-            SkinWeights(skin.weights.joints[rows], skin.weights.weights[rows]),
-            skin.normals[rows], edge_m=distance[rows],
-            across_rgb=np.broadcast_to(HAIR_RGB, (len(vertices), 3)),
-            morphs=_rows_of(skin.morphs, rows)))  # fmt: skip
+        parts.append(
+            SkinnedPart(
+                "shell",
+                vertices,
+                faces,
+                np.broadcast_to(skin_rgb, (len(vertices), 3)),
+                SkinWeights(skin.weights.joints[rows], skin.weights.weights[rows]),
+                skin.normals[rows],
+                edge_m=distance[rows],
+                across_rgb=np.broadcast_to(HAIR_RGB, (len(vertices), 3)),
+                morphs=_rows_of(skin.morphs, rows),
+            )
+        )
     mesh = assets.base_mesh()
     for name, (indices, vertices) in warped.helpers.items():
         faces = quad_triangles(mesh.quads, indices)
-        colour = (HAIR_RGB if "lashes" in name else TONGUE_RGB if "tongue" in name
-                  else TEETH_RGB)  # fmt: skip
+        colour = HAIR_RGB if "lashes" in name else TONGUE_RGB if "tongue" in name else TEETH_RGB
         part = rigid_part(name, vertices, faces, np.full(len(vertices), head_joint), colour)
         parts.append(replace(part, morphs=face_morphs(indices, vertices, faces, scale)))
     return merge_parts("features", parts, casts_shadow=False)
@@ -103,16 +111,18 @@ def eyes(warped: Warped) -> SkinnedPart:
     parts = []
     for side, centre in zip(("right", "left"), warped.eyes_m, strict=True):
         radius = EYE_RADIUS_M * warped.head.linear[0, 0]
-        vertices, faces, colours = eyeball(centre, radius, (0.0, 0.0, 1.0), SCLERA_RGB,
-                                           IRIS_RGB, PUPIL_RGB)  # fmt: skip
+        vertices, faces, colours = eyeball(
+            centre, radius, (0.0, 0.0, 1.0), SCLERA_RGB, IRIS_RGB, PUPIL_RGB
+        )
         owner = np.full(len(vertices), names.index(f"{side}_eye"))
         part = rigid_part(f"{side} eye", vertices, faces, owner, (0.0, 0.0, 0.0), False)
         parts.append(replace(part, colors_rgb=colours))
     return merge_parts("eyes", parts, casts_shadow=False)
 
 
-def nail_radii(rig: BodyModel, bind_dofs_rad: np.ndarray, skin: SkinnedPart,
-               side: str) -> dict[str, float]:  # fmt: skip
+def nail_radii(
+    rig: BodyModel, bind_dofs_rad: np.ndarray, skin: SkinnedPart, side: str
+) -> dict[str, float]:
     """Return each digit's depth (m) from its last bone to the back of its skin, halfway
     along the bone: where :func:`hand_nails` lays the nail."""
     pose = rig.pose(bind_dofs_rad)

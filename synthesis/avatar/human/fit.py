@@ -47,15 +47,17 @@ def _bone_skin(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dic
     return head, axis, vertices_m[owned] - head
 
 
-def fingertip(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict,
-              bone: str) -> np.ndarray:  # fmt: skip
+def fingertip(
+    skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict, bone: str
+) -> np.ndarray:
     """Return a digit's tip: the farthest point of its distal bone's skin along the bone."""
     head, axis, offsets = _bone_skin(skeleton, vertices_m, weights, bone)
     return head + axis * float((offsets @ axis).max())
 
 
-def cross_section_centre(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict,
-                         bone: str) -> np.ndarray:  # fmt: skip
+def cross_section_centre(
+    skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict, bone: str
+) -> np.ndarray:
     """Return how far (3,) the middle of a bone's skin lies from the bone, across it: the
     centre of the skin's extent (5th to 95th percentile) along its two principal
     directions across the bone (a finger's pad has more vertices than its back)."""
@@ -91,20 +93,26 @@ class Correspondence:
     digit_points: dict
 
 
-def correspondence(skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict,
-                   rig: BodyModel, side: str) -> Correspondence:  # fmt: skip
+def correspondence(
+    skeleton: MakeHumanSkeleton, vertices_m: np.ndarray, weights: dict, rig: BodyModel, side: str
+) -> Correspondence:
     """Return one side's correspondence of the engine's joints on MakeHuman's."""
     s, p = SIDE_SUFFIX[side], side + "_"
     head = skeleton.head
-    arm = {p + "clavicle": head("clavicle" + s), p + "shoulder": head("upperarm01" + s),
-           p + "elbow": head("lowerarm01" + s), p + "wrist": head("wrist" + s)}  # fmt: skip
+    arm = {
+        p + "clavicle": head("clavicle" + s),
+        p + "shoulder": head("upperarm01" + s),
+        p + "elbow": head("lowerarm01" + s),
+        p + "wrist": head("wrist" + s),
+    }
     engine = rig.pose(rig.neutral()).positions_m[0]
     index = {name: i for i, name in enumerate(rig.skeleton.names)}
     chains, digit_points = {}, {}
     for digit, number in DIGITS.items():
         bones = [f"finger{number}-{k}{s}" for k in (1, 2, 3)]
-        chain = np.array([head(b) for b in bones] + [fingertip(skeleton, vertices_m, weights,
-                                                               bones[-1])])  # fmt: skip
+        chain = np.array(
+            [head(b) for b in bones] + [fingertip(skeleton, vertices_m, weights, bones[-1])]
+        )
         # MakeHuman's finger joints lie toward the back of the finger: the engine's turn
         # about the middle of its cross-section, so its chain runs down the middle.
         middles = [cross_section_centre(skeleton, vertices_m, weights, b) for b in bones]
@@ -142,8 +150,11 @@ def fit_bind_dofs(rig: BodyModel, matches: dict) -> np.ndarray:
     *matches* holds each side's :class:`Correspondence`.
     """
     index = {name: i for i, name in enumerate(rig.skeleton.names)}
-    parent = {joint.name: rig.skeleton.names[joint.parent] for joint in rig.skeleton.joints
-              if joint.parent >= 0}  # fmt: skip
+    parent = {
+        joint.name: rig.skeleton.names[joint.parent]
+        for joint in rig.skeleton.joints
+        if joint.parent >= 0
+    }
     low, high = rig.limits_rad
     dofs = rig.neutral()
 
@@ -176,15 +187,23 @@ def fit_bind_dofs(rig: BodyModel, matches: dict) -> np.ndarray:
     for side in SIDES:
         p, match = side + "_", matches[side]
         points = joint_points(match)
-        mh_palm = palm_frame(points[p + "wrist"], points[p + "index_mcp"],
-                             points[p + "pinky_mcp"], points[p + "middle_mcp"], side)  # fmt: skip
+        mh_palm = palm_frame(
+            points[p + "wrist"],
+            points[p + "index_mcp"],
+            points[p + "pinky_mcp"],
+            points[p + "middle_mcp"],
+            side,
+        )
         arm_dofs = [
             d.name
             for d in rig.dofs
             if d.joint in {p + j for j in ("clavicle", "shoulder", "elbow", "forearm", "wrist")}
         ]
-        arm_segments = [(p + "clavicle", p + "shoulder"), (p + "shoulder", p + "elbow"),
-                        (p + "elbow", p + "wrist")]  # fmt: skip
+        arm_segments = [
+            (p + "clavicle", p + "shoulder"),
+            (p + "shoulder", p + "elbow"),
+            (p + "elbow", p + "wrist"),
+        ]
         arm_segments += [(p + "wrist", p + f"{f}_mcp") for f in DIGITS if f != "thumb"]
         solve(arm_dofs, arm_segments, points, palm=(side, mh_palm))
         for digit in DIGITS:

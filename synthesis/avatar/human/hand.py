@@ -38,8 +38,9 @@ def _hand_part(body: Avatar, side: str, model: HandModel, move: np.ndarray) -> S
     skin = body.parts[0]
     names = body.rig.skeleton.names
     p = side + "_"
-    to_hand = {names.index(p + n): model.skeleton.index(n)
-               for n in model.skeleton.names if p + n in names}  # fmt: skip
+    to_hand = {
+        names.index(p + n): model.skeleton.index(n) for n in model.skeleton.names if p + n in names
+    }
     to_hand[names.index(p + "elbow")] = model.skeleton.index("forearm")
     to_hand[names.index(p + "shoulder")] = model.skeleton.index("forearm")
     top = skin.weights.main_joints()
@@ -58,11 +59,16 @@ def _hand_part(body: Avatar, side: str, model: HandModel, move: np.ndarray) -> S
     joints = np.vectorize(lambda j: to_hand.get(int(j), 0))(joints)
     weights /= weights.sum(axis=1, keepdims=True)
     turn = move[:3, :3]
-    return SkinnedPart("skin", skin.vertices_m[kept] @ turn.T + move[:3, 3], faces,
-                       skin.colors_rgb[kept], SkinWeights(joints.astype(np.intp), weights),
-                       skin.normals[kept] @ turn.T,
-                       None if skin.edge_m is None else skin.edge_m[kept],
-                       None if skin.across_rgb is None else skin.across_rgb[kept])  # fmt: skip
+    return SkinnedPart(
+        "skin",
+        skin.vertices_m[kept] @ turn.T + move[:3, 3],
+        faces,
+        skin.colors_rgb[kept],
+        SkinWeights(joints.astype(np.intp), weights),
+        skin.normals[kept] @ turn.T,
+        None if skin.edge_m is None else skin.edge_m[kept],
+        None if skin.across_rgb is None else skin.across_rgb[kept],
+    )
 
 
 def build_human_hand(side: str, body_shape: str | Phenotype, skin_tone: str) -> Avatar:
@@ -79,14 +85,16 @@ def build_human_hand(side: str, body_shape: str | Phenotype, skin_tone: str) -> 
     )
     skin = _hand_part(body, side, model, move)
     radii = nail_radii(body.rig, body.bind_dofs_rad, body.parts[0], side)
-    nails = rigid_part("nails", *hand_nails(model, bind, side, "", radii), NAIL_RGB,
-                       casts_shadow=False)  # fmt: skip
+    nails = rigid_part(
+        "nails", *hand_nails(model, bind, side, "", radii), NAIL_RGB, casts_shadow=False
+    )
     return Avatar(f"human-hand-{side}", model, bind, (skin, nails))
 
 
 @cache
-def human_hand_avatar(side: str = "right", body: str | Phenotype = DEFAULT_PRESET,
-                      skin_tone: str = DEFAULT_SKIN_TONE) -> Avatar:  # fmt: skip
+def human_hand_avatar(
+    side: str = "right", body: str | Phenotype = DEFAULT_PRESET, skin_tone: str = DEFAULT_SKIN_TONE
+) -> Avatar:
     """Return the human hand-and-forearm avatar of the close-up (kept on disk as
     :func:`~synthesis.avatar.human.build.human_avatar` is)."""
     from synthesis.avatar.store import cached_avatar
@@ -94,5 +102,6 @@ def human_hand_avatar(side: str = "right", body: str | Phenotype = DEFAULT_PRESE
     if skin_tone not in SKIN_TONES:
         human_avatar("right", body, skin_tone)  # names the unknown one
     key = f"human-hand-{side}-{body_key(body)}-{skin_tone}"
-    return cached_avatar(key, HandModel(side), lambda: build_human_hand(side, body, skin_tone),
-                         LIBRARIES)  # fmt: skip
+    return cached_avatar(
+        key, HandModel(side), lambda: build_human_hand(side, body, skin_tone), LIBRARIES
+    )

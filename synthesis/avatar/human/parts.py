@@ -13,8 +13,23 @@ import numpy as np
 # Latitudes (degrees from the eye's forward axis) of the eyeball's rings; pupil and iris
 # edges appear twice, one ring for each colour.
 PUPIL_DEG, IRIS_DEG = 11.0, 31.0
-_RINGS_DEG = (0.0, 5.0, PUPIL_DEG, PUPIL_DEG, 17.0, 24.0, IRIS_DEG, IRIS_DEG, 40.0, 55.0,
-              75.0, 100.0, 130.0, 160.0, 180.0)  # fmt: skip
+_RINGS_DEG = (
+    0.0,
+    5.0,
+    PUPIL_DEG,
+    PUPIL_DEG,
+    17.0,
+    24.0,
+    IRIS_DEG,
+    IRIS_DEG,
+    40.0,
+    55.0,
+    75.0,
+    100.0,
+    130.0,
+    160.0,
+    180.0,
+)
 _SEGMENTS = 32
 
 
@@ -61,8 +76,13 @@ def eyeball(centre_m, radius_m: float, forward, sclera_rgb, iris_rgb, pupil_rgb)
     return vertices, np.array(faces, dtype=np.int64), colours
 
 
-def shell(vertices_m: np.ndarray, normals: np.ndarray, faces: np.ndarray,
-          chosen: np.ndarray, lift_m: float):  # fmt: skip
+def shell(
+    vertices_m: np.ndarray,
+    normals: np.ndarray,
+    faces: np.ndarray,
+    chosen: np.ndarray,
+    lift_m: float,
+):
     """Return a shell over the *chosen* faces (a face mask): its vertices (their corners
     lifted along their normals), faces, and for each of its vertices the skin vertex it
     came from."""
@@ -72,8 +92,9 @@ def shell(vertices_m: np.ndarray, normals: np.ndarray, faces: np.ndarray,
     return vertices_m[used] + lift_m * normals[used], renumber[faces[chosen]], used
 
 
-def brow_distance(vertices_m: np.ndarray, eye_m: np.ndarray, midline_x: float = 0.0,
-                  scale: float = 1.0) -> np.ndarray:  # fmt: skip
+def brow_distance(
+    vertices_m: np.ndarray, eye_m: np.ndarray, midline_x: float = 0.0, scale: float = 1.0
+) -> np.ndarray:
     """Return each point's signed distance (m, about) to one brow, negative on it: an
     arch above the eye *eye_m* (either side), thick at the nose, thin at its tail
     (measured × *scale*). Behind the eye's front the distance is large."""
@@ -101,8 +122,9 @@ def hair_distance(vertices_m: np.ndarray, eyes_m: np.ndarray, scale: float = 1.0
     return (hairline - relative[:, 1]) * scale
 
 
-def smoothed(vertices_m: np.ndarray, faces: np.ndarray, chosen: np.ndarray,
-             iterations: int = 12) -> np.ndarray:  # fmt: skip
+def smoothed(
+    vertices_m: np.ndarray, faces: np.ndarray, chosen: np.ndarray, iterations: int = 12
+) -> np.ndarray:
     """Return the mesh with the *chosen* vertices smoothed (Taubin's λ|μ filter, which
     keeps the volume; trimesh's): a top's cloth over the chest and belly, not the skin's
     every detail. The other vertices stay."""

@@ -81,8 +81,9 @@ class Phenotype:
         share = np.array([self.african, self.asian, self.caucasian])
         share = share / share.sum()
         for race, race_weight in zip(RACES, share, strict=True):
-            for (gender, g), (age, a) in product(self.label_weights("gender").items(),
-                                                 self.label_weights("age").items()):  # fmt: skip
+            for (gender, g), (age, a) in product(
+                self.label_weights("gender").items(), self.label_weights("age").items()
+            ):
                 weights[f"{race}-{gender}-{age}"] = race_weight * g * a
         for variables, prefix in _COMBINATIONS:
             for labelled in product(*(self.label_weights(v).items() for v in variables)):

@@ -55,15 +55,27 @@ _FINGERS = {2: "index", 3: "middle", 4: "ring", 5: "pinky"}
 _THUMB = {1: "thumb_cmc", 2: "thumb_mcp", 3: "thumb_ip"}
 _PHALANGES = {1: "mcp", 2: "pip", 3: "dip"}
 _TRUNK = {
-    "root": "hips", "spine05": "hips", "spine04": "spine_lower", "spine03": "spine_lower",
-    "spine02": "spine_middle", "spine01": "spine_upper", "neck01": "neck", "neck02": "neck",
+    "root": "hips",
+    "spine05": "hips",
+    "spine04": "spine_lower",
+    "spine03": "spine_lower",
+    "spine02": "spine_middle",
+    "spine01": "spine_upper",
+    "neck01": "neck",
+    "neck02": "neck",
     "neck03": "neck",
-}  # fmt: skip
+}
 _SIDED = {
-    "clavicle": "clavicle", "shoulder01": "clavicle", "breast": "@spine_upper",
-    "upperarm01": "shoulder", "upperarm02": "shoulder", "lowerarm01": "elbow",
-    "lowerarm02": "forearm", "wrist": "wrist", "eye": "eye",
-}  # fmt: skip
+    "clavicle": "clavicle",
+    "shoulder01": "clavicle",
+    "breast": "@spine_upper",
+    "upperarm01": "shoulder",
+    "upperarm02": "shoulder",
+    "lowerarm01": "elbow",
+    "lowerarm02": "forearm",
+    "wrist": "wrist",
+    "eye": "eye",
+}
 SIDE_SUFFIX = {"right": ".R", "left": ".L"}
 
 

@@ -45,12 +45,12 @@ def segment_affine(start_mh, end_mh, start_e, end_e, girth: float) -> Affine:
     return Affine(np.asarray(start_mh), np.asarray(start_e), turn.as_matrix() @ scale)
 
 
-def frame_affine(frame_mh: np.ndarray, frame_e: np.ndarray, origin_mh, origin_e,
-                 scales) -> Affine:  # fmt: skip
+def frame_affine(frame_mh: np.ndarray, frame_e: np.ndarray, origin_mh, origin_e, scales) -> Affine:
     """Return the transform of one frame onto another (3×3 columns), scaling along the
     first frame's axes by *scales* (3,)."""
-    return Affine(np.asarray(origin_mh), np.asarray(origin_e),
-                  frame_e @ np.diag(scales) @ frame_mh.T)  # fmt: skip
+    return Affine(
+        np.asarray(origin_mh), np.asarray(origin_e), frame_e @ np.diag(scales) @ frame_mh.T
+    )
 
 
 @dataclass(frozen=True)
@@ -70,8 +70,9 @@ class TrunkWarp:
         height = interp1d(self.levels_mh, self.levels_e, fill_value="extrapolate")(y)
         across = np.interp(y, self.levels_mh, self.across)
         shift = np.interp(y, self.levels_mh, self.shift)
-        return np.column_stack([vertices_m[:, 0] * across, height,
-                                vertices_m[:, 2] * across + shift])  # fmt: skip
+        return np.column_stack(
+            [vertices_m[:, 0] * across, height, vertices_m[:, 2] * across + shift]
+        )
 
 
 def blend_warp(vertices_m: np.ndarray, bone_weights: dict, transforms: dict) -> np.ndarray:
@@ -88,8 +89,7 @@ def blend_warp(vertices_m: np.ndarray, bone_weights: dict, transforms: dict) -> 
     return moved / total[:, None]
 
 
-def digit_transforms(match: Correspondence, engine_points: dict, side: str,
-                     girth: float) -> dict:  # fmt: skip
+def digit_transforms(match: Correspondence, engine_points: dict, side: str, girth: float) -> dict:
     """Return each MakeHuman digit bone's transform onto the engine's chain (by share)."""
     suffix = {"right": ".R", "left": ".L"}[side]
     transforms = {}
@@ -120,6 +120,9 @@ def chain_position(vertices_m: np.ndarray, chain: np.ndarray) -> np.ndarray:
         best_share[closer] = (shares[k] + t * (shares[k + 1] - shares[k]))[closer]
     # Before the base (into the palm) the share goes on below 0.
     start, end = chain[0], chain[1]
-    before = (vertices_m - start) @ unit(end - start) / np.linalg.norm(np.diff(chain, axis=0),
-                                                                      axis=1).sum()  # fmt: skip
+    before = (
+        (vertices_m - start)
+        @ unit(end - start)
+        / np.linalg.norm(np.diff(chain, axis=0), axis=1).sum()
+    )
     return np.where(before < 0, before, best_share)

@@ -131,8 +131,9 @@ def _texture_colors(reader: Reader, material, uv: np.ndarray | None) -> np.ndarr
     try:
         image = reader.gltf.images[reader.gltf.textures[info.index].source]
         view = reader.gltf.bufferViews[image.bufferView]
-        blob = reader.buffers[view.buffer][view.byteOffset or 0 : (view.byteOffset or 0) +
-                                           view.byteLength]  # fmt: skip
+        blob = reader.buffers[view.buffer][
+            view.byteOffset or 0 : (view.byteOffset or 0) + view.byteLength
+        ]
         from PIL import Image
 
         with Image.open(io.BytesIO(blob)) as opened:
@@ -169,8 +170,10 @@ def _colors(reader: Reader, primitive, count: int) -> np.ndarray:
 
 def _weights(reader: Reader, attributes, count: int, skin_to_order: np.ndarray):
     """Return each vertex's four strongest bones (skeleton indices) and weights."""
-    sets = [(getattr(attributes, f"JOINTS_{k}", None), getattr(attributes, f"WEIGHTS_{k}", None))
-            for k in range(4)]  # fmt: skip
+    sets = [
+        (getattr(attributes, f"JOINTS_{k}", None), getattr(attributes, f"WEIGHTS_{k}", None))
+        for k in range(4)
+    ]
     sets = [(j, w) for j, w in sets if j is not None and w is not None]
     if not sets:
         raise GltfError("A skinned mesh has no JOINTS_0 / WEIGHTS_0: no skin weights.")
@@ -187,8 +190,9 @@ def _weights(reader: Reader, attributes, count: int, skin_to_order: np.ndarray):
     return joints, weights / total
 
 
-def _mesh(reader: Reader, node: int, primitive, number: int, skin_to_order: np.ndarray,
-          turn: np.ndarray) -> ImportedMesh:  # fmt: skip
+def _mesh(
+    reader: Reader, node: int, primitive, number: int, skin_to_order: np.ndarray, turn: np.ndarray
+) -> ImportedMesh:
     """Read one triangle primitive of a skinned mesh node."""
     gltf = reader.gltf
     mesh = gltf.meshes[gltf.nodes[node].mesh]
@@ -197,8 +201,11 @@ def _mesh(reader: Reader, node: int, primitive, number: int, skin_to_order: np.n
         raise GltfError(f"Mesh {mesh.name or node} has a primitive without positions.")
     positions = reader.read(attributes.POSITION)
     count = len(positions)
-    faces = (reader.read(primitive.indices).astype(np.intp).reshape(-1, 3)
-             if primitive.indices is not None else np.arange(count).reshape(-1, 3))  # fmt: skip
+    faces = (
+        reader.read(primitive.indices).astype(np.intp).reshape(-1, 3)
+        if primitive.indices is not None
+        else np.arange(count).reshape(-1, 3)
+    )
     if faces.size and faces.max() >= count:
         raise GltfError(f"Mesh {mesh.name or node} has triangles naming missing vertices.")
     normals = reader.read(attributes.NORMAL) if attributes.NORMAL is not None else None
@@ -224,13 +231,20 @@ def _mesh(reader: Reader, node: int, primitive, number: int, skin_to_order: np.n
         main = skin_to_order[main] if usable else None
     ours = (mesh.extras or {}).get("signstudy") or {}
     return ImportedMesh(
-        name=(mesh.name or "mesh") + (f".{number}" if number else ""), vertices_m=turned,
+        name=(mesh.name or "mesh") + (f".{number}" if number else ""),
+        vertices_m=turned,
         faces=faces,
-        colors_rgb=colors, joints=joints, weights=weights,
+        colors_rgb=colors,
+        joints=joints,
+        weights=weights,
         normals=None if normals is None else normals @ turn[:3, :3].T,
-        targets=targets, target_normals=target_normals, edge_m=edge, across_rgb=across,
-        casts_shadow=bool(ours.get("casts_shadow", True)), main_joints=main,
-    )  # fmt: skip
+        targets=targets,
+        target_normals=target_normals,
+        edge_m=edge,
+        across_rgb=across,
+        casts_shadow=bool(ours.get("casts_shadow", True)),
+        main_joints=main,
+    )
 
 
 def read_gltf_avatar(data: bytes, source: str = "the file") -> ImportedAvatar:
@@ -251,13 +265,17 @@ def _read_avatar(data: bytes, source: str) -> ImportedAvatar:
     gltf, buffers = load(data, source)
     reader = Reader(gltf, buffers, source)
     if not gltf.skins:
-        raise GltfError(f"{source} has no skin: an avatar needs a skeleton with skin weights "
-                        "(export the armature and its vertex groups).")  # fmt: skip
+        raise GltfError(
+            f"{source} has no skin: an avatar needs a skeleton with skin weights "
+            "(export the armature and its vertex groups)."
+        )
     skinned = [i for i, n in enumerate(gltf.nodes) if n.mesh is not None and n.skin is not None]
     if not skinned:
         raise GltfError(f"{source} has a skin but no mesh uses it.")
-    skin_index = max(set(gltf.nodes[i].skin for i in skinned),
-                     key=lambda s: sum(gltf.nodes[i].skin == s for i in skinned))  # fmt: skip
+    skin_index = max(
+        set(gltf.nodes[i].skin for i in skinned),
+        key=lambda s: sum(gltf.nodes[i].skin == s for i in skinned),
+    )
     skin = gltf.skins[skin_index]
     humanoid_nodes, meta, faces_back = vrm_humanoid(gltf)
     turn = np.diag([-1.0, 1.0, -1.0, 1.0]) if faces_back else np.eye(4)
@@ -283,15 +301,24 @@ def _read_avatar(data: bytes, source: str) -> ImportedAvatar:
     scene_name = gltf.scenes[0].name if gltf.scenes else None
     avatar = ImportedAvatar(
         name=str(meta.get("name") or meta.get("title") or scene_name or "avatar"),
-        joint_names=tuple(names), parents=parents, bind=bind, meshes=tuple(meshes),
-        humanoid={bone: names[position[node]] for bone, node in humanoid_nodes.items()
-                  if isinstance(node, int) and node in position},
-        meta=meta, bones=_saved_bones(gltf),
-    )  # fmt: skip
+        joint_names=tuple(names),
+        parents=parents,
+        bind=bind,
+        meshes=tuple(meshes),
+        humanoid={
+            bone: names[position[node]]
+            for bone, node in humanoid_nodes.items()
+            if isinstance(node, int) and node in position
+        },
+        meta=meta,
+        bones=_saved_bones(gltf),
+    )
     low, high = HEIGHT_RANGE_M
     if not low <= avatar.height_m <= high:
-        raise GltfError(f"{source}'s skeleton is {avatar.height_m:.2f} units tall: glTF is in "
-                        "metres (export with the scale applied).")  # fmt: skip
+        raise GltfError(
+            f"{source}'s skeleton is {avatar.height_m:.2f} units tall: glTF is in "
+            "metres (export with the scale applied)."
+        )
     return avatar
 
 

@@ -18,9 +18,13 @@ import pygltflib as gl
 from scipy.spatial.transform import Rotation
 
 COMPONENTS = {
-    5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32,
+    5120: np.int8,
+    5121: np.uint8,
+    5122: np.int16,
+    5123: np.uint16,
+    5125: np.uint32,
     5126: np.float32,
-}  # fmt: skip
+}
 WIDTHS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT2": 4, "MAT3": 9, "MAT4": 16}
 MAX_FILE_BYTES = 512 * 1024**2
 # Caps on what a file may declare: a VRM avatar has a few hundred nodes, a capture a
@@ -61,8 +65,10 @@ def load(data: bytes, source: str = "the file") -> tuple[gl.GLTF2, list[bytes]]:
     if data[:4] == b"glTF" and len(data) >= 12:
         declared = struct.unpack("<I", data[8:12])[0]
         if len(data) < declared:
-            raise GltfError(f"{source} is truncated: it holds {len(data)} of the "
-                            f"{declared} bytes its header declares.")  # fmt: skip
+            raise GltfError(
+                f"{source} is truncated: it holds {len(data)} of the "
+                f"{declared} bytes its header declares."
+            )
     _check_counts(_json_document(data, source), source)
     try:
         if data[:4] == b"glTF":
@@ -72,8 +78,9 @@ def load(data: bytes, source: str = "the file") -> tuple[gl.GLTF2, list[bytes]]:
     except Exception as error:  # pygltflib raises many kinds on a broken file
         raise GltfError(f"{source} is not a readable glTF 2.0 file ({error}).") from None
     if not gltf.asset or not str(gltf.asset.version or "").startswith("2."):
-        raise GltfError(f"{source} is not glTF 2.0 (asset.version "
-                        f"{getattr(gltf.asset, 'version', None)!r}).")  # fmt: skip
+        raise GltfError(
+            f"{source} is not glTF 2.0 (asset.version {getattr(gltf.asset, 'version', None)!r})."
+        )
     buffers = []
     for index, buffer in enumerate(gltf.buffers):
         if buffer.uri is None:
@@ -81,11 +88,15 @@ def load(data: bytes, source: str = "the file") -> tuple[gl.GLTF2, list[bytes]]:
         elif buffer.uri.startswith("data:"):
             blob = base64.b64decode(buffer.uri.split(",", 1)[1])
         else:
-            raise GltfError(f"{source}: buffer {index} is the separate file {buffer.uri!r}; "
-                            "upload a GLB (one file) instead.")  # fmt: skip
+            raise GltfError(
+                f"{source}: buffer {index} is the separate file {buffer.uri!r}; "
+                "upload a GLB (one file) instead."
+            )
         if len(blob) < (buffer.byteLength or 0):
-            raise GltfError(f"{source} is truncated: buffer {index} holds {len(blob)} of its "
-                            f"{buffer.byteLength} bytes.")  # fmt: skip
+            raise GltfError(
+                f"{source} is truncated: buffer {index} holds {len(blob)} of its "
+                f"{buffer.byteLength} bytes."
+            )
         buffers.append(blob)
     check_structure(gltf, buffers, source)
     return gltf, buffers
@@ -285,8 +296,9 @@ class Reader:
         start = (bv.byteOffset or 0) + offset
         needed = start + stride * (count - 1) + item if count else start
         if needed > min(len(blob), (bv.byteOffset or 0) + bv.byteLength):
-            raise GltfError(f"{self.source} is truncated or damaged: buffer view {view} "
-                            "ends before its data.")  # fmt: skip
+            raise GltfError(
+                f"{self.source} is truncated or damaged: buffer view {view} ends before its data."
+            )
         raw = np.frombuffer(blob, np.uint8, needed - start, start)
         rows = np.lib.stride_tricks.as_strided(raw, (count, item), (stride, 1))
         return np.ascontiguousarray(rows).view(dtype).reshape(count, width)
@@ -303,8 +315,9 @@ class Reader:
         if accessor.bufferView is None:
             values = np.zeros((accessor.count, width))
         else:
-            values = self._view(accessor.bufferView, accessor.byteOffset or 0, dtype, width,
-                                accessor.count).astype(float)  # fmt: skip
+            values = self._view(
+                accessor.bufferView, accessor.byteOffset or 0, dtype, width, accessor.count
+            ).astype(float)
         if accessor.sparse is not None and accessor.sparse.count:
             sparse = accessor.sparse
             rows = self._view(
@@ -320,8 +333,8 @@ class Reader:
                     "does not have."
                 )
             values[rows.astype(np.intp)] = self._view(
-                sparse.values.bufferView, sparse.values.byteOffset or 0, dtype, width,
-                sparse.count)  # fmt: skip
+                sparse.values.bufferView, sparse.values.byteOffset or 0, dtype, width, sparse.count
+            )
         if accessor.normalized and np.issubdtype(dtype, np.integer):
             values = values / float(np.iinfo(dtype).max)
         return values

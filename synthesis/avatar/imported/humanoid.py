@@ -27,9 +27,14 @@ from synthesis.skeleton.skeleton import Joint, Skeleton
 
 _DIGITS = ("thumb", "index", "middle", "ring", "pinky")
 _VRM_TRUNK = {
-    "hips": "hips", "spine": "spine_lower", "chest": "spine_middle",
-    "upperChest": "spine_upper", "neck": "neck", "head": "head", "jaw": "jaw",
-}  # fmt: skip
+    "hips": "hips",
+    "spine": "spine_lower",
+    "chest": "spine_middle",
+    "upperChest": "spine_upper",
+    "neck": "neck",
+    "head": "head",
+    "jaw": "jaw",
+}
 
 
 def _vrm_table(thumb_metacarpal: bool) -> dict[str, str]:
@@ -37,19 +42,27 @@ def _vrm_table(thumb_metacarpal: bool) -> dict[str, str]:
     Metacarpal; 0.x calls the same three Proximal, Intermediate, Distal)."""
     table = dict(_VRM_TRUNK)
     for side in ("left", "right"):
-        table.update({
-            f"{side}Eye": f"{side}_eye", f"{side}Shoulder": f"{side}_clavicle",
-            f"{side}UpperArm": f"{side}_shoulder", f"{side}LowerArm": f"{side}_elbow",
-            f"{side}Hand": f"{side}_wrist",
-        })  # fmt: skip
-        thumb = (("Metacarpal", "Proximal", "Distal") if thumb_metacarpal
-                 else ("Proximal", "Intermediate", "Distal"))  # fmt: skip
+        table.update(
+            {
+                f"{side}Eye": f"{side}_eye",
+                f"{side}Shoulder": f"{side}_clavicle",
+                f"{side}UpperArm": f"{side}_shoulder",
+                f"{side}LowerArm": f"{side}_elbow",
+                f"{side}Hand": f"{side}_wrist",
+            }
+        )
+        thumb = (
+            ("Metacarpal", "Proximal", "Distal")
+            if thumb_metacarpal
+            else ("Proximal", "Intermediate", "Distal")
+        )
         for segment, joint in zip(thumb, ("cmc", "mcp", "ip"), strict=True):
             table[f"{side}Thumb{segment}"] = f"{side}_thumb_{joint}"
         for digit in _DIGITS[1:]:
             name = "Little" if digit == "pinky" else digit.capitalize()
-            for segment, joint in zip(("Proximal", "Intermediate", "Distal"),
-                                      ("mcp", "pip", "dip"), strict=True):  # fmt: skip
+            for segment, joint in zip(
+                ("Proximal", "Intermediate", "Distal"), ("mcp", "pip", "dip"), strict=True
+            ):
                 table[f"{side}{name}{segment}"] = f"{side}_{digit}_{joint}"
     return table
 
@@ -69,8 +82,14 @@ def _skeleton(avatar: ImportedAvatar) -> Skeleton:
     joints = []
     for name, parent, offset in zip(avatar.joint_names, avatar.parents, offsets, strict=True):
         channels = ("Xposition", "Yposition", "Zposition") if parent < 0 else ()
-        joints.append(Joint(name, int(parent), tuple(float(v) for v in offset),
-                            (*channels, "Zrotation", "Xrotation", "Yrotation")))  # fmt: skip
+        joints.append(
+            Joint(
+                name,
+                int(parent),
+                tuple(float(v) for v in offset),
+                (*channels, "Zrotation", "Xrotation", "Yrotation"),
+            )
+        )
     return Skeleton(tuple(joints), length_unit="m")
 
 
@@ -108,8 +127,14 @@ class ImportedRig:
     def pose(self, dofs_rad: np.ndarray) -> Pose:
         """Return the avatar's global joint transforms for the engine's DOF vectors."""
         source = self.engine.pose(np.atleast_2d(dofs_rad))
-        return transfer_pose(source, self.engine_rest, self.engine.skeleton.parents,
-                             self.pairs, self.skeleton.parents, self.rest)  # fmt: skip
+        return transfer_pose(
+            source,
+            self.engine_rest,
+            self.engine.skeleton.parents,
+            self.pairs,
+            self.skeleton.parents,
+            self.rest,
+        )
 
     def neutral(self) -> np.ndarray:
         return self.engine.neutral()
@@ -133,13 +158,17 @@ def _morphs(mesh, drive_names: tuple[str, ...]) -> Morphs | None:
         return None
     offsets = np.stack([mesh.targets[n] for n in names])
     moved = np.flatnonzero(np.abs(offsets).max(axis=(0, 2)) > 0)
-    normals = np.stack([mesh.target_normals.get(n, np.zeros_like(mesh.targets[n]))
-                        for n in names])  # fmt: skip
+    normals = np.stack([mesh.target_normals.get(n, np.zeros_like(mesh.targets[n])) for n in names])
     return Morphs(tuple(names), moved, offsets[:, moved], normals[:, moved])
 
 
-def engine_avatar(imported: ImportedAvatar, engine_rig, engine_rest: Pose,
-                  drive: MorphDrive | None, side: str = "right") -> Avatar:  # fmt: skip
+def engine_avatar(
+    imported: ImportedAvatar,
+    engine_rig,
+    engine_rest: Pose,
+    drive: MorphDrive | None,
+    side: str = "right",
+) -> Avatar:
     """Return the engine avatar of *imported*, driven by *engine_rig*'s DOFs.
 
     *engine_rest* is the engine's pose the avatar's bind pose is aligned to (the
@@ -164,12 +193,20 @@ def engine_avatar(imported: ImportedAvatar, engine_rig, engine_rest: Pose,
     rig = ImportedRig(engine_rig, skeleton, pairs, engine_rest, imported.bind)
     names = drive.names if drive is not None else ()
     parts = tuple(
-        SkinnedPart(mesh.name, mesh.vertices_m, mesh.faces, mesh.colors_rgb,
-                    SkinWeights(mesh.joints, mesh.weights, mesh.main_joints), normals=mesh.normals,
-                    edge_m=mesh.edge_m, across_rgb=mesh.across_rgb,
-                    casts_shadow=mesh.casts_shadow, morphs=_morphs(mesh, names))
+        SkinnedPart(
+            mesh.name,
+            mesh.vertices_m,
+            mesh.faces,
+            mesh.colors_rgb,
+            SkinWeights(mesh.joints, mesh.weights, mesh.main_joints),
+            normals=mesh.normals,
+            edge_m=mesh.edge_m,
+            across_rgb=mesh.across_rgb,
+            casts_shadow=mesh.casts_shadow,
+            morphs=_morphs(mesh, names),
+        )
         for mesh in imported.meshes
-    )  # fmt: skip
+    )
     used = tuple(dict.fromkeys(n for part in parts if part.morphs for n in part.morphs.names))
     if used and drive is not None:
         rows = [drive.names.index(n) for n in used]
@@ -183,8 +220,11 @@ def missing_joints(mapping: dict[str, str], side: str) -> list[str]:
     """Return the engine joints fingerspelling needs that *mapping* (the avatar's
     :func:`bone_mapping`) leaves out (a hand rig's names drop the side)."""
     mapped = set(mapping.values())
-    return [joint for joint in finger_joints(side) if joint not in mapped
-            and joint.removeprefix(f"{side}_") not in mapped]  # fmt: skip
+    return [
+        joint
+        for joint in finger_joints(side)
+        if joint not in mapped and joint.removeprefix(f"{side}_") not in mapped
+    ]
 
 
 def describe_avatar(imported: ImportedAvatar, engine_rig, drive: MorphDrive | None) -> dict:

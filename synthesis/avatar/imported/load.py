@@ -27,8 +27,9 @@ def _avatar(sha256: str, path: str, view: str, side: str, builtin):
     its bind pose is what the import's is aligned to, its face drive plays the
     blendshapes they share.
     """
-    return engine_avatar(_imported(sha256, path), builtin.rig, builtin.bind_pose,
-                         builtin.drive, side)  # fmt: skip
+    return engine_avatar(
+        _imported(sha256, path), builtin.rig, builtin.bind_pose, builtin.drive, side
+    )
 
 
 def _existing(path: str | Path) -> tuple[str, str]:
@@ -56,9 +57,11 @@ def check_fingers(path: str | Path, side: str) -> None:
     imported = _imported(sha256, path)
     missing = missing_joints(bone_mapping(imported, BodyModel(side).skeleton.names), side)
     if missing:
-        raise GltfError(f"{Path(path).name} has no {', '.join(missing[:4])}"
-                        f"{' …' if len(missing) > 4 else ''} bone: its {side} hand cannot "
-                        "fingerspell (sentences without fingerspelling can use it).")  # fmt: skip
+        raise GltfError(
+            f"{Path(path).name} has no {', '.join(missing[:4])}"
+            f"{' …' if len(missing) > 4 else ''} bone: its {side} hand cannot "
+            "fingerspell (sentences without fingerspelling can use it)."
+        )
 
 
 def fitted_camera(camera, avatar):
@@ -73,5 +76,8 @@ def fitted_camera(camera, avatar):
     if head is None or not theirs:
         return camera
     shift = rig.rest.positions_m[0, theirs[0]] - rig.engine_rest.positions_m[0, head]
-    return replace(camera, eye_m=tuple(np.add(camera.eye_m, shift)),
-                   target_m=tuple(np.add(camera.target_m, shift)))  # fmt: skip
+    return replace(
+        camera,
+        eye_m=tuple(np.add(camera.eye_m, shift)),
+        target_m=tuple(np.add(camera.target_m, shift)),
+    )

@@ -39,21 +39,27 @@ def assimp_to_glb(path: str | Path) -> bytes:
     ``assimp-utils``); GltfError names what went wrong."""
     command = shutil.which("assimp")
     if command is None:
-        raise GltfError("assimp is not installed (Debian's assimp-utils; make install adds "
-                        "it): FBX and the other formats it reads cannot come in.")  # fmt: skip
+        raise GltfError(
+            "assimp is not installed (Debian's assimp-utils; make install adds "
+            "it): FBX and the other formats it reads cannot come in."
+        )
     with tempfile.TemporaryDirectory() as folder:
         out = Path(folder) / "converted.glb"
         try:
-            done = subprocess.run([command, "export", str(path), str(out), "-fglb2"],
-                                  capture_output=True, timeout=ASSIMP_TIMEOUT_S)  # fmt: skip
+            done = subprocess.run(
+                [command, "export", str(path), str(out), "-fglb2"],
+                capture_output=True,
+                timeout=ASSIMP_TIMEOUT_S,
+            )
         except subprocess.TimeoutExpired:
             raise GltfError(
                 f"assimp took over {ASSIMP_TIMEOUT_S} s on {Path(path).name}."
             ) from None
         if done.returncode != 0 or not out.is_file():
             why = (done.stderr or done.stdout).decode(errors="replace").strip().splitlines()
-            raise GltfError(f"assimp cannot read {Path(path).name}: "
-                            f"{why[-1] if why else 'no reason given'}.")  # fmt: skip
+            raise GltfError(
+                f"assimp cannot read {Path(path).name}: {why[-1] if why else 'no reason given'}."
+            )
         return out.read_bytes()
 
 
@@ -62,8 +68,12 @@ def _joints(reader: Reader) -> list[int]:
     turns or moves (assimp hangs a BVH's root on a mesh node, outside the skin), with the
     nodes between two of them."""
     gltf = reader.gltf
-    members = {c.target.node for a in gltf.animations for c in a.channels
-               if c.target.path in ("rotation", "translation")}  # fmt: skip
+    members = {
+        c.target.node
+        for a in gltf.animations
+        for c in a.channels
+        if c.target.path in ("rotation", "translation")
+    }
     if gltf.skins:
         members |= set(gltf.skins[0].joints)
     nearest = reader.nearest_ancestors(members)
@@ -159,8 +169,7 @@ def _local(tracks: dict, node, n, times: np.ndarray) -> tuple[np.ndarray, Rotati
     return translation, Rotation.from_quat(quaternions)
 
 
-def read_gltf_motion(data: bytes, source: str = "the file",
-                     rate_hz: float | None = None) -> Motion:  # fmt: skip
+def read_gltf_motion(data: bytes, source: str = "the file", rate_hz: float | None = None) -> Motion:
     """Return the first animation of glTF *data* as a Motion sampled at *rate_hz*
     (the keys' own rate, at most 120 Hz, when None)."""
     try:
@@ -226,11 +235,16 @@ def read_motion_file(path: str | Path, rate_hz: float | None = None) -> Motion:
     suffix = path.suffix.lower()
     if suffix == ".bvh":
         motion = read_bvh(path)
-        return resample(motion, rate_hz) if rate_hz and abs(motion.rate_hz - rate_hz) > 1e-9 \
-            else motion  # fmt: skip
+        return (
+            resample(motion, rate_hz)
+            if rate_hz and abs(motion.rate_hz - rate_hz) > 1e-9
+            else motion
+        )
     if suffix in GLTF_SUFFIXES:
         return read_gltf_motion(path.read_bytes(), path.name, rate_hz)
     if suffix in ASSIMP_SUFFIXES:
         return read_gltf_motion(assimp_to_glb(path), path.name, rate_hz)
-    raise GltfError(f"{path.name}: motion comes in as BVH, glTF/GLB/VRM or, through assimp, "
-                    f"{', '.join(s.lstrip('.').upper() for s in ASSIMP_SUFFIXES)}.")  # fmt: skip
+    raise GltfError(
+        f"{path.name}: motion comes in as BVH, glTF/GLB/VRM or, through assimp, "
+        f"{', '.join(s.lstrip('.').upper() for s in ASSIMP_SUFFIXES)}."
+    )

@@ -54,16 +54,39 @@ def vrm_humanoid(gltf) -> tuple[dict, dict, bool]:
 # VRM's preset expressions, as the engine's face drives them: the ARKit blendshape whose
 # channel each stands for (VRM 1.0 names; 0.x's presets are read under the same names).
 VRM_EXPRESSIONS = {
-    "blink": "eyeBlinkLeft", "blinkLeft": "eyeBlinkLeft", "blinkRight": "eyeBlinkRight",
-    "aa": "jawOpen", "ou": "mouthPucker", "oh": "mouthFunnel", "ee": "mouthStretchLeft",
-    "ih": "mouthSmileRight", "happy": "mouthSmileLeft", "angry": "browDownLeft",
-    "sad": "mouthFrownLeft", "surprised": "browInnerUp", "lookUp": "eyeLookUpLeft",
-    "lookDown": "eyeLookDownLeft", "lookLeft": "eyeLookOutLeft", "lookRight": "eyeLookInLeft",
-}  # fmt: skip
-_VRM0_PRESETS = {"a": "aa", "i": "ih", "u": "ou", "e": "ee", "o": "oh", "joy": "happy",
-                 "sorrow": "sad", "fun": "happy", "blink_l": "blinkLeft",
-                 "blink_r": "blinkRight", "lookup": "lookUp", "lookdown": "lookDown",
-                 "lookleft": "lookLeft", "lookright": "lookRight"}  # fmt: skip
+    "blink": "eyeBlinkLeft",
+    "blinkLeft": "eyeBlinkLeft",
+    "blinkRight": "eyeBlinkRight",
+    "aa": "jawOpen",
+    "ou": "mouthPucker",
+    "oh": "mouthFunnel",
+    "ee": "mouthStretchLeft",
+    "ih": "mouthSmileRight",
+    "happy": "mouthSmileLeft",
+    "angry": "browDownLeft",
+    "sad": "mouthFrownLeft",
+    "surprised": "browInnerUp",
+    "lookUp": "eyeLookUpLeft",
+    "lookDown": "eyeLookDownLeft",
+    "lookLeft": "eyeLookOutLeft",
+    "lookRight": "eyeLookInLeft",
+}
+_VRM0_PRESETS = {
+    "a": "aa",
+    "i": "ih",
+    "u": "ou",
+    "e": "ee",
+    "o": "oh",
+    "joy": "happy",
+    "sorrow": "sad",
+    "fun": "happy",
+    "blink_l": "blinkLeft",
+    "blink_r": "blinkRight",
+    "lookup": "lookUp",
+    "lookdown": "lookDown",
+    "lookleft": "lookLeft",
+    "lookright": "lookRight",
+}
 
 
 def _weight(bind: dict, default: float) -> float:

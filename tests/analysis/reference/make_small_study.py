@@ -25,12 +25,25 @@ PRACTICE = "HELLO"
 
 def _row(participant, trial, item, kind, a, b="", **cells) -> dict:
     return {
-        "participant": participant, "study": "small", "block": kind, "trial": trial,
-        "item": item, "kind": kind, "condition_a": a, "condition_b": b,
-        "condition_a_label": CONDITIONS.get(a, ""), "condition_b_label": CONDITIONS.get(b, ""),
-        "chosen": "", "question": "", "rating": "", "text": "", "rt_ms": "", "flags": "",
-        "target": "", **cells,
-    }  # fmt: skip
+        "participant": participant,
+        "study": "small",
+        "block": kind,
+        "trial": trial,
+        "item": item,
+        "kind": kind,
+        "condition_a": a,
+        "condition_b": b,
+        "condition_a_label": CONDITIONS.get(a, ""),
+        "condition_b_label": CONDITIONS.get(b, ""),
+        "chosen": "",
+        "question": "",
+        "rating": "",
+        "text": "",
+        "rt_ms": "",
+        "flags": "",
+        "target": "",
+        **cells,
+    }
 
 
 def _answer(rng, target: str, clarity: float) -> str:
@@ -44,8 +57,18 @@ def generate(rng: np.random.Generator) -> pd.DataFrame:
     for p in range(1, 7):
         who = f"P{p}"
         own = rng.normal(0, 0.4, size=len(CONDITIONS))
-        rows.append(_row(who, "practice", PRACTICE, "pairwise", "ctl", "bayes",
-                         chosen="bayes", flags="practice"))  # fmt: skip
+        rows.append(
+            _row(
+                who,
+                "practice",
+                PRACTICE,
+                "pairwise",
+                "ctl",
+                "bayes",
+                chosen="bayes",
+                flags="practice",
+            )
+        )
         for item in ITEMS:
             for k, (a, b) in enumerate(combinations(CONDITIONS, 2)):
                 first, second = (a, b) if (p + k) % 2 else (b, a)
@@ -53,18 +76,49 @@ def generate(rng: np.random.Generator) -> pd.DataFrame:
                 roll = rng.random()
                 wins = roll < 1 / (1 + np.exp(-edge))
                 chosen = "none" if roll < 0.1 else first if wins else second
-                rows.append(_row(who, f"{item}-{first}-{second}", item, "pairwise", first,
-                                 second, chosen=chosen, question="most-natural",
-                                 rt_ms=str(int(rng.integers(1500, 6000)))))  # fmt: skip
+                rows.append(
+                    _row(
+                        who,
+                        f"{item}-{first}-{second}",
+                        item,
+                        "pairwise",
+                        first,
+                        second,
+                        chosen=chosen,
+                        question="most-natural",
+                        rt_ms=str(int(rng.integers(1500, 6000))),
+                    )
+                )
             for c, condition in enumerate(CONDITIONS):
-                rating = int(np.clip(np.rint(3 + 1.5 * STRENGTH[condition] + own[c]
-                                             + rng.normal(0, 0.8)), 1, 5))  # fmt: skip
-                rows.append(_row(who, f"rate-{item}-{condition}", item, "rating", condition,
-                                 question="clarity", rating=str(rating)))  # fmt: skip
+                rating = int(
+                    np.clip(
+                        np.rint(3 + 1.5 * STRENGTH[condition] + own[c] + rng.normal(0, 0.8)), 1, 5
+                    )
+                )
+                rows.append(
+                    _row(
+                        who,
+                        f"rate-{item}-{condition}",
+                        item,
+                        "rating",
+                        condition,
+                        question="clarity",
+                        rating=str(rating),
+                    )
+                )
                 clarity = 0.55 + 0.3 * STRENGTH[condition] + 0.1 * own[c]
-                rows.append(_row(who, f"type-{item}-{condition}", item, "text", condition,
-                                 question="what-signed", target=ITEMS[item],
-                                 text=_answer(rng, ITEMS[item], clarity)))  # fmt: skip
+                rows.append(
+                    _row(
+                        who,
+                        f"type-{item}-{condition}",
+                        item,
+                        "text",
+                        condition,
+                        question="what-signed",
+                        target=ITEMS[item],
+                        text=_answer(rng, ITEMS[item], clarity),
+                    )
+                )
     return pd.DataFrame(rows)
 
 
