@@ -59,7 +59,7 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
     """A researcher's avatars; each sees and uses only their own."""
 
     form = AvatarForm
-    list_display = ("name", "licence", "status", "fingers", "face", "condition_count")
+    list_display = ("name", "licence", "status", "body", "fingers", "face", "condition_count")
     list_filter = ("status",)
     search_fields = ("name", "source")
     readonly_fields = ("stills", "findings", "status", "error", "sha256", "original_name")
@@ -99,6 +99,10 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
                 "The mapping is saved in the file; clips filmed with the "
                 "avatar will be rendered again.",
             )
+
+    @admin.display(description="signs")
+    def body(self, avatar: Avatar) -> bool:
+        return avatar.signs
 
     @admin.display(description="fingerspells")
     def fingers(self, avatar: Avatar) -> bool:
@@ -146,9 +150,21 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
             else "no morph target the face channels drive (ARKit names or VRM expressions): "
             "non-manual signals are not shown"
         )
+        body = report.get("missing_body") or []
+        warning = (
+            format_html(
+                '<strong class="errornote">Not mapped, so they stay as the avatar was '
+                "modelled while the rest signs (a T-pose's arms held out): {}. Map these "
+                "bones below.</strong><br>",
+                ", ".join(body),
+            )
+            if body
+            else ""
+        )
         return format_html(
-            "{} of {} joints mapped to the engine's; not mapped: {}.<br>{}.<br>Face: {}.<br>"
+            "{}{} of {} joints mapped to the engine's; not mapped: {}.<br>{}.<br>Face: {}.<br>"
             "Height {} m.<br><details><summary>The mapping</summary><pre>{}</pre></details>",
+            warning,
             len(report.get("mapped", {})),
             report.get("joints", 0),
             ", ".join(report.get("unmapped", [])) or "none",

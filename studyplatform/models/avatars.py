@@ -67,6 +67,12 @@ class Avatar(models.Model):
         return self.name
 
     @property
+    def signs(self) -> bool:
+        """Return whether its mapping reaches every arm joint signing turns (both
+        shoulders, elbows and wrists); a report made before that was checked says yes."""
+        return not self.report.get("missing_body")
+
+    @property
     def fingerspells(self) -> bool:
         """Return whether its right hand has every bone fingerspelling moves."""
         return not (self.report.get("missing_fingers") or {}).get("right")

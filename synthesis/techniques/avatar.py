@@ -37,12 +37,15 @@ def _look(values) -> Look:
 
 def _apply(build: Build) -> Build:
     look = _look(build.request.parameters)
-    if look.file and build.request.kind == WORD.name:
+    if look.file:
         from synthesis.avatar.imported.gltf_read import GltfError
-        from synthesis.avatar.imported.load import check_fingers
+        from synthesis.avatar.imported.load import check_body, check_fingers
 
         try:
-            check_fingers(look.file, build.request.side)
+            if build.request.view != "hand":  # a hand on its own has no arms to turn
+                check_body(look.file)
+            if build.request.kind == WORD.name:
+                check_fingers(look.file, build.request.side)
         except GltfError as error:
             raise ClipError(str(error)) from None
     return build.but(look=look)

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 from django.core.files.uploadedfile import SimpleUploadedFile
+from django.urls import reverse
 
 from stimuli import stored_quality
 from studyplatform.actions import do_duplicate_study, do_generate_stimuli
@@ -46,6 +47,7 @@ def test_an_uploaded_avatar_is_stored_reported_on_and_previewed(
     report = avatar.report
     assert len(report["mapped"]) == report["joints"] == 44 and not report["unmapped"]
     assert report["missing_fingers"] == {"right": [], "left": []} and avatar.fingerspells
+    assert report["missing_body"] == [] and avatar.signs
     assert report["face_channels"] == ["browInnerUp"]
     for still in (avatar.still_rest, avatar.still_letter, avatar.still_face):
         assert still.read()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -81,6 +83,23 @@ def test_a_bone_mapping_is_saved_in_the_file(bob, django_capture_on_commit_callb
         do_map_avatar_bones(avatar, {"Tail": "hips"})
     with pytest.raises(AvatarRejected, match="engine has no joint 'wing'"):
         do_map_avatar_bones(avatar, {"Head": "wing"})
+
+
+def test_arms_the_mapping_misses_are_named_not_left_in_a_t_pose_silently(
+    bob, client, django_capture_on_commit_callbacks
+):
+    """Issue 54: an avatar whose arm bones the engine could not map rendered "45 joints
+    mapped" with both arms held out as modelled, and nothing said so."""
+    avatar = _upload(bob, humanoid_glb(), django_capture_on_commit_callbacks)
+    with django_capture_on_commit_callbacks(execute=False):
+        do_map_avatar_bones(avatar, {"RightForeArm": "", "LeftArm": "", "LeftForeArm": ""})
+    avatar.refresh_from_db()
+    assert avatar.report["missing_body"] == ["right_elbow", "left_shoulder", "left_elbow"]
+    assert not avatar.signs
+    client.force_login(bob)
+    page = client.get(reverse("admin:studyplatform_avatar_change", args=[avatar.pk]))
+    assert "stay as the avatar was modelled" in page.content.decode()
+    assert "right_elbow, left_shoulder, left_elbow" in page.content.decode()
 
 
 def test_a_condition_filmed_with_an_avatar_renders_it_and_hashes_its_file(

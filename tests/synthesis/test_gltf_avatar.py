@@ -167,6 +167,20 @@ def test_a_humanoid_without_fingers_signs_sentences_but_cannot_fingerspell(tmp_p
         build_motion(word)
 
 
+def test_a_humanoid_whose_arms_are_not_mapped_films_no_clip_and_says_which(tmp_path):
+    """Issue 54: arm bones the engine could not map stayed as modelled (a T-pose's arms
+    held out) while the rest signed, and nothing said so."""
+    from synthesis.avatar.imported.gltf_avatar import with_bone_mapping
+
+    path = tmp_path / "armless.glb"
+    path.write_bytes(with_bone_mapping(humanoid_glb(), {"RightForeArm": "", "LeftArm": ""}))
+    for kind, text in (("sentence", "ME HAPPY"), ("word", "AB")):
+        parameters = {**SMALL, "avatar_file": str(path), "view": "upper-body"}
+        request = ClipRequest.from_parameters(kind, text, parameters)
+        with pytest.raises(ClipError, match=r"engine's right_elbow, left_shoulder, so they"):
+            build_motion(request)
+
+
 def test_the_avatar_files_content_is_part_of_the_clips_hash(tmp_path):
     path = tmp_path / "a.glb"
     path.write_bytes(humanoid_glb())

@@ -227,9 +227,24 @@ def missing_joints(mapping: dict[str, str], side: str) -> list[str]:
     ]
 
 
+# The arm joints signing turns: one the avatar's mapping leaves out stays as the avatar
+# was modelled while the rest signs (issue 54: 14 main bones renamed gave "45 joints
+# mapped" and both arms held out in the T-pose, with no word of it).
+SIGNING_BODY = tuple(
+    f"{side}_{joint}" for side in ("right", "left") for joint in ("shoulder", "elbow", "wrist")
+)
+
+
+def missing_body_joints(mapping: dict[str, str]) -> list[str]:
+    """Return the engine's signing arm joints (:data:`SIGNING_BODY`) *mapping* leaves out."""
+    mapped = set(mapping.values())
+    return [joint for joint in SIGNING_BODY if joint not in mapped]
+
+
 def describe_avatar(imported: ImportedAvatar, engine_rig, drive: MorphDrive | None) -> dict:
     """Return what the engine makes of an imported avatar: its joints mapped and not,
-    the finger bones each hand lacks for fingerspelling, the face channels it plays."""
+    the arm joints signing turns that it lacks, the finger bones each hand lacks for
+    fingerspelling, the face channels it plays."""
     mapping = bone_mapping(imported, engine_rig.skeleton.names)
     names = set(drive.names) if drive is not None else set()
     return {
@@ -237,6 +252,7 @@ def describe_avatar(imported: ImportedAvatar, engine_rig, drive: MorphDrive | No
         "mapped": {joint: mapping[joint] for joint in imported.joint_names if joint in mapping},
         "unmapped": [joint for joint in imported.joint_names if joint not in mapping],
         "missing_fingers": {side: missing_joints(mapping, side) for side in ("right", "left")},
+        "missing_body": missing_body_joints(mapping),
         "face_channels": [name for name in imported.morph_names if name in names],
         "morph_targets": len(imported.morph_names),
         "height_m": round(imported.height_m, 3),

@@ -8,7 +8,12 @@ import numpy as np
 
 from synthesis.avatar.imported.gltf_avatar import read_gltf_avatar
 from synthesis.avatar.imported.gltf_read import GltfError
-from synthesis.avatar.imported.humanoid import bone_mapping, engine_avatar, missing_joints
+from synthesis.avatar.imported.humanoid import (
+    bone_mapping,
+    engine_avatar,
+    missing_body_joints,
+    missing_joints,
+)
 from synthesis.identity import file_sha256
 
 
@@ -61,6 +66,25 @@ def check_fingers(path: str | Path, side: str) -> None:
             f"{Path(path).name} has no {', '.join(missing[:4])}"
             f"{' …' if len(missing) > 4 else ''} bone: its {side} hand cannot "
             "fingerspell (sentences without fingerspelling can use it)."
+        )
+
+
+def check_body(path: str | Path) -> None:
+    """Raise GltfError if the avatar's mapping misses an arm joint signing turns.
+
+    Such a joint would stay as the avatar was modelled (a T-pose's arms held out) while
+    the rest of the body signs.
+    """
+    from synthesis.rigs.body import BodyModel
+
+    sha256, path = _existing(path)
+    imported = _imported(sha256, path)
+    missing = missing_body_joints(bone_mapping(imported, BodyModel("right").skeleton.names))
+    if missing:
+        raise GltfError(
+            f"{Path(path).name}: no bone is mapped to the engine's {', '.join(missing)}, so "
+            "they would stay as the avatar was modelled while the rest signs; map them "
+            "(the avatar's page in the admin site)."
         )
 
 
