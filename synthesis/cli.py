@@ -155,7 +155,8 @@ def _render_bvh(args: argparse.Namespace) -> int:
     view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
     side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
     rig = avatar_and_camera(view, side)[0].rig
-    pose = retarget(motion, rig, mapping)
+    # A fixed camera films a body in place; a hand's travel is its signing.
+    pose = retarget(motion, rig, mapping, in_place=not mapping.is_single_hand)
     avatar, camera = filming(view, side, pose, motion.rate_hz, *args.size)
     info = render_clip(
         avatar,

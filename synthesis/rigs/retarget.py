@@ -70,15 +70,23 @@ def _same_skeleton(source, target) -> bool:
     )
 
 
-def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> Pose:
-    """Return the rig's global transforms, (n_frames, n_joints, …), following *motion*."""
+def retarget(
+    motion: Motion, rig: Rig, mapping: JointMapping | None = None, *, in_place: bool = False
+) -> Pose:
+    """Return the rig's global transforms, (n_frames, n_joints, …), following *motion*.
+
+    *in_place* leaves out the root's travel across the floor (its height still follows):
+    a fixed camera films signing in place, and a capture that walks would leave it
+    (issue 54: CMU 01_01 walks 0.67 m, out of the frame by its 50th frame).
+    """
     source_skeleton = motion.skeleton
     target = rig.skeleton
     if _same_skeleton(source_skeleton, target):
         return forward_kinematics(motion)
     mapping = mapping or detect_mapping(source_skeleton)
     pairs = {
-        target.index(t): source_skeleton.index(s) for s, t in target_names(mapping, rig).items()
+        target.index(t): _turning_joint(source_skeleton, source_skeleton.index(s), mapping)
+        for s, t in target_names(mapping, rig).items()
     }
     if not pairs:
         raise ValueError(
@@ -86,7 +94,7 @@ def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> P
         )
     rest_values = np.zeros((1, source_skeleton.channel_count))
     source_rest = forward_kinematics(Motion(source_skeleton, rest_values, 1.0))
-    return transfer_pose(
+    pose = transfer_pose(
         forward_kinematics(motion),
         source_rest,
         source_skeleton.parents,
@@ -94,6 +102,50 @@ def retarget(motion: Motion, rig: Rig, mapping: JointMapping | None = None) -> P
         target.parents,
         rig.pose(rig.neutral()),
     )
+    if not in_place:
+        return pose
+    root = int(np.flatnonzero(np.asarray(target.parents) < 0)[0])
+    across = pose.positions_m[:, root] - pose.positions_m[:1, root]
+    across[:, 1] = 0.0  # the engine's y is up: height stays
+    return Pose(quaternions=pose.quaternions, positions_m=pose.positions_m - across[:, None])
+
+
+def _turning_joint(skeleton, joint: int, mapping: JointMapping) -> int:
+    """Return the joint whose rotation turns *joint*'s limb: itself, or, where no mapped
+    joint lies below it, an unmapped child at the same place that carries most of the
+    limb (CMU's LeftFingerBase, a second frame on the wrist that its fingers hang from;
+    issue 54: mapping the hand alone kept the engine's wrist at one angle to the forearm
+    in every frame)."""
+    mapped = set(mapping.to_canonical)
+    names = skeleton.names
+    if any(names[c] in mapped for c in _descendants(np.asarray(skeleton.parents), joint)):
+        return joint
+    while True:
+        same_place = [
+            c
+            for c in range(len(skeleton.names))
+            if skeleton.parents[c] == joint
+            and skeleton.names[c] not in mapped
+            and not skeleton.joints[c].is_end_site
+            and np.linalg.norm(skeleton.offsets[c]) < 1e-9
+        ]
+        if not same_place:
+            return joint
+        joint = max(same_place, key=lambda c: _reach(skeleton, c))
+
+
+def _reach(skeleton, joint: int) -> float:
+    """Return how far *joint*'s descendants reach from it in the skeleton's rest (units)."""
+    offsets = np.asarray(skeleton.offsets, float)
+    reach, frontier = 0.0, [(joint, np.zeros(3))]
+    while frontier:
+        parent, at = frontier.pop()
+        for c in range(len(skeleton.names)):
+            if skeleton.parents[c] == parent:
+                place = at + offsets[c]
+                reach = max(reach, float(np.linalg.norm(place)))
+                frontier.append((c, place))
+    return reach
 
 
 def transfer_pose(
@@ -126,7 +178,7 @@ def transfer_pose(
         parent = parents[j]
         if j in pairs:
             s = pairs[j]
-            align = _alignment(j, s, pairs, parents, rest_p, source_rest_p)
+            align = _alignment(j, s, pairs, (parents, source_parents), rest_p, source_rest_p)
             delta = quat_multiply(source.quaternions[:, s], quat_conjugate(source_rest_q[s]))
             rotations[:, j] = quat_multiply(delta, quat_multiply(align, rest_q[j]))
         elif parent < 0:
@@ -144,27 +196,55 @@ def transfer_pose(
     return Pose(quaternions=rotations, positions_m=positions)
 
 
-def _alignment(j, s, pairs, parents, neutral_p, source_rest_p) -> np.ndarray:
+def _alignment(j, s, pairs, both_parents, neutral_p, source_rest_p) -> np.ndarray:
     """Return the rotation (quaternion) that best turns the model's rest limb onto the source's.
 
     The limb is the direction to each nearest mapped descendant (a wrist's five digits, the
     upper spine's neck and clavicles), and the rotation the
     least-squares fit of one set onto the other (Wahba's problem, solved by scipy): a
     bone's direction and its roll (where the thumb points, say) both come out of it.
+    Where no mapped descendant stands apart from the joint (CMU's hand: its fingers are
+    not mapped, and the first of them sits on the wrist), the limb is the direction to
+    the middle of all its descendants in each skeleton (issue 54: the hand kept the
+    model's own rest direction, at 90° to the forearm in every frame).
     """
-    identity = np.array([0.0, 0.0, 0.0, 1.0])
+    parents = both_parents[0]
     mapped = _nearest_mapped(parents, j, pairs)
     model = np.array([neutral_p[c] - neutral_p[j] for c in mapped]).reshape(-1, 3)
     source = np.array([source_rest_p[pairs[c]] - source_rest_p[s] for c in mapped]).reshape(-1, 3)
     usable = (np.linalg.norm(model, axis=1) > 1e-9) & (np.linalg.norm(source, axis=1) > 1e-9)
     if not usable.any():
-        return identity
+        return _centroid_alignment(j, s, both_parents, neutral_p, source_rest_p)
     model = model[usable] / np.linalg.norm(model[usable], axis=1, keepdims=True)
     source = source[usable] / np.linalg.norm(source[usable], axis=1, keepdims=True)
     if len(model) == 1 or np.allclose(model, model[0], atol=1e-6):
         return _between(model[0], source[0])
     rotation, _ = Rotation.align_vectors(source, model)
     return rotation.as_quat()
+
+
+def _centroid_alignment(j, s, both_parents, neutral_p, source_rest_p) -> np.ndarray:
+    """Return the rotation turning the direction from joint *j* to the middle of its
+    descendants in the model onto the same in the source (identity if either has none)."""
+    directions = []
+    for parents, positions, joint in zip(
+        both_parents, (neutral_p, source_rest_p), (j, s), strict=True
+    ):
+        below = _descendants(parents, joint)
+        direction = positions[below].mean(axis=0) - positions[joint] if below else np.zeros(3)
+        directions.append(direction)
+    if min(np.linalg.norm(d) for d in directions) < 1e-9:
+        return np.array([0.0, 0.0, 0.0, 1.0])
+    return _between(*directions)
+
+
+def _descendants(parents: np.ndarray, joint: int) -> list[int]:
+    """Return every joint below *joint*."""
+    found, frontier = [], [joint]
+    while frontier:
+        frontier = [c for c in range(len(parents)) if parents[c] in frontier]
+        found += frontier
+    return found
 
 
 def _nearest_mapped(parents: np.ndarray, joint: int, pairs: dict) -> list[int]:
