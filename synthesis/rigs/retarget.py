@@ -75,9 +75,10 @@ def retarget(
 ) -> Pose:
     """Return the rig's global transforms, (n_frames, n_joints, …), following *motion*.
 
-    *in_place* leaves out the root's travel across the floor (its height still follows):
-    a fixed camera films signing in place, and a capture that walks would leave it
-    (issue 54: CMU 01_01 walks 0.67 m, out of the frame by its 50th frame).
+    *in_place* films the capture as signing is filmed: turned about the vertical so that
+    it faces, on average, as it does at rest (toward the camera), and without the root's
+    travel across the floor (its height still follows). Issue 54: CMU 01_01 walks 0.67 m,
+    out of the fixed camera by its 50th frame; Boxing_Toes faces away (172° on average).
     """
     source_skeleton = motion.skeleton
     target = rig.skeleton
@@ -94,8 +95,11 @@ def retarget(
         )
     rest_values = np.zeros((1, source_skeleton.channel_count))
     source_rest = forward_kinematics(Motion(source_skeleton, rest_values, 1.0))
+    source = forward_kinematics(motion)
+    if in_place:
+        source = _facing_as_at_rest(source, source_rest, _side_pairs(pairs, target.names))
     pose = transfer_pose(
-        forward_kinematics(motion),
+        source,
         source_rest,
         source_skeleton.parents,
         pairs,
@@ -108,6 +112,45 @@ def retarget(
     across = pose.positions_m[:, root] - pose.positions_m[:1, root]
     across[:, 1] = 0.0  # the engine's y is up: height stays
     return Pose(quaternions=pose.quaternions, positions_m=pose.positions_m - across[:, None])
+
+
+# The joints whose left-to-right line says where a body faces (arms swing; these do not).
+TRUNK_SIDES = ("clavicle", "shoulder", "hip")
+
+
+def _side_pairs(pairs: dict[int, int], names) -> list[tuple[int, int]]:
+    """Return the source joints (left, right) of the engine's trunk joints mapped on both
+    sides, or of every joint mapped on both sides where no trunk pair is."""
+    found, trunk = [], []
+    for j, name in enumerate(names):
+        other = f"right_{name.removeprefix('left_')}" if name.startswith("left_") else None
+        if other and j in pairs and names.index(other) in pairs:
+            pair = (pairs[j], pairs[names.index(other)])
+            found.append(pair)
+            if name.removeprefix("left_") in TRUNK_SIDES:
+                trunk.append(pair)
+    return trunk or found
+
+
+def _facing_as_at_rest(source: Pose, source_rest: Pose, sides) -> Pose:
+    """Return *source* turned about the vertical (y) so that its left-to-right line points,
+    on the circular average over its frames, as it does at rest (unchanged with no pair
+    of sides mapped)."""
+    if not sides:
+        return source
+
+    def across(positions: np.ndarray) -> np.ndarray:
+        line = sum(positions[..., left, :] - positions[..., right, :] for left, right in sides)
+        return np.arctan2(-line[..., 2], line[..., 0])
+
+    turn = across(source.positions_m) - across(source_rest.positions_m)[0]
+    mean = float(np.arctan2(np.sin(turn).mean(), np.cos(turn).mean()))
+    back = Rotation.from_euler("y", -mean)
+    quaternions = (back * Rotation.from_quat(source.quaternions.reshape(-1, 4))).as_quat()
+    return Pose(
+        quaternions=quaternions.reshape(source.quaternions.shape),
+        positions_m=back.apply(source.positions_m.reshape(-1, 3)).reshape(source.positions_m.shape),
+    )
 
 
 def _turning_joint(skeleton, joint: int, mapping: JointMapping) -> int:
