@@ -260,8 +260,10 @@ def _alignment(j, s, pairs, both_parents, neutral_p, source_rest_p) -> np.ndarra
         return _centroid_alignment(j, s, both_parents, neutral_p, source_rest_p)
     model = model[usable] / np.linalg.norm(model[usable], axis=1, keepdims=True)
     source = source[usable] / np.linalg.norm(source[usable], axis=1, keepdims=True)
-    if len(model) == 1 or np.allclose(model, model[0], atol=1e-6):
-        return _between(model[0], source[0])
+    # With every direction on one line (one descendant, or Biovision's neck and collars
+    # all straight above its chest) only the direction is defined, not a roll about it.
+    if np.linalg.matrix_rank(model, tol=1e-6) < 2 or np.linalg.matrix_rank(source, tol=1e-6) < 2:
+        return _between(model.mean(axis=0), source.mean(axis=0))
     rotation, _ = Rotation.align_vectors(source, model)
     return rotation.as_quat()
 

@@ -125,6 +125,26 @@ def _tables() -> dict[str, dict[str, str]]:
             if k.endswith(("clavicle", "shoulder", "elbow", "wrist"))
         },
     }
+    # Biovision's and MotionBuilder's classic BVH names (Boxing_Toes.bvh in Debian's
+    # assimp-testmodels): Ab and Chest for the spine, a Collar for the clavicle, and a
+    # Shoulder that is the upper arm's joint (issue 54: only 9 joints matched, no spine).
+    trunk["biovision"] = {
+        "hips": "Hips",
+        "spine_lower": "Ab",
+        "spine_upper": "Chest",
+        "neck": "Neck",
+        "head": "Head",
+        **{
+            f"{side}_{joint}": f"{cap}{theirs}"
+            for side, cap in (("right", "Right"), ("left", "Left"))
+            for joint, theirs in (
+                ("clavicle", "Collar"),
+                ("shoulder", "Shoulder"),
+                ("elbow", "Elbow"),
+                ("wrist", "Wrist"),
+            )
+        },
+    }
     # Our own BVH files use the canonical names themselves; a hand alone drops the side.
     trunk["signstudy"] = {name: name for name in trunk["humanik"]}
     trunk["signstudy-hand"] = {
