@@ -263,7 +263,10 @@ def _alignment(j, s, pairs, both_parents, neutral_p, source_rest_p) -> np.ndarra
     # With every direction on one line (one descendant, or Biovision's neck and collars
     # all straight above its chest) only the direction is defined, not a roll about it.
     if np.linalg.matrix_rank(model, tol=1e-6) < 2 or np.linalg.matrix_rank(source, tol=1e-6) < 2:
-        return _between(model.mean(axis=0), source.mean(axis=0))
+        ours, theirs = model.mean(axis=0), source.mean(axis=0)
+        if min(np.linalg.norm(ours), np.linalg.norm(theirs)) < 1e-6:  # opposite, cancelled
+            ours, theirs = model[0], source[0]
+        return _between(ours, theirs)
     rotation, _ = Rotation.align_vectors(source, model)
     return rotation.as_quat()
 
