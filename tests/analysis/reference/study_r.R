@@ -77,31 +77,15 @@ binomial_test <- function(wins, losses) {
   list(a_wins = wins, b_wins = losses, nobs = n, statistic = wins / n, pvalue = test$p.value,
        pvalue_one_sided_majority = majority$p.value, ci = as.numeric(test$conf.int))
 }
-# The exact 95 % CI of d_z (Steiger & Fouladi 1997): noncentral t limits over sqrt(n).
-dz_ci <- function(dz, n) {
-  t <- dz * sqrt(n)
-  f <- function(ncp, p) pt(t, n - 1, ncp) - p
-  span <- 6 * sqrt(1 + t^2 / (2 * (n - 1))) + 1
-  limit <- function(p) uniroot(f, c(t - span, t + span), p = p, tol = 1e-12)$root
-  suppressWarnings(c(limit(0.975), limit(0.025)) / sqrt(n))
-}
+source(file.path(folder, "paired_tests.R"))  # signed_rank, dz_ci, paired (small_study.R's)
 paired_t <- function(x, y) {
-  t <- t.test(x, y, paired = TRUE)
-  dz <- mean(x - y) / sd(x - y)
-  list(statistic = unname(t$statistic), df = unname(t$parameter), pvalue = t$p.value,
-       mean_difference = unname(t$estimate), ci = as.numeric(t$conf.int), dz = dz,
-       dz_ci = dz_ci(dz, length(x)), nobs = length(x))
+  r <- paired(x, y)
+  list(statistic = r$t, df = r$df, pvalue = r$p, mean_difference = r$mean_difference,
+       ci = r$ci, dz = r$dz, dz_ci = r$dz_ci, nobs = length(x))
 }
-# wilcox.test's defaults: V = W+, exact below 50 without ties or zeros, else the normal
-# approximation with continuity correction; r = (W+ − W−) / (W+ + W−).
-signed_rank <- function(x, y) {
-  d <- round(x - y, 12)
-  nonzero <- d[d != 0]
-  r <- rank(abs(nonzero))
-  plus <- sum(r[nonzero > 0]); minus <- sum(r[nonzero < 0])
-  test <- suppressWarnings(wilcox.test(d))
-  list(statistic = unname(test$statistic), pvalue = test$p.value,
-       rank_biserial = (plus - minus) / (plus + minus), nobs = length(x))
+wilcoxon <- function(x, y) {
+  r <- signed_rank(x, y)
+  list(statistic = r$V, pvalue = r$p, rank_biserial = r$r, nobs = r$n)
 }
 adjusted <- function(results, part = NULL) {
   get <- function(r) if (is.null(part)) r else r[[part]]
@@ -118,7 +102,7 @@ comparisons <- function(scores, ...) {
     keep <- !is.na(scores[, p[1]]) & !is.na(scores[, p[2]])
     x <- scores[keep, p[1]]; y <- scores[keep, p[2]]
     list(a = p[1], b = p[2], ..., nobs = sum(keep), ttest = paired_t(x, y),
-         wilcoxon = signed_rank(x, y))
+         wilcoxon = wilcoxon(x, y))
   })
   out
 }
@@ -187,7 +171,7 @@ pairwise <- list(
   posthoc = adjusted(lapply(pairs, function(p) c(list(a = p[1], b = p[2]),
                                                  paired_t(rate[, p[1]], rate[, p[2]])))),
   wilcoxon = adjusted(lapply(pairs, function(p) c(list(a = p[1], b = p[2]),
-                                                  signed_rank(rate[, p[1]], rate[, p[2]])))),
+                                                  wilcoxon(rate[, p[1]], rate[, p[2]])))),
   friedman = list(statistic = unname(friedman$statistic), df = unname(friedman$parameter),
                   pvalue = friedman$p.value, nobs = nrow(rate),
                   kendall_w = unname(friedman$statistic) / (nrow(rate) * (ncol(rate) - 1))),
