@@ -18,8 +18,9 @@ from scipy import sparse
 from analysis.mixed.factor import Factor
 
 
-class StaleFactorError(RuntimeError):
-    """A factor was used after its pattern had been refactored at another matrix."""
+class StaleFactorError(Exception):
+    """A factor was used after its pattern had been refactored at another matrix (a
+    programming error: not a RuntimeError, which the fits read as a failed evaluation)."""
 
 
 class SparsePattern:
