@@ -283,6 +283,7 @@ class ConditionalModes:
 
     def _joint_values(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
         """Return the joint Hessian's values in :meth:`_joint_pattern`'s slots."""
+        self._joint_pattern()  # made on first use
         pattern, beta_slots, side_slots, v_slots = self._joint
         weighted = self.X * weight[:, None]
         values = np.zeros(len(pattern.keys))
@@ -294,8 +295,7 @@ class ConditionalModes:
 
     def _joint_hessian(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
         """Return the joint Hessian over (β, v), dense (a singular system's fallback)."""
-        pattern = self._joint_pattern()
-        return pattern.dense(self._joint_values(scale, weight))
+        return self._joint_pattern().dense(self._joint_values(scale, weight))
 
     def profiled_loglik(self, scale: np.ndarray, extra: np.ndarray, beta: np.ndarray):
         """Return ℓ_L at the joint mode of (β, v) for given SDs (per column) and extras."""
