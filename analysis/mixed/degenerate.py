@@ -22,7 +22,7 @@ RANK_TOL = 1e-7
 
 def check_ratings(question: str, data: pd.DataFrame) -> None:
     """Refuse one question's ratings (rows with condition and rating) that do not vary,
-    or that the condition determines."""
+    or that the condition, or the participant, determines."""
     values = data["rating"].to_numpy(dtype=float)
     what = f"question {question!r}"
     if np.ptp(values) == 0:
@@ -38,6 +38,15 @@ def check_ratings(question: str, data: pd.DataFrame) -> None:
             "variation is left to estimate an error from and the difference is infinite "
             "on the model's scale; report the values, not a test."
         )
+    if "participant" in data.columns:
+        each = data.groupby("participant", sort=False)["rating"].agg(["min", "max"])
+        if (each["min"] == each["max"]).all():
+            raise TidyFormatError(
+                f"{what}: every participant gave one rating to every clip, so the "
+                "participants determine the ratings and nothing is left to estimate an "
+                "error or a condition effect within participants from; report the "
+                "values, not a test."
+            )
 
 
 def full_rank(problem: MixedProblem) -> tuple[MixedProblem, tuple[str, ...]]:

@@ -9,7 +9,7 @@ from analysis.mixed.linear import linear_mixed
 from analysis.mixed.ordinal import ordinal_mixed
 from analysis.mixed.pairwise import mixed_bradley_terry
 from analysis.mixed.results import MixedModels
-from analysis.tidy import TidyFormatError, analysed
+from analysis.tidy import CONTINUOUS, TidyFormatError, analysed, rating_scale
 
 # Fewer participants than this leave random-effect variances unestimable in practice.
 MIN_PARTICIPANTS = 5
@@ -43,7 +43,7 @@ def fit_mixed_models(
                     correction=correction,
                     comparative_points=comparative_points,
                 )
-            except (TidyFormatError, np.linalg.LinAlgError, ValueError) as problem:
+            except (TidyFormatError, np.linalg.LinAlgError, ValueError, ArithmeticError) as problem:
                 skipped.append(f"pairwise: {problem}")
     ordinal, linear = [], []
     ratings = rows[rows["kind"].eq("rating") & rows["rating"].notna()]
@@ -57,9 +57,11 @@ def fit_mixed_models(
             continue
         order = [c for c in conditions or () if c in set(asked["condition_a"])] or None
         try:
-            ordinal.append(ordinal_mixed(frame, question, order, correction=correction))
+            # A continuous scale (a slider) has no points for thresholds: linear only.
+            if rating_scale(frame, question) != CONTINUOUS:
+                ordinal.append(ordinal_mixed(frame, question, order, correction=correction))
             linear.append(linear_mixed(frame, question, order, correction=correction))
-        except (TidyFormatError, np.linalg.LinAlgError, ValueError) as problem:
+        except (TidyFormatError, np.linalg.LinAlgError, ValueError, ArithmeticError) as problem:
             skipped.append(f"{question}: {problem}")
     return MixedModels(
         pairwise=pairwise, ordinal=tuple(ordinal), linear=tuple(linear), skipped=tuple(skipped)

@@ -38,6 +38,18 @@ def test_ratings_determined_by_condition_are_refused_by_name(model):
         model(frame, "q", ["off", "on"])
 
 
+@pytest.mark.parametrize("model", [linear_mixed, ordinal_mixed])
+def test_ratings_determined_by_participant_are_refused_by_name(model):
+    """Each participant one rating for every clip: the linear fit's residual SD went to 0
+    and the profile CI's optimiser failed, sinking the whole report (found building a
+    slider study, issue 57)."""
+    frame = crossed_data.ratings_tidy(1)
+    codes = frame["participant"].astype("category").cat.codes
+    frame = frame.assign(rating=1.0 + codes % 5)
+    with pytest.raises(TidyFormatError, match="every participant gave one rating to every clip"):
+        model(frame, "q", ["off", "on"])
+
+
 def test_a_duplicated_fixed_effect_column_is_dropped_and_named():
     problem = crossed_data.binary_problem(1)
     twice = MixedProblem(
