@@ -296,39 +296,21 @@ def test_an_import_commits_in_short_transactions(fingerspelling, bob):
     assert len(per_transaction) >= 3 and max(per_transaction) <= BATCH_ROWS
 
 
-def test_every_model_field_is_exported_or_left_out_on_purpose():
+def test_every_model_field_is_exported_or_left_out_on_purpose(monkeypatch):
     """Issue 39: do_duplicate_study goes export → import, so a field left off the lists
-    would silently vanish from copies and versions."""
-    from django.apps import apps
-
+    would silently vanish from copies and versions. The system check E004 holds it; a
+    field planted off both lists, and a stale one, make it fail."""
     from studyplatform import exchange
+    from studyplatform.checks import check_exchange_fields
 
-    exported = {
-        "Study": exchange.STUDY_FIELDS,
-        "Condition": exchange.CONDITION_FIELDS,
-        "Item": exchange.ITEM_FIELDS,
-        "Question": exchange.QUESTION_FIELDS,
-        "AnswerOption": exchange.OPTION_FIELDS,
-        "Block": exchange.BLOCK_FIELDS,
-        "Trial": (*exchange.TRIAL_FIELDS, *exchange.TRIAL_REFERENCES, "questions"),
-        "AslVideo": (*exchange.ASL_VIDEO_FIELDS, "video", "poster"),
-        "Recording": (*exchange.RECORDING_FIELDS, *exchange.RECORDING_FILES),
-        "UploadedClip": (*exchange.UPLOAD_FIELDS, *exchange.UPLOAD_FILES),
-    }
-    assert set(exported) == set(exchange.LEFT_OUT)
-    for name, fields in exported.items():
-        model = apps.get_model("studyplatform", name)
-        present = {
-            f.name
-            for f in model._meta.get_fields()
-            if (f.concrete or f.many_to_many) and not f.auto_created
-        }
-        left_out = set(exchange.LEFT_OUT[name])
-        assert not set(fields) & left_out, f"{name}: exported and left out"
-        missing = present - set(fields) - left_out
-        assert not missing, f"{name}: {sorted(missing)} neither exported nor left out on purpose"
-        stale = (set(fields) | left_out) - present
-        assert not stale, f"{name}: {sorted(stale)} are not fields any more"
+    assert check_exchange_fields() == []
+    monkeypatch.setitem(exchange.EXPORTED, "Item", (*exchange.ITEM_FIELDS[1:], "colour"))
+    messages = [error.msg for error in check_exchange_fields()]
+    assert messages == [
+        "Item.key is neither exported nor left out on purpose.",
+        "Item.colour is exported or left out but is no field.",
+    ]
+    assert {error.id for error in check_exchange_fields()} == {"studyplatform.E004"}
 
 
 def test_a_copy_and_a_version_keep_the_signed_templates_their_owner_may_use(
