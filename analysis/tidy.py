@@ -57,8 +57,14 @@ KEY_COLUMNS = {"condition_a": "condition_a_key", "condition_b": "condition_b_key
 # researcher) and the SHA-256 of the file participants were sent.
 SOURCE_COLUMNS = ("condition_a_source", "condition_b_source", "clip1_sha256", "clip2_sha256")
 UPLOADED = "uploaded"
+# What a rating question's values are (the ``scale`` column; empty reads as ordinal):
+# ordinal points get cumulative-link and linear mixed models, a continuous scale (a
+# slider) the linear model only.
+SCALES = ("ordinal", "continuous")
+ORDINAL, CONTINUOUS = SCALES
 OPTIONAL_COLUMNS = (
     "target",
+    "scale",
     "condition_simulated",
     *SOURCE_COLUMNS,
     *LABEL_COLUMNS.values(),
@@ -295,6 +301,34 @@ def _check_ratings(frame: pd.DataFrame, source: str) -> None:
     if unrated.any():
         index = int(np.flatnonzero(unrated.to_numpy())[0])
         raise TidyFormatError(f"{source}: {_row_label(index)}: a rating row needs a rating.")
+    if "scale" in frame.columns:
+        _check_scales(frame, ratings, source)
+
+
+def _check_scales(frame: pd.DataFrame, ratings: pd.Series, source: str) -> None:
+    unknown = ratings & ~frame["scale"].isin(("", *SCALES))
+    if unknown.any():
+        index = int(np.flatnonzero(unknown.to_numpy())[0])
+        raise TidyFormatError(
+            f"{source}: {_row_label(index)}: scale {frame['scale'].iloc[index]!r} is not one "
+            f"of {', '.join(SCALES)} (or empty: ordinal)."
+        )
+    rated = frame[ratings]
+    scales = rated["scale"].replace("", ORDINAL).groupby(rated["question"]).nunique()
+    mixed = sorted(scales.index[scales > 1])
+    if mixed:
+        raise TidyFormatError(
+            f"{source}: question {mixed[0]!r} has rating rows on more than one scale."
+        )
+
+
+def rating_scale(frame: pd.DataFrame, question: str) -> str:
+    """Return the scale of *question*'s ratings: ``continuous`` if its rows say so, else
+    ``ordinal`` (tables without the column, and points, are ordinal)."""
+    if "scale" not in frame.columns:
+        return ORDINAL
+    asked = frame.loc[frame["kind"].eq("rating") & frame["question"].eq(question), "scale"]
+    return CONTINUOUS if asked.eq(CONTINUOUS).any() else ORDINAL
 
 
 def split_flags(flags: str) -> list[str]:

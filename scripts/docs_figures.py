@@ -23,9 +23,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import docs_figure_blocks as b
+import docs_registry_tables as registry
 
 ROOT = Path(__file__).resolve().parent.parent
-DOCS = ("docs/transitions.md", "docs/hands.md", "docs/reproducing.md")
+DOCS = ("docs/transitions.md", "docs/hands.md", "docs/reproducing.md", "docs/architecture.md")
 BLOCK = re.compile(r"<!-- figures (\S+) -->(.*?)<!-- /figures -->", re.S)
 
 
@@ -54,7 +55,11 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "reproducing-six-markers": b.six_markers,
     "reproducing-constant": b.constant_errors,
     "reproducing-curves": b.learning_curves,
+    "architecture-techniques": registry.techniques_table,
+    "architecture-questions": registry.questions_table,
 }
+# Blocks written from a registry, not a run: quick enough for every test run.
+REGISTRY_BLOCKS = ("architecture-techniques", "architecture-questions")
 
 
 def blocks_in(text: str) -> dict[str, str]:

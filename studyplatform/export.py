@@ -24,9 +24,6 @@ from studyplatform.lib.signed import signed_cells
 from studyplatform.models import Block, Participant, Question, Response, Stimulus, Study, Trial
 from studyplatform.questions import QUESTION_TYPES
 
-# Kinds whose answers describe the participant: exported as participant columns.
-ATTRIBUTE_KINDS = [kind for kind, type_ in QUESTION_TYPES.items() if type_.export_kind is None]
-
 
 def _failed_attention(response: Response, trial: Trial) -> bool:
     expected = trial.expected_answer.strip()
@@ -38,9 +35,11 @@ def _failed_attention(response: Response, trial: Trial) -> bool:
 
 def _demographic_questions(study: Study) -> list[Question]:
     """Return the questions whose answers are participant columns, in page order."""
+    # Kinds whose answers describe the participant: exported as participant columns.
+    attribute_kinds = [kind for kind, type_ in QUESTION_TYPES.items() if type_.export_kind is None]
     return list(
         Question.objects.filter(
-            study=study, kind__in=ATTRIBUTE_KINDS, trials__isnull=False, is_personal=False
+            study=study, kind__in=attribute_kinds, trials__isnull=False, is_personal=False
         )
         .distinct()
         .order_by("position", "pk")
@@ -99,6 +98,7 @@ def tidy_rows(study: Study) -> tuple[list[str], Iterator[dict[str, str]]]:
     columns = [
         *REQUIRED_COLUMNS,
         "target",
+        "scale",
         *LABEL_COLUMNS.values(),
         "condition_simulated",
         *SOURCE_COLUMNS,
@@ -172,6 +172,7 @@ def _row(study: Study, response: Response, conditions: dict, failed: bool) -> di
         "rt_ms": "" if response.rt_ms is None else str(response.rt_ms),
         "flags": ";".join(_flags(participant, trial, failed)),
         "target": trial.item.scoring_target if question.type.is_scored and trial.item else "",
+        "scale": question.type.scale if question.type.export_kind == "rating" else "",
         "condition_a_label": label1,
         "condition_b_label": label2,
         "condition_simulated": ";".join(

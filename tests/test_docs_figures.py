@@ -43,6 +43,16 @@ def test_every_block_has_a_figure_and_every_figure_a_block(script, written):
             assert text.strip() and text.strip() != "X", f"{doc}: {name} was never written"
 
 
+def test_the_registry_tables_are_the_registries(script, written):
+    """docs/architecture.md's tables of techniques and question types are written from
+    the registries (issue 57: the hand-kept table lacked the avatar technique)."""
+    found = written["docs/architecture.md"]
+    for name, figure in script.compute(script.REGISTRY_BLOCKS).items():
+        assert found[name] == figure, f"{name}: run .venv/bin/python scripts/docs_figures.py"
+    assert "| `avatar` |" in found["architecture-techniques"]
+    assert "| `slider` |" in found["architecture-questions"]
+
+
 def test_the_docs_figures_are_what_the_commands_give_now(script, written):
     """The whole computation (about two minutes): a drifted figure is named with both values."""
     figures = script.compute(script.BLOCKS)

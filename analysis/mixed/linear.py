@@ -33,7 +33,7 @@ from analysis.mixed.results import (
     VarianceComponent,
 )
 from analysis.mixed.satterthwaite import Satterthwaite
-from analysis.tidy import TidyFormatError
+from analysis.tidy import CONTINUOUS, TidyFormatError, rating_scale
 
 SLOPES = "(condition | participant)"
 
@@ -123,12 +123,17 @@ def likelihood_ratio(
     )
 
 
-def _notes(problem, fit, random, order: Sequence[str], reason: str) -> list[str]:
+def _notes(problem, fit, random, order: Sequence[str], reason: str, scale: str) -> list[str]:
     """Return what a reader of the linear model must know: its scale, its tests, and
     which random effects the data could not support."""
+    treated = (
+        "ratings are on a continuous scale (a slider), so no ordinal model is fitted."
+        if scale == CONTINUOUS
+        else "ratings are treated as interval numbers (see the ordinal model for the "
+        "ordered-category analysis)."
+    )
     notes = [
-        f"Effects are differences of mean rating from {order[0]}; ratings are treated "
-        "as interval numbers (see the ordinal model for the ordered-category analysis).",
+        f"Effects are differences of mean rating from {order[0]}; {treated}",
         "t and F tests use Satterthwaite's degrees of freedom (as lmerTest).",
     ]
     if reason:
@@ -212,7 +217,7 @@ def linear_mixed(
     ml = fit if not reml else fit_lmm(problem, reml=False)
     intervals = sd_intervals(ml) if sd_ci else [None] * (len(fit.sd) + 1)
     random = _random(problem, fit, intervals[:-1])
-    notes = _notes(problem, fit, random, order, reason)
+    notes = _notes(problem, fit, random, order, reason, rating_scale(frame, question))
     formula = f"{question} ~ condition + " + " + ".join(
         f"(1 + condition | {c.name})" if c.correlated else f"(1 | {c.name})"
         for c in problem.components

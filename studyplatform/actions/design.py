@@ -26,12 +26,12 @@ from studyplatform.models.design import trial_question_kinds
 
 PAIR_QUESTION = {
     "key": "more-natural",
-    "kind": Question.Kind.PAIRWISE,
+    "kind": "pairwise",
     "text": "Which clip looks more natural?",
 }
 RATING_QUESTION = {
     "key": "naturalness",
-    "kind": Question.Kind.LIKERT,
+    "kind": "likert",
     "text": "How natural does the signing look?",
 }
 RATING_LABELS = ("Very unnatural", "Unnatural", "Neither", "Natural", "Very natural")

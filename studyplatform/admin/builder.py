@@ -11,14 +11,26 @@ from studyplatform.actions.design import DesignRejected, do_build_design
 from studyplatform.actions.versions import do_create_study_version
 from studyplatform.lib.design import ANSWER_S, INFO_PAGE_S, summarize_design
 from studyplatform.lib.uploads import mismatched_pairs
-from studyplatform.models import Question, Study
+from studyplatform.models import Study, Trial
+from studyplatform.questions import QUESTION_TYPES, question_type
 
-BUILDER_QUESTION_KINDS = (
-    Question.Kind.PAIRWISE,
-    Question.Kind.COMPARATIVE,
-    Question.Kind.LIKERT,
-    Question.Kind.INTELLIGIBILITY,
-)
+
+def builder_question_kinds(trial_kinds=Trial.TWO_CLIP_KINDS | Trial.ONE_CLIP_KINDS) -> list[str]:
+    """Return the registered question kinds a page of clips among *trial_kinds* may ask."""
+    return [kind for kind, type_ in QUESTION_TYPES.items() if type_.trial_kinds & trial_kinds]
+
+
+def _questions_help() -> str:
+    pages = "; ".join(
+        f"{Trial.Kind(kind).label.lower()}: "
+        + ", ".join(question_type(k).label for k in builder_question_kinds(frozenset({kind})))
+        for kind in sorted(Trial.TWO_CLIP_KINDS) + sorted(Trial.ONE_CLIP_KINDS)
+    )
+    return (
+        f"What each page asks, questions one kind of page may ask together ({pages}). "
+        "None chosen: a standard question is created (“Which clip looks more natural?”, "
+        "or a 5-point naturalness rating)."
+    )
 
 
 class DesignForm(forms.Form):
@@ -49,11 +61,6 @@ class DesignForm(forms.Form):
         queryset=None,
         required=False,
         widget=forms.CheckboxSelectMultiple,
-        help_text=(
-            "What each page asks, all of one kind: pairwise or comparative for pairs, "
-            "Likert or intelligibility for single clips. None chosen: a standard question "
-            "is created (“Which clip looks more natural?”, or a 5-point naturalness rating)."
-        ),
     )
     attention_checks = forms.IntegerField(
         min_value=0,
@@ -98,8 +105,9 @@ class DesignForm(forms.Form):
         self.fields["items"].queryset = items
         self.fields["practice_items"].queryset = items
         self.fields["questions"].queryset = study.questions.filter(
-            kind__in=BUILDER_QUESTION_KINDS
+            kind__in=builder_question_kinds()
         ).order_by("position", "pk")
+        self.fields["questions"].help_text = _questions_help()
         self.fields["items"].label_from_instance = _item_label
         self.fields["practice_items"].label_from_instance = _item_label
 

@@ -14,27 +14,19 @@ from django.db import models
 
 from studyplatform.models.items import Item
 from studyplatform.models.studies import Condition, Study, check_unlocked, position_field
+from studyplatform.questions import QUESTION_TYPES, question_kind_choices, question_type
+from studyplatform.questions.base import MAX_KIND_LENGTH
 
 
 class Question(models.Model):
     """A reusable question within a study; its answer options hold per-point labels."""
 
-    class Kind(models.TextChoices):
-        PAIRWISE = "pairwise", "Pairwise forced choice (Clip 1 / Clip 2)"
-        COMPARATIVE = "comparative", "Comparative scale between two clips"
-        LIKERT = "likert", "Likert rating"
-        INTELLIGIBILITY = "intelligibility", "Intelligibility (free text, scored)"
-        OPEN = "open", "Open question"
-        CHOICE = "choice", "Single choice (demographic)"
-        NUMBER = "number", "Number (demographic)"
-        SHORT_TEXT = "short_text", "Short text (demographic)"
-        EMAIL = "email", "E-mail address (demographic, usually personal)"
-
     study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="questions")
     key = models.SlugField(
         max_length=60, help_text="Name used in exported data, e.g. 'naturalness' or 'age'."
     )
-    kind = models.CharField(max_length=20, choices=Kind.choices)
+    # The registered question types (studyplatform.questions): a new one needs no migration.
+    kind = models.CharField(max_length=MAX_KIND_LENGTH, choices=question_kind_choices)
     text = models.TextField(help_text="The question as participants read it.")
     help_text = models.TextField(blank=True)
     required = models.BooleanField(default=True)
@@ -71,9 +63,12 @@ class Question(models.Model):
     @property
     def type(self):
         """Return this question's type (studyplatform.questions): how answers behave."""
-        from studyplatform.questions import question_type
-
         return question_type(self)
+
+    @property
+    def widget(self) -> dict:
+        """Return what this question's widget template needs (its type's ``widget``)."""
+        return self.type.widget(self)
 
     @property
     def uses_options(self) -> bool:
@@ -83,7 +78,7 @@ class Question(models.Model):
     def clean(self) -> None:
         """Reject settings that do not apply to this kind of question."""
         check_unlocked(self.study if self.study_id else None)
-        if self.kind not in self.Kind.values:
+        if self.kind not in QUESTION_TYPES:
             return  # the field's own choices check names it
         errors = self.type.check(self)
         if (
@@ -158,8 +153,6 @@ class Block(models.Model):
 
 def trial_question_kinds() -> dict[str, frozenset[str]]:
     """Return the question kinds each trial kind may ask (from the question types)."""
-    from studyplatform.questions import QUESTION_TYPES
-
     return {
         kind: frozenset(k for k, t in QUESTION_TYPES.items() if kind in t.trial_kinds)
         for kind in Trial.Kind.values
@@ -173,7 +166,7 @@ class Trial(models.Model):
         INFO = "info", "Information or instructions (no questions)"
         PAIRWISE = "pairwise", "Pairwise forced choice"
         COMPARATIVE = "comparative", "Comparative scale"
-        RATING = "rating", "Likert ratings of one clip"
+        RATING = "rating", "Ratings of one clip"
         INTELLIGIBILITY = "intelligibility", "Intelligibility"
         OPEN = "open", "Open questions"
         DEMOGRAPHIC = "demographic", "Demographic questions"

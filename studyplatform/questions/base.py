@@ -45,6 +45,7 @@ MAX_TEXT_LENGTH = 10_000
 # A personal answer (name, e-mail) is stored in PersonalAnswer.value, a 300-character
 # column that SQLite would not enforce.
 MAX_PERSONAL_LENGTH = 300
+MAX_KIND_LENGTH = 20  # Question.kind's column
 
 _ASCII_INTEGER = re.compile(r"[+-]?[0-9]{1,12}")
 _ASCII_NUMBER = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]{1,3})?")
@@ -86,14 +87,19 @@ def empty_values() -> dict:
 class QuestionType:
     """The behaviour of one question kind; subclasses set the class attributes.
 
-    *template* is the widget the participant page (and the admin preview) includes;
-    *export_kind* the tidy format's ``kind`` of its rows, or None for a participant
-    attribute (a demographic column); *trial_kinds* the pages that may ask it.
+    *kind* is stored in ``Question.kind`` (at most :data:`MAX_KIND_LENGTH` characters) and
+    *label* names it in the admin; *template* is the widget the participant page (and
+    the admin preview) includes; *export_kind* the tidy format's ``kind`` of its rows, or
+    None for a participant attribute (a demographic column), and *scale* what its
+    ratings are (``ordinal`` or ``continuous``, the tidy format's ``scale``: the analysis
+    picks its models by it); *trial_kinds* the pages that may ask it.
     """
 
     kind: str = ""
+    label: str = ""
     template: str = ""
     export_kind: str | None = None
+    scale: str = ""
     trial_kinds: frozenset[str] = frozenset()
     uses_options = False
     is_scale = False
@@ -107,6 +113,10 @@ class QuestionType:
     def max_length(self, question) -> int:
         """Return the longest text answer *question* takes, in characters."""
         return MAX_PERSONAL_LENGTH if question.is_personal else MAX_TEXT_LENGTH
+
+    def widget(self, question) -> dict:
+        """Return what the widget's template needs beyond the question (as ``widget``)."""
+        return {}
 
     def parse(self, question, value: str) -> Answer:
         """Return the posted *value* as an Answer; raise ValueError if it is not one."""

@@ -14,6 +14,7 @@ class PairwiseQuestion(QuestionType):
     """Clip 1 or Clip 2 (or "Cannot see a difference"); stored as the chosen condition."""
 
     kind = "pairwise"
+    label = "Pairwise forced choice (Clip 1 / Clip 2)"
     shows_clips = True
     template = "studyplatform/questions/pairwise.html"
     export_kind = "pairwise"

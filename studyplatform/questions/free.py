@@ -13,6 +13,7 @@ class NumberQuestion(QuestionType):
     """A number within the question's range (a demographic column)."""
 
     kind = "number"
+    label = "Number (demographic)"
     template = "studyplatform/questions/number.html"
     trial_kinds = frozenset({"demographic"})
     has_range = True
@@ -54,6 +55,7 @@ class ShortTextQuestion(TextQuestion):
     """A short text about the participant; identifying ones (name, e-mail) stay apart."""
 
     kind = "short_text"
+    label = "Short text (demographic)"
     template = "studyplatform/questions/short_text.html"
     trial_kinds = frozenset({"demographic"})
     can_be_personal = True
@@ -63,6 +65,7 @@ class EmailQuestion(ShortTextQuestion):
     """An e-mail address (checked like Django's EmailValidator); usually personal."""
 
     kind = "email"
+    label = "E-mail address (demographic, usually personal)"
     template = "studyplatform/questions/email.html"
 
     def response_values(self, question, answer, shown) -> dict:
@@ -84,6 +87,7 @@ class OpenQuestion(TextQuestion):
     """An open question, answered in writing or signed on camera."""
 
     kind = "open"
+    label = "Open question"
     export_kind = "text"
     trial_kinds = frozenset({"open"})
     takes_signed_answer = True
@@ -93,6 +97,7 @@ class IntelligibilityQuestion(OpenQuestion):
     """ "What is the signer saying?": free text scored against the item's target words."""
 
     kind = "intelligibility"
+    label = "Intelligibility (free text, scored)"
     trial_kinds = frozenset({"intelligibility"})
     is_scored = True
 

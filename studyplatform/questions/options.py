@@ -15,6 +15,7 @@ class OptionsQuestion(QuestionType):
     template = "studyplatform/questions/options.html"
     uses_options = True
     is_scale = True
+    scale = "ordinal"
 
     def parse(self, question, value: str) -> Answer:
         return Answer(rating=parse_integer(value))
@@ -38,6 +39,7 @@ class ComparativeQuestion(OptionsQuestion):
     """A 5-point scale between two clips (Clip 1 a lot better … Clip 2 a lot better)."""
 
     kind = "comparative"
+    label = "Comparative scale between two clips"
     export_kind = "comparative"
     trial_kinds = frozenset({"comparative"})
 
@@ -46,6 +48,7 @@ class LikertQuestion(OptionsQuestion):
     """A Likert rating of one clip, with a label per point."""
 
     kind = "likert"
+    label = "Likert rating"
     export_kind = "rating"
     trial_kinds = frozenset({"rating"})
 
@@ -54,5 +57,7 @@ class ChoiceQuestion(OptionsQuestion):
     """A single choice about the participant (a demographic column)."""
 
     kind = "choice"
+    label = "Single choice (demographic)"
     trial_kinds = frozenset({"demographic"})
     is_scale = False
+    scale = ""

@@ -223,3 +223,32 @@ def test_the_report_never_prints_negative_zero():
     from analysis.outputs import _number
 
     assert (_number(-0.001, 2), _number(-0.5, 2), _number(None)) == ("0.00", "-0.50", "–")
+
+
+def test_a_continuous_scale_gets_the_linear_model_only():
+    """Issue 57: a slider's 0–100 exported as an ordinal rating got a cumulative-link
+    model with a threshold between every pair of values; the ``scale`` column says which
+    model a question's ratings take."""
+    from analysis.tidy import check_responses, rating_scale
+
+    frame = ratings_tidy()
+    slider = frame.assign(
+        question="slider",
+        rating=frame["rating"].astype(float) * 20 - 7,
+        scale="continuous",
+    )
+    points = frame.assign(scale="ordinal")
+    both = check_responses(pd.concat([points, slider], ignore_index=True))
+    assert (
+        rating_scale(both, "slider") == "continuous" and rating_scale(both, "clarity") == "ordinal"
+    )
+    assert rating_scale(frame, "clarity") == "ordinal"  # no scale column: points
+    mixed = fit_mixed_models(both)
+    assert [m.question for m in mixed.ordinal] == ["clarity"]
+    assert [m.question for m in mixed.linear] == ["clarity", "slider"]
+    with pytest.raises(TidyFormatError, match="scale 'interval' is not one of ordinal, continuous"):
+        check_responses(slider.assign(scale="interval"))
+    with pytest.raises(TidyFormatError, match="question 'slider' has rating rows on more than"):
+        mixed_scales = slider.copy()
+        mixed_scales.loc[mixed_scales.index[:3], "scale"] = "ordinal"
+        check_responses(mixed_scales)

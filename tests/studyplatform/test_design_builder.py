@@ -270,3 +270,50 @@ def _no_inline_changes() -> dict:
         "studyplatform-aslvideo-content_type-object_id",
     )
     return {f"{p}-{f}": 0 for p in prefixes for f in ("TOTAL_FORMS", "INITIAL_FORMS")}
+
+
+def test_a_slider_study_from_builder_to_report(fresh):
+    """Issue 57's proof of a scale kind: a slider and a Likert question on the same rating
+    pages, built by the builder, answered, exported with their scales, and analysed each
+    by its own models (the slider by the linear mixed model only)."""
+    from analysis import ReportOptions, build_report, read_responses
+    from studyplatform.actions import Answer, do_enroll_participant, do_save_response
+    from studyplatform.export import tidy_csv
+    from studyplatform.models import AnswerOption
+
+    slider = Question.objects.create(study=fresh, key="natural", kind="slider", text="How natural?")
+    for value, label in ((0, "Not at all natural"), (100, "Completely natural")):
+        AnswerOption.objects.create(question=slider, value=value, label=label, position=value)
+    likert = Question.objects.create(study=fresh, key="clear", kind="likert", text="How clear?")
+    for value in range(1, 6):
+        AnswerOption.objects.create(question=likert, value=value, position=value)
+    do_build_design(fresh, spec(Design.RATINGS, attention_checks=1), [slider])
+    check = Trial.objects.get(is_attention_check=True)
+    assert check.expected_answer == "100" and "Completely natural" in check.text
+    # One page's check expects one answer: with the Likert beside it, no check.
+    built = do_build_design(fresh, spec(Design.RATINGS, attention_checks=0), [slider, likert])
+    assert built.pages == 8 and not Trial.objects.filter(is_attention_check=True).exists()
+    fresh.status = "open"
+    fresh.save(update_fields=["status"])
+    rng = __import__("numpy").random.default_rng(7)
+    for number in range(8):
+        participant = do_enroll_participant(fresh, consented=True)
+        for trial in fresh.trials.filter(kind="rating").select_related("condition_a"):
+            shift = 15 if trial.condition_a.key == "variable" else 0
+            natural = int(rng.integers(20, 70)) + shift
+            do_save_response(participant, trial, slider, Answer(rating=natural))
+            clear = 1 + (number + trial.position + shift // 5) % 5
+            do_save_response(participant, trial, likert, Answer(rating=clear))
+        Participant.objects.filter(pk=participant.pk).update(finished_at=participant.started_at)
+    frame = read_responses(__import__("io").StringIO(tidy_csv(fresh)))
+    rated = frame[frame["kind"].eq("rating")]
+    assert set(zip(rated["question"], rated["scale"], strict=True)) == {
+        ("natural", "continuous"),
+        ("clear", "ordinal"),
+    }
+    assert rated.loc[rated["question"].eq("natural"), "rating"].between(0, 100).all()
+    mixed = build_report(frame, ReportOptions()).mixed
+    assert [m.question for m in mixed.ordinal] == ["clear"]
+    assert [m.question for m in mixed.linear] == ["clear", "natural"]
+    assert "continuous scale (a slider)" in mixed.linear[1].notes[0]
+    assert "interval numbers" in mixed.linear[0].notes[0]

@@ -350,6 +350,19 @@ def open_trial_page(page, live_server, study, trial_key: str):
     return participant
 
 
+def goto_trial_page(page, live_server, study, trial_key: str):
+    """Enroll a participant who is on *trial_key*'s page (the furthest they reached) and
+    open it; return them and the page number."""
+    from studyplatform.actions import do_enroll_participant
+
+    participant = do_enroll_participant(study, consented=True)
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == trial_key)
+    participant.reached = participant.position = number
+    participant.save()
+    page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
+    return participant, number
+
+
 def record_signed_answer(page, seconds: float = 1.5) -> None:
     """Record an answer with Chromium's synthetic camera, up to "Watch your recording"."""
     page.get_by_role("button", name="Record a signed answer").click()
@@ -398,17 +411,11 @@ def test_replay_limit_and_watching_to_the_end(
     page, live_server, fingerspelling, clips_dir, one_clip
 ):
     """One play per clip; the answers open once both clips were watched to the end."""
-    from studyplatform.actions import do_enroll_participant
-
     fingerspelling.replay_limit = 1
     fingerspelling.require_full_view = True
     fingerspelling.save()
     _with_clips(fingerspelling, one_clip, clips_dir)
-    participant = do_enroll_participant(fingerspelling, consented=True)
-    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "cmp-01")
-    participant.reached = participant.position = number
-    participant.save()
-    page.goto(f"{live_server.url}/p/{participant.token}/{number}/")
+    participant, number = goto_trial_page(page, live_server, fingerspelling, "cmp-01")
     before = page.locator(".clip-slot").first.bounding_box()
     _wait_ready(page)
     assert page.locator(".clip-slot").first.bounding_box() == before  # no layout jump
@@ -463,3 +470,53 @@ def test_the_time_left_counts_down_and_the_page_closes_at_the_limit(
     page.goto(url)
     assert timer.text_content() == "Less than a minute left"
     page.get_by_text("The time limit of 20 minutes has passed.").wait_for(timeout=10000)
+
+
+@pytest.mark.parametrize(
+    "viewport", [{"width": 390, "height": 844}, {"width": 1366, "height": 768}]
+)
+def test_a_slider_is_unanswered_until_touched(
+    browser, live_server, spine, clips_dir, one_clip, viewport
+):
+    """Issue 57: a range input always holds a value, so a required slider must not send its
+    starting point. Untouched, Next names the question; a keyboard move answers it."""
+    from studyplatform.models import AnswerOption, Question
+
+    context = browser.new_context(
+        viewport=viewport, has_touch=viewport["width"] < 500, bypass_csp=True
+    )
+    page = context.new_page()
+    spine.status = "draft"
+    spine.save(update_fields=["status"])
+    slider = Question.objects.create(study=spine, key="natural", kind="slider", text="How natural?")
+    AnswerOption.objects.create(question=slider, value=0, label="Not at all natural", position=0)
+    AnswerOption.objects.create(question=slider, value=100, label="Completely natural", position=1)
+    trial = spine.trials.get(key="rate-s1")
+    trial.questions.set([slider])
+    spine.status = "open"
+    spine.save(update_fields=["status"])
+    _with_clips(spine, one_clip, clips_dir)
+    participant, number = goto_trial_page(page, live_server, spine, "rate-s1")
+    _wait_ready(page)
+    control = page.locator("#slider-natural")
+    assert control.get_attribute("name") is None
+    expect(page.locator("#slider-value-natural")).to_have_text(
+        "Not answered yet: move or tap the slider."
+    )
+    page.locator("#next-button").click()
+    expect(page.locator("#error-natural")).to_have_text("Please answer this question.")
+    assert not Response.objects.filter(participant=participant, question=slider).exists()
+    control.focus()
+    for _ in range(3):
+        page.keyboard.press("ArrowRight")
+    expect(page.locator("#slider-value-natural")).to_have_text("53")
+    expect(page.locator("#save-status")).to_have_text("Answer saved.")
+    assert Response.objects.get(participant=participant, question=slider).rating == 53
+    overflow = page.evaluate("document.documentElement.scrollWidth - window.innerWidth")
+    assert overflow <= 0, overflow
+    _next(page, number)
+    page.go_back()
+    _wait_ready(page)
+    expect(page.locator("#slider-value-natural")).to_have_text("53")
+    assert control.get_attribute("name") == "q-natural" and control.input_value() == "53"
+    close_context(context)

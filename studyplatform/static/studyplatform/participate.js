@@ -193,6 +193,23 @@
   }
   form.addEventListener("change", function (event) { answered(event.target); });
 
+  /* Sliders start untouched, with no name: the page sends nothing for them, so an
+   * untouched slider is an unanswered question, not an answer at its starting point.
+   * Moving it, or tapping it where it stands, gives it its name and answers. */
+  function touchSlider(input) {
+    const output = form.querySelector('output[for="' + input.id + '"]');
+    if (output) { output.textContent = input.value; }
+    if (input.name) { return; }
+    input.name = input.dataset.name;
+    input.closest(".slider").classList.remove("untouched");
+    answered(input);
+  }
+  form.querySelectorAll('.slider input[type="range"][data-name]').forEach(function (input) {
+    ["input", "pointerup", "keyup"].forEach(function (type) {
+      input.addEventListener(type, function () { touchSlider(input); });
+    });
+  });
+
   /* Next / Previous: post the form by script, retrying through a lost connection; the
    * server ignores a repeated move, so a double click changes nothing. */
   let moving = false;
