@@ -9,8 +9,8 @@ re-render a study's clips or lock an open study's (issue 57). Which modules coun
 read from the code itself, the imports of :data:`CLIP_ENTRIES` followed through the
 package (:func:`clip_modules`), so a new module is counted by being used. A hand-set
 version number could be forgotten; the imports cannot. A module counts by its syntax
-tree, docstrings left out: reformatting it, or editing its comments or docstrings, cannot
-change a pixel and leaves every clip valid.
+tree, docstrings and type hints left out: reformatting it, or editing its comments,
+docstrings or types, cannot change a pixel and leaves every clip valid.
 
 :func:`code_digest` covers every file of the engine: the disk cache of built avatars and
 databases, and the stimulus check kept beside each clip, are keyed by it.
@@ -87,7 +87,8 @@ def _imported(path: Path) -> list[str]:
 
 def _code(path: Path) -> bytes:
     """Return what of a file can change a result: a module's syntax tree without its
-    docstrings (its layout, comments and prose cannot), any other file's bytes."""
+    docstrings and type hints (its layout, comments, prose and types cannot), any other
+    file's bytes."""
     if path.suffix != ".py":
         return path.read_bytes()
     tree = ast.parse(path.read_text("utf-8"))
@@ -101,7 +102,48 @@ def _code(path: Path) -> bytes:
             and isinstance(body[0].value.value, str)
         ):
             node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree).encode()
+    return ast.dump(_WithoutTypes().visit(tree)).encode()
+
+
+class _WithoutTypes(ast.NodeTransformer):
+    """Drop what only a type checker reads: annotations of arguments and returns, the
+    types of annotated names, ``if TYPE_CHECKING:`` blocks and imports from ``typing``
+    and ``__future__`` (names used at run time are counted where they are used).
+
+    A dataclass field's annotation stays a field; only a ``ClassVar`` or ``InitVar``,
+    which change what a dataclass is, keep their annotation.
+    """
+
+    def visit_arg(self, node: ast.arg) -> ast.arg:
+        node.annotation = None
+        return node
+
+    def visit_FunctionDef(self, node):
+        node.returns = None
+        return self.generic_visit(node)
+
+    visit_AsyncFunctionDef = visit_FunctionDef
+
+    def visit_AnnAssign(self, node: ast.AnnAssign) -> ast.AnnAssign:
+        if not {"ClassVar", "InitVar"} & _names(node.annotation):
+            node.annotation = ast.Name("_", ast.Load())
+        return node
+
+    def visit_If(self, node: ast.If):
+        if "TYPE_CHECKING" in _names(node.test):
+            return node.orelse or None
+        return self.generic_visit(node)
+
+    def visit_ImportFrom(self, node: ast.ImportFrom):
+        return None if node.module in ("typing", "__future__") else node
+
+
+def _names(node: ast.AST) -> set[str]:
+    return {
+        n.id if isinstance(n, ast.Name) else n.attr
+        for n in ast.walk(node)
+        if isinstance(n, ast.Name | ast.Attribute)
+    }
 
 
 def _digest(root: Path, files: list[Path]) -> str:

@@ -222,6 +222,20 @@ def test_a_clip_hash_changes_with_the_files_a_clip_comes_from_and_no_others(tmp_
         source.replace('"""', '"""Reworded. ', 1).replace("\n\n", "\n\n\n") + "# a comment\n"
     )
     assert digests() == before
+    # Nor can types: a type hint changed, a typing import and a TYPE_CHECKING block added.
+    kinematics.write_text(
+        source.replace(
+            "def forward_kinematics(motion: Motion) -> Pose:",
+            "def forward_kinematics(motion: 'Motion | None') -> 'Pose':",
+        )
+        + "\nfrom typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import pandas\n"
+        + "LIMIT: float = 1.0\n"
+    )
+    typed = digests()
+    kinematics.write_text(source + "\nLIMIT: int = 1.0\n")
+    assert digests() == typed
+    kinematics.write_text(source + "\nLIMIT: int = 2.0\n")  # a value is code
+    assert digests()[0] != typed[0]
     kinematics.write_text(source)
     for outside in ("cli.py", "transitions/report.py", "quality/speed.py", "timing/learning.py"):
         change(copy / outside)
