@@ -52,9 +52,11 @@ def test_participant_and_admin_pages_run_under_the_policy(
         [{"name": "sessionid", "value": _session_of(alice), "url": live_server.url}]
     )
     stimuli = reverse("admin:studyplatform_study_stimuli", args=[fingerspelling.pk])
-    page.goto(live_server.url + stimuli)
+    # Its nonce'd inline script polls the progress: its first poll is the event to wait on.
+    with page.expect_response(lambda r: r.request.resource_type == "fetch") as polled:
+        page.goto(live_server.url + stimuli)
+    assert polled.value.ok and polled.value.json()["total"] >= 0
     page.wait_for_selector("#stimuli-bar")
-    page.wait_for_timeout(1500)  # its nonce'd inline script polls the progress
     assert page.violations == []
 
 

@@ -81,8 +81,12 @@ def test_the_page_survives_server_errors(page, live_server, fingerspelling, clip
     assert not shown.exists()
     page.unroute("**/events/")  # the server recovers: the held-back event arrives, once
     _until(page, shown.exists)
-    page.wait_for_timeout(2000)
-    assert shown.count() == 1 and plays.count() == 1
+    # Events go one batch at a time, in order: once one logged after this (playing the
+    # clip again) is in, anything sent again before it would be in too.
+    page.wait_for_function("document.querySelector('video.stimulus').ended")
+    page.locator(".play-button").first.click()
+    _until(page, lambda: plays.count() == 2)
+    assert shown.count() == 1
 
 
 def test_a_save_still_on_its_way_never_lands_over_the_answer_next_carried(
@@ -110,15 +114,32 @@ def test_a_save_still_on_its_way_never_lands_over_the_answer_next_carried(
     participant = _consent_and_give_a_name(page, live_server, fingerspelling)
     page.locator('input[name="q-asl-fluency"][value="1"]').check()
     page.get_by_text("Answer saved.").wait_for()
+    # What the browser sent and when each answer came back, in order.
+    timeline = []
+    page.on("request", lambda r: timeline.append(("sent", r.method, r.url, r.post_data)))
+    page.on(
+        "response",
+        lambda r: timeline.append(("answered", r.request.method, r.url, r.request.post_data)),
+    )
     page.locator('input[name="q-age"][value="3"]').check()
     assert arrived.wait(10)  # the save of 3 is at the server, held there
     page.locator('input[name="q-age"][value="4"]').check()
     page.locator("#next-button").click()
-    page.wait_for_timeout(1000)  # time enough for a Next that does not wait to be taken
-    participant.refresh_from_db()
-    assert participant.position == 1
     release.set()
     page.wait_for_function("Number(document.getElementById('page-form').dataset.page) === 2")
+    # Next's form went only after the held save had ended (not after a guessed wait).
+
+    held = next(
+        i
+        for i, (event, method, url, data) in enumerate(timeline)
+        if event == "answered" and url.endswith("/answer/") and '"value":"3"' in (data or "")
+    )
+    form = next(
+        i
+        for i, (event, method, url, _) in enumerate(timeline)
+        if event == "sent" and method == "POST" and url.rstrip("/").endswith("/1")
+    )
+    assert held < form, timeline
     stored = participant.responses.get(
         question__key="age", trial__key=participant.schedule[0]["trial"]
     )
