@@ -30,6 +30,7 @@ from studyplatform.actions.recordings import (
 from studyplatform.actions.responses import do_save_page_answers, do_save_response
 from studyplatform.actions.reviews import do_review_participants
 from studyplatform.actions.stimuli import (
+    GenerateOptions,
     GenerationResult,
     RerenderRefused,
     do_fail_stimulus,
@@ -57,6 +58,7 @@ __all__ = [
     "Answer",
     "AnswerRejected",
     "EventsRejected",
+    "GenerateOptions",
     "GenerationResult",
     "ImportResult",
     "PageRejected",

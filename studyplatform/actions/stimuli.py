@@ -9,7 +9,7 @@ the clips folder already (rendered for another study, version, import or databas
 recorded ready from them, never rendered again.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from django.db import transaction
 from django.utils import timezone
@@ -99,76 +99,124 @@ def _record_clip(stimulus: Stimulus, spec: ClipSpec, content_hash: str, force: b
     return True
 
 
+@dataclass(frozen=True)
+class GenerateOptions:
+    """How :func:`do_generate_stimuli` treats a study's clips.
+
+    *force* renders every clip again; *enqueue* False only records them, for a caller
+    that renders them itself; *background* renders them in a background process where
+    there is no broker (:func:`studyplatform.background.dispatch_renders`);
+    *rerender_open* re-renders clips whose specification changed in a study in the
+    field; *allow_identical* accepts two conditions that render an item identically.
+    """
+
+    force: bool = False
+    enqueue: bool = True
+    background: bool = False
+    rerender_open: bool = False
+    allow_identical: bool = False
+
+
+@dataclass
+class _Tally:
+    """What generation found, pair by pair: the clips, those to render, and why not."""
+
+    ids: list[int] = field(default_factory=list)
+    queued: list[int] = field(default_factory=list)
+    ready: int = 0
+    missing: int = 0
+    hashed: list[tuple] = field(default_factory=list)  # (condition, item, content hash)
+    changed: list[tuple[Stimulus, ClipSpec]] = field(default_factory=list)
+
+
 def do_generate_stimuli(
-    study: Study,
-    force: bool = False,
-    enqueue: bool = True,
-    rerender_open: bool = False,
-    allow_identical: bool = False,
-    background: bool = False,
+    study: Study, options: GenerateOptions = GenerateOptions()
 ) -> GenerationResult:
-    """Record the study's clips and queue the ones not rendered yet (all with *force*).
+    """Record the study's clips and queue the ones not rendered yet (see
+    :class:`GenerateOptions`).
 
     Two conditions that render an item identically raise :class:`IdenticalClips` unless
-    *allow_identical*: a comparison of identical clips is almost always a forgotten
-    setting. *enqueue* False only records them, for a caller that renders them itself;
-    *background* renders them in a background process where there is no broker
-    (:func:`studyplatform.background.dispatch_renders`). On an open
-    or closed study that participants have taken, clips already rendered whose
+    allowed: a comparison of identical clips is almost always a forgotten setting. On an
+    open or closed study that participants have taken, clips already rendered whose
     specification changed (new parameters, another engine) are re-rendered only with
     *rerender_open*; otherwise :class:`RerenderRefused` names them and nothing changes.
     """
-    queued, ready, ids, changed = [], 0, [], []
-    hashed, missing = [], 0
-    refuse_changes = _in_field(study) and not rerender_open
-    uploads = {
-        (u.condition_id, u.item_id): u for u in UploadedClip.objects.filter(condition__study=study)
-    }
+    refuse_changes = _in_field(study) and not options.rerender_open
+    tally = _Tally()
     with transaction.atomic():
+        # Every clip and upload of the study in one query each, not one per pair.
+        stimuli = Stimulus.objects.filter(condition__study=study)
+        recorded = {(s.condition_id, s.item_id): s for s in stimuli}
+        uploads = {
+            (u.condition_id, u.item_id): u
+            for u in UploadedClip.objects.filter(condition__study=study)
+        }
         for condition, item in needed_pairs(study):
+            stimulus = recorded.get((condition.pk, item.pk))
             if condition.is_uploaded:
-                stimulus = _record_upload(condition, item, uploads.get((condition.pk, item.pk)))
-                hashed.append((condition, item, stimulus.content_hash or f"missing-{stimulus.pk}"))
-                missing += stimulus.status == Stimulus.Status.MISSING
-                ready += stimulus.status == Stimulus.Status.READY
-                ids.append(stimulus.pk)
-                continue
-            spec = _clip_spec(condition, item)
-            content_hash = spec.content_hash()
-            hashed.append((condition, item, content_hash))
-            stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
-            was_ready = stimulus is not None and stimulus.status == Stimulus.Status.READY
-            if was_ready and stimulus.content_hash != content_hash:
-                changed.append((stimulus, spec))
-                if refuse_changes:
-                    continue
-            stimulus = stimulus or Stimulus(condition=condition, item=item)
-            if _record_clip(stimulus, spec, content_hash, force):
-                queued.append(stimulus.pk)
+                clip = uploads.get((condition.pk, item.pk))
+                stimulus = _record_upload(condition, item, clip, stimulus)
+                _tally_upload(tally, condition, item, stimulus)
             else:
-                ready += 1
-            ids.append(stimulus.pk)
-        identical = group_identical(hashed)
-        if identical and not allow_identical:
+                _tally_render(tally, condition, item, stimulus, options.force, refuse_changes)
+        identical = group_identical(tally.hashed)
+        if identical and not options.allow_identical:
             raise IdenticalClips(describe_identical(identical))
-        if changed and refuse_changes:
-            _refuse_changes_in_the_field(study, changed)
-        if enqueue and queued:
+        if tally.changed and refuse_changes:
+            _refuse_changes_in_the_field(study, tally.changed)
+        queued = tally.queued
+        if options.enqueue and queued:
+            background = options.background
             transaction.on_commit(lambda: dispatch_renders(queued, background=background))
-    return GenerationResult(len(ids), len(queued), ready, tuple(ids), missing)
+    return GenerationResult(
+        len(tally.ids), len(queued), tally.ready, tuple(tally.ids), tally.missing
+    )
 
 
-def _record_upload(condition, item, clip: UploadedClip | None) -> Stimulus:
+def _tally_upload(tally: _Tally, condition, item, stimulus: Stimulus) -> None:
+    """Count an uploaded condition's clip: ready from its file, or missing."""
+    tally.hashed.append((condition, item, stimulus.content_hash or f"missing-{stimulus.pk}"))
+    tally.missing += stimulus.status == Stimulus.Status.MISSING
+    tally.ready += stimulus.status == Stimulus.Status.READY
+    tally.ids.append(stimulus.pk)
+
+
+def _tally_render(
+    tally: _Tally, condition, item, stimulus: Stimulus | None, force: bool, refuse: bool
+) -> None:
+    """Record a rendered condition's clip, ready or to render; note a changed one (left
+    alone when changes are refused)."""
+    spec = _clip_spec(condition, item)
+    content_hash = spec.content_hash()
+    tally.hashed.append((condition, item, content_hash))
+    was_ready = stimulus is not None and stimulus.status == Stimulus.Status.READY
+    if was_ready and stimulus.content_hash != content_hash:
+        tally.changed.append((stimulus, spec))
+        if refuse:
+            return
+    stimulus = stimulus or Stimulus(condition=condition, item=item)
+    if _record_clip(stimulus, spec, content_hash, force):
+        tally.queued.append(stimulus.pk)
+    else:
+        tally.ready += 1
+    tally.ids.append(stimulus.pk)
+
+
+def _record_upload(condition, item, clip: UploadedClip | None, stimulus: Stimulus | None):
     """Record the clip of an uploaded condition: ready from its file, or missing."""
+    stimulus = stimulus or Stimulus(condition=condition, item=item)
     if clip is not None:
-        return record_uploaded_stimulus(clip)
-    return record_missing_stimulus(condition, item)
+        return _ready_from_upload(stimulus, clip)
+    return _missing(stimulus)
 
 
 def record_missing_stimulus(condition, item) -> Stimulus:
     """Record that the item's clip in an uploaded condition has no file (yet)."""
     stimulus = Stimulus.objects.filter(condition=condition, item=item).first()
-    stimulus = stimulus or Stimulus(condition=condition, item=item)
+    return _missing(stimulus or Stimulus(condition=condition, item=item))
+
+
+def _missing(stimulus: Stimulus) -> Stimulus:
     stimulus.status, stimulus.error = Stimulus.Status.MISSING, ""
     stimulus.content_hash = stimulus.sha256 = ""
     stimulus.upload = None
@@ -183,7 +231,10 @@ def record_uploaded_stimulus(clip: UploadedClip) -> Stimulus:
     identical clips (the guard of :func:`do_generate_stimuli`).
     """
     stimulus = Stimulus.objects.filter(condition=clip.condition_id, item=clip.item_id).first()
-    stimulus = stimulus or Stimulus(condition=clip.condition, item=clip.item)
+    return _ready_from_upload(stimulus or Stimulus(condition=clip.condition, item=clip.item), clip)
+
+
+def _ready_from_upload(stimulus: Stimulus, clip: UploadedClip) -> Stimulus:
     stimulus.upload = clip
     stimulus.content_hash = stimulus.sha256 = clip.sha256
     stimulus.parameters = {"source": "uploaded", "file": clip.original_name}

@@ -8,7 +8,7 @@ from django.utils.html import format_html
 
 from stimuli.clips import ClipError
 from stimuli.manifest import manifest_dict
-from studyplatform.actions.stimuli import IdenticalClips, do_generate_stimuli
+from studyplatform.actions.stimuli import GenerateOptions, IdenticalClips, do_generate_stimuli
 from studyplatform.lib.stimuli import (
     clips_on_disk,
     group_identical,
@@ -55,8 +55,9 @@ class StudyGenerateMixin:
         try:
             return do_generate_stimuli(
                 study,
-                background=True,
-                allow_identical=allow_identical or study.allow_identical_clips,
+                GenerateOptions(
+                    background=True, allow_identical=allow_identical or study.allow_identical_clips
+                ),
             ), None
         except IdenticalClips as refusal:
             return None, refusal

@@ -68,7 +68,7 @@ def test_stimuli_page_shows_progress_live(
     page, live_server, researcher, settings, tmp_path, renderable
 ):
     """The progress bar follows clips as a worker renders them, and names a failure."""
-    from studyplatform.actions.stimuli import do_generate_stimuli
+    from studyplatform.actions.stimuli import GenerateOptions, do_generate_stimuli
     from studyplatform.models import Stimulus, Study, Trial
     from studyplatform.tasks import render_now
 
@@ -78,7 +78,9 @@ def test_stimuli_page_shows_progress_live(
     for condition in study.conditions.all():
         condition.parameters = {**condition.parameters, "width": 64, "height": 48, "rate_hz": 20}
         condition.save()
-    result = do_generate_stimuli(study, enqueue=False)  # recorded, waiting for a worker
+    result = do_generate_stimuli(
+        study, GenerateOptions(enqueue=False)
+    )  # recorded, waiting for a worker
     first, second = Stimulus.objects.filter(pk__in=result.stimulus_ids)
     second.parameters = {**second.parameters, "text": "GUITAR!"}  # cannot be spelled
     second.save()

@@ -12,7 +12,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 from django.urls import reverse
 
 from stimuli import stored_quality
-from studyplatform.actions import do_duplicate_study, do_generate_stimuli
+from studyplatform.actions import GenerateOptions, do_duplicate_study, do_generate_stimuli
 from studyplatform.actions.avatars import AvatarRejected, do_map_avatar_bones, do_upload_avatar
 from studyplatform.lib.stimuli import clip_spec, clips_folder
 from studyplatform.models import Avatar, Condition, Stimulus
@@ -120,7 +120,7 @@ def test_a_condition_filmed_with_an_avatar_renders_it_and_hashes_its_file(
         do_map_avatar_bones(avatar, {"Head": ""})
     condition.refresh_from_db()
     assert clip_spec(condition, item).content_hash() != before.content_hash()
-    do_generate_stimuli(spine, enqueue=False)
+    do_generate_stimuli(spine, GenerateOptions(enqueue=False))
     stimulus = Stimulus.objects.get(condition=condition, item=item)
     status = render_now(stimulus.pk)
     assert status == Stimulus.Status.READY, Stimulus.objects.get(pk=stimulus.pk).error

@@ -7,7 +7,7 @@ from django.urls import reverse
 
 from stimuli.plan import Design, DesignSpec
 from studyplatform.actions.design import DesignRejected, do_build_design
-from studyplatform.actions.stimuli import IdenticalClips, do_generate_stimuli
+from studyplatform.actions.stimuli import GenerateOptions, IdenticalClips, do_generate_stimuli
 from studyplatform.lib.design import summarize_design
 from studyplatform.lib.stimuli import identical_clips
 from studyplatform.models import (
@@ -223,7 +223,7 @@ def test_identical_clips_are_found_warned_about_and_refused_unless_confirmed(
     identical = identical_clips(same_twice)
     assert sorted(item.key for item, _ in identical) == sorted(WORDS)
     with pytest.raises(IdenticalClips, match="identical clips for CAT"):
-        do_generate_stimuli(same_twice, enqueue=False)
+        do_generate_stimuli(same_twice, GenerateOptions(enqueue=False))
     client.force_login(alice)
     change = client.get(reverse("admin:studyplatform_study_change", args=[same_twice.pk]))
     assert "Conditions render identical clips" in change.content.decode()
@@ -238,7 +238,7 @@ def test_identical_clips_are_found_warned_about_and_refused_unless_confirmed(
 def test_different_settings_are_not_identical(fresh):
     do_build_design(fresh, spec())
     assert identical_clips(fresh) == []
-    assert do_generate_stimuli(fresh, enqueue=False).total == 8
+    assert do_generate_stimuli(fresh, GenerateOptions(enqueue=False)).total == 8
 
 
 def test_a_study_with_identical_clips_is_not_opened_unless_intended(same_twice, client, alice):

@@ -8,7 +8,7 @@ import pytest
 from django.core.management import call_command
 from django.core.management.base import CommandError
 
-from studyplatform.actions import do_generate_stimuli
+from studyplatform.actions import GenerateOptions, do_generate_stimuli
 from studyplatform.models import Condition, Stimulus
 from tests.conftest import as_draft
 
@@ -26,7 +26,7 @@ def _glb_json(data: bytes) -> dict:
 
 @pytest.fixture
 def clip(spine):
-    do_generate_stimuli(spine, enqueue=False)
+    do_generate_stimuli(spine, GenerateOptions(enqueue=False))
     return Stimulus.objects.get(condition__key="spine-on", item__key="S4")
 
 
@@ -54,7 +54,7 @@ def test_an_uploaded_clip_has_no_motion_and_the_command_writes_one(
 ):
     as_draft(spine)
     Condition.objects.filter(key="spine-off").update(source="uploaded", parameters={})
-    do_generate_stimuli(spine, enqueue=False)
+    do_generate_stimuli(spine, GenerateOptions(enqueue=False))
     uploaded = Stimulus.objects.get(condition__key="spine-off", item__key="S4")
     client.force_login(bob)
     response = client.get(f"/admin/studyplatform/stimulus/{uploaded.pk}/motion.glb")

@@ -16,6 +16,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 
 from stimuli.clips import ClipError, render
 from studyplatform.actions import (
+    GenerateOptions,
     RecordingRejected,
     StudyImportError,
     do_attach_recording,
@@ -187,7 +188,7 @@ def test_a_condition_on_each_words_recording_names_a_word_without_one(fingerspel
     trial.condition_b = condition
     trial.save()
     with pytest.raises(ClipError, match=f"{trial.item.key} has no recording yet"):
-        do_generate_stimuli(fingerspelling, enqueue=False)
+        do_generate_stimuli(fingerspelling, GenerateOptions(enqueue=False))
     assert not Stimulus.objects.filter(condition=condition).exists()
 
 

@@ -8,7 +8,7 @@ import pytest
 from django.core.management import CommandError, call_command
 
 from stimuli.clips import ClipError, file_sha256
-from studyplatform.actions.stimuli import do_generate_stimuli, do_retry_stimuli
+from studyplatform.actions.stimuli import GenerateOptions, do_generate_stimuli, do_retry_stimuli
 from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Stimulus, Trial
 from synthesis.render.video import count_frames
@@ -30,7 +30,7 @@ def small_study(fingerspelling, settings, tmp_path, renderable):
 
 def _generate(study, capture, **options):
     with capture(execute=True):
-        return do_generate_stimuli(study, **options)
+        return do_generate_stimuli(study, GenerateOptions(**options))
 
 
 def test_generating_renders_each_clip_once(small_study, django_capture_on_commit_callbacks):

@@ -158,10 +158,10 @@ def test_the_demo_definitions_pass_the_contract(alice):
 
 def test_an_open_study_in_the_field_is_never_re_rendered_silently(fingerspelling):
     from studyplatform.actions import do_enroll_participant
-    from studyplatform.actions.stimuli import RerenderRefused, do_generate_stimuli
+    from studyplatform.actions.stimuli import GenerateOptions, RerenderRefused, do_generate_stimuli
     from studyplatform.models import Stimulus
 
-    do_generate_stimuli(fingerspelling, enqueue=False)
+    do_generate_stimuli(fingerspelling, GenerateOptions(enqueue=False))
     Stimulus.objects.update(status=Stimulus.Status.READY)
     do_enroll_participant(fingerspelling)
     condition = fingerspelling.conditions.get(key="constant")
@@ -169,9 +169,9 @@ def test_an_open_study_in_the_field_is_never_re_rendered_silently(fingerspelling
     condition.save()
     before = sorted(Stimulus.objects.values_list("content_hash", "status"))
     with pytest.raises(RerenderRefused, match=r"is open: 9 of its rendered clips would change"):
-        do_generate_stimuli(fingerspelling, enqueue=False)
+        do_generate_stimuli(fingerspelling, GenerateOptions(enqueue=False))
     assert sorted(Stimulus.objects.values_list("content_hash", "status")) == before
-    do_generate_stimuli(fingerspelling, enqueue=False, rerender_open=True)
+    do_generate_stimuli(fingerspelling, GenerateOptions(enqueue=False, rerender_open=True))
     after = sorted(Stimulus.objects.values_list("content_hash", "status"))
     # The constant condition's 8 words and the example word, and only they.
     assert len({h for h, _ in before} - {h for h, _ in after}) == 9

@@ -17,7 +17,7 @@ import pytest
 from django.core.files.uploadedfile import SimpleUploadedFile
 from django.urls import reverse
 
-from studyplatform.actions import do_duplicate_study, do_generate_stimuli
+from studyplatform.actions import GenerateOptions, do_duplicate_study, do_generate_stimuli
 from studyplatform.actions.clips import (
     ClipUploadRejected,
     do_import_clips,
@@ -286,13 +286,13 @@ def test_a_zip_bomb_and_a_non_zip_are_refused(mixed, settings):
 def test_generation_renders_the_rendered_conditions_and_counts_missing_uploads(mixed):
     off = _condition(mixed, "spine-off")
     do_upload_clip(off, mixed.items.get(key="S1"), upload(make_video()))
-    result = do_generate_stimuli(mixed, enqueue=False)
+    result = do_generate_stimuli(mixed, GenerateOptions(enqueue=False))
     assert (result.total, result.queued, result.ready, result.missing) == (10, 5, 1, 4)
     missing = Stimulus.objects.filter(condition=off, status=Stimulus.Status.MISSING)
     assert sorted(missing.values_list("item__key", flat=True)) == ["S2", "S3", "S4", "S5"]
     # An upload after generation is ready at once; generation again keeps it so.
     do_upload_clip(off, mixed.items.get(key="S2"), upload(make_video(seconds=1.0)))
-    assert do_generate_stimuli(mixed, enqueue=False).missing == 3
+    assert do_generate_stimuli(mixed, GenerateOptions(enqueue=False)).missing == 3
 
 
 def test_two_conditions_showing_the_same_file_are_identical_clips(mixed):
@@ -303,7 +303,7 @@ def test_two_conditions_showing_the_same_file_are_identical_clips(mixed):
     for key in ("spine-on", "spine-off"):
         do_upload_clip(_condition(mixed, key), mixed.items.get(key="S1"), upload(data))
     with pytest.raises(IdenticalClips, match="S1"):
-        do_generate_stimuli(mixed, enqueue=False)
+        do_generate_stimuli(mixed, GenerateOptions(enqueue=False))
 
 
 def test_pairs_compared_are_warned_of_when_length_or_size_differ(mixed):
@@ -366,7 +366,7 @@ def test_a_copy_of_the_study_keeps_its_uploaded_clips(mixed, bob):
     copied = UploadedClip.objects.get(condition__study=copy)
     assert copied.condition.source == "uploaded" and copied.item.key == "S1"
     assert (copied.video.name, copied.sha256) == (clip.video.name, clip.sha256)
-    do_generate_stimuli(copy, enqueue=False)
+    do_generate_stimuli(copy, GenerateOptions(enqueue=False))
     assert Stimulus.objects.get(condition=copied.condition, item=copied.item).status == "ready"
 
 

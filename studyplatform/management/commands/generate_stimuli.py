@@ -1,5 +1,6 @@
 """Render studies' stimuli: every clip their trials show that is not rendered yet."""
 
+import dataclasses
 import time
 from pathlib import Path
 
@@ -8,7 +9,7 @@ from django.core.management.base import BaseCommand, CommandError
 
 from stimuli.clips import ClipError
 from stimuli.manifest import generate, read_manifest, write_manifest
-from studyplatform.actions.stimuli import do_generate_stimuli
+from studyplatform.actions.stimuli import GenerateOptions, do_generate_stimuli
 from studyplatform.lib.stimuli import SUBDIRECTORY, study_manifest, uploaded_manifest
 from studyplatform.models import Stimulus, Study
 
@@ -70,21 +71,16 @@ class Command(BaseCommand):
         found = self._studies(studies)
         started = time.perf_counter()
         eager = settings.CELERY_TASK_ALWAYS_EAGER
+        generation = GenerateOptions(
+            force=force,
+            rerender_open=options["rerender_open"],
+            allow_identical=options["allow_identical"],
+        )
         try:
             if eager and workers > 1:
-                results = self._render_with_pool(
-                    found, force, workers, options["rerender_open"], options["allow_identical"]
-                )
+                results = self._render_with_pool(found, generation, workers)
             else:
-                results = [
-                    do_generate_stimuli(
-                        study,
-                        force=force,
-                        rerender_open=options["rerender_open"],
-                        allow_identical=options["allow_identical"],
-                    )
-                    for study in found
-                ]
+                results = [do_generate_stimuli(study, generation) for study in found]
                 if not eager:
                     self._wait([pk for result in results for pk in result.stimulus_ids], timeout)
         except ClipError as error:
@@ -142,28 +138,15 @@ class Command(BaseCommand):
         self.stdout.write(f"{path}: {len(done)} clips, {rendered} rendered, into {directory}")
 
     def _render_with_pool(
-        self,
-        studies: list[Study],
-        force: bool,
-        workers: int,
-        rerender_open: bool,
-        allow_identical: bool,
+        self, studies: list[Study], generation: GenerateOptions, workers: int
     ) -> list:
         """Record the studies' clips without queueing, then render them in *workers*
         processes, one pool for all (a pool per study would leave processes idle as each
         study ends)."""
         from studyplatform.render_pool import render_many
 
-        results = [
-            do_generate_stimuli(
-                study,
-                force=force,
-                enqueue=False,
-                rerender_open=rerender_open,
-                allow_identical=allow_identical,
-            )
-            for study in studies
-        ]
+        recording = dataclasses.replace(generation, enqueue=False)
+        results = [do_generate_stimuli(study, recording) for study in studies]
 
         def report(number: int, total: int, status: str) -> None:
             self.stdout.write(f"  {number}/{total} {status}")
