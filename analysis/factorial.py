@@ -62,7 +62,7 @@ def factorial_rm_anova(
     cells.columns = pd.MultiIndex.from_tuples([(str(a), str(b)) for a, b in cells.columns])
     cells = cells.reindex(columns=pd.MultiIndex.from_product(levels))
     missing = cells.index[cells.isna().any(axis=1)]
-    notes = ()
+    notes: tuple[str, ...] = ()
     if len(missing):
         notes = (
             f"{len(missing)} subject(s) without a value in every cell left out "

@@ -40,6 +40,8 @@ def _tick_labels(axes, names: list[str], width_in: float) -> None:
 def participant_flow_plot(report: Report):
     """Draw the participant flow as bars: each stage's participants, each exclusion's."""
     flow = report.flow
+    if flow is None:
+        raise ValueError("The report has no participant flow to draw.")
     plt = pyplot()
     stages = [
         ("started", flow.started),
@@ -69,10 +71,16 @@ def participant_flow_figure(report: Report, out_dir: Path, formats=("png", "pdf"
     return _save(participant_flow_plot(report), out_dir, "participant_flow", formats)
 
 
+def _pairwise(report: Report):
+    if report.pairwise is None:
+        raise ValueError("The report has no pairwise analysis to draw.")
+    return report.pairwise
+
+
 def condition_rates_plot(report: Report):
     """Draw the bar chart of per-participant win rates, mean ± SEM (seed 000 Fig. 5.4)."""
     plt = pyplot()
-    conditions = report.pairwise.conditions
+    conditions = _pairwise(report).conditions
     width = max(5.5, 1.3 * len(conditions) + 1.5)
     figure, axes = plt.subplots(figsize=(width, 3.8))
     means = [100 * c.mean_participant_rate for c in conditions]
@@ -97,10 +105,11 @@ def condition_rates_figure(report: Report, out_dir: Path, formats=("png", "pdf")
 def pairwise_matrix_plot(report: Report):
     """Draw the heat map: row condition's share of decisive judgements against column."""
     plt = pyplot()
-    names = [c.condition for c in report.pairwise.conditions]
+    pairwise = _pairwise(report)
+    names = [c.condition for c in pairwise.conditions]
     index = {name: i for i, name in enumerate(names)}
     matrix = np.full((len(names), len(names)), np.nan)
-    for pair in report.pairwise.pairs:
+    for pair in pairwise.pairs:
         if pair.nobs:
             matrix[index[pair.a], index[pair.b]] = 100 * pair.a_wins / pair.nobs
             matrix[index[pair.b], index[pair.a]] = 100 * pair.b_wins / pair.nobs
@@ -148,7 +157,7 @@ def ratings_plot(frame):
     colours = plt.get_cmap("tab10").colors
     step = 0.8 / len(conditions)
     # One legend entry per condition, whichever panel drew it first.
-    handles = {}
+    handles: dict[str, object] = {}
     for axis, question in zip(axes[0], questions, strict=True):
         subset = rows[rows["question"] == question]
         for k, condition in enumerate(conditions):

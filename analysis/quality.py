@@ -45,7 +45,7 @@ def summarize_quality(frame: pd.DataFrame) -> tuple[ParticipantQuality, ...]:
     for participant, rows in pages.groupby("participant", sort=True):
         ended = pd.concat([_numbers(rows, "clip1_ended"), _numbers(rows, "clip2_ended")])
         seconds = _numbers(rows, "time_on_page_ms").dropna() / 1000
-        devices = rows["device"][rows["device"].ne("")] if "device" in rows else []
+        devices = rows["device"][rows["device"].ne("")] if "device" in rows else pd.Series([])
         summaries.append(
             ParticipantQuality(
                 participant=str(participant),

@@ -151,12 +151,11 @@ def build_report(
     """
     frame = label_simulated(label_conditions(frame))
     if options.conditions:
-        options = dataclasses.replace(
-            options, conditions=with_simulated_labels(options.conditions, frame)
-        )
-        check_conditions(frame, options.conditions, source)
+        conditions = with_simulated_labels(options.conditions, frame)
+        options = dataclasses.replace(options, conditions=conditions)
+        check_conditions(frame, conditions, source)
     kept, exclusions = apply_exclusions(frame, options.exclusions)
-    design = _design(kept) if not kept.empty else {"participants": 0, "rows": 0}
+    design: dict[str, Any] = _design(kept) if not kept.empty else {"participants": 0, "rows": 0}
     if methods:
         design["condition_methods"] = _methods(design, methods)
     return Report(

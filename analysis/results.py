@@ -27,7 +27,7 @@ class Result:
     """Mixin giving dataclass results a JSON-ready ``to_dict``."""
 
     def to_dict(self) -> dict[str, Any]:
-        return plain(dataclasses.asdict(self))
+        return plain(dataclasses.asdict(self))  # type: ignore[call-overload]  # a dataclass
 
 
 def rendered(value: Any) -> Any:

@@ -221,7 +221,7 @@ def label_conditions(frame: pd.DataFrame) -> pd.DataFrame:
 
 def condition_keys(frame: pd.DataFrame) -> dict[str, str]:
     """Return each condition's name in *frame* → its key, where the two differ."""
-    found = {}
+    found: dict[str, str] = {}
     for column, key_column in KEY_COLUMNS.items():
         if key_column in frame.columns:
             for name, key in zip(frame[column], frame[key_column], strict=True):

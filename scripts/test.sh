@@ -19,6 +19,12 @@ echo "== ruff"
 .venv/bin/ruff check .
 .venv/bin/ruff format --check .
 
+echo "== types (mypy: the engine's techniques and skeleton, the stimuli, the analysis)"
+.venv/bin/mypy
+
+echo "== layers (import-linter: the packages, and the platform's floors)"
+.venv/bin/lint-imports
+
 echo "== migrations are up to date"
 env -u DATABASE_URL "$PY" manage.py makemigrations --check --dry-run >/dev/null || {
   echo "Models changed without a migration: run 'python manage.py makemigrations'." >&2

@@ -50,7 +50,10 @@ class ClipSpec(ClipRequest):
     @classmethod
     def from_request(cls, request: ClipRequest, engine: str | None = None) -> "ClipSpec":
         """Return the specification of *request* rendered by this engine (or *engine*)."""
-        return cls(**request.to_dict(), **({"engine": engine} if engine else {}))
+        values = request.to_dict()
+        if engine:
+            values["engine"] = engine
+        return cls(**values)
 
     def to_dict(self) -> dict:
         return {**super().to_dict(), "engine": self.engine}
@@ -129,7 +132,8 @@ def render(spec: ClipSpec, directory: Path, progress=None) -> RenderedClip:
 def clip_files(directory: Path, content_hash: str) -> tuple[Path, Path, Path]:
     """Return the video, poster and facts files of the clip named *content_hash*."""
     directory = Path(directory)
-    return tuple(directory / f"{content_hash}{ext}" for ext in (".mp4", ".png", ".json"))
+    video, poster, facts = (directory / f"{content_hash}{ext}" for ext in (".mp4", ".png", ".json"))
+    return video, poster, facts
 
 
 def rendered(

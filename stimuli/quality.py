@@ -10,11 +10,14 @@ rendering (``manage.py check_stimuli``) — and read back by both.
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from synthesis.identity import code_digest
 from synthesis.quality import ClipQuality, Finding, check_request
-from synthesis.techniques import ClipRequest
 from synthesis.techniques.request import Build
+
+if TYPE_CHECKING:  # stimuli.clips imports this module
+    from stimuli.clips import ClipSpec
 
 
 def quality_file(directory: Path, content_hash: str) -> Path:
@@ -35,7 +38,7 @@ def stored_quality(directory: Path, content_hash: str) -> ClipQuality | None:
 
 
 def checked(
-    spec: ClipRequest,
+    spec: "ClipSpec",
     directory: Path,
     content_hash: str | None = None,
     build: Build | None = None,
@@ -46,7 +49,7 @@ def checked(
     *build* is the clip's motion and *filmed* its (avatar, camera), where the caller made
     them already (a render).
     """
-    name = content_hash or spec.content_hash()  # a ClipSpec's
+    name = content_hash or spec.content_hash()
     found = stored_quality(directory, name)
     if found is not None:
         return found

@@ -6,6 +6,7 @@ synthesis only; studyplatform may use everything.
 
 import ast
 import re
+import shutil
 import subprocess
 import sys
 import tokenize
@@ -264,3 +265,38 @@ def test_the_formatter_check_sees_an_override(tmp_path):
     package.mkdir()
     (package / "packed.py").write_text('x = "# fmt: skip"  # fmt: skip\ny = 1\n')
     assert formatter_overrides(tmp_path, {"synthesis"}) == ["synthesis/packed.py:1"]
+
+
+def test_the_import_contracts_hold_and_see_a_planted_breach(tmp_path):
+    """import-linter's contracts (pyproject.toml) hold on the tree, and a model that
+    imports an action (a floor upside down) breaks the platform's floors contract."""
+    import tomllib
+
+    linter = Path(sys.executable).with_name("lint-imports")
+    result = subprocess.run([linter], cwd=ROOT, capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout[-3000:]
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text("utf-8"))["tool"]["importlinter"]
+    (floors,) = [c for c in config["contracts"] if c.get("containers") == ["studyplatform"]]
+    shutil.copytree(
+        ROOT / "studyplatform",
+        tmp_path / "studyplatform",
+        ignore=shutil.ignore_patterns("__pycache__", "static", "templates"),
+    )
+    model = tmp_path / "studyplatform" / "models" / "design.py"
+    model.write_text(model.read_text("utf-8") + "\nfrom studyplatform.actions import studies\n")
+    (tmp_path / ".importlinter").write_text(
+        "[importlinter]\nroot_package = studyplatform\n\n"
+        "[importlinter:contract:floors]\nname = floors\ntype = layers\n"
+        "containers = studyplatform\nlayers =\n"
+        + "".join(f"    {layer}\n" for layer in floors["layers"]),
+        "utf-8",
+    )
+    planted = subprocess.run(
+        [linter],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env={"PYTHONPATH": str(tmp_path), "PATH": "/usr/bin:/bin"},
+    )
+    assert planted.returncode == 1, planted.stdout[-3000:]
+    assert "studyplatform.models.design -> studyplatform.actions.studies" in planted.stdout

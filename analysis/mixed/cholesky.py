@@ -41,7 +41,7 @@ class SparsePattern:
         self.cols, self.rows = np.divmod(self.keys, size)
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(self.cols, minlength=size))])
         self.diagonal = self.slots(diagonal, diagonal)
-        self._solver = None
+        self._solver: qdldl.Solver | None = None
         self._generation = 0
 
     def slots(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
@@ -87,10 +87,11 @@ class SparsePattern:
         pivots = self._solver.factors()[1]
         if not np.all(pivots > 0):
             raise np.linalg.LinAlgError("the matrix is not positive definite")
-        return Factor.of(float(np.log(pivots).sum()), self._solver_at(self._generation))
+        return Factor.of(
+            float(np.log(pivots).sum()), self._solver_at(self._solver, self._generation)
+        )
 
-    def _solver_at(self, generation: int):
-        solver = self._solver
+    def _solver_at(self, solver: qdldl.Solver, generation: int):
 
         def solve(rhs: np.ndarray) -> np.ndarray:
             if generation != self._generation:

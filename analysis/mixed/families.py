@@ -7,6 +7,7 @@ the random effects is unique.
 """
 
 import dataclasses
+from typing import Protocol
 
 import numpy as np
 from scipy.special import expit, gammaln, log_expit
@@ -19,6 +20,28 @@ class Derivatives:
     loglik: np.ndarray
     gradient: np.ndarray
     weight: np.ndarray
+
+
+class Family(Protocol):
+    """What the fits ask of a family: its name, derivatives in η, its parameters beyond
+    η (names, start, natural and free scales) and draws for simulation."""
+
+    @property
+    def name(self) -> str: ...
+
+    def derivatives(self, eta: np.ndarray, y: np.ndarray, extra: np.ndarray) -> Derivatives: ...
+
+    def extra_names(self, y: np.ndarray) -> tuple[str, ...]: ...
+
+    def extra_start(self, y: np.ndarray) -> np.ndarray: ...
+
+    def extra_natural(self, free: np.ndarray) -> np.ndarray: ...
+
+    def extra_free(self, natural: np.ndarray) -> np.ndarray: ...
+
+    def simulate(
+        self, eta: np.ndarray, extra: np.ndarray, rng: np.random.Generator
+    ) -> np.ndarray: ...
 
 
 class NoExtraParameters:

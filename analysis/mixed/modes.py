@@ -94,7 +94,8 @@ class ConditionalModes:
         # I + S ZᵀWZ S is factored in blocks, the grouped levels eliminated first, when
         # the rest is narrow; otherwise sparse in one fixed pattern (crossed designs).
         self.blocked = bool(grouped) and self.rest_width <= BLOCKED_UP_TO
-        self._joint = None
+        # The joint Hessian's pattern and the slots of β's, the sides' and v's values.
+        self._joint: tuple[SparsePattern, np.ndarray, np.ndarray, np.ndarray] | None = None
         self._index_pattern()
         if self.blocked:
             self._index_blocks(c)
@@ -263,6 +264,11 @@ class ConditionalModes:
 
     def _joint_pattern(self) -> SparsePattern:
         """Return the joint Hessian's pattern over (β, v): β's rows dense, then ZᵀZ's."""
+        return self._joint_layout()[0]
+
+    def _joint_layout(self) -> tuple[SparsePattern, np.ndarray, np.ndarray, np.ndarray]:
+        """Return the joint Hessian's pattern and the slots of β's, the sides' and v's
+        values in it (made on first use)."""
         if self._joint is None:
             p, q = self.p, self.q
             beta_rows, beta_cols = np.triu_indices(p)
@@ -279,12 +285,11 @@ class ConditionalModes:
                 pattern.slots(side_rows, side_cols),
                 pattern.slots(v_rows, v_cols),
             )
-        return self._joint[0]
+        return self._joint
 
     def _joint_values(self, scale: np.ndarray, weight: np.ndarray) -> np.ndarray:
         """Return the joint Hessian's values in :meth:`_joint_pattern`'s slots."""
-        self._joint_pattern()  # made on first use
-        pattern, beta_slots, side_slots, v_slots = self._joint
+        pattern, beta_slots, side_slots, v_slots = self._joint_layout()
         weighted = self.X * weight[:, None]
         values = np.zeros(len(pattern.keys))
         values[beta_slots] = (self.X.T @ weighted)[np.triu_indices(self.p)]
@@ -312,11 +317,14 @@ class ScaledCross:
 
     def __init__(self, modes: ConditionalModes, weight: np.ndarray):
         self.modes = modes
-        self.raw = modes._raw_blocks(weight) if modes.blocked else modes._pattern_values(weight)
+        # ZᵀWZ in the blocked layout, or as values in the sparse pattern's slots.
+        self.raw: Blocks | np.ndarray = (
+            modes._raw_blocks(weight) if modes.blocked else modes._pattern_values(weight)
+        )
 
     def factor(self, scale: np.ndarray) -> Factor:
         """Factor I + S ZᵀWZ S for S = diag(*scale*)."""
-        if self.modes.blocked:
+        if isinstance(self.raw, Blocks):
             return Factor(self.modes._scale_blocks(self.raw, scale))
         pattern = self.modes.pattern
         return pattern.factor(pattern.identity_plus_scaled(self.raw, scale))

@@ -4,7 +4,7 @@ import dataclasses
 
 import numpy as np
 
-from analysis.mixed.families import Bernoulli
+from analysis.mixed.families import Bernoulli, Family
 
 # Newton stops when no step component exceeds this. The outer search differentiates
 # the result numerically, so it must be smooth to far more digits than it reports
@@ -77,7 +77,7 @@ class MixedProblem:
     X: np.ndarray
     fixed_names: tuple[str, ...]
     components: tuple[Component, ...]
-    family: object = Bernoulli()
+    family: Family = dataclasses.field(default_factory=Bernoulli)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

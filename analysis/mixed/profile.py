@@ -61,7 +61,7 @@ def sd_intervals(fit: LinearFit) -> list[tuple[float, float] | None]:
         solved[j].append((value, psi))
         return found.fun - minimum - CUTOFF
 
-    intervals = []
+    intervals: list[tuple[float, float] | None] = []
     for j in range(k + 1):
         floor = lower[j]
         if profiled(j, floor) < 0:

@@ -51,11 +51,10 @@ def effects_for(
             "model below that either). Take more pilot participants, or state the effects "
             "(from the literature) instead."
         )
+    source = f"{source}: mixed-model estimates"
     if design.kind == "pairwise":
-        fit = mixed_bradley_terry(pilot, design.conditions)
-    else:
-        fit = ordinal_mixed(pilot, design.question, design.conditions)
-    return effects_from_pilot(fit, source=f"{source}: mixed-model estimates")
+        return effects_from_pilot(mixed_bradley_terry(pilot, design.conditions), source=source)
+    return effects_from_pilot(ordinal_mixed(pilot, design.question, design.conditions), source)
 
 
 def power_figure(curve: PowerCurve, path: Path) -> None:

@@ -59,7 +59,7 @@ def effects_from_pilot(mixed_result, source: str = "pilot") -> Effects:
     effects.update({c.name: c.estimate for c in mixed_result.effects})
     sds = {c.name: c.sd for c in mixed_result.random}
     zero = [c.name for c in mixed_result.random if c.sd < BOUNDARY_SD]
-    notes = ()
+    notes: tuple[str, ...] = ()
     if getattr(mixed_result, "singular", False) and zero:
         notes = (
             f"The pilot's {' and '.join(zero)} SD{'s' if len(zero) > 1 else ''} sit"
@@ -244,8 +244,8 @@ def _power_points(batches, alpha: float) -> tuple[PowerPoint, ...]:
             for test, pvalue in pvalues.items():
                 pvalues_by.setdefault((n, test), []).append(float(pvalue))
     points = []
-    for (n, test), found in sorted(pvalues_by.items()):
-        found = np.asarray(found)
+    for (n, test), listed in sorted(pvalues_by.items()):
+        found = np.asarray(listed)
         # A study whose test could not be computed counts as not significant.
         hits = np.nan_to_num(found, nan=1.0) < alpha
         points.append(

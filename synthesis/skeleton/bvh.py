@@ -88,6 +88,14 @@ class _Tokens:
         self.position += 1
         return token, line
 
+    def offset(self) -> tuple[float, float, float]:
+        """Take an OFFSET's three numbers."""
+        return (
+            self.number("OFFSET value"),
+            self.number("OFFSET value"),
+            self.number("OFFSET value"),
+        )
+
     def number(self, what: str) -> float:
         token, line = self.take()
         try:
@@ -124,7 +132,7 @@ def _parse_end_site(tokens: _Tokens, joints: list[Joint], parent: int, name: str
     """Parse an End Site block (its keyword already taken) into a channel-less joint."""
     tokens.take("{")
     tokens.take("OFFSET")
-    site_offset = tuple(tokens.number("OFFSET value") for _ in range(3))
+    site_offset = tokens.offset()
     tokens.take("}")
     site_name = f"{name}_End"
     while any(joint.name == site_name for joint in joints):
@@ -145,7 +153,7 @@ def _parse_joint(
         raise tokens.error(line, "a second joint has a name already taken")
     tokens.take("{")
     tokens.take("OFFSET")
-    offset = tuple(tokens.number("OFFSET value") for _ in range(3))
+    offset = tokens.offset()
     channels: tuple[str, ...] = ()
     if tokens.peek()[0].upper() == "CHANNELS":
         tokens.take()

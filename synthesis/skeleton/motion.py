@@ -46,7 +46,7 @@ class Motion:
             and bool(np.array_equal(self.values, other.values))
         )
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # equal by value, so unhashable
 
     @property
     def n_frames(self) -> int:

@@ -38,7 +38,7 @@ def quat_from_euler(angles_rad: np.ndarray, order: str) -> np.ndarray:
         axis = _AXES[name]
         after, second = (axis + 1) % 3, (axis + 2) % 3
         x = parts
-        parts = [None, None, None, None]
+        parts = list(x)  # each of its four is replaced below
         parts[axis] = x[axis] * cos + x[3] * sin
         parts[after] = x[after] * cos + x[second] * sin
         parts[second] = x[second] * cos - x[after] * sin

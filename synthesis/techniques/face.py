@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
 
 def _apply(build: Build) -> Build:
-    return build.but(options=replace(build.options, face=build.request.parameters["face"]))
+    return build.but(options=replace(build.sentence_options, face=build.request.parameters["face"]))
 
 
 TECHNIQUE = Technique(

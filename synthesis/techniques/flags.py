@@ -6,6 +6,7 @@ line and the platform render the same clip for the same parameters.
 """
 
 import argparse
+from typing import Any
 
 from synthesis.techniques import REGISTRY
 
@@ -29,7 +30,7 @@ def add_technique_flags(command: argparse.ArgumentParser, kind: str) -> None:
     for technique in REGISTRY.for_kind(kind):
         group = command.add_argument_group(f"{technique.label} ({technique.source})")
         for parameter in technique.parameters:
-            options = {"dest": f"technique_{parameter.name}", "default": None}
+            options: dict[str, Any] = {"dest": f"technique_{parameter.name}", "default": None}
             default = parameter.label_of(parameter.default) if parameter.type != "file" else ""
             help_text = parameter.help + (f" Default: {default}." if default else "")
             if parameter.type == "choice":

@@ -56,9 +56,11 @@ def _finish_word(build: Build) -> Build:
             "A recorded or simulated performance renders in the hand view for now: "
             "set view to 'hand' (--view hand)."
         )
-    timing = build.timing
-    plays_as_performed = timing is None or timing is build.performance.extraction.timing
-    motion = build.performance.motion if plays_as_performed else retime(build.performance, timing)
+    timing, performance = build.timing, build.performance
+    if timing is None or timing is performance.extraction.timing:
+        motion = performance.motion  # as performed
+    else:
+        motion = retime(performance, timing)
     if abs(motion.rate_hz - request.rate_hz) > 1e-9:
         motion = resample(motion, request.rate_hz)
     return build.but(motion=retarget(motion, build.rig))

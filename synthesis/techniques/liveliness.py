@@ -17,7 +17,7 @@ def _apply(build: Build) -> Build:
     from synthesis.signing.liveliness import Liveliness
 
     liveliness = Liveliness() if build.request.parameters["liveliness"] else None
-    return build.but(options=replace(build.options, liveliness=liveliness))
+    return build.but(options=replace(build.sentence_options, liveliness=liveliness))
 
 
 TECHNIQUE = Technique(

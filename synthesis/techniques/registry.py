@@ -16,9 +16,12 @@ Add a technique: write its module (a ``TECHNIQUE = Technique(...)``) and name it
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from synthesis.techniques.parameters import ClipError, Parameter
+
+if TYPE_CHECKING:  # request.py builds on this module
+    from synthesis.techniques.request import Build
 
 PREPARE, MOTION = "prepare", "motion"
 
@@ -44,7 +47,7 @@ class Technique:
     source: str = ""
     stage: str = PREPARE
     order: int = 50
-    apply: Callable[[Any], Any] | None = None
+    apply: Callable[["Build"], "Build"] | None = None
     check: Callable[[Mapping[str, Any]], None] | None = None
     summary: Callable[[Mapping[str, Any]], str] | None = None
     chooses_content: bool = False
@@ -79,8 +82,8 @@ class ItemKind:
     name: str
     label: str
     views: tuple[str, ...]
-    start: Callable[[Any], Any]
-    finish: Callable[[Any, Any], Any]
+    start: Callable[["Build"], "Build"]
+    finish: Callable[["Build"], "Build"]
     check_text: Callable[[str], None] | None = None
 
     @property

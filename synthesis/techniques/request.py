@@ -11,9 +11,22 @@ which parameter means which motion.
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from synthesis.techniques.parameters import ClipError, Parameter
+
+if TYPE_CHECKING:  # the pipeline's parts, imported where a clip is made
+    import numpy as np
+
+    from synthesis.avatar.looks import Look
+    from synthesis.fingerspelling.word_timing import WordTiming
+    from synthesis.rigs.body import BodyModel
+    from synthesis.rigs.hand import HandModel
+    from synthesis.signing.sentence import Sentence, SentenceOptions
+    from synthesis.signing.signs import SignLibrary
+    from synthesis.skeleton.kinematics import Pose
+    from synthesis.timing.recordings import Recording
+    from synthesis.transitions.lexicon import SignLexicon
 
 VIEWS = ("hand", "upper-body")
 
@@ -105,7 +118,7 @@ class ClipRequest:
                 fields[name] = techniques.pop(name)
         return cls(kind, text, techniques, **fields)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """Return the request as plain JSON values."""
         return {
             "kind": self.kind,
@@ -150,18 +163,46 @@ class Build:
     """
 
     request: ClipRequest
-    rig: Any
-    performance: Any = None
-    timing: Any = None
-    options: Any = None
-    library: Any = None
-    motion: Any = None
-    result: Any = None
-    look: Any = None
+    rig: "HandModel | BodyModel"
+    performance: "Recording | None" = None
+    timing: "WordTiming | None" = None
+    options: "SentenceOptions | None" = None
+    library: "SignLibrary | SignLexicon | None" = None
+    motion: "np.ndarray | Pose | None" = None
+    result: "Sentence | None" = None
+    look: "Look | None" = None
 
     def but(self, **changes: Any) -> "Build":
         """Return a copy with *changes*."""
         return replace(self, **changes)
+
+    @property
+    def sentence_options(self) -> "SentenceOptions":
+        """Return the sentence synthesis options (set when a sentence kind starts)."""
+        if self.options is None:
+            _not_made("sentence options")
+        return self.options
+
+    @property
+    def sentence(self) -> "Sentence":
+        """Return the sentence the motion was made from (set when a sentence finishes)."""
+        if self.result is None:
+            _not_made("sentence")
+        return self.result
+
+    @property
+    def made_motion(self) -> "np.ndarray | Pose":
+        """Return the finished motion (set when the item kind finishes)."""
+        if self.motion is None:
+            _not_made("motion")
+        return self.motion
+
+
+def _not_made(what: str) -> NoReturn:
+    """Refuse a step that needs a part of the build an earlier step makes."""
+    # A technique registered at a stage before the step that makes it: a bug in the
+    # registry's order, not in the request.
+    raise RuntimeError(f"The clip's {what} is not made yet at this step of the pipeline.")
 
 
 def rig_for(view: str, side: str):
@@ -290,7 +331,7 @@ def render_request(
     avatar, camera = filmed or film(request, build)
     return render_clip(
         avatar,
-        build.motion,
+        build.made_motion,
         camera,
         out,
         request.rate_hz,

@@ -42,7 +42,7 @@ def _params(values: Mapping[str, Any]) -> SpineParams:
 
 def _apply(build: Build) -> Build:
     values = build.request.parameters
-    options = replace(build.options, spine=values["spine"], params=_params(values))
+    options = replace(build.sentence_options, spine=values["spine"], params=_params(values))
     return build.but(options=options)
 
 

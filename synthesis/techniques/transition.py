@@ -55,7 +55,7 @@ def _apply(build: Build) -> Build:
             request = build.request
             try:
                 dofs, _ = blend_recorded(
-                    build.result.glosses,
+                    build.sentence.glosses,
                     build.library,
                     request.rate_hz,
                     request.side,
@@ -66,7 +66,7 @@ def _apply(build: Build) -> Build:
         else:
             try:
                 dofs, _ = blend_sentence(
-                    build.request.text, build.options, build.library, overlap_ms=fixed
+                    build.request.text, build.sentence_options, build.library, overlap_ms=fixed
                 )
             except ValueError as error:
                 raise ClipError(str(error)) from None
@@ -74,7 +74,7 @@ def _apply(build: Build) -> Build:
     from synthesis.transitions.sentence import retransition
 
     search = _search(values["transition_db"]) if model in ("hermite", "bspline") else None
-    sentence = build.result
+    sentence = build.sentence
     return build.but(motion=retransition(sentence, model, search, sentence.liveliness_rad))
 
 
