@@ -68,14 +68,17 @@ def needed_pairs(study: Study) -> list[tuple[Condition, Item]]:
 
 
 def clips_on_disk(hashed: list[tuple[Condition, Item, str]]) -> int:
-    """Return how many of the :func:`hashed_pairs` clips have their files in the clips
-    folder, whichever study, version or database rendered them."""
+    """Return how many of the :func:`hashed_pairs` clips are ready without rendering: an
+    uploaded condition's clip that was uploaded (hashed_pairs leaves out the others), and
+    a rendered one whose files are in the clips folder, whichever study, version or
+    database rendered them."""
     from stimuli.clips import clip_files
 
     folder = clips_folder()
     return sum(
-        all(path.is_file() for path in clip_files(folder, content_hash)[:2])
-        for _, _, content_hash in hashed
+        condition.is_uploaded
+        or all(path.is_file() for path in clip_files(folder, content_hash)[:2])
+        for condition, _, content_hash in hashed
     )
 
 

@@ -148,7 +148,7 @@ def test_a_study_built_from_scratch_is_generated_piloted_opened_taken_and_report
     version = Study.objects.exclude(pk=study.pk).get()
     page.goto(f"{url}/admin/studyplatform/study/{version.pk}/stimuli/generate/")
     clips = page.locator("#generate-clips").inner_text()
-    expect(page.locator("#generate-on-disk")).to_have_text(f"{clips} are rendered")
+    expect(page.locator("#generate-on-disk")).to_have_text(f"{clips} are ready")
     page.get_by_role("button", name="Generate stimuli").click()
     expect(page.locator("#stimuli-percent")).to_have_text("100")
     expect(page.locator("#stimuli-done")).to_be_visible()

@@ -478,3 +478,14 @@ def test_an_upload_whose_job_was_lost_is_failed_and_its_file_deleted(mixed, sett
     job.refresh_from_db()
     assert job.status == "failed" and "upload it again" in job.message
     assert not (incoming_directory() / job.incoming).exists()
+
+
+def test_the_generate_page_counts_uploaded_clips_as_ready(mixed, client):
+    """Issue 55, item 7: the Generate page said "0 are rendered already" with uploaded
+    clips ready (it looked only in the rendered clips' folder)."""
+    off = _condition(mixed, "spine-off")
+    for key in ("S1", "S2"):
+        do_upload_clip(off, mixed.items.get(key=key), upload(make_video(seconds=1.0)))
+    client.force_login(mixed.owner)
+    html = client.get(reverse("admin:studyplatform_study_generate", args=[mixed.pk])).content
+    assert b'<span id="generate-on-disk">2 are ready</span>' in html
