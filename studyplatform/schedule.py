@@ -18,6 +18,18 @@ from stimuli import rotate_for_participant
 from studyplatform.models import Block, Study, Trial
 
 
+def _check_not_first(pages: list[Trial]) -> list[Trial]:
+    """Return shuffled *pages* with an attention check moved off the first place (it
+    changes places with the first page that is not one): a check before any real page
+    tests whether the participant has understood the task, not their attention."""
+    if not pages or not pages[0].is_attention_check:
+        return pages
+    other = next((i for i, page in enumerate(pages) if not page.is_attention_check), None)
+    if other is not None:
+        pages[0], pages[other] = pages[other], pages[0]
+    return pages
+
+
 def build_schedule(study: Study, seed: int, enrollment: int = 0) -> list[dict]:
     """Return the schedule of the participant with *seed*, enrolled *enrollment*-th."""
     rng = np.random.default_rng(seed)
@@ -36,7 +48,7 @@ def build_schedule(study: Study, seed: int, enrollment: int = 0) -> list[dict]:
     for block_id, pages in by_block.items():
         block = blocks[block_id]
         if block.randomize_order:
-            pages = [pages[i] for i in rng.permutation(len(pages))]
+            pages = _check_not_first([pages[i] for i in rng.permutation(len(pages))])
         for trial in pages:
             entry: dict = {"trial": trial.key, "swap": False}
             two_clips = trial.kind in Trial.TWO_CLIP_KINDS and trial.condition_b_id is not None

@@ -141,7 +141,7 @@ def test_the_summary_counts_pages_pairs_and_estimates_the_duration(fresh):
     do_build_design(fresh, spec(Design.ALL_PAIRS, practice_items=("EXAMPLE",)))
     summary = summarize_design(fresh)
     assert summary.pages == 10  # practice, 8 comparisons, closing
-    assert dict(summary.pages_by_block) == {"Practice": 1, "Trials": 8, "closing": 1}
+    assert dict(summary.pages_by_block) == {"Practice": 1, "trials": 8, "closing": 1}
     # The Variable condition uses the built-in model, trained on simulated holds (issue 53).
     simulated = "Variable (simulated)"
     assert summary.pair_counts == (("Constant", simulated, 4), (simulated, "Constant", 4))
@@ -317,3 +317,18 @@ def test_a_slider_study_from_builder_to_report(fresh):
     assert [m.question for m in mixed.linear] == ["clear", "natural"]
     assert "continuous scale (a slider)" in mixed.linear[1].notes[0]
     assert "interval numbers" in mixed.linear[0].notes[0]
+
+
+def test_a_shuffled_attention_check_is_never_the_first_page_of_its_block(fresh):
+    """Issue 55, item 7: with shuffling, the attention check could come first, before the
+    participant had seen a real page (it then tests the instructions, not attention)."""
+    do_build_design(fresh, spec(Design.ALL_PAIRS, attention_checks=1), [])
+    checks = set(Trial.objects.filter(is_attention_check=True).values_list("key", flat=True))
+    trials = set(Trial.objects.filter(block__key="trials").values_list("key", flat=True))
+    firsts = Counter()
+    for seed in range(200):
+        pages = [e["trial"] for e in build_schedule(fresh, seed=seed) if e["trial"] in trials]
+        firsts[pages[0] in checks] += 1
+        assert sorted(pages) == sorted(trials)  # every page once, the check among them
+    # 1 check among 9 pages would come first about 22 times in 200 shuffles.
+    assert firsts[True] == 0 and firsts[False] == 200

@@ -606,3 +606,17 @@ def test_no_participant_response_may_be_cached(client, fingerspelling):
     ]
     for response in responses:
         assert "no-store" in response["Cache-Control"], response.request["PATH_INFO"]
+
+
+def test_a_block_without_a_title_shows_no_name_of_its_own(client, fingerspelling):
+    """Issue 55, item 7: participants read the builder's block name "Trials" as a heading
+    (a block's key, shown when it had no title, is the data's name, not theirs)."""
+    fingerspelling.blocks.filter(key="practice").update(title="", intro_text="Try one first.")
+    participant = _start(client, fingerspelling)
+    participant.reached = len(participant.schedule)
+    participant.save()
+    number = next(i for i, e in enumerate(participant.schedule, 1) if e["trial"] == "practice-1")
+    shown = client.get(reverse("participant_page", args=[participant.token, number])).text
+    headings = re.findall(r"<h[12][^>]*>([^<]*)</h[12]>", shown)
+    assert "practice" not in headings and "Practice" not in headings, headings
+    assert "Try one first." in shown  # the block's introduction is still there
