@@ -155,7 +155,9 @@ def _builder_blocks(study: Study, practice: bool) -> tuple[Block | None, Block]:
             study=study, key=key, kind=kind, title=title, randomize_order=kind == Block.Kind.TRIALS
         )
 
-    trial_block = block("trials", Block.Kind.TRIALS, "Trials")
+    # No title: a block's title heads its first page, and "Trials" is the builder's word,
+    # not one a participant should read (a researcher may give it one).
+    trial_block = block("trials", Block.Kind.TRIALS, "")
     practice_block = block("practice", Block.Kind.PRACTICE, "Practice") if practice else None
     unused = made.get("practice") if not practice else None
     if unused and unused in blocks and not blocks[unused].trials.exists():
@@ -222,6 +224,21 @@ def _ask_on_pages(questions: Sequence[Question], blocks: list) -> None:
         for trial in Trial.objects.filter(block__in=blocks)
         for question in questions
     )
+
+
+def do_add_default_options(question: Question) -> int:
+    """Give a question of a kind with labelled points and no options yet its kind's
+    starting points (a researcher adding a Likert question typed all five by hand);
+    return how many were added."""
+    points = question.type.default_options(question) if question.uses_options else ()
+    with transaction.atomic():
+        if not points or question.options.exists():
+            return 0
+        AnswerOption.objects.bulk_create(
+            AnswerOption(question=question, value=value, label=label, position=position)
+            for position, (value, label) in enumerate(points, 1)
+        )
+    return len(points)
 
 
 def do_build_design(

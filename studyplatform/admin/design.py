@@ -3,6 +3,7 @@
 from django.contrib import admin
 from django.http import HttpRequest
 
+from studyplatform.actions.design import do_add_default_options
 from studyplatform.admin.forms import TrialForm
 from studyplatform.admin.permissions import DesignLockMixin, StudyScopedMixin
 from studyplatform.admin.positions import PositionedFormSet
@@ -51,6 +52,16 @@ class QuestionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
         "is_personal",
         ("min_value", "max_value"),
     )
+
+    def save_related(self, request: HttpRequest, form, formsets, change: bool) -> None:
+        super().save_related(request, form, formsets, change)
+        added = do_add_default_options(form.instance)
+        if added:
+            self.message_user(
+                request,
+                f"“{form.instance.key}” starts with {added} labelled points; edit their "
+                "labels below to fit the question.",
+            )
 
 
 @admin.register(AnswerOption)

@@ -16,6 +16,7 @@ from django.utils.html import format_html
 
 from studyplatform import exchange
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
+from studyplatform.actions.design import do_add_default_options
 from studyplatform.admin.builder import StudyDesignMixin
 from studyplatform.admin.forms import StudyForm, StudyImportForm, TrialForm
 from studyplatform.admin.generate import StudyGenerateMixin
@@ -260,6 +261,12 @@ class StudyAdmin(
         if not change and not request.user.is_superuser:
             obj.owner = request.user
         super().save_model(request, obj, form, change)
+
+    def save_formset(self, request: HttpRequest, form, formset, change: bool) -> None:
+        super().save_formset(request, form, formset, change)
+        if formset.model is Question:
+            for question in formset.new_objects:
+                do_add_default_options(question)
 
     def get_urls(self):
         own = [

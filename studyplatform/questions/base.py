@@ -109,10 +109,17 @@ class QuestionType:
     takes_signed_answer = False
     can_be_personal = False
     has_range = False
+    # The labelled points a new question of this kind starts with (value, label), for
+    # the researcher to reword: none for kinds without options.
+    starting_options: tuple[tuple[int, str], ...] = ()
 
     def max_length(self, question) -> int:
         """Return the longest text answer *question* takes, in characters."""
         return MAX_PERSONAL_LENGTH if question.is_personal else MAX_TEXT_LENGTH
+
+    def default_options(self, question) -> tuple[tuple[int, str], ...]:
+        """Return the labelled points a new *question* starts with (value, label)."""
+        return self.starting_options
 
     def widget(self, question) -> dict:
         """Return what the widget's template needs beyond the question (as ``widget``)."""

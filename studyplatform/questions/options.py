@@ -40,6 +40,18 @@ class ComparativeQuestion(OptionsQuestion):
 
     kind = "comparative"
     label = "Comparative scale between two clips"
+    starting_options = tuple(
+        enumerate(
+            (
+                "Clip 1 a lot better",
+                "Clip 1 a little better",
+                "Both the same",
+                "Clip 2 a little better",
+                "Clip 2 a lot better",
+            ),
+            1,
+        )
+    )
     export_kind = "comparative"
     trial_kinds = frozenset({"comparative"})
 
@@ -49,6 +61,9 @@ class LikertQuestion(OptionsQuestion):
 
     kind = "likert"
     label = "Likert rating"
+    starting_options = tuple(
+        enumerate(("Not at all", "Slightly", "Moderately", "Very", "Extremely"), 1)
+    )
     export_kind = "rating"
     trial_kinds = frozenset({"rating"})
 

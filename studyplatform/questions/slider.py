@@ -39,6 +39,10 @@ class SliderQuestion(QuestionType):
     uses_options = True
     has_range = True
 
+    def default_options(self, question) -> tuple[tuple[int, str], ...]:
+        low, high = slider_range(question)
+        return ((low, "Not at all"), (high, "Completely"))
+
     def widget(self, question) -> dict:
         low, high = slider_range(question)
         return {"low": low, "high": high, "start": (low + high) // 2}
