@@ -241,3 +241,77 @@ def test_new_inline_rows_come_after_the_others_unless_a_position_is_typed(spine)
     assert positions["Added first"] == last + 1 and positions["Added second"] == last + 2
     assert positions["Put first"] == -1
     assert question.options.order_by("position").first().label == "Put first"
+
+
+def test_every_field_a_definition_exports_is_edited_in_the_admin_or_said_why(alice, rf):
+    """Issue 57: the admin's field lists repeated exchange.py's with nothing tying them;
+    a field added to a model and its export but not to the admin went unnoticed. Each
+    model's admin form (or the inline that edits it) shows every exported field, or
+    NOT_EDITED_HERE says why not."""
+    from django.apps import apps
+    from django.contrib import admin
+
+    from studyplatform.admin import NOT_EDITED_HERE
+    from studyplatform.exchange import EXPORTED
+
+    request = rf.get("/admin/")
+    request.user = alice
+    inlines = {
+        inline.model: inline(model, admin.site)
+        for model, model_admin in admin.site._registry.items()
+        for inline in model_admin.inlines
+    }
+    checked = []
+    for name, exported in EXPORTED.items():
+        model = apps.get_model("studyplatform", name)
+        editor = admin.site._registry.get(model) or inlines.get(model)
+        if editor is None:
+            continue  # Recording, UploadedClip: files, added on their own pages
+        shown = set()
+        for _, options in editor.get_fieldsets(request, None):
+            for field in options["fields"]:
+                shown.update(field if isinstance(field, tuple | list) else [field])
+        missing = set(exported) - shown - set(NOT_EDITED_HERE.get(name, {}))
+        assert not missing, f"{name}: {sorted(missing)} exported but not in the admin"
+        assert set(NOT_EDITED_HERE.get(name, {})) <= set(exported) - shown, name
+        checked.append(name)
+    assert len(checked) == 8, checked
+
+
+@pytest.mark.parametrize(
+    ("kind", "points"),
+    [
+        (
+            "likert",
+            [(1, "Not at all"), (2, "Slightly"), (3, "Moderately"), (4, "Very"), (5, "Extremely")],
+        ),
+        ("slider", [(0, "Not at all"), (100, "Completely")]),
+        ("open", []),
+    ],
+)
+def test_a_new_rating_question_starts_with_labelled_points(client, spine, kind, points):
+    """Issue 55, item 7: a Likert question added in the admin had no scale points (all
+    five typed by hand); it starts with its kind's labelled points, which the researcher
+    rewords. Points typed in the same form are kept as they are."""
+    from studyplatform.models import Question
+
+    as_draft(spine)
+    client.force_login(spine.owner)
+    management = {
+        "options-TOTAL_FORMS": 0,
+        "options-INITIAL_FORMS": 0,
+        "studyplatform-aslvideo-content_type-object_id-TOTAL_FORMS": 0,
+        "studyplatform-aslvideo-content_type-object_id-INITIAL_FORMS": 0,
+    }
+    fields = {"study": spine.pk, "position": 0, "kind": kind, "text": "How clear?"}
+    added = client.post(
+        reverse("admin:studyplatform_question_add"), {**fields, "key": "clear", **management}
+    )
+    assert added.status_code == 302, added.content[:2000]
+    question = Question.objects.get(study=spine, key="clear")
+    assert list(question.options.values_list("value", "label")) == points
+    typed = {**management, "options-TOTAL_FORMS": 1, "options-0-position": 1}
+    typed |= {"options-0-value": 3, "options-0-label": "Mine"}
+    client.post(reverse("admin:studyplatform_question_add"), {**fields, "key": "own", **typed})
+    own = Question.objects.get(study=spine, key="own")
+    assert list(own.options.values_list("value", "label")) == [(3, "Mine")]
