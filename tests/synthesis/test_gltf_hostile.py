@@ -80,12 +80,19 @@ def test_the_message_says_what_is_wrong(case, words):
 
 
 def test_a_long_chain_under_the_cap_reads_in_linear_time():
-    """9,000 nodes in one chain (the cap is 10,000): read, not refused, within 5 s."""
-    data = long_chain(with_animation(GOOD, [0.0, 1.0]), 9_000)
-    for reader in READERS.values():
-        started = time.perf_counter()
-        reader(data, "chain.glb")
-        assert time.perf_counter() - started < 5.0
+    """9,000 nodes in one chain (the cap is 10,000): read, not refused, in under 8 s of CPU
+    (3.0 and 3.9 s here) and about 9 times 1,000 nodes' time, not 81 times (quadratic).
+    CPU time, not the wall clock: a CI run on a busy machine failed at 5.5 s of wall time
+    against a 5 s budget."""
+    short, long = (long_chain(with_animation(GOOD, [0.0, 1.0]), n) for n in (1_000, 9_000))
+    for name, reader in READERS.items():
+        seconds = []
+        for data in (short, long):
+            started = time.process_time()
+            reader(data, "chain.glb")
+            seconds.append(time.process_time() - started)
+        assert seconds[1] < 8.0, (name, seconds)
+        assert seconds[1] < 30 * max(seconds[0], 0.01), (name, seconds)
 
 
 def test_keys_spanning_too_long_are_refused_before_sampling():
