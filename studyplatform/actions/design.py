@@ -80,10 +80,7 @@ def _standard_question(study: Study, design: Design, allow_no_difference: bool) 
         allow_no_difference=allow_no_difference and design.compares_pairs,
     )
     if not design.compares_pairs:
-        AnswerOption.objects.bulk_create(
-            AnswerOption(question=question, value=value, label=label, position=value)
-            for value, label in enumerate(RATING_LABELS, 1)
-        )
+        _create_options(question, tuple(enumerate(RATING_LABELS, 1)))
     return question
 
 
@@ -234,11 +231,16 @@ def do_add_default_options(question: Question) -> int:
     with transaction.atomic():
         if not points or question.options.exists():
             return 0
-        AnswerOption.objects.bulk_create(
-            AnswerOption(question=question, value=value, label=label, position=position)
-            for position, (value, label) in enumerate(points, 1)
-        )
+        _create_options(question, points)
     return len(points)
+
+
+def _create_options(question: Question, points: tuple[tuple[int, str], ...]) -> None:
+    """Give *question* the labelled *points* (value, label), positioned in that order."""
+    AnswerOption.objects.bulk_create(
+        AnswerOption(question=question, value=value, label=label, position=position)
+        for position, (value, label) in enumerate(points, 1)
+    )
 
 
 def do_build_design(
