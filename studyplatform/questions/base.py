@@ -152,3 +152,13 @@ class QuestionType:
         if question.is_personal and not self.can_be_personal:
             errors["is_personal"] = "Only short-text questions can hold identifying data."
         return errors
+
+
+class WholeNumberQuestion(QuestionType):
+    """An answer stored as a whole number in Response.rating (scale points, a slider)."""
+
+    def parse(self, question, value: str) -> Answer:
+        return Answer(rating=parse_integer(value))
+
+    def display(self, question, response) -> str:
+        return "" if response.rating is None else str(response.rating)

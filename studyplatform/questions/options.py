@@ -1,24 +1,19 @@
 """Questions answered with one of their answer options: scales and single choices."""
 
 from studyplatform.questions.base import (
-    Answer,
     AnswerRejected,
-    QuestionType,
+    WholeNumberQuestion,
     empty_values,
-    parse_integer,
 )
 
 
-class OptionsQuestion(QuestionType):
+class OptionsQuestion(WholeNumberQuestion):
     """An answer that is the value of one of the question's options."""
 
     template = "studyplatform/questions/options.html"
     uses_options = True
     is_scale = True
     scale = "ordinal"
-
-    def parse(self, question, value: str) -> Answer:
-        return Answer(rating=parse_integer(value))
 
     def response_values(self, question, answer, shown) -> dict:
         allowed = {option.value for option in question.options.all()}
@@ -27,9 +22,6 @@ class OptionsQuestion(QuestionType):
                 f"“{answer.rating}” is not a point of the scale of “{question.key}”."
             )
         return {**empty_values(), "rating": answer.rating}
-
-    def display(self, question, response) -> str:
-        return "" if response.rating is None else str(response.rating)
 
     def export_value(self, question, response, labels: dict) -> str:
         return labels.get((question.pk, response.rating), str(response.rating))

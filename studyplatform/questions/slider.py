@@ -1,11 +1,9 @@
 """A continuous rating: a slider between two labelled ends, which starts untouched."""
 
 from studyplatform.questions.base import (
-    Answer,
     AnswerRejected,
-    QuestionType,
+    WholeNumberQuestion,
     empty_values,
-    parse_integer,
 )
 
 # The range of a slider whose question sets none (a visual analogue scale's 0–100), and
@@ -21,7 +19,7 @@ def slider_range(question) -> tuple[int, int]:
     return int(low), int(high)
 
 
-class SliderQuestion(QuestionType):
+class SliderQuestion(WholeNumberQuestion):
     """A rating of one clip on a slider, analysed as continuous (a linear model).
 
     The page's slider has no value until the participant moves or taps it: an untouched
@@ -47,9 +45,6 @@ class SliderQuestion(QuestionType):
         low, high = slider_range(question)
         return {"low": low, "high": high, "start": (low + high) // 2}
 
-    def parse(self, question, value: str) -> Answer:
-        return Answer(rating=parse_integer(value))
-
     def response_values(self, question, answer, shown) -> dict:
         low, high = slider_range(question)
         if answer.rating is None or not low <= answer.rating <= high:
@@ -57,9 +52,6 @@ class SliderQuestion(QuestionType):
                 f"“{answer.rating}” is outside the slider of “{question.key}” ({low} to {high})."
             )
         return {**empty_values(), "rating": answer.rating}
-
-    def display(self, question, response) -> str:
-        return "" if response.rating is None else str(response.rating)
 
     def check(self, question) -> dict[str, str]:
         errors = super().check(question)
