@@ -67,8 +67,8 @@ def main(participants: int) -> None:
     )
     from studyplatform.actions.design import do_build_design
     from studyplatform.demo import fingerspelling_timing_study
-    from studyplatform.export import tidy_csv
     from studyplatform.lib.design import summarize_design
+    from studyplatform.lib.export import tidy_csv
     from studyplatform.lib.quality import study_quality
     from studyplatform.lib.stimuli import identical_clips
     from studyplatform.models import MediaEvent, Study

@@ -40,7 +40,7 @@ def main() -> None:
         do_save_response,
     )
     from studyplatform.demo import fingerspelling_timing_study
-    from studyplatform.exchange import export_study
+    from studyplatform.lib.exchange import export_study
 
     owner = get_user_model().objects.create_user("bench")
     started = time.perf_counter()

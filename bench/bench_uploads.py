@@ -5,7 +5,7 @@
 For a 10-second test pattern at 640×480 and 1280×720, 30 fps: an H.264 MP4 with its
 index first (kept byte for byte), the same in a MOV (rewrapped), and MPEG-4 part 2 in a
 MOV (re-encoded as H.264): the time to decode it to its end, convert it and cut its
-poster (studyplatform.video_files.prepare_clip), against the clip's own length.
+poster (studyplatform.files.video_files.prepare_clip), against the clip's own length.
 """
 
 import subprocess
@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import imageio_ffmpeg
 import machine
 
-from studyplatform.video_files import prepare_clip
+from studyplatform.files.video_files import prepare_clip
 
 SECONDS = 10
 

@@ -13,4 +13,5 @@ class StudyPlatformConfig(AppConfig):
     def ready(self) -> None:
         """Connect the signal handlers (researcher permissions, known sign-in devices) and
         register the system checks."""
-        from studyplatform import checks, signals, signin  # noqa: F401
+        from studyplatform import checks, signals  # noqa: F401
+        from studyplatform.admin import signin  # noqa: F401

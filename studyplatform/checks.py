@@ -112,7 +112,7 @@ def check_exchange_fields(app_configs=None, **kwargs) -> list[checks.CheckMessag
     Copies and versions go through export and import (do_duplicate_study), so a field
     on neither list would vanish from them silently (issue 39).
     """
-    from studyplatform.exchange import EXPORTED, LEFT_OUT
+    from studyplatform.lib.exchange import EXPORTED, LEFT_OUT
 
     problems = []
     if set(EXPORTED) != set(LEFT_OUT):

@@ -113,7 +113,7 @@ MIDDLEWARE = [
     "django.contrib.messages.middleware.MessageMiddleware",
     "django.middleware.clickjacking.XFrameOptionsMiddleware",
     "csp.middleware.CSPMiddleware",
-    "studyplatform.signin.KnownDeviceMiddleware",
+    "studyplatform.admin.signin.KnownDeviceMiddleware",
     "studyplatform.middleware.RefusedFormMiddleware",
     # Last, as django-axes asks: it turns a locked-out sign-in into its 429 answer.
     "axes.middleware.AxesMiddleware",
@@ -185,7 +185,7 @@ STATIC_ROOT = Path(os.environ.get("SIGNSTUDY_STATIC_ROOT", VAR_DIR / "static"))
 MEDIA_URL = "media/"
 MEDIA_ROOT = Path(os.environ.get("SIGNSTUDY_MEDIA_ROOT", VAR_DIR / "media"))
 STORAGES = {
-    "default": {"BACKEND": "studyplatform.storage.MediaStorage"},
+    "default": {"BACKEND": "studyplatform.files.storage.MediaStorage"},
     "staticfiles": {
         "BACKEND": (
             "django.contrib.staticfiles.storage.StaticFilesStorage"
@@ -211,7 +211,7 @@ SIGNSTUDY_SERVE_MEDIA = _env_flag("SIGNSTUDY_SERVE_MEDIA", default=True)
 # mod_xsendfile, with the file's absolute path); empty: Django sends them itself.
 SIGNSTUDY_SENDFILE_HEADER = os.environ.get("SIGNSTUDY_SENDFILE_HEADER", "")
 SIGNSTUDY_SENDFILE_PREFIX = os.environ.get("SIGNSTUDY_SENDFILE_PREFIX", "/protected/")
-# The append-only record of withdrawals that a restore re-applies (studyplatform.ledger):
+# The append-only record of withdrawals that a restore re-applies (studyplatform.files.ledger):
 # outside the database and the media roots, so neither a restore nor a flush replaces it.
 SIGNSTUDY_WITHDRAWAL_LEDGER = Path(
     os.environ.get("SIGNSTUDY_WITHDRAWAL_LEDGER", VAR_DIR / "withdrawals.jsonl")
@@ -259,7 +259,7 @@ CONTENT_SECURITY_POLICY = {
     }
 }
 
-# django-axes (studyplatform.signin): the 10th failed sign-in of a user name within the
+# django-axes (studyplatform.admin.signin): the 10th failed sign-in of a user name within the
 # cool-off, from any addresses, locks that name, and the 10th from one address locks that
 # address: until the cool-off ends every sign-in there is refused (429) without checking
 # the password. A browser that signed in as the user before is not locked by it.
@@ -268,8 +268,8 @@ AXES_COOLOFF_TIME = timedelta(
     minutes=float(os.environ.get("SIGNSTUDY_LOGIN_COOLOFF_MINUTES", "15"))
 )
 AXES_LOCKOUT_PARAMETERS = ["username", "ip_address"]
-AXES_WHITELIST_CALLABLE = "studyplatform.signin.is_known_device"
-AXES_CLIENT_IP_CALLABLE = "studyplatform.signin.client_address"
+AXES_WHITELIST_CALLABLE = "studyplatform.admin.signin.is_known_device"
+AXES_CLIENT_IP_CALLABLE = "studyplatform.admin.signin.client_address"
 # The reverse proxies whose X-Forwarded-For is believed (comma-separated addresses);
 # none by default: then the client is REMOTE_ADDR (docs/deployment.md).
 SIGNSTUDY_TRUSTED_PROXIES = frozenset(

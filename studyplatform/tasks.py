@@ -11,9 +11,7 @@ from celery import shared_task
 from django.conf import settings
 
 from stimuli.clips import ClipSpec, render
-from studyplatform.lib.stimuli import SUBDIRECTORY, clips_folder
-from studyplatform.models import Stimulus
-from studyplatform.queue import (
+from studyplatform.jobs.queue import (
     APPLY_RETENTION,
     CLEAN_ABANDONED_UPLOADS,
     PREPARE_AVATAR,
@@ -21,6 +19,8 @@ from studyplatform.queue import (
     PREPARE_RECORDING,
     RENDER_STIMULUS,
 )
+from studyplatform.lib.stimuli import SUBDIRECTORY, clips_folder
+from studyplatform.models import Stimulus
 
 
 def render_now(stimulus_id: int) -> str:

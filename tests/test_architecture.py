@@ -300,3 +300,35 @@ def test_the_import_contracts_hold_and_see_a_planted_breach(tmp_path):
     )
     assert planted.returncode == 1, planted.stdout[-3000:]
     assert "studyplatform.models.design -> studyplatform.actions.studies" in planted.stdout
+
+
+def test_the_platform_root_holds_only_what_django_and_celery_find_by_name():
+    """Issue 57: 26 root modules of studyplatform mixed five floors; each floor is a
+    folder now (docs/architecture.md), and every folder is a floor of the contract."""
+    import tomllib
+
+    by_name = {
+        "__init__",
+        "apps",
+        "asgi",
+        "celery",
+        "checks",
+        "middleware",
+        "settings",
+        "signals",
+        "tasks",
+        "urls",
+        "wsgi",
+    }
+    package = ROOT / "studyplatform"
+    assert {path.stem for path in package.glob("*.py")} == by_name
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text("utf-8"))["tool"]["importlinter"]
+    (floors,) = [c for c in config["contracts"] if c.get("containers") == ["studyplatform"]]
+    named = {part.strip() for layer in floors["layers"] for part in layer.split("|")}
+    folders = {
+        path.name
+        for path in package.iterdir()
+        if (path / "__init__.py").exists() and path.name != "migrations"
+    }
+    assert folders <= named, folders - named
+    assert by_name - {"__init__", "settings"} - named == set()

@@ -10,9 +10,9 @@ from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.confine import ConfinedError, run_task
+from studyplatform.files.storage import PRIVATE_STORAGE
+from studyplatform.jobs.queue import PREPARE_AVATAR, queue_job_on_commit
 from studyplatform.models import Avatar
-from studyplatform.queue import PREPARE_AVATAR, queue_job_on_commit
-from studyplatform.storage import PRIVATE_STORAGE
 
 MAX_AVATAR_BYTES = 200 * 1024**2
 

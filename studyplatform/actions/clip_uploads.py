@@ -22,9 +22,9 @@ from studyplatform.actions.clips import (
     do_import_clips,
     do_upload_clip,
 )
+from studyplatform.files.video_files import copy_upload
+from studyplatform.jobs.queue import PREPARE_CLIPS, queue_job_on_commit
 from studyplatform.models import ClipUpload, Condition, Item, Study
-from studyplatform.queue import PREPARE_CLIPS, queue_job_on_commit
-from studyplatform.video_files import copy_upload
 
 CONVERTED = {
     "remuxed": " (rewrapped for browsers)",

@@ -2,7 +2,7 @@
 
 A condition whose source is *uploaded* shows one video per item that the researcher
 brings (a filmed signer, another lab's animation). Each file is checked and made
-playable (:mod:`studyplatform.video_files`), stored in private media under its
+playable (:mod:`studyplatform.files.video_files`), stored in private media under its
 SHA-256, and becomes the item's ready clip in that condition at once. A zip is taken
 whole or not at all: its manifest (``item,condition,file``) and every file it names are
 checked before anything is stored. A clip participants may have seen is never replaced:
@@ -22,12 +22,12 @@ from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.stimuli import record_missing_stimulus, record_uploaded_stimulus
+from studyplatform.files.media_types import MediaRejected, sniff_file
+from studyplatform.files.storage import PRIVATE_STORAGE
+from studyplatform.files.video_files import MAX_CLIP_BYTES, PreparedClip, copy_upload, prepare_clip
 from studyplatform.lib.bundle import ENCRYPTED, UNREADABLE_ZIP
-from studyplatform.media_types import MediaRejected, sniff_file
 from studyplatform.models import Condition, Item, Study, UploadedClip
 from studyplatform.models.studies import check_unlocked
-from studyplatform.storage import PRIVATE_STORAGE
-from studyplatform.video_files import MAX_CLIP_BYTES, PreparedClip, copy_upload, prepare_clip
 
 MANIFEST_COLUMNS = ("item", "condition", "file")
 MAX_MANIFEST_BYTES = 1024**2

@@ -7,8 +7,8 @@ from django.core.exceptions import ValidationError
 from django.core.files import File
 
 from studyplatform.actions.recordings import check_motion_file
+from studyplatform.files.media_types import MediaRejected, check_upload
 from studyplatform.lib.bundle import BundleFiles, BundleRejected, owned_files, storage_of
-from studyplatform.media_types import MediaRejected, check_upload
 
 
 class StudyImportError(ValueError):

@@ -9,7 +9,6 @@ from typing import Any
 from django.core.exceptions import NON_FIELD_ERRORS, ValidationError
 from django.db import models, transaction
 
-from studyplatform import exchange
 from studyplatform.actions.import_media import (
     ASL_POSTER,
     ASL_VIDEO,
@@ -18,6 +17,7 @@ from studyplatform.actions.import_media import (
     ImportedMedia,
     StudyImportError,
 )
+from studyplatform.lib import exchange
 from studyplatform.lib.field_input import values_problems
 from studyplatform.models import (
     AnswerOption,

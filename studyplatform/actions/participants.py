@@ -15,12 +15,12 @@ from studyplatform.lib.participants import (
     page_count,
     unwatched_clips,
 )
+from studyplatform.lib.schedule import build_schedule
 from studyplatform.models import (
     Participant,
     Study,
     Trial,
 )
-from studyplatform.schedule import build_schedule
 
 
 def do_enroll_participant(

@@ -3,7 +3,7 @@
 A participant may withdraw at any time: their responses, media events, personal answers,
 signed-answer videos, unfinished uploads and the browser sessions that remember them are
 deleted in one transaction, the files once it commits, and a Withdrawal row and a line
-of the withdrawal ledger (:mod:`studyplatform.ledger`) record what went (no personal
+of the withdrawal ledger (:mod:`studyplatform.files.ledger`) record what went (no personal
 data). A restore re-applies the ledger (:func:`do_reapply_withdrawals`), so restoring an
 older backup brings nobody back. A study's retention period removes the personal part of
 finished participants' data when it expires.
@@ -18,9 +18,9 @@ from django.db import transaction
 from django.db.models import Q
 from django.utils import timezone
 
-from studyplatform import ledger
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.uploads import discard_partial_uploads, partial_uploads
+from studyplatform.files import ledger
 from studyplatform.models import (
     MediaEvent,
     Participant,

@@ -6,7 +6,7 @@ from django.core.files import File
 from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.media_types import check_upload, stored_video
+from studyplatform.files.media_types import check_upload, stored_video
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, STUDY_PATHS, AslVideo, Study
 
 MAX_ASL_VIDEO_BYTES = 300 * 1024 * 1024

@@ -15,16 +15,16 @@ from django.db import transaction
 
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.confine import ConfinedError, run_task
-from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
-from studyplatform.media_types import (
+from studyplatform.files.media_types import (
     MediaKind,
     MediaRejected,
     check_upload,
     stored_video,
 )
+from studyplatform.files.storage import PRIVATE_STORAGE
+from studyplatform.jobs.queue import PREPARE_RECORDING, queue_job_on_commit
+from studyplatform.lib.recordings import stand_in_conditions, words_without_recording
 from studyplatform.models import Item, Recording, Study
-from studyplatform.queue import PREPARE_RECORDING, queue_job_on_commit
-from studyplatform.storage import PRIVATE_STORAGE
 
 MAX_RECORDING_BYTES = 300 * 1024 * 1024
 

@@ -16,7 +16,7 @@ from django.utils import timezone
 
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.clips import rendered as already_rendered
-from studyplatform.background import dispatch_renders
+from studyplatform.jobs.background import dispatch_renders
 from studyplatform.lib.stimuli import (
     SUBDIRECTORY,
     clip_spec,
@@ -105,7 +105,7 @@ class GenerateOptions:
 
     *force* renders every clip again; *enqueue* False only records them, for a caller
     that renders them itself; *background* renders them in a background process where
-    there is no broker (:func:`studyplatform.background.dispatch_renders`);
+    there is no broker (:func:`studyplatform.jobs.background.dispatch_renders`);
     *rerender_open* re-renders clips whose specification changed in a study in the
     field; *allow_identical* accepts two conditions that render an item identically.
     """

@@ -5,11 +5,11 @@ from typing import Any
 
 from django.db import transaction
 
-from studyplatform import exchange
 from studyplatform.actions.import_media import ImportedMedia, StudyImportError
 from studyplatform.actions.import_rows import Batches, import_rows, pick, save_checked
 from studyplatform.actions.media import delete_unused_files_on_commit
 from studyplatform.actions.recordings import do_relabel_stand_ins
+from studyplatform.lib import exchange
 from studyplatform.lib.bundle import BundleFiles, definition_files
 from studyplatform.models import Study
 from synthesis.formats import check_header

@@ -12,7 +12,7 @@ SHA-256 and, optionally, its length in time; the part becomes the answer's video
 it matches them and decodes to its end.
 
 Unfinished parts and finished answers live in private storage
-(``SIGNSTUDY_PRIVATE_MEDIA_ROOT``, :mod:`studyplatform.storage`); no public URL
+(``SIGNSTUDY_PRIVATE_MEDIA_ROOT``, :mod:`studyplatform.files.storage`); no public URL
 reaches them. A part nobody has added to for ``SIGNSTUDY_PARTIAL_UPLOAD_MAX_AGE_HOURS``
 was abandoned, and :func:`do_remove_abandoned_uploads` deletes it.
 """
@@ -34,7 +34,7 @@ from django.db import transaction
 
 from stimuli.clips import file_sha256
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.media_types import decoded_duration_s, remux_webm, sniff
+from studyplatform.files.media_types import decoded_duration_s, remux_webm, sniff
 from studyplatform.models import Participant, Question, Response, Trial
 
 MAX_SIGNED_ANSWER_BYTES = 200 * 1024 * 1024

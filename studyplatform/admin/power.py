@@ -13,7 +13,7 @@ from django.urls import path
 from analysis import ExclusionRules, TidyFormatError, apply_exclusions, check_responses
 from analysis.power import design_from_responses, power_curve
 from analysis.power.plan import effects_for, power_figure
-from studyplatform.export import tidy_rows
+from studyplatform.lib.export import tidy_rows
 from studyplatform.models import Study
 
 

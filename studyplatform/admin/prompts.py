@@ -11,7 +11,7 @@ from django.urls import path
 
 from studyplatform.actions.prompts import do_attach_asl_video
 from studyplatform.admin.permissions import OwnedMixin
-from studyplatform.asl import study_prompts
+from studyplatform.lib.asl import study_prompts
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo, SignedTemplate
 
 

@@ -6,9 +6,9 @@ from django.urls import path
 
 from analysis import TidyFormatError, results_json
 from studyplatform.admin.forms import ResultsForm
+from studyplatform.lib.results import StudyResults, analyse_study, figure_images, report_archive
 from studyplatform.lib.signed import signed_summary
 from studyplatform.models import Block, Question, Study
-from studyplatform.results import StudyResults, analyse_study, figure_images, report_archive
 
 
 def _signed_summary(study: Study) -> dict[str, float] | None:
@@ -88,7 +88,7 @@ class StudyResultsMixin:
 
     def results_csv_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
         """Download every response of the study as tidy CSV (flags included, nothing dropped)."""
-        from studyplatform.export import tidy_csv
+        from studyplatform.lib.export import tidy_csv
 
         study = self._get_visible_study(request, object_id)
         response = HttpResponse(tidy_csv(study), content_type="text/csv; charset=utf-8")

@@ -14,7 +14,6 @@ from django.template.response import TemplateResponse
 from django.urls import path, reverse
 from django.utils.html import format_html
 
-from studyplatform import exchange
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
 from studyplatform.actions.design import do_add_default_options
 from studyplatform.admin.builder import StudyDesignMixin
@@ -27,11 +26,12 @@ from studyplatform.admin.recordings import StudyRecordingsMixin
 from studyplatform.admin.results import StudyResultsMixin
 from studyplatform.admin.roster import StudyRosterMixin
 from studyplatform.admin.uploads import StudyUploadsMixin
-from studyplatform.asl import study_prompts
+from studyplatform.lib import exchange
+from studyplatform.lib.asl import study_prompts
 from studyplatform.lib.bundle import definition_json, write_bundle
+from studyplatform.lib.preview import build_preview
 from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.models import Block, Condition, Item, Question, SignedTemplate, Study, Trial
-from studyplatform.preview import build_preview
 from studyplatform.rules import describe_condition
 
 # Compact cells keep the study page within the window; each object's page has the room.

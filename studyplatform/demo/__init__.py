@@ -1,4 +1,4 @@
-"""Build the demo studies as study definitions (the format of :mod:`studyplatform.exchange`)."""
+"""Build the demo studies as study definitions (the format of :mod:`studyplatform.lib.exchange`)."""
 
 from studyplatform.demo.alphabet import alphabet_legibility_study, attach_human_letters
 from studyplatform.demo.fingerspelling import fingerspelling_timing_study

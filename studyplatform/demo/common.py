@@ -2,7 +2,7 @@
 
 from typing import Any
 
-from studyplatform import exchange
+from studyplatform.lib import exchange
 
 
 def definition(study: dict[str, Any], **parts: list[dict[str, Any]]) -> dict[str, Any]:

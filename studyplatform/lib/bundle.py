@@ -1,6 +1,6 @@
 """Pack a study definition with the media files it names, and read such a bundle back.
 
-A bundle is a zip holding ``study.json`` (the definition of :mod:`studyplatform.exchange`)
+A bundle is a zip holding ``study.json`` (the definition of :mod:`studyplatform.lib.exchange`)
 and, under ``files/``, each ASL video, poster and recording file the definition names by
 its media name (``files/asl/consent.webm``). Importing it brings the files along, so an
 import never has to name files already on the server, which may be someone else's.
@@ -75,7 +75,7 @@ def definition_files(definition: dict[str, Any]) -> set[str]:
 
 def owned_files(owner) -> set[str]:
     """Return the media names the studies of *owner* refer to (theirs to reuse)."""
-    from studyplatform.exchange import RECORDING_FILES, UPLOAD_FILES, study_asl_videos
+    from studyplatform.lib.exchange import RECORDING_FILES, UPLOAD_FILES, study_asl_videos
 
     names: set[str] = set()
     for study in Study.objects.filter(owner=owner):

@@ -3,9 +3,9 @@
 from collections import Counter
 from dataclasses import dataclass
 
+from studyplatform.lib.schedule import build_schedule
 from studyplatform.lib.stimuli import identical_clips
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial
-from studyplatform.schedule import build_schedule
 
 # A rough allowance per answer, beyond watching the clips; the summary says so.
 ANSWER_S = 5.0

@@ -4,7 +4,7 @@ from dataclasses import dataclass
 from datetime import timedelta
 
 from analysis import ExclusionRules, TidyFormatError, apply_exclusions
-from studyplatform.export import tidy_table
+from studyplatform.lib.export import tidy_table
 from studyplatform.lib.quality import device_of
 from studyplatform.models import Participant, Study
 

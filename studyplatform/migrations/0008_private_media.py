@@ -3,7 +3,7 @@
 import shutil
 from pathlib import Path
 
-import studyplatform.storage
+import studyplatform.files.storage
 from django.conf import settings
 from django.db import migrations, models
 
@@ -36,22 +36,22 @@ class Migration(migrations.Migration):
         migrations.AlterField(
             model_name='recording',
             name='motion',
-            field=models.FileField(blank=True, help_text='What clips are made from: the uploaded .pose or BVH file, or for a video the hand landmarks captured from it (.pose).', storage=studyplatform.storage.private_storage, upload_to='recordings/'),
+            field=models.FileField(blank=True, help_text='What clips are made from: the uploaded .pose or BVH file, or for a video the hand landmarks captured from it (.pose).', storage=studyplatform.files.storage.private_storage, upload_to='recordings/'),
         ),
         migrations.AlterField(
             model_name='recording',
             name='sheet',
-            field=models.FileField(blank=True, help_text='For a video: a contact sheet of video frames above the hand fitted to them.', storage=studyplatform.storage.private_storage, upload_to='recordings/'),
+            field=models.FileField(blank=True, help_text='For a video: a contact sheet of video frames above the hand fitted to them.', storage=studyplatform.files.storage.private_storage, upload_to='recordings/'),
         ),
         migrations.AlterField(
             model_name='recording',
             name='upload',
-            field=models.FileField(help_text='The file as uploaded: a video of the signer (MP4, WebM, MOV), a .pose file of landmarks, or a BVH motion.', storage=studyplatform.storage.private_storage, upload_to='recordings/'),
+            field=models.FileField(help_text='The file as uploaded: a video of the signer (MP4, WebM, MOV), a .pose file of landmarks, or a BVH motion.', storage=studyplatform.files.storage.private_storage, upload_to='recordings/'),
         ),
         migrations.AlterField(
             model_name='response',
             name='video',
-            field=models.FileField(blank=True, help_text="A signed answer (private: only the study's researchers can open it).", storage=studyplatform.storage.private_storage, upload_to='answers/'),
+            field=models.FileField(blank=True, help_text="A signed answer (private: only the study's researchers can open it).", storage=studyplatform.files.storage.private_storage, upload_to='answers/'),
         ),
         migrations.RunPython(move_personal_files, migrations.RunPython.noop),
     ]

@@ -3,7 +3,7 @@
 from django.conf import settings
 from django.db import models
 
-from studyplatform.storage import private_storage
+from studyplatform.files.storage import private_storage
 
 
 class Avatar(models.Model):

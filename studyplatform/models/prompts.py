@@ -5,7 +5,7 @@ from django.contrib.contenttypes.fields import GenericForeignKey
 from django.contrib.contenttypes.models import ContentType
 from django.db import models
 
-from studyplatform.media_types import ContentValidator
+from studyplatform.files.media_types import ContentValidator
 
 # The participant-facing text fields of each model, by model name: every one of them
 # can carry an ASL video, shown before the text, and the admin lists those that lack

@@ -2,8 +2,8 @@
 
 from django.db import models
 
+from studyplatform.files.storage import private_storage
 from studyplatform.models.items import Item
-from studyplatform.storage import private_storage
 
 VIDEO_SUFFIXES = (".mp4", ".webm", ".mov", ".m4v")
 

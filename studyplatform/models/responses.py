@@ -2,11 +2,11 @@
 
 from django.db import models
 
+from studyplatform.files.storage import private_storage
 from studyplatform.models.design import Question, Trial
 from studyplatform.models.participants import Participant
 from studyplatform.models.stimuli import Stimulus
 from studyplatform.questions import NO_DIFFERENCE
-from studyplatform.storage import private_storage
 
 
 class Response(models.Model):

@@ -4,9 +4,9 @@ the files researchers upload for conditions whose clips they bring."""
 from django.db import models
 from django.urls import reverse
 
+from studyplatform.files.storage import private_storage
 from studyplatform.models.items import Item
 from studyplatform.models.studies import Condition
-from studyplatform.storage import private_storage
 
 
 class UploadedClip(models.Model):

@@ -2,11 +2,11 @@
 
 Stimulus clips are named by their content hash, so browsers may keep them for a year;
 ASL prompts can be replaced under the same name, so they are revalidated daily.
-Signed answers and signers' recordings are private (:mod:`studyplatform.storage`): the
+Signed answers and signers' recordings are private (:mod:`studyplatform.files.storage`): the
 study's researchers may open them in the admin, and a participant may play back their
 own answer while taking part. Everyone else gets 404, as if the file did not exist.
 
-Every file is served with the fixed type of its extension (studyplatform.media_types),
+Every file is served with the fixed type of its extension (studyplatform.files.media_types),
 ``nosniff`` and a sandboxing policy; a motion file is a download. A file of any other
 extension is not served at all, whoever put it there.
 """
@@ -20,11 +20,11 @@ from django.http import Http404, HttpRequest, HttpResponse
 from django.utils._os import safe_join
 from django.views.decorators.http import require_safe
 
-from studyplatform import exchange
 from studyplatform.admin.permissions import owned_studies
-from studyplatform.media_types import MEDIA_CSP, SERVED
+from studyplatform.files.media_types import MEDIA_CSP, SERVED
+from studyplatform.files.storage import PRIVATE_STORAGE
+from studyplatform.lib import exchange
 from studyplatform.models import Avatar, Recording, Response, Study, UploadedClip
-from studyplatform.storage import PRIVATE_STORAGE
 from studyplatform.views.files import file_response
 
 PUBLIC_CACHE = {"stimuli": "public, max-age=31536000, immutable"}

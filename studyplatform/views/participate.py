@@ -39,9 +39,9 @@ from studyplatform.lib import (
     time_left,
     unwatched_clips,
 )
+from studyplatform.lib.pages import participant_page, study_asl
 from studyplatform.models import Participant, Study, Trial
 from studyplatform.models.participants import PARTICIPANT_SESSION_KEY
-from studyplatform.pages import participant_page, study_asl
 from studyplatform.views.posted import (
     BodyRejected,
     json_body,

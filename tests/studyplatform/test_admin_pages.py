@@ -7,7 +7,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 from django.urls import reverse
 
 from studyplatform.actions import Answer, do_enroll_participant, do_save_response
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import Study
 from tests.conftest import as_draft
 
@@ -252,7 +252,7 @@ def test_every_field_a_definition_exports_is_edited_in_the_admin_or_said_why(ali
     from django.contrib import admin
 
     from studyplatform.admin import NOT_EDITED_HERE
-    from studyplatform.exchange import EXPORTED
+    from studyplatform.lib.exchange import EXPORTED
 
     request = rf.get("/admin/")
     request.user = alice

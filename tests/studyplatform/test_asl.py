@@ -5,7 +5,7 @@ from django.contrib.contenttypes.models import ContentType
 from django.core.files.uploadedfile import SimpleUploadedFile
 from django.urls import reverse
 
-from studyplatform.asl import study_prompts
+from studyplatform.lib.asl import study_prompts
 from studyplatform.models import AslVideo, Question, SignedTemplate
 from tests.conftest import tiny_webm
 

@@ -19,7 +19,7 @@ from django.core.management import call_command
 
 from studyplatform.actions import do_withdraw_participant
 from studyplatform.actions.uploads import partial_directory
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import MediaEvent, Participant, Response, Study, Withdrawal
 from tests.conftest import as_draft, tiny_webm, video_frames
 from tests.studyplatform.attack import Attacker, bundle

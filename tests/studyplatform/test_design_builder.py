@@ -9,6 +9,7 @@ from stimuli.plan import Design, DesignSpec
 from studyplatform.actions.design import DesignRejected, do_build_design
 from studyplatform.actions.stimuli import GenerateOptions, IdenticalClips, do_generate_stimuli
 from studyplatform.lib.design import summarize_design
+from studyplatform.lib.schedule import build_schedule
 from studyplatform.lib.stimuli import identical_clips
 from studyplatform.models import (
     Block,
@@ -20,7 +21,6 @@ from studyplatform.models import (
     Study,
     Trial,
 )
-from studyplatform.schedule import build_schedule
 
 pytestmark = pytest.mark.django_db
 WORDS = ("CAT", "DOG", "BIRD", "FISH")
@@ -278,7 +278,7 @@ def test_a_slider_study_from_builder_to_report(fresh):
     by its own models (the slider by the linear mixed model only)."""
     from analysis import ReportOptions, build_report, read_responses
     from studyplatform.actions import Answer, do_enroll_participant, do_save_response
-    from studyplatform.export import tidy_csv
+    from studyplatform.lib.export import tidy_csv
     from studyplatform.models import AnswerOption
 
     slider = Question.objects.create(study=fresh, key="natural", kind="slider", text="How natural?")

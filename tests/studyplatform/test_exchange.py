@@ -13,8 +13,8 @@ from django.core.management import call_command
 from django.urls import reverse
 
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
-from studyplatform.exchange import export_study
 from studyplatform.lib.bundle import read_bundle, write_bundle
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import AslVideo, Participant, Question, Study, Trial
 from tests.conftest import tiny_webm
 
@@ -300,8 +300,8 @@ def test_every_model_field_is_exported_or_left_out_on_purpose(monkeypatch):
     """Issue 39: do_duplicate_study goes export → import, so a field left off the lists
     would silently vanish from copies and versions. The system check E004 holds it; a
     field planted off both lists, and a stale one, make it fail."""
-    from studyplatform import exchange
     from studyplatform.checks import check_exchange_fields
+    from studyplatform.lib import exchange
 
     assert check_exchange_fields() == []
     monkeypatch.setitem(exchange.EXPORTED, "Item", (*exchange.ITEM_FIELDS[1:], "colour"))

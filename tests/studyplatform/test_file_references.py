@@ -17,7 +17,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 
 from stimuli.clips import ClipError
 from studyplatform.actions import do_attach_recording
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Recording, Study
 from studyplatform.rules.files import FILE_SOURCES, file_parameters

@@ -17,7 +17,7 @@ from django.core.files.uploadedfile import SimpleUploadedFile
 from django.test import Client
 from django.urls import reverse
 
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import MediaEvent, Participant, Response, Study
 from tests.studyplatform.test_participate import _start
 

@@ -38,7 +38,7 @@ from django.urls import URLResolver, get_resolver, reverse
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import Avatar, Condition, Recording, Study, UploadedClip
 from synthesis.capture import format_pose, from_hand_motion
 from synthesis.fingerspelling.spelling import spell

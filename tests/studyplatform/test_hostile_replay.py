@@ -12,7 +12,7 @@ import time
 
 import pytest
 
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import Avatar, Condition, Recording, UploadedClip
 from tests.conftest import as_draft
 from tests.hostile import (

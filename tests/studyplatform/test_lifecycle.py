@@ -17,7 +17,7 @@ from studyplatform.actions import (
 )
 from studyplatform.actions.design import do_build_design
 from studyplatform.actions.participants import CODE_ALPHABET
-from studyplatform.export import tidy_csv
+from studyplatform.lib.export import tidy_csv
 from studyplatform.lib.participants import completion_url
 from studyplatform.models import Condition, Participant, Study, Trial
 from tests.studyplatform.test_design_builder import WORDS, fresh  # noqa: F401 (a fixture)

@@ -3,7 +3,7 @@
 import subprocess
 from pathlib import Path
 
-from studyplatform.media_types import decoded_duration_s, remux_webm
+from studyplatform.files.media_types import decoded_duration_s, remux_webm
 from tests.conftest import tiny_webm
 
 

@@ -11,8 +11,8 @@ from django.urls import reverse
 from django.utils import timezone
 
 from studyplatform.actions import do_enroll_participant
+from studyplatform.lib.schedule import build_schedule
 from studyplatform.models import MediaEvent, Participant, PersonalAnswer, Response, Trial
-from studyplatform.schedule import build_schedule
 from tests.conftest import tiny_webm, video_frames
 
 pytestmark = pytest.mark.django_db

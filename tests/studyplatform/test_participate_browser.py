@@ -183,7 +183,7 @@ def test_fingerspelling_study_from_link_to_completion_code(
     # And the data analyses: the 48 comparisons as this participant saw and chose them.
     from analysis import ReportOptions
     from studyplatform.lib import presented_conditions
-    from studyplatform.results import analyse_study
+    from studyplatform.lib.results import analyse_study
 
     results = analyse_study(fingerspelling, ReportOptions())
     assert results.report.pairwise.judgements == 48

@@ -13,7 +13,7 @@ import pytest
 
 from analysis import ExclusionRules, apply_exclusions, read_responses
 from analysis.exclusions import ANSWERED_EARLY
-from studyplatform.export import tidy_csv
+from studyplatform.lib.export import tidy_csv
 from studyplatform.models import MediaEvent, Participant, Trial
 from tests.conftest import close_context
 from tests.studyplatform.test_participate_browser import _current, _next, _wait_ready, _with_clips
@@ -116,7 +116,7 @@ def test_play_counts_and_ends_match_the_browser_and_the_speeder_is_excluded(
     assert report.excluded_participants == {str(speeder.pk): [ANSWERED_EARLY]}
     # The report summarizes the same per participant (the results page shows it).
     from analysis import ReportOptions
-    from studyplatform.results import analyse_study
+    from studyplatform.lib.results import analyse_study
 
     quality = {q.participant: q for q in analyse_study(two_pages, ReportOptions()).report.quality}
     assert quality[str(watcher.pk)].clips_ended_share == 1.0

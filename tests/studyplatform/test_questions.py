@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from studyplatform.actions import Answer, AnswerRejected, do_enroll_participant, do_save_response
-from studyplatform.export import tidy_csv
+from studyplatform.lib.export import tidy_csv
 from studyplatform.models import AnswerOption, Block, Question, Trial, trial_question_kinds
 from studyplatform.questions import QUESTION_TYPES, QuestionType, question_type, registered
 from studyplatform.questions.base import empty_values

@@ -25,7 +25,7 @@ from studyplatform.actions import (
     do_generate_stimuli,
     do_import_study,
 )
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.lib.recordings import current_recording
 from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Item, Recording, Stimulus, Trial

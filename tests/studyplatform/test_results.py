@@ -12,7 +12,7 @@ from django.utils import timezone
 
 from analysis import check_responses
 from studyplatform.actions import Answer, do_enroll_participant, do_save_response
-from studyplatform.export import tidy_csv
+from studyplatform.lib.export import tidy_csv
 
 pytestmark = pytest.mark.django_db
 

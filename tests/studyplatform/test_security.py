@@ -85,8 +85,8 @@ def test_a_device_cookie_forged_with_the_secret_key_bypasses_nothing(alice, sett
     from django.core import signing
     from django.test import Client
 
+    from studyplatform.admin.signin import DEVICE_COOKIE, DEVICE_SALT
     from studyplatform.models import KnownDevice
-    from studyplatform.signin import DEVICE_COOKIE, DEVICE_SALT
 
     forger = Client()
     forged = signing.dumps({"u": "alice", "d": "guessed-token"}, salt=DEVICE_SALT)
@@ -113,7 +113,7 @@ def test_a_device_cookie_forged_with_the_secret_key_bypasses_nothing(alice, sett
 
 
 def test_the_client_address_comes_from_a_proxy_only_when_it_is_trusted(rf, settings):
-    from studyplatform.signin import client_address
+    from studyplatform.admin.signin import client_address
 
     request = rf.get("/", REMOTE_ADDR="127.0.0.1", HTTP_X_FORWARDED_FOR="6.6.6.6, 1.2.3.4")
     settings.SIGNSTUDY_TRUSTED_PROXIES = frozenset()

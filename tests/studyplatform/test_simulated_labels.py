@@ -16,7 +16,7 @@ from django.utils import timezone
 
 from analysis import read_responses
 from studyplatform.actions import Answer, do_enroll_participant, do_save_response
-from studyplatform.export import tidy_csv
+from studyplatform.lib.export import tidy_csv
 
 pytestmark = pytest.mark.django_db
 # The condition's label, as reports name it (its key, mocap, stays in the CSV).

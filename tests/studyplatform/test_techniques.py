@@ -6,7 +6,7 @@ from django.urls import reverse
 
 from studyplatform.actions import StudyImportError, do_import_study
 from studyplatform.demo import DEMO_STUDIES
-from studyplatform.exchange import export_study
+from studyplatform.lib.exchange import export_study
 from studyplatform.lib.stimuli import clip_spec
 from studyplatform.models import Condition, Item
 from synthesis.techniques import MOTION, REGISTRY, Parameter, Technique
@@ -209,7 +209,7 @@ def test_the_admin_check_names_a_wrong_type_and_an_unknown_item_kind(fingerspell
 
 
 def test_the_parameters_schema_comes_from_the_registry(alice_client):
-    from studyplatform.exchange import parameters_schema
+    from studyplatform.lib.exchange import parameters_schema
 
     url = reverse("admin:studyplatform_study_parameters_schema")
     served = alice_client.get(url).json()

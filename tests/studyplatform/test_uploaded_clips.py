@@ -25,9 +25,9 @@ from studyplatform.actions.clips import (
     do_upload_clip,
 )
 from studyplatform.actions.stimuli import IdenticalClips
+from studyplatform.files.video_files import _index_first
 from studyplatform.lib.uploads import mismatched_pairs
 from studyplatform.models import Condition, Stimulus, Study, Trial, UploadedClip
-from studyplatform.video_files import _index_first
 from tests.conftest import as_draft, tiny_webm
 
 pytestmark = pytest.mark.django_db

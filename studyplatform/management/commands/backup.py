@@ -5,7 +5,7 @@ from pathlib import Path
 from django.core.management.base import BaseCommand
 from django.utils import timezone
 
-from studyplatform.backup import make_backup
+from studyplatform.management.backup import make_backup
 
 
 class Command(BaseCommand):

@@ -2,8 +2,8 @@
 
 from django.core.management.base import BaseCommand, CommandError
 
-from studyplatform.exchange import export_study
 from studyplatform.lib.bundle import definition_json, write_bundle
+from studyplatform.lib.exchange import export_study
 from studyplatform.models import Study
 
 

@@ -143,7 +143,7 @@ class Command(BaseCommand):
         """Record the studies' clips without queueing, then render them in *workers*
         processes, one pool for all (a pool per study would leave processes idle as each
         study ends)."""
-        from studyplatform.render_pool import render_many
+        from studyplatform.management.render_pool import render_many
 
         recording = dataclasses.replace(generation, enqueue=False)
         results = [do_generate_stimuli(study, recording) for study in studies]

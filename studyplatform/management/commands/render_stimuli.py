@@ -4,7 +4,7 @@ import os
 
 from django.core.management.base import BaseCommand
 
-from studyplatform.render_pool import render_many
+from studyplatform.management.render_pool import render_many
 
 
 class Command(BaseCommand):

@@ -4,7 +4,8 @@ An archive (``.tar.gz``) holds ``manifest.json`` (format, time, row counts per m
 SHA-256 of every file), ``data.json`` (Django's ``dumpdata`` of every model, with
 natural keys for content types and permissions, so it loads into SQLite or PostgreSQL
 alike) and the files of the public media root (``media/``) and the private one
-(``private/``), and ``withdrawals.jsonl``, the withdrawal ledger (:mod:`studyplatform.ledger`).
+(``private/``), and ``withdrawals.jsonl``, the withdrawal ledger
+(:mod:`studyplatform.files.ledger`).
 A restore loads it into a migrated, empty database, puts the files back, and checks every
 count and checksum against the manifest; any difference is an error. It then applies
 every withdrawal that this installation's ledger or the archive's records: a participant
@@ -27,7 +28,7 @@ from django.db import transaction
 from django.utils import timezone
 
 from stimuli.clips import file_sha256
-from studyplatform import ledger
+from studyplatform.files import ledger
 from synthesis.formats import check_header
 
 FORMAT = "signstudy.backup"

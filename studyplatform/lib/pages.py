@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 from django.urls import reverse
 
-from studyplatform.asl import asl_videos, with_templates
+from studyplatform.lib.asl import asl_videos, with_templates
 from studyplatform.lib.participants import page_count
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.models import (

@@ -37,7 +37,7 @@ from django.utils import timezone
 from studyplatform.models import KnownDevice
 
 DEVICE_COOKIE = "signstudy_device"
-DEVICE_SALT = "studyplatform.signin.device"
+DEVICE_SALT = "studyplatform.admin.signin.device"
 DEVICE_MAX_AGE_S = 180 * 24 * 3600
 
 

@@ -16,7 +16,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from stimuli.clips import file_sha256
-from studyplatform.media_types import MP4, WEBM, MediaRejected, decoded_length, remux_webm, sniff
+from studyplatform.files.media_types import (
+    MP4,
+    WEBM,
+    MediaRejected,
+    decoded_length,
+    remux_webm,
+    sniff,
+)
 
 MAX_CLIP_BYTES = 500 * 1024**2
 MAX_CLIP_S = 600.0

@@ -14,7 +14,7 @@ from django.core.files.storage import FileSystemStorage
 from django.urls import reverse
 from django.utils.deconstruct import deconstructible
 
-from studyplatform.media_types import MediaRejected, safe_name, sniff_file
+from studyplatform.files.media_types import MediaRejected, safe_name, sniff_file
 
 
 class ContentNamedMixin:
@@ -22,7 +22,7 @@ class ContentNamedMixin:
 
     The last line of defence of issue 33's rule (no upload is ever served as a page or
     a script): whatever path stored it, a file's extension, and so the type it is served
-    with, comes from its first bytes (studyplatform.media_types).
+    with, comes from its first bytes (studyplatform.files.media_types).
     """
 
     def save(self, name, content, max_length=None):

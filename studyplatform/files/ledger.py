@@ -4,7 +4,7 @@ A withdrawal deletes a participant's data for good, so it must survive what repl
 database: restoring a backup made before it. Each withdrawal is appended here once it
 commits (one JSON object a line: the participant's number and study, a SHA-256 of their
 token, when, by whom, what went), backups carry a copy, and a restore applies every
-withdrawal the ledger knows to the data it brings back (:mod:`studyplatform.backup`).
+withdrawal the ledger knows to the data it brings back (:mod:`studyplatform.management.backup`).
 The token's hash recognises the participant without keeping anything that reaches them.
 """
 

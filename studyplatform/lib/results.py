@@ -19,8 +19,8 @@ from analysis import (
     write_report,
 )
 from analysis.figures import all_figures
-from studyplatform.exchange import export_study
-from studyplatform.export import safe_csv, tidy_csv, tidy_table
+from studyplatform.lib.exchange import export_study
+from studyplatform.lib.export import safe_csv, tidy_csv, tidy_table
 from studyplatform.lib.quality import (
     EVENT_COLUMNS,
     PARTICIPANT_COLUMNS,

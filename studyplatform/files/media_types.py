@@ -7,7 +7,7 @@ content has, and served with the fixed type of that extension. Only the kinds be
 ever stored or served: no upload can become a page, a script, SVG or XML in a browser
 (issue 33: an HTML "poster" in a bundle ran as the superuser who opened it).
 
-Nothing here touches the database: the storages (:mod:`studyplatform.storage`) and the
+Nothing here touches the database: the storages (:mod:`studyplatform.files.storage`) and the
 models' validators use it while the app registry is still loading.
 """
 

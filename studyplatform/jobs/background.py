@@ -15,7 +15,7 @@ from urllib.parse import quote
 from django.conf import settings
 from django.db import connection
 
-from studyplatform.queue import RENDER_STIMULUS, queue_job
+from studyplatform.jobs.queue import RENDER_STIMULUS, queue_job
 
 LOG_NAME = "render-background.log"
 
