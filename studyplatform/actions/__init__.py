@@ -24,7 +24,6 @@ from studyplatform.actions.recordings import (
     do_delete_recordings,
     do_fail_recording,
     do_finish_recording,
-    do_relabel_stand_ins,
     do_report_capture_progress,
 )
 from studyplatform.actions.responses import do_save_page_answers, do_save_response
@@ -85,7 +84,6 @@ __all__ = [
     "do_import_study",
     "do_log_media_events",
     "do_record_rendered_stimulus",
-    "do_relabel_stand_ins",
     "do_report_capture_progress",
     "do_retry_stimuli",
     "do_review_participants",

@@ -126,7 +126,7 @@ def do_map_avatar_bones(avatar: Avatar, bones: dict[str, str]) -> Avatar:
 
 def do_finish_avatar_previews(avatar: Avatar, stills: dict[str, bytes]) -> None:
     """Save the avatar's preview stills (PNG bytes by name) and mark it ready."""
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         old = [avatar.still_rest.name, avatar.still_letter.name, avatar.still_face.name]
         for name, data in stills.items():
             field = getattr(avatar, f"still_{name}")

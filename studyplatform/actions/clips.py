@@ -126,7 +126,7 @@ def do_upload_clip(condition: Condition, item: Item, upload) -> UploadedClip:
             prepared = prepare_clip(source, Path(folder), f"“{name}”")
         except MediaRejected as error:
             raise ClipUploadRejected(error.messages[0]) from None
-        with transaction.atomic():
+        with transaction.atomic(durable=True):
             return _store(condition, item, prepared, name)
 
 
@@ -282,7 +282,7 @@ def do_import_clips(study: Study, upload, progress=None) -> list[UploadedClip]:
                     raise ClipUploadRejected(error.messages[0]) from None
         except UNREADABLE_ZIP as error:
             raise ClipUploadRejected(f"The zip cannot be read: {error}.") from None
-        with transaction.atomic():
+        with transaction.atomic(durable=True):
             return [
                 _store(row.condition, row.item, ready, row.member.filename)
                 for row, ready in zip(rows, prepared, strict=True)
@@ -293,7 +293,7 @@ def do_remove_uploaded_clip(clip: UploadedClip) -> None:
     """Delete an uploaded clip; its item shows no clip in that condition until another
     is uploaded. Refused once participants may have seen it."""
     check_unlocked(clip.condition.study)
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         names = (clip.video.name, clip.poster.name)
         clip.delete()
         record_missing_stimulus(clip.condition, clip.item)

@@ -256,7 +256,7 @@ def do_build_design(
     condition rotation on, the others off.
     """
     pages, conditions, items = _checked_design(study, spec)
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         study = Study.objects.select_for_update().get(pk=study.pk)
         created = None
         if not questions:

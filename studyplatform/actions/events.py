@@ -121,7 +121,7 @@ def do_log_media_events(participant: Participant, events: Sequence[object]) -> i
     rows = [
         _event(participant, number, raw, trials, stimuli) for number, raw in enumerate(events, 1)
     ]
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         times = [row.client_time_ms for row in rows]
         seen = set()
         if times:

@@ -7,7 +7,7 @@ Each row is checked like a form would check it (its fields, their kinds, the mod
 from typing import Any
 
 from django.core.exceptions import NON_FIELD_ERRORS, ValidationError
-from django.db import models, transaction
+from django.db import models
 
 from studyplatform.actions.import_media import (
     ASL_POSTER,
@@ -122,37 +122,9 @@ def _create_keyed(
     return created
 
 
-# Rows saved per transaction while importing: SQLite has one writer, and a participant's
-# save waits for the import's transaction to end (a 12,000-condition import in one
-# transaction held it for 4.4 s).
-BATCH_ROWS = 200
-
-
-class Batches:
-    """Save rows in short transactions of at most *size* rows each."""
-
-    def __init__(self, size: int = BATCH_ROWS):
-        self.size, self.count, self._block = size, 0, None
-
-    def save(self, obj: models.Model, where: str) -> None:
-        if self._block is None:
-            self._block = transaction.atomic()
-            self._block.__enter__()
-        save_checked(obj, where)
-        self.count += 1
-        if self.count % self.size == 0:
-            self.close()
-
-    def close(self, *exc_info) -> None:
-        """Commit the open transaction, or roll it back when given an exception's info."""
-        block, self._block = self._block, None
-        if block is not None:
-            block.__exit__(*(exc_info or (None, None, None)))
-
-
-def import_rows(data: dict, study: Study, batches: Batches, media: ImportedMedia) -> list[str]:
+def import_rows(data: dict, study: Study, media: ImportedMedia) -> list[str]:
     """Create every row of the definition *data* for *study*; return the warnings."""
-    save = batches.save
+    save = save_checked
     conditions = _create_keyed(
         data, "conditions", Condition, exchange.CONDITION_FIELDS, study, save
     )
@@ -218,7 +190,7 @@ def _import_trials(data: dict, study: Study, save, tables: dict, questions: dict
         links += [Trial.questions.through(trial=trial, question=q) for q in asked]
         trials[trial.key] = trial
     # One insert for every trial's questions (a set() a trial was four queries).
-    Trial.questions.through.objects.bulk_create(links, batch_size=BATCH_ROWS)
+    Trial.questions.through.objects.bulk_create(links)
     return trials
 
 

@@ -37,7 +37,7 @@ def do_enroll_participant(
     """
     if not study.is_accepting_participants:
         raise ValidationError(f"The study “{study.title}” is not taking participants now.")
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         participant = Participant(
             study=study,
             recruitment_params=clean_recruitment_params(recruitment_params or {}),
@@ -70,7 +70,7 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
     the same page. Leaving the last page finishes the session. *participant* is brought
     up to date with the stored row.
     """
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         locked = _locked(participant)
         if locked.is_finished or page < locked.position:
             _follow(participant, locked)
@@ -108,7 +108,7 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
 
 def do_go_back_participant(participant: Participant, page: int) -> int:
     """Move the participant back to *page*, if the study lets them; return it."""
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         locked = _locked(participant)
         if not locked.study.allow_back:
             raise PageRejected("This study does not let you go back to earlier pages.")

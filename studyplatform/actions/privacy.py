@@ -39,7 +39,7 @@ def do_withdraw_participant(participant: Participant, *, by=None, reason: str = 
 
     *by* is the researcher who carries it out (None: the participant themself).
     """
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         locked = Participant.objects.select_for_update().get(pk=participant.pk)
         responses = Response.objects.filter(participant=locked)
         videos = _answer_videos(locked)

@@ -33,7 +33,7 @@ def do_attach_asl_video(
     # By content, not by name: MP4 (also .mov, .m4v) or WebM that decodes; stored as such,
     # a camera's WebM with its duration and seek index, named by its content.
     kind = check_upload(upload, ("video",), f"“{name}”")
-    with stored_video(upload, kind) as (stored, sha256), transaction.atomic():
+    with stored_video(upload, kind) as (stored, sha256), transaction.atomic(durable=True):
         video, _ = AslVideo.objects.select_for_update().get_or_create(
             content_type_id=content_type_id,
             object_id=object_id,

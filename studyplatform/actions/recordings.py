@@ -124,9 +124,9 @@ def do_finish_recording(
     (*sheet*, PNG) for a video, or an FBX's or glTF's motion as BVH (*bvh*).
 
     Older recordings of the item are removed with their files, and the study's stand-in
-    conditions are relabelled (:func:`do_relabel_stand_ins`).
+    conditions are relabelled (:func:`relabel_stand_ins`).
     """
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         recording = Recording.objects.select_for_update().get(pk=recording.pk)
         stem = recording.upload.name.rsplit("/", 1)[-1].rsplit(".", 1)[0]
         if pose is not None:
@@ -143,13 +143,13 @@ def do_finish_recording(
         recording.error = ""
         recording.save()
         _remove(Recording.objects.filter(item_id=recording.item_id).exclude(pk=recording.pk))
-        do_relabel_stand_ins(recording.item.study)
+        relabel_stand_ins(recording.item.study)
     return recording.status
 
 
 def do_delete_recordings(recordings) -> int:
     """Delete recordings with their files and relabel their studies; return how many."""
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         recordings = list(
             Recording.objects.select_for_update()
             .filter(pk__in=[r.pk for r in recordings])
@@ -157,7 +157,7 @@ def do_delete_recordings(recordings) -> int:
         )
         _remove(recordings)
         for study in {r.item.study for r in recordings}:
-            do_relabel_stand_ins(study)
+            relabel_stand_ins(study)
     return len(recordings)
 
 
@@ -170,15 +170,18 @@ def _remove(recordings) -> None:
     delete_unused_files_on_commit(Recording._meta.get_field("upload").storage, files)
 
 
-def do_relabel_stand_ins(study: Study) -> int:
+def relabel_stand_ins(study: Study) -> int:
     """Label the study's motion-capture stand-ins simulated exactly while a word lacks a
-    recording; return how many conditions changed."""
+    recording; return how many conditions changed.
+
+    Part of the caller's transaction: the actions that add or remove a recording, or
+    import a study, relabel in the same commit.
+    """
     simulated = bool(words_without_recording(study))
     changed = 0
-    with transaction.atomic():
-        for condition in stand_in_conditions(study):
-            if condition.is_simulated != simulated:
-                condition.is_simulated = simulated
-                condition.save(update_fields=["is_simulated"])
-                changed += 1
+    for condition in stand_in_conditions(study):
+        if condition.is_simulated != simulated:
+            condition.is_simulated = simulated
+            condition.save(update_fields=["is_simulated"])
+            changed += 1
     return changed

@@ -21,7 +21,7 @@ def do_save_response(
     """
     _check_page(participant, trial)
     values = _checked_values(participant, trial, question, answer)
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         if question.is_personal:
             return _write_personal(participant, question, values["text"])
         key = {"participant": participant, "trial": trial, "question": question}
@@ -50,7 +50,7 @@ def do_save_page_answers(
             errors[question.key] = error.messages[0]
     if not checked:
         return errors
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         shared = [question for question, _, _ in checked if not question.is_personal]
         stored = Response.objects.select_for_update().filter(
             participant=participant, trial=trial, question__in=shared

@@ -13,7 +13,7 @@ def do_review_participants(study: Study, participant_ids, review: str) -> int:
     """
     if review not in Participant.Review.values:
         raise ValueError(f"Unknown review {review!r}.")
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         return Participant.objects.filter(study=study, pk__in=list(participant_ids)).update(
             review=review
         )

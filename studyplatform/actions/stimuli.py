@@ -143,7 +143,7 @@ def do_generate_stimuli(
     """
     refuse_changes = _in_field(study) and not options.rerender_open
     tally = _Tally()
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         # Every clip and upload of the study in one query each, not one per pair.
         stimuli = Stimulus.objects.filter(condition__study=study)
         recorded = {(s.condition_id, s.item_id): s for s in stimuli}
@@ -251,7 +251,7 @@ def _ready_from_upload(stimulus: Stimulus, clip: UploadedClip) -> Stimulus:
 def do_retry_stimuli(stimuli, background: bool = False) -> int:
     """Queue failed (or stuck) clips again; return how many (uploaded ones are not
     rendered: they wait for their file)."""
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         pks = [
             s.pk
             for s in stimuli
@@ -284,7 +284,7 @@ def do_record_rendered_stimulus(
     A clip whose study changed while it rendered (its hash is no longer the row's) is
     not recorded: "superseded".
     """
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         stimulus = Stimulus.objects.select_for_update().get(pk=stimulus.pk)
         if stimulus.content_hash != spec.content_hash():
             return "superseded"

@@ -6,9 +6,9 @@ from typing import Any
 from django.db import transaction
 
 from studyplatform.actions.import_media import ImportedMedia, StudyImportError
-from studyplatform.actions.import_rows import Batches, import_rows, pick, save_checked
+from studyplatform.actions.import_rows import import_rows, pick, save_checked
 from studyplatform.actions.media import delete_unused_files_on_commit
-from studyplatform.actions.recordings import do_relabel_stand_ins
+from studyplatform.actions.recordings import relabel_stand_ins
 from studyplatform.lib import exchange
 from studyplatform.lib.bundle import BundleFiles, definition_files
 from studyplatform.models import Study
@@ -51,12 +51,32 @@ def do_import_study(
     checked by content and stored under a name made from it) or be one *owner*'s studies
     already use (or one of *allowed_files*). Files in neither place, someone else's
     among them, are left out, with a warning each; the motion-capture stand-ins are then
-    labelled by the recordings that came (:func:`do_relabel_stand_ins`).
+    labelled by the recordings that came (:func:`relabel_stand_ins`).
 
-    Rows are written in short transactions (BATCH_ROWS), so participants' saves never
-    wait long; the study stays a draft until the import is complete, and an import that
-    fails removes what it had written.
+    One transaction: an import that fails, or a process killed half-way, leaves no
+    study behind (issue 57); the files it had stored are removed when it fails.
     """
+    media = ImportedMedia(owner, files, allowed_files)
+    try:
+        with transaction.atomic(durable=True):
+            return import_study(
+                data, owner=owner, slug=slug, title=title, status=status, media=media
+            )
+    except BaseException:
+        _remove_stored(media.stored)
+        raise
+
+
+def import_study(
+    data: Any,
+    *,
+    owner,
+    media: ImportedMedia,
+    slug: str | None = None,
+    title: str | None = None,
+    status: str | None = None,
+) -> ImportResult:
+    """Create the study of :func:`do_import_study` in the caller's transaction."""
     if not isinstance(data, dict):
         raise StudyImportError("A study definition must be a JSON object.")
     check_header(data, exchange.FORMAT, exchange.VERSION, "study definition", StudyImportError)
@@ -68,62 +88,53 @@ def do_import_study(
     if title:
         values["title"] = title
     final_status = status or values.get("status") or Study.Status.DRAFT
-    values["status"] = Study.Status.DRAFT
-    study = Study(owner=owner, **values)
-    with transaction.atomic():
-        save_checked(study, "study")
-    media = ImportedMedia(owner, files, allowed_files)
-    batches = Batches()
-    try:
-        # A draft while its rows arrive: an open study's design is locked.
-        study.being_filled = True
-        warnings = import_rows(data, study, batches, media)
-        batches.close()
-        study.being_filled = False
-        study.status = final_status
-        with transaction.atomic():
-            save_checked(study, "study")  # its status, checked like the rest
-            do_relabel_stand_ins(study)
-    except BaseException as error:
-        batches.close(type(error), error, error.__traceback__)
-        _discard(study, media.stored)
-        raise
+    # A draft while its rows arrive: an open study's design is locked.
+    study = Study(owner=owner, **{**values, "status": Study.Status.DRAFT})
+    save_checked(study, "study")
+    study.being_filled = True
+    warnings = import_rows(data, study, media)
+    study.being_filled = False
+    study.status = final_status
+    save_checked(study, "study")  # its status, checked like the rest
+    relabel_stand_ins(study)
     return ImportResult(study=study, warnings=tuple(warnings))
 
 
-def _discard(study: Study, stored: list) -> None:
-    """Remove a failed import's rows and the files it had stored."""
-    with transaction.atomic():
-        for video in exchange.study_asl_videos(study):
-            video.delete()
-        Study.objects.filter(pk=study.pk).delete()
-        for storage, name in stored:
-            delete_unused_files_on_commit(storage, [name])
+def _remove_stored(stored: list) -> None:
+    """Remove the files a failed import had stored (none of its rows survived)."""
+    for storage, name in stored:
+        delete_unused_files_on_commit(storage, [name])
 
 
 def do_duplicate_study(study: Study, *, owner) -> Study:
-    """Copy *study*'s definition into a new draft study owned by *owner*.
+    """Copy *study*'s definition into a new draft study owned by *owner*, in one transaction."""
+    with transaction.atomic(durable=True):
+        return duplicate_study(study, owner=owner)
+
+
+def duplicate_study(study: Study, *, owner) -> Study:
+    """Copy *study* as :func:`do_duplicate_study` does, in the caller's transaction.
 
     The copy keeps the signed templates attached to *study* and the conditions' avatars
     that *owner* may use (their own; any, for a superuser): a definition file leaves
     them out, since they belong to a researcher's library, not to the study.
     """
     definition = exchange.export_study(study)
-    with transaction.atomic():
-        result = do_import_study(
-            definition,
-            owner=owner,
-            # The copy shares the original's files (deletion counts references).
-            allowed_files=definition_files(definition),
-            slug=free_slug(f"{study.slug}-copy"),
-            title=f"{study.title} (copy)"[:200],
-            status=Study.Status.DRAFT,
-        )
-        templates = study.signed_templates.all()
-        if not owner.is_superuser:
-            templates = templates.filter(owner=owner)
-        result.study.signed_templates.set(templates)
-        _keep_avatars(study, result.study, owner)
+    # The copy shares the original's files (deletion counts references).
+    media = ImportedMedia(owner, None, definition_files(definition))
+    result = import_study(
+        definition,
+        owner=owner,
+        media=media,
+        slug=free_slug(f"{study.slug}-copy"),
+        title=f"{study.title} (copy)"[:200],
+        status=Study.Status.DRAFT,
+    )
+    templates = study.signed_templates.all()
+    if not owner.is_superuser:
+        templates = templates.filter(owner=owner)
+    result.study.signed_templates.set(templates)
+    _keep_avatars(study, result.study, owner)
     return result.study
 
 

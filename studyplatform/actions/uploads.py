@@ -135,7 +135,7 @@ def do_append_signed_answer_chunk(
         raise UploadRejected("This study is finished; answers can no longer change.")
     _check_question(trial, question)
     take = take_id(take)
-    with transaction.atomic():
+    with transaction.atomic(durable=True):
         # One writer per participant at a time: concurrent chunks cannot interleave.
         Participant.objects.select_for_update().get(pk=participant.pk)
         path = partial_path(participant, trial, question, take)

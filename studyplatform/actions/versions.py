@@ -2,7 +2,7 @@
 
 from django.db import transaction
 
-from studyplatform.actions.studies import do_duplicate_study, free_slug
+from studyplatform.actions.studies import duplicate_study, free_slug
 from studyplatform.models import Study
 
 
@@ -20,8 +20,8 @@ def do_create_study_version(study: Study, *, owner) -> Study:
     slug and title say so; *study* and its participants stay as they are, so every
     answer keeps the design it was given.
     """
-    with transaction.atomic():
-        copy = do_duplicate_study(study, owner=owner)
+    with transaction.atomic(durable=True):
+        copy = duplicate_study(study, owner=owner)
         made = study.next_versions.exclude(pk=copy.pk).values_list("version", flat=True)
         number = max([study.version, *made]) + 1
         copy.version = number

@@ -3,7 +3,6 @@
 import copy
 import io
 import json
-from collections import Counter
 
 import pytest
 from django.core.files.base import ContentFile
@@ -263,37 +262,73 @@ def test_a_bundle_travels_by_the_admin_and_the_shell(
     assert "not a zip file" in plain.text
 
 
-@pytest.mark.django_db(transaction=True)
-def test_an_import_commits_in_short_transactions(fingerspelling, bob):
-    """Issue 19: an import held SQLite's write lock for its whole run (participants waited)."""
-    from django.db import transaction
-    from django.db.models.signals import post_save
+KILLED_IMPORT = """
+import json, os, signal, sys
 
-    from studyplatform.actions.import_rows import BATCH_ROWS
+import django
+
+django.setup()
+from django.contrib.auth import get_user_model
+from django.db.models.signals import post_save
+
+from studyplatform.actions import do_import_study
+from studyplatform.models import Condition
+
+saved = []
+
+
+def kill(sender, **kwargs):
+    saved.append(1)
+    if len(saved) == 300:  # half-way through the conditions, as a killed worker would stop
+        os.kill(os.getpid(), signal.SIGKILL)
+
+
+post_save.connect(kill, sender=Condition)
+with open(sys.argv[1], encoding="utf-8") as definition:
+    do_import_study(json.load(definition), owner=get_user_model().objects.get(username="bob"))
+"""
+
+
+@pytest.mark.django_db(transaction=True)
+def test_a_killed_import_leaves_no_half_imported_study(fingerspelling, bob, tmp_path):
+    """Issue 57: the import committed every 200 rows, so a process killed half-way left a
+    half-imported draft. It is one transaction now: a worker killed (SIGKILL, in its own
+    process on this test's database) at the 300th of 451 conditions leaves nothing."""
+    import os
+    import subprocess
+    import sys
+
+    from django.db import connection
+
     from studyplatform.models import Condition
 
     data = export_study(fingerspelling)
+    data["study"]["slug"] = "killed-half-way"
     template = data["conditions"][0]
     data["conditions"] += [
         {**template, "key": f"extra-{n}", "label": f"Extra {n}"} for n in range(450)
     ]
-    commits: list[int] = []
-    saves_before_commit: list[int] = []
-    waiting = []
-
-    def saved(sender, **kwargs):
-        saves_before_commit.append(len(commits))
-        if not waiting:  # one callback per transaction: it runs when that one commits
-            waiting.append(1)
-            transaction.on_commit(lambda: (commits.append(1), waiting.clear()))
-
-    post_save.connect(saved, sender=Condition)
-    try:
-        do_import_study(data, owner=bob)
-    finally:
-        post_save.disconnect(saved, sender=Condition)
-    per_transaction = Counter(saves_before_commit).values()
-    assert len(per_transaction) >= 3 and max(per_transaction) <= BATCH_ROWS
+    path = tmp_path / "definition.json"
+    path.write_text(json.dumps(data), "utf-8")
+    database = connection.settings_dict
+    if database["ENGINE"].endswith("sqlite3"):
+        url = f"sqlite:///{database['NAME']}"
+    else:
+        url = (
+            f"postgres://{database['USER']}@{database['HOST']}:{database['PORT'] or 5432}"
+            f"/{database['NAME']}"
+        )
+    conditions = Condition.objects.count()
+    killed = subprocess.run(
+        [sys.executable, "-c", KILLED_IMPORT, str(path)],
+        env={**os.environ, "DATABASE_URL": url, "DJANGO_SETTINGS_MODULE": "studyplatform.settings"},
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert killed.returncode == -9, killed.stderr[-2000:]
+    assert not Study.objects.filter(slug="killed-half-way").exists()
+    assert Condition.objects.count() == conditions
 
 
 def test_every_model_field_is_exported_or_left_out_on_purpose(monkeypatch):
