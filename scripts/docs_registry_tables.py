@@ -39,7 +39,7 @@ def questions_table() -> str:
             t.label,
             ", ".join(sorted(t.trial_kinds)),
             f"`{t.export_kind}`" if t.export_kind else "participant column",
-            t.scale if t.export_kind == "rating" else "",
+            t.exported_scale,
             f"`{type(t).__module__.rsplit('.', 1)[-1]}.py`",
         ]
         for kind, t in QUESTION_TYPES.items()

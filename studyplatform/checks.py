@@ -85,7 +85,7 @@ def check_question_types(app_configs=None, **kwargs) -> list[checks.CheckMessage
                 f"{name} exports as {type_.export_kind!r}, not a tidy-format kind "
                 f"({', '.join(KINDS)}) or None."
             )
-        if type_.export_kind == "rating" and type_.scale not in SCALES:
+        if type_.export_kind == "rating" and type_.exported_scale not in SCALES:
             problems.append(
                 f"{name} exports ratings on scale {type_.scale!r}, not one of {', '.join(SCALES)}."
             )

@@ -75,9 +75,10 @@ def _module_file(root: Path, parts: list[str]) -> Path | None:
 
 
 def _imported(path: Path) -> list[str]:
-    """Return every module name a file imports (``from a import b`` names a and a.b)."""
+    """Return every module name a file imports at run time (``from a import b`` names a
+    and a.b); imports a type checker alone reads (``if TYPE_CHECKING:``) are not."""
     names = []
-    for node in ast.walk(ast.parse(path.read_text("utf-8"))):
+    for node in ast.walk(_run_time_tree(path)):
         if isinstance(node, ast.Import):
             names += [alias.name for alias in node.names]
         elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
@@ -91,6 +92,19 @@ def _code(path: Path) -> bytes:
     file's bytes."""
     if path.suffix != ".py":
         return path.read_bytes()
+    return ast.dump(_run_time_tree(path)).encode()
+
+
+def _run_time_tree(path: Path) -> ast.Module:
+    """Return a module's syntax tree without docstrings and type hints, parsed once per
+    version of the file: the imports and the digest both read it, and parsing the engine
+    twice was most of a server's first study page (issue 57)."""
+    stat = path.stat()
+    return _parsed(path, stat.st_mtime_ns, stat.st_size)
+
+
+@cache
+def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
     tree = ast.parse(path.read_text("utf-8"))
     for node in ast.walk(tree):
         body = getattr(node, "body", None)
@@ -102,7 +116,7 @@ def _code(path: Path) -> bytes:
             and isinstance(body[0].value.value, str)
         ):
             node.body = body[1:] or [ast.Pass()]
-    return ast.dump(_WithoutTypes().visit(tree)).encode()
+    return _WithoutTypes().visit(tree)
 
 
 class _WithoutTypes(ast.NodeTransformer):

@@ -172,7 +172,7 @@ def _row(study: Study, response: Response, conditions: dict, failed: bool) -> di
         "rt_ms": "" if response.rt_ms is None else str(response.rt_ms),
         "flags": ";".join(_flags(participant, trial, failed)),
         "target": trial.item.scoring_target if question.type.is_scored and trial.item else "",
-        "scale": question.type.scale if question.type.export_kind == "rating" else "",
+        "scale": question.type.exported_scale,
         "condition_a_label": label1,
         "condition_b_label": label2,
         "condition_simulated": ";".join(

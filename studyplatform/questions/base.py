@@ -113,6 +113,12 @@ class QuestionType:
     # the researcher to reword: none for kinds without options.
     starting_options: tuple[tuple[int, str], ...] = ()
 
+    @property
+    def exported_scale(self) -> str:
+        """Return the tidy format's ``scale`` of this type's rows: rating rows carry the
+        type's scale, every other row none."""
+        return self.scale if self.export_kind == "rating" else ""
+
     def max_length(self, question) -> int:
         """Return the longest text answer *question* takes, in characters."""
         return MAX_PERSONAL_LENGTH if question.is_personal else MAX_TEXT_LENGTH
