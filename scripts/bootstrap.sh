@@ -54,3 +54,7 @@ if [ ! -f "$stamp" ]; then
   rm -f "$VENV"/.installed-*
   touch "$stamp"
 fi
+
+# The interface's translations, compiled from the catalogues (studyplatform/locale/*.po);
+# the .mo files are built here, never committed.
+env -u DATABASE_URL "$VENV/bin/python" manage.py compilemessages -v0 --ignore=.venv

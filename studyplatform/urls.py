@@ -27,6 +27,7 @@ urlpatterns = [
         views.participant_answer_video,
         name="participant_answer_video",
     ),
+    path("jsi18n/<str:language>/", views.javascript_catalog, name="javascript_catalog"),
     path("private/<path:path>", views.private_media, name="private_media"),
     path("clips/<path:path>", views.uploaded_clip, name="uploaded_clip"),
     # Browsers ask for /favicon.ico on pages that name no icon (e.g. file downloads).

@@ -6,6 +6,7 @@ from collections.abc import Mapping
 from django.core.exceptions import ValidationError
 from django.db import transaction
 from django.utils import timezone
+from django.utils.translation import gettext
 
 from studyplatform.lib.participants import (
     PageRejected,
@@ -36,7 +37,10 @@ def do_enroll_participant(
     and stored; *consented* records consent now (the welcome page's button).
     """
     if not study.is_accepting_participants:
-        raise ValidationError(f"The study “{study.title}” is not taking participants now.")
+        raise ValidationError(
+            gettext("The study “%(title)s” is not taking participants now.")
+            % {"title": study.title}
+        )
     with transaction.atomic(durable=True):
         participant = Participant(
             study=study,
@@ -76,7 +80,7 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
             _follow(participant, locked)
             return locked.position  # moved on already: a repeated Next
         if page > locked.position:
-            raise PageRejected("You have not reached this page yet.")
+            raise PageRejected(gettext("You have not reached this page yet."))
         reason = closed_reason(locked)
         if reason:
             raise PageRejected(reason)
@@ -85,11 +89,11 @@ def do_advance_participant(participant: Participant, page: int, trial: Trial | N
             # so "answer every question" would name the wrong reason.
             watch = locked.study.require_full_view and trial.condition_a_id and trial.item_id
             if watch and unwatched_clips(locked, trial):
-                raise PageRejected("Please watch each clip to its end before going on.")
+                raise PageRejected(gettext("Please watch each clip to its end before going on."))
             missing = missing_answers(locked, trial)
             if missing:
                 raise PageRejected(
-                    "Please answer every question on this page first.",
+                    gettext("Please answer every question on this page first."),
                     params={"questions": [q.key for q in missing]},
                 )
         now = timezone.now()
@@ -111,11 +115,11 @@ def do_go_back_participant(participant: Participant, page: int) -> int:
     with transaction.atomic(durable=True):
         locked = _locked(participant)
         if not locked.study.allow_back:
-            raise PageRejected("This study does not let you go back to earlier pages.")
+            raise PageRejected(gettext("This study does not let you go back to earlier pages."))
         if locked.is_finished:
-            raise PageRejected("This study is finished; answers can no longer change.")
+            raise PageRejected(gettext("This study is finished; answers can no longer change."))
         if not 1 <= page <= locked.reached:
-            raise PageRejected("You have not reached this page yet.")
+            raise PageRejected(gettext("You have not reached this page yet."))
         locked.position = page
         locked.last_seen_at = timezone.now()
         locked.save(update_fields=["position", "last_seen_at"])
@@ -173,10 +177,10 @@ def _follow(participant: Participant, stored: Participant) -> None:
 def do_set_participant_language(participant: Participant, language: str) -> None:
     """Switch the participant between ASL + English and English only."""
     if participant.is_finished:
-        raise ValidationError("This study is finished; nothing about it can change now.")
+        raise ValidationError(gettext("This study is finished; nothing about it can change now."))
     if language not in Participant.Language.values:
         raise ValidationError(f"Unknown language “{language}”.")
     if language == Participant.Language.ENGLISH and not participant.study.allow_english_only:
-        raise ValidationError("This study is presented in ASL and English only.")
+        raise ValidationError(gettext("This study does not offer its written text alone."))
     Participant.objects.filter(pk=participant.pk).update(language=language)
     participant.language = language

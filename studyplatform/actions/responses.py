@@ -3,6 +3,7 @@
 from collections.abc import Mapping
 
 from django.db import IntegrityError, transaction
+from django.utils.translation import gettext
 
 from studyplatform.lib.presentation import presented_conditions
 from studyplatform.models import Participant, PersonalAnswer, Question, Response, Trial
@@ -68,9 +69,9 @@ def do_save_page_answers(
 def _check_page(participant: Participant, trial: Trial) -> None:
     """Raise AnswerRejected if *participant* may not answer on *trial* at all."""
     if trial.study_id != participant.study_id:
-        raise AnswerRejected("This page is not part of your study.")
+        raise AnswerRejected(gettext("This page is not part of your study."))
     if participant.is_finished:
-        raise AnswerRejected("This study is finished; answers can no longer change.")
+        raise AnswerRejected(gettext("This study is finished; answers can no longer change."))
 
 
 def _checked_values(
@@ -78,7 +79,9 @@ def _checked_values(
 ) -> dict:
     """Return the Response fields *answer* sets, or raise AnswerRejected naming why not."""
     if question.pk not in {asked.pk for asked in trial.questions.all()}:  # prefetched or one query
-        raise AnswerRejected(f"“{question.key}” is not asked on this page.")
+        raise AnswerRejected(
+            gettext("“%(question)s” is not asked on this page.") % {"question": question.key}
+        )
     return question_type(question).response_values(
         question, answer, _shown(question, trial, participant)
     )

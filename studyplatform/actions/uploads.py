@@ -31,6 +31,7 @@ from django.conf import settings
 from django.core.exceptions import ValidationError
 from django.core.files import File
 from django.db import transaction
+from django.utils.translation import gettext
 
 from stimuli.clips import file_sha256
 from studyplatform.actions.media import delete_unused_files_on_commit
@@ -132,7 +133,7 @@ def do_append_signed_answer_chunk(
     Return the stored length and, after the final chunk, the saved Response.
     """
     if participant.is_finished:
-        raise UploadRejected("This study is finished; answers can no longer change.")
+        raise UploadRejected(gettext("This study is finished; answers can no longer change."))
     _check_question(trial, question)
     take = take_id(take)
     with transaction.atomic(durable=True):
@@ -147,7 +148,9 @@ def do_append_signed_answer_chunk(
         if stored + len(chunk) > MAX_SIGNED_ANSWER_BYTES:
             path.unlink(missing_ok=True)
             limit = MAX_SIGNED_ANSWER_BYTES // (1024 * 1024)
-            raise UploadRejected(f"The recording is longer than {limit} MB allows.")
+            raise UploadRejected(
+                gettext("The recording is longer than %(limit)s MB allows.") % {"limit": limit}
+            )
         path.parent.mkdir(parents=True, exist_ok=True)
         with open(path, "ab") as part:
             part.write(chunk)
@@ -190,16 +193,18 @@ def _check_take(path: Path, final: FinalChunk) -> str:
     else:
         duration_s = decoded_duration_s(path)
         if duration_s is None:
-            problem = "The recording is incomplete or does not play; please record it again."
+            problem = gettext(
+                "The recording is incomplete or does not play; please record it again."
+            )
         elif final.duration_ms is not None:
             claimed_s = final.duration_ms / 1000
             if abs(duration_s - claimed_s) > max(
                 DURATION_TOLERANCE_S, DURATION_TOLERANCE_SHARE * claimed_s
             ):
-                problem = (
-                    f"The recording plays for {duration_s:.1f} s, not the "
-                    f"{claimed_s:.1f} s recorded; please record it again."
-                )
+                problem = gettext(
+                    "The recording plays for %(played).1f s, not the %(recorded).1f s "
+                    "recorded; please record it again."
+                ) % {"played": duration_s, "recorded": claimed_s}
     if problem:
         path.unlink(missing_ok=True)
         raise UploadRejected(problem)

@@ -141,7 +141,19 @@ class StudyAdmin(
     actions = ("generate_stimuli", "duplicate_studies", "export_studies")
     fieldsets = (
         (None, {"fields": ("title", "slug", "status", "owner", "participant_link", "version_of")}),
-        ("Language", {"fields": ("asl_first", "allow_english_only", "signed_templates")}),
+        (
+            "Language",
+            {
+                "fields": (
+                    "language",
+                    "follow_browser_language",
+                    "sign_language",
+                    "asl_first",
+                    "allow_english_only",
+                    "signed_templates",
+                )
+            },
+        ),
         (
             "What participants read",
             {"fields": ("description", "consent_text", "consent_mode", "thank_you_text")},

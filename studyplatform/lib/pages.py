@@ -8,6 +8,7 @@ participants at once.
 from dataclasses import dataclass, field
 
 from django.urls import reverse
+from django.utils.translation import gettext as _
 
 from studyplatform.lib.asl import asl_videos, with_templates
 from studyplatform.lib.participants import page_count
@@ -121,9 +122,13 @@ def _page_clips(participant: Participant, trial: Trial, asks: bool) -> tuple[Pag
         item_id=trial.item_id, condition__in=conditions, status=Stimulus.Status.READY
     )
     stimuli = {s.condition_id: s for s in ready.select_related("upload").order_by()}
-    single = "Clip" if asks else "Example clip"
+    single = _("Clip") if asks else _("Example clip")
     return tuple(
-        _clip(number, f"Clip {number}" if len(conditions) == 2 else single, stimuli.get(c.pk))
+        _clip(
+            number,
+            _("Clip %(number)s") % {"number": number} if len(conditions) == 2 else single,
+            stimuli.get(c.pk),
+        )
         for number, c in enumerate(conditions, 1)
     )
 

@@ -7,6 +7,7 @@ from urllib.parse import quote
 
 from django.core.exceptions import ValidationError
 from django.utils import timezone
+from django.utils.translation import gettext
 
 from studyplatform.models import (
     MediaEvent,
@@ -68,9 +69,9 @@ def device_problem(study: Study, user_agent: str) -> str:
     """Return why *study* cannot be taken on the device *user_agent* names, or ""."""
     mobile = any(marker in user_agent for marker in MOBILE_MARKERS)
     if study.allowed_devices == Study.Devices.DESKTOP and mobile:
-        return "Please take this study on a desktop or laptop computer."
+        return gettext("Please take this study on a desktop or laptop computer.")
     if study.allowed_devices == Study.Devices.MOBILE and not mobile:
-        return "Please take this study on a phone or tablet."
+        return gettext("Please take this study on a phone or tablet.")
     return ""
 
 
@@ -81,17 +82,19 @@ def closed_reason(participant: Participant, now=None) -> str:
     if participant.is_finished:
         return ""
     if time_left(participant, now) == timedelta(0):
-        return f"The time limit of {study.time_limit_minutes} minutes has passed."
+        return gettext("The time limit of %(minutes)s minutes has passed.") % {
+            "minutes": study.time_limit_minutes
+        }
     if (
         study.one_sitting
         and participant.last_seen_at is not None
         and now > participant.last_seen_at + ONE_SITTING_BREAK
     ):
         minutes = int(ONE_SITTING_BREAK.total_seconds() // 60)
-        return (
-            f"This study must be completed in one sitting, and more than {minutes} "
+        return gettext(
+            "This study must be completed in one sitting, and more than %(minutes)s "
             "minutes passed since your last page."
-        )
+        ) % {"minutes": minutes}
     return ""
 
 
@@ -104,14 +107,16 @@ def page_trial(participant: Participant, page: int, for_answer: bool = False) ->
     answer needs at most one question's options).
     """
     if not 1 <= page <= page_count(participant):
-        raise PageRejected(f"There is no page {page} in this study.")
+        raise PageRejected(gettext("There is no page %(page)s in this study.") % {"page": page})
     if page > participant.reached:
-        raise PageRejected("You have not reached this page yet.")
+        raise PageRejected(gettext("You have not reached this page yet."))
     if for_answer:
         if participant.is_finished:
-            raise PageRejected("This study is finished; answers can no longer change.")
+            raise PageRejected(gettext("This study is finished; answers can no longer change."))
         if page != participant.position and not participant.study.allow_back:
-            raise PageRejected("This study does not let you change answers on earlier pages.")
+            raise PageRejected(
+                gettext("This study does not let you change answers on earlier pages.")
+            )
         reason = closed_reason(participant)
         if reason:
             raise PageRejected(reason)
@@ -126,7 +131,7 @@ def page_trial(participant: Participant, page: int, for_answer: bool = False) ->
     )
     trial = next(iter(found), None)
     if trial is None:
-        raise PageRejected(f"Page {page} was removed from the study.")
+        raise PageRejected(gettext("Page %(page)s was removed from the study.") % {"page": page})
     return trial
 
 

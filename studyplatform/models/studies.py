@@ -25,6 +25,11 @@ def position_field() -> models.SmallIntegerField:
     )
 
 
+def interface_languages() -> list[tuple[str, str]]:
+    """Return the languages a participant's pages can be in (settings.LANGUAGES)."""
+    return list(settings.LANGUAGES)
+
+
 class Study(models.Model):
     """A perceptual study: its settings, what participants see first and last."""
 
@@ -64,15 +69,34 @@ class Study(models.Model):
     status = models.CharField(
         max_length=10, choices=Status.choices, default=Status.DRAFT, db_index=True
     )
-    asl_first = models.BooleanField(
-        "ASL first",
+    language = models.CharField(
+        max_length=10,
+        choices=interface_languages,
+        default="en",
+        help_text="The language of the participant's pages: their buttons and messages. "
+        "Write the study's own texts in it too.",
+    )
+    follow_browser_language = models.BooleanField(
         default=False,
-        help_text="Show each prompt's ASL video first and large, with English text secondary.",
+        help_text="Show the pages in the participant's browser language where it is one "
+        "of the interface's languages, else in the study's language.",
+    )
+    sign_language = models.CharField(
+        max_length=40,
+        default="ASL",
+        help_text="The sign language's name as participants know it (ASL, Libras, TİD, "
+        "BSL …): the pages use it wherever they name the signing.",
+    )
+    asl_first = models.BooleanField(
+        "signing first",
+        default=False,
+        help_text="Show each prompt's sign-language video first and large, with the written "
+        "text secondary.",
     )
     allow_english_only = models.BooleanField(
-        "allow English only",
+        "allow written text only",
         default=True,
-        help_text="Let participants switch the study to English only.",
+        help_text="Let participants switch the study to its written text only.",
     )
     consent_text = models.TextField(blank=True)
     consent_mode = models.CharField(

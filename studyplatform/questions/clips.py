@@ -1,5 +1,7 @@
 """Questions about the clips on the page: which of two is better (pairwise forced choice)."""
 
+from django.utils.translation import gettext
+
 from studyplatform.questions.base import (
     NO_DIFFERENCE,
     Answer,
@@ -32,7 +34,9 @@ class PairwiseQuestion(QuestionType):
             values["chosen"] = shown.clips[position - 1].key
             values["chosen_position"] = position
         else:
-            raise AnswerRejected(f"“{position}” is not one of the clips on this page.")
+            raise AnswerRejected(
+                gettext("“%(value)s” is not one of the clips on this page.") % {"value": position}
+            )
         return values
 
     def display(self, question, response) -> str:

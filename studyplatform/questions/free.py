@@ -1,5 +1,7 @@
 """Questions answered in the participant's own words or numbers."""
 
+from django.utils.translation import gettext
+
 from studyplatform.questions.base import (
     Answer,
     AnswerRejected,
@@ -24,13 +26,18 @@ class NumberQuestion(QuestionType):
     def response_values(self, question, answer, shown) -> dict:
         number = answer.number
         if number is None or number != number:
-            raise AnswerRejected(f"“{question.key}” needs a number.")
+            raise AnswerRejected(
+                gettext("“%(question)s” needs a number.") % {"question": question.key}
+            )
         if (question.min_value is not None and number < question.min_value) or (
             question.max_value is not None and number > question.max_value
         ):
             low = "−∞" if question.min_value is None else f"{question.min_value:g}"
             high = "∞" if question.max_value is None else f"{question.max_value:g}"
-            raise AnswerRejected(f"{number:g} is outside the allowed range {low} to {high}.")
+            raise AnswerRejected(
+                gettext("%(number)s is outside the allowed range %(low)s to %(high)s.")
+                % {"number": f"{number:g}", "low": low, "high": high}
+            )
         return {**empty_values(), "number": number}
 
     def display(self, question, response) -> str:
@@ -45,9 +52,13 @@ class TextQuestion(QuestionType):
     def response_values(self, question, answer, shown) -> dict:
         text, limit = answer.text.strip(), self.max_length(question)
         if len(text) > limit:
-            raise AnswerRejected(f"The answer is longer than {limit:,} characters.")
+            raise AnswerRejected(
+                gettext("The answer is longer than %(limit)s characters.") % {"limit": f"{limit:,}"}
+            )
         if not text and question.required:
-            raise AnswerRejected(f"“{question.key}” needs an answer.")
+            raise AnswerRejected(
+                gettext("“%(question)s” needs an answer.") % {"question": question.key}
+            )
         return {**empty_values(), "text": text}
 
 
@@ -78,7 +89,8 @@ class EmailQuestion(ShortTextQuestion):
                 validate_email(values["text"])
             except ValidationError:
                 raise AnswerRejected(
-                    f"“{values['text'][:60]}” is not an e-mail address (like name@example.org)."
+                    gettext("“%(text)s” is not an e-mail address (like name@example.org).")
+                    % {"text": values["text"][:60]}
                 ) from None
         return values
 

@@ -1,5 +1,7 @@
 """Questions answered with one of their answer options: scales and single choices."""
 
+from django.utils.translation import gettext
+
 from studyplatform.questions.base import (
     AnswerRejected,
     WholeNumberQuestion,
@@ -19,7 +21,8 @@ class OptionsQuestion(WholeNumberQuestion):
         allowed = {option.value for option in question.options.all()}
         if answer.rating not in allowed:
             raise AnswerRejected(
-                f"“{answer.rating}” is not a point of the scale of “{question.key}”."
+                gettext("“%(value)s” is not a point of the scale of “%(question)s”.")
+                % {"value": answer.rating, "question": question.key}
             )
         return {**empty_values(), "rating": answer.rating}
 

@@ -1,5 +1,7 @@
 """A continuous rating: a slider between two labelled ends, which starts untouched."""
 
+from django.utils.translation import gettext
+
 from studyplatform.questions.base import (
     AnswerRejected,
     WholeNumberQuestion,
@@ -49,7 +51,10 @@ class SliderQuestion(WholeNumberQuestion):
         low, high = slider_range(question)
         if answer.rating is None or not low <= answer.rating <= high:
             raise AnswerRejected(
-                f"“{answer.rating}” is outside the slider of “{question.key}” ({low} to {high})."
+                gettext(
+                    "“%(value)s” is outside the slider of “%(question)s” (%(low)s to %(high)s)."
+                )
+                % {"value": answer.rating, "question": question.key, "low": low, "high": high}
             )
         return {**empty_values(), "rating": answer.rating}
 

@@ -1,6 +1,7 @@
 """Template helpers of the participant pages: ASL prompt videos, time left."""
 
 from django import template
+from django.utils.translation import gettext, ngettext
 
 register = template.Library()
 
@@ -30,5 +31,7 @@ def minutes_left(seconds: int) -> str:
     """Say how long is left in whole minutes ("12 minutes left"), as the page's timer does."""
     minutes = int(seconds) // 60
     if minutes < 1:
-        return "Less than a minute left"
-    return f"{minutes} minute{'s' if minutes != 1 else ''} left"
+        return gettext("Less than a minute left")
+    return ngettext("%(minutes)s minute left", "%(minutes)s minutes left", minutes) % {
+        "minutes": minutes
+    }

@@ -1,6 +1,7 @@
 """Participant-facing and public views of the platform."""
 
 from studyplatform.views.home import favicon, home
+from studyplatform.views.language import javascript_catalog
 from studyplatform.views.media import media, participant_answer_video, private_media, uploaded_clip
 from studyplatform.views.participate import (
     done,
@@ -18,6 +19,7 @@ __all__ = [
     "done",
     "favicon",
     "home",
+    "javascript_catalog",
     "log_events",
     "media",
     "page",

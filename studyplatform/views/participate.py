@@ -13,6 +13,7 @@ from django.core.exceptions import ValidationError
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect, render
 from django.urls import reverse
+from django.utils.translation import gettext
 from django.views.decorators.cache import never_cache
 from django.views.decorators.http import require_http_methods, require_POST
 
@@ -42,6 +43,7 @@ from studyplatform.lib import (
 from studyplatform.lib.pages import participant_page, study_asl
 from studyplatform.models import Participant, Study, Trial
 from studyplatform.models.participants import PARTICIPANT_SESSION_KEY
+from studyplatform.views.language import in_study_language, speak
 from studyplatform.views.posted import (
     BodyRejected,
     json_body,
@@ -56,7 +58,7 @@ NEW_PARTICIPANT_PARAM = "new"
 
 def _invalid_link() -> JsonResponse:
     """Answer a script that sent an unknown participant token."""
-    return JsonResponse({"error": "This link is not valid."}, status=404)
+    return JsonResponse({"error": gettext("This link is not valid.")}, status=404)
 
 
 def _wants_json(request: HttpRequest) -> bool:
@@ -88,22 +90,24 @@ def _page_url(participant: Participant, number: int) -> str:
 
 @never_cache
 @require_http_methods(["GET", "POST"])
+@in_study_language
 def study_welcome(request: HttpRequest, slug: str) -> HttpResponse:
     """Show the study's welcome and consent page; starting enrolls the participant."""
     study = Study.objects.filter(slug=slug).first()
     if study is None:
-        return _problem(request, "There is no study at this address.", status=404)
+        return _problem(request, gettext("There is no study at this address."), status=404)
+    speak(request, study)
     returning = _returning_participant(request, study)
     if returning is not None:
         return redirect(_page_url(returning, returning.position))
     if not study.is_accepting_participants:
-        return _problem(request, "This study is not taking participants now.", status=410)
+        return _problem(request, gettext("This study is not taking participants now."), status=410)
     device = device_problem(study, request.headers.get("User-Agent", ""))
     error = ""
     if request.method == "POST" and not device:
         agreed = request.POST.get("consent") == "yes"
         if study.consent_mode == Study.ConsentMode.EXPLICIT and not agreed:
-            error = "Please tick the box to agree before you start."
+            error = gettext("Please tick the box to agree before you start.")
         else:
             return _enroll(request, study)
     language = Participant.Language.ASL_ENGLISH if study.asl_first else Participant.Language.ENGLISH
@@ -155,11 +159,13 @@ def _enroll(request: HttpRequest, study: Study) -> HttpResponse:
 
 
 @never_cache
+@in_study_language
 def resume(request: HttpRequest, token: str) -> HttpResponse:
     """Send the participant to the page they are on."""
     participant = participant_by_token(token)
     if participant is None:
-        return _problem(request, "This link is not valid.", status=404)
+        return _problem(request, gettext("This link is not valid."), status=404)
+    speak(request, participant.study)
     return redirect(_page_url(participant, max(participant.position, 1)))
 
 
@@ -189,11 +195,13 @@ def _save_form_answers(participant: Participant, trial: Trial, post) -> dict[str
 
 @never_cache
 @require_http_methods(["GET", "POST"])
+@in_study_language
 def page(request: HttpRequest, token: str, number: int) -> HttpResponse:
     """Show page *number*; its form saves the answers and moves on (or back)."""
     participant = participant_by_token(token)
     if participant is None:
-        return _problem(request, "This link is not valid.", status=404)
+        return _problem(request, gettext("This link is not valid."), status=404)
+    speak(request, participant.study)
     refused = _refuse_page(request, participant, number)
     if refused is not None:
         return refused
@@ -241,10 +249,10 @@ def _submit_page(request: HttpRequest, participant: Participant, number: int, tr
             return _moved(request, participant, target)
         except PageRejected as error:
             missing = error.params.get("questions", []) if error.params else []
-            errors = {key: "Please answer this question." for key in missing}
+            errors = {key: gettext("Please answer this question.") for key in missing}
             errors["__page__"] = error.messages[0]
     if _wants_json(request):
-        message = errors.get("__page__") or "Some answers could not be saved."
+        message = errors.get("__page__") or gettext("Some answers could not be saved.")
         questions = {key: text for key, text in errors.items() if key != "__page__"}
         return JsonResponse({"error": message, "questions": questions}, status=400)
     return errors
@@ -293,24 +301,31 @@ def _moved(request: HttpRequest, participant: Participant, target: int) -> HttpR
 
 @never_cache
 @require_POST
+@in_study_language
 def save_answer(request: HttpRequest, token: str) -> JsonResponse:
     """Save one answer now (JSON ``{page, trial, question, value, rt_ms, client_ms}``)."""
     participant = participant_by_token(token)
     if participant is None:
         return _invalid_link()
+    speak(request, participant.study)
     try:
         data = json_body(request)
     except BodyRejected as error:
         return JsonResponse({"error": str(error)}, status=error.status)
     if not isinstance(data, dict) or page_number(data.get("page")) is None:
-        return JsonResponse({"error": "The answer is not in the expected form."}, status=400)
+        return JsonResponse(
+            {"error": gettext("The answer is not in the expected form.")}, status=400
+        )
     try:
         trial = page_trial(participant, data["page"], for_answer=True)
         if data.get("trial") != trial.key:
-            raise AnswerRejected("This answer belongs to another page.")
+            raise AnswerRejected(gettext("This answer belongs to another page."))
         question = next((q for q in trial.questions.all() if q.key == data.get("question")), None)
         if question is None:
-            raise AnswerRejected(f"“{data.get('question')}” is not asked on this page.")
+            raise AnswerRejected(
+                gettext("“%(question)s” is not asked on this page.")
+                % {"question": data.get("question")}
+            )
         answer = parse_answer(question, data.get("value"), data.get("rt_ms"), data.get("client_ms"))
         saved = do_save_response(participant, trial, question, answer)
     except ValidationError as error:
@@ -320,11 +335,13 @@ def save_answer(request: HttpRequest, token: str) -> JsonResponse:
 
 @never_cache
 @require_POST
+@in_study_language
 def log_events(request: HttpRequest, token: str) -> JsonResponse:
     """Log a batch of media and page events (JSON ``{"events": [...]}``)."""
     participant = participant_by_token(token)
     if participant is None:
         return _invalid_link()
+    speak(request, participant.study)
     try:
         data = json_body(request, strip_nul=False)
     except BodyRejected as error:
@@ -339,11 +356,13 @@ def log_events(request: HttpRequest, token: str) -> JsonResponse:
 
 @never_cache
 @require_POST
+@in_study_language
 def set_language(request: HttpRequest, token: str) -> HttpResponse:
     """Switch between ASL + English and English only, then show the same page."""
     participant = participant_by_token(token)
     if participant is None:
-        return _problem(request, "This link is not valid.", status=404)
+        return _problem(request, gettext("This link is not valid."), status=404)
+    speak(request, participant.study)
     try:
         do_set_participant_language(participant, request.POST.get("language", ""))
     except ValidationError as error:
@@ -357,11 +376,13 @@ REDIRECT_AFTER_S = 8
 
 
 @never_cache
+@in_study_language
 def done(request: HttpRequest, token: str) -> HttpResponse:
     """Thank the participant: the completion code, or the way back to the recruiter."""
     participant = participant_by_token(token)
     if participant is None:
-        return _problem(request, "This link is not valid.", status=404)
+        return _problem(request, gettext("This link is not valid."), status=404)
+    speak(request, participant.study)
     if not participant.is_finished:
         return redirect(_page_url(participant, max(participant.position, 1)))
     study = participant.study

@@ -2,6 +2,7 @@
 
 from django.core.exceptions import ValidationError
 from django.http import HttpRequest, JsonResponse
+from django.utils.translation import gettext
 from django.views.decorators.cache import never_cache
 from django.views.decorators.http import require_http_methods
 
@@ -14,12 +15,14 @@ from studyplatform.actions.uploads import (
     upload_offset,
 )
 from studyplatform.lib import page_trial, participant_by_token
+from studyplatform.views.language import in_study_language, speak
 
 UPLOAD_CONTENT_TYPES = ("application/octet-stream", "video/webm", "video/mp4")
 
 
 @never_cache
 @require_http_methods(["GET", "POST"])
+@in_study_language
 def upload_signed_answer(
     request: HttpRequest, token: str, number: int, question: str
 ) -> JsonResponse:
@@ -32,12 +35,15 @@ def upload_signed_answer(
     """
     participant = participant_by_token(token)
     if participant is None:
-        return JsonResponse({"error": "This link is not valid."}, status=404)
+        return JsonResponse({"error": gettext("This link is not valid.")}, status=404)
+    speak(request, participant.study)
     try:
         trial = page_trial(participant, number, for_answer=True)
         found = next((q for q in trial.questions.all() if q.key == question), None)
         if found is None:
-            raise UploadRejected(f"“{question}” is not asked on this page.")
+            raise UploadRejected(
+                gettext("“%(question)s” is not asked on this page.") % {"question": question}
+            )
         if request.method == "GET":
             take = take_id(request.GET.get("take"))
             return JsonResponse({"offset": upload_offset(participant, trial, found, take)})

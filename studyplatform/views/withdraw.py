@@ -8,11 +8,13 @@ deletion withdrew their data. The link is on every page; a confirmation page ask
 
 from django.http import HttpRequest, HttpResponse
 from django.shortcuts import render
+from django.utils.translation import gettext
 from django.views.decorators.cache import never_cache
 from django.views.decorators.http import require_http_methods
 
 from studyplatform.actions import do_withdraw_participant
 from studyplatform.lib import participant_by_token
+from studyplatform.views.language import in_study_language, speak
 from studyplatform.views.participate import forget_in_browser
 
 WITHDRAWN_BY_PARTICIPANT = "withdrawn by the participant"
@@ -20,6 +22,7 @@ WITHDRAWN_BY_PARTICIPANT = "withdrawn by the participant"
 
 @never_cache
 @require_http_methods(["GET", "POST"])
+@in_study_language
 def withdraw(request: HttpRequest, token: str) -> HttpResponse:
     """Ask a participant to confirm (GET); withdraw them and delete their answers (POST)."""
     participant = participant_by_token(token)
@@ -27,9 +30,10 @@ def withdraw(request: HttpRequest, token: str) -> HttpResponse:
         return render(
             request,
             "studyplatform/participate/problem.html",
-            {"message": "This link is not valid (or its answers were already withdrawn)."},
+            {"message": gettext("This link is not valid (or its answers were already withdrawn).")},
             status=404,
         )
+    speak(request, participant.study)
     study = participant.study
     if request.method == "GET":
         return render(

@@ -1,6 +1,6 @@
 """Take an ASL-first study with signed prompts in Chromium (issue 20's acceptance).
 
-The ASL video precedes each English text it signs, "Hide English text" leaves no
+The ASL video precedes each English text it signs, "Hide the written text" leaves no
 English that has a signed version on screen (unsigned English stays), and the page
 passes axe with English hidden.
 """

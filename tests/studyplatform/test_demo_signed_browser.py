@@ -2,7 +2,7 @@
 
 The spine demo's prompts are signed by the avatar when the demo is rendered
 (studyplatform.demo.signed): real clips, labelled avatar-signed demo material under
-each video in every language setting; "Hide English text" hides only the English of
+each video in every language setting; "Hide the written text" hides only the text of
 signed texts, and "English only" takes the videos away.
 """
 
@@ -75,7 +75,7 @@ def test_the_asl_first_demo_signs_its_prompts_and_hides_only_signed_english(
     credits = page.locator(".asl-credit")
     assert credits.count() == 2 and all(c.is_visible() for c in credits.all())
 
-    page.get_by_role("button", name="Switch to English only").click()
+    page.get_by_role("button", name="Switch to written text only").click()
     _wait_ready(page)
     assert page.locator("figure.asl-prompt").count() == 0
     clarity = page.locator('fieldset[data-question="clarity"] legend')

@@ -15,6 +15,14 @@
   const pageError = document.getElementById("page-error");
   const nextButton = document.getElementById("next-button");
   let shownAt = performance.now();
+  /* Text in the study's language: Django's JavaScript catalogue (jsi18n), loaded before
+   * this script, defines gettext; without it the English message ids are shown. */
+  const _ = window.gettext || function (text) { return text; };
+  const ngettext = window.ngettext || function (one, many, n) { return n === 1 ? one : many; };
+  const fmt = function (text, values) {
+    return window.interpolate ? window.interpolate(text, values, true)
+      : text.replace(/%\((\w+)\)s/g, function (all, name) { return values[name]; });
+  };
 
   /* Time limit: count the server's "seconds left" down in whole minutes; at the end,
    * reload, and the server says the time is up. When little time is left (the server
@@ -25,8 +33,8 @@
     const lowSeconds = Number(timer.dataset.lowSeconds);
     let warned = timer.classList.contains("time-low");
     const say = function (minutes) {
-      return minutes < 1 ? "Less than a minute left"
-        : minutes + (minutes === 1 ? " minute left" : " minutes left");
+      return minutes < 1 ? _("Less than a minute left")
+        : fmt(ngettext("%(minutes)s minute left", "%(minutes)s minutes left", minutes), {minutes: minutes});
     };
     const tick = function () {
       const seconds = Math.max(0, Math.round((endsAt - performance.now()) / 1000));
@@ -49,7 +57,7 @@
     const apply = function (hidden) {
       document.body.classList.toggle("hide-english", hidden);
       englishToggle.setAttribute("aria-pressed", String(hidden));
-      englishToggle.textContent = hidden ? "Show English text" : "Hide English text";
+      englishToggle.textContent = hidden ? _("Show the written text") : _("Hide the written text");
     };
     apply(localStorage.getItem(hideKey) === "1");
     englishToggle.hidden = false;
@@ -149,7 +157,7 @@
     inflight.add(question);
     for (let attempt = 0, serverErrors = 0; pending.has(question); attempt++) {
       const payload = pending.get(question);
-      setStatus("Saving…");
+      setStatus(_("Saving…"));
       let retry = "";
       try {
         const response = await post(form.dataset.answerUrl, payload);
@@ -158,15 +166,15 @@
           unsaved.delete(question);
         } else if (response.status < 500) {
           const data = await response.json().catch(function () { return {}; });
-          showQuestionError(question, data.error || "This answer could not be saved.");
+          showQuestionError(question, data.error || _("This answer could not be saved."));
           unsaved.add(question);
         } else if (++serverErrors >= SERVER_ERROR_ATTEMPTS) {
-          showQuestionError(question, "The server could not save this answer now; it is sent again when you go on.");
+          showQuestionError(question, _("The server could not save this answer now; it is sent again when you go on."));
           unsaved.add(question);
-        } else { retry = "server error"; }
-      } catch (e) { retry = "no connection"; }
+        } else { retry = _("server error"); }
+      } catch (e) { retry = _("no connection"); }
       if (retry) {
-        setStatus("Not saved yet (" + retry + "). Trying again…");
+        setStatus(fmt(_("Not saved yet (%(reason)s). Trying again…"), {reason: retry}));
         await sleep(backoff(attempt));
       } else if (pending.get(question) === payload) {
         pending.delete(question);
@@ -174,7 +182,7 @@
     }
     inflight.delete(question);
     if (!pending.size && !inflight.size) {
-      setStatus(unsaved.size ? "Some answers are not saved yet." : "Answer saved.");
+      setStatus(unsaved.size ? _("Some answers are not saved yet.") : _("Answer saved."));
     }
   }
   function answered(input) {
@@ -236,7 +244,7 @@
         const body = await response.json().catch(function () { return {}; });
         if (response.ok && body.url) { location.assign(body.url); return; }
         if (response.status < 500) {
-          pageError.textContent = body.error || "This page could not be saved.";
+          pageError.textContent = body.error || _("This page could not be saved.");
           pageError.hidden = false;
           Object.entries(body.questions || {}).forEach(function (entry) {
             showQuestionError(entry[0], entry[1]);
@@ -246,12 +254,12 @@
           break;
         }
         if (++serverErrors >= SERVER_ERROR_ATTEMPTS) {
-          pageError.textContent = "The server could not save this page just now. Your answers are kept; please press the button again in a moment.";
+          pageError.textContent = _("The server could not save this page just now. Your answers are kept; please press the button again in a moment.");
           pageError.hidden = false;
           break;
         }
       } catch (e) { /* no connection: retry below */ }
-      setStatus("Not saved yet. Trying again…");
+      setStatus(_("Not saved yet. Trying again…"));
       await sleep(backoff(attempt));
     }
     moving = false;
@@ -287,12 +295,12 @@
     const state = box.querySelector(".signed-status");
     const url = box.dataset.uploadUrl;
     if (!window.MediaRecorder || !navigator.mediaDevices) {
-      state.textContent = "This browser cannot record video here; please type your answer.";
+      state.textContent = _("This browser cannot record video here; please type your answer.");
       return;
     }
-    const record = makeButton(preview.getAttribute("src") ? "Record again" : "Record a signed answer");
-    const stop = makeButton("Stop recording");
-    const send = makeButton("Send this recording");
+    const record = makeButton(preview.getAttribute("src") ? _("Record again") : _("Record a signed answer"));
+    const stop = makeButton(_("Stop recording"));
+    const send = makeButton(_("Send this recording"));
     stop.hidden = send.hidden = true;
     controls.append(record, stop, send);
     let recorder = null;
@@ -303,7 +311,7 @@
       try {
         stream = await navigator.mediaDevices.getUserMedia({video: true, audio: false});
       } catch (error) {
-        state.textContent = "The camera could not be used (" + error.name + "). Allow it, or type your answer.";
+        state.textContent = fmt(_("The camera could not be used (%(error)s). Allow it, or type your answer."), {error: error.name});
         return;
       }
       const parts = [];
@@ -320,12 +328,12 @@
         preview.srcObject = null;
         preview.src = URL.createObjectURL(blob);
         preview.controls = true;
-        record.textContent = "Record again";
+        record.textContent = _("Record again");
         record.hidden = false;
         stop.hidden = true;
         send.hidden = false;
         send.focus();
-        state.textContent = "Watch your recording, then send it or record again.";
+        state.textContent = _("Watch your recording, then send it or record again.");
       };
       take = newTakeId();
       recorder.start(500);
@@ -333,7 +341,7 @@
       record.hidden = send.hidden = true;
       stop.hidden = false;
       stop.focus();
-      state.textContent = "Recording…";
+      state.textContent = _("Recording…");
     });
     stop.addEventListener("click", function () {
       // Measured here, not when the stop event arrives (late on a busy page).
@@ -364,17 +372,17 @@
             offset = data.offset;
             attempt = 0;
             if (data.saved) { break; }
-            state.textContent = "Sending… " + Math.round(100 * offset / blob.size) + " %";
+            state.textContent = fmt(_("Sending… %(percent)s"), {percent: Math.round(100 * offset / blob.size) + " %"});
           } else if (response.status === 409) {
             offset = data.offset;
           } else if (response.status < 500) {
-            state.textContent = data.error || "The recording could not be saved.";
+            state.textContent = data.error || _("The recording could not be saved.");
             send.disabled = record.disabled = false;
             return;
           } else { retry = true; }
         } catch (error) { retry = true; }
         if (retry) {
-          state.textContent = "Connection lost. The recording keeps sending when it is back…";
+          state.textContent = _("Connection lost. The recording keeps sending when it is back…");
           await sleep(backoff(attempt++));
           try {
             const where = await fetch(takeUrl, {credentials: "same-origin", headers: {"Accept": "application/json"}});
@@ -382,7 +390,7 @@
           } catch (error) { /* still offline: try again */ }
         }
       }
-      state.textContent = "Your signed answer is saved.";
+      state.textContent = _("Your signed answer is saved.");
       send.hidden = true;
       record.disabled = false;
     });
@@ -430,13 +438,14 @@
     function seconds(t) { return (Math.round(t * 10) / 10).toFixed(1); }
     function refresh() {
       const left = replayLimit === null ? null : replayLimit - plays;
-      if (!video.paused && !video.ended) { button.textContent = "Pause " + label; }
-      else if (plays && left !== null && left <= 0) { button.textContent = "No plays left"; }
-      else { button.textContent = (plays ? "Replay " : "Play ") + label; }
+      if (!video.paused && !video.ended) { button.textContent = fmt(_("Pause %(clip)s"), {clip: label}); }
+      else if (plays && left !== null && left <= 0) { button.textContent = _("No plays left"); }
+      else { button.textContent = fmt(plays ? _("Replay %(clip)s") : _("Play %(clip)s"), {clip: label}); }
       button.disabled = video.paused && left !== null && left <= 0;
-      let state = video.ended ? label + " ended" : !video.paused ? label + " playing"
-        : plays || video.currentTime > 0 ? label + " paused at " + seconds(video.currentTime) + " of " + seconds(video.duration || 0) + " s" : "";
-      if (left !== null) { state += (state ? ". " : "") + left + " of " + replayLimit + " plays left"; }
+      let state = video.ended ? fmt(_("%(clip)s ended"), {clip: label})
+        : !video.paused ? fmt(_("%(clip)s playing"), {clip: label})
+        : plays || video.currentTime > 0 ? fmt(_("%(clip)s paused at %(time)s of %(length)s s"), {clip: label, time: seconds(video.currentTime), length: seconds(video.duration || 0)}) : "";
+      if (left !== null) { state += (state ? ". " : "") + fmt(_("%(left)s of %(limit)s plays left"), {left: left, limit: replayLimit}); }
       if (state !== announced) { count.textContent = announced = state; }
     }
     // A play from the start counts once; toggle knows it started one, for the "play" event
@@ -488,7 +497,7 @@
     video.addEventListener("error", function () {
       const code = video.error ? video.error.code : null;
       log("error", clip, null, {code: code});
-      controls.append(Object.assign(document.createElement("p"), {className: "error", textContent: "This clip could not be played. Please reload the page."}));
+      controls.append(Object.assign(document.createElement("p"), {className: "error", textContent: _("This clip could not be played. Please reload the page.")}));
     });
     refresh();
   });
