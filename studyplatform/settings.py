@@ -131,7 +131,9 @@ WSGI_APPLICATION = "studyplatform.wsgi.application"
 TEMPLATES = [
     {
         "BACKEND": "django.template.backends.django.DjangoTemplates",
-        "DIRS": [],
+        # Searched before the apps' templates: the admin's own admin/base_site.html
+        # would otherwise win over ours (django.contrib.admin comes first in the apps).
+        "DIRS": [BASE_DIR / "studyplatform" / "templates"],
         "APP_DIRS": True,
         "OPTIONS": {
             "context_processors": [

@@ -4,6 +4,7 @@ import io
 import tempfile
 import zipfile
 
+from django import forms
 from django.contrib import admin, messages
 from django.db import models
 from django.db.models import Count
@@ -127,7 +128,6 @@ class StudyAdmin(
     search_fields = ("title", "slug", "description")
     prepopulated_fields = {"slug": ("title",)}
     date_hierarchy = "created_at"
-    filter_horizontal = ("signed_templates",)
     # A redirect URL typed without a scheme means https (Django 6's default already).
     formfield_overrides = {models.URLField: {"assume_scheme": "https"}}
     inlines = (
@@ -262,8 +262,12 @@ class StudyAdmin(
         return super().change_view(request, object_id, form_url, extra_context)
 
     def formfield_for_manytomany(self, db_field, request: HttpRequest, **kwargs):
-        if db_field.name == "signed_templates" and not request.user.is_superuser:
-            kwargs["queryset"] = SignedTemplate.objects.filter(owner=request.user)
+        if db_field.name == "signed_templates":
+            # Check boxes, not Django's two-list filter widget: its search icons carry
+            # ARIA attributes a span may not have (axe-core), and a lab has few templates.
+            kwargs["widget"] = forms.CheckboxSelectMultiple
+            if not request.user.is_superuser:
+                kwargs["queryset"] = SignedTemplate.objects.filter(owner=request.user)
         return super().formfield_for_manytomany(db_field, request, **kwargs)
 
     def get_changeform_initial_data(self, request: HttpRequest):
