@@ -165,6 +165,7 @@ class StudyAdmin(
             {
                 "fields": (
                     "allowed_devices",
+                    "phone_clips_side_by_side",
                     "one_sitting",
                     "shared_computer",
                     "time_limit_minutes",

@@ -87,6 +87,12 @@ class Study(models.Model):
         help_text="The sign language's name as participants know it (ASL, Libras, TİD, "
         "BSL …): the pages use it wherever they name the signing.",
     )
+    phone_clips_side_by_side = models.BooleanField(
+        default=False,
+        help_text="On a phone held upright, show a page's two clips side by side (small, "
+        "kept at the top while the questions scroll) instead of one under the other at "
+        "the screen's full width.",
+    )
     asl_first = models.BooleanField(
         "signing first",
         default=False,

@@ -144,6 +144,8 @@
   /* A lost connection is retried until it is back; a server error (5xx) a few times, then
    * the answer waits for the page's Next, which sends every answer again. */
   const SERVER_ERROR_ATTEMPTS = 5;
+  // Seconds the camera shows the signer before a signed answer's recording starts.
+  const COUNTDOWN_S = 3;
   const unsaved = new Set();
   const sending = new Map();  // question → its send loop, until the loop ends
   function send(question) {
@@ -305,7 +307,7 @@
     controls.append(record, stop, send);
     let recorder = null;
     let blob = null;
-    let take = "", startedAt = 0, durationMs = 0;
+    let take = "", startedAt = 0, durationMs = 0, clock = null;
     record.addEventListener("click", async function () {
       let stream;
       try {
@@ -336,14 +338,30 @@
         state.textContent = _("Watch your recording, then send it or record again.");
       };
       take = newTakeId();
+      record.hidden = send.hidden = true;
+      // The camera shows the signer first and a countdown says when recording starts:
+      // without it, the first second of the answer was signed before the camera ran.
+      await Promise.race([
+        new Promise(function (resolve) { preview.onplaying = resolve; if (!preview.paused) { resolve(); } }),
+        sleep(3000),  // a preview that never plays must not keep the recording from starting
+      ]);
+      for (let left = COUNTDOWN_S; left > 0; left--) {
+        state.textContent = fmt(_("Recording starts in %(seconds)s…"), {seconds: left});
+        await sleep(1000);
+      }
       recorder.start(500);
       startedAt = Date.now();
-      record.hidden = send.hidden = true;
       stop.hidden = false;
       stop.focus();
-      state.textContent = _("Recording…");
+      const shown = function () {
+        const seconds = Math.floor((Date.now() - startedAt) / 1000);
+        state.textContent = fmt(_("Recording… %(time)s"), {time: Math.floor(seconds / 60) + ":" + String(seconds % 60).padStart(2, "0")});
+      };
+      shown();
+      clock = setInterval(shown, 250);
     });
     stop.addEventListener("click", function () {
+      clearInterval(clock);
       // Measured here, not when the stop event arrives (late on a busy page).
       if (recorder && recorder.state !== "inactive") { durationMs = Date.now() - startedAt; recorder.stop(); }
     });
