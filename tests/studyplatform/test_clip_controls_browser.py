@@ -74,6 +74,11 @@ def test_each_clip_is_one_tab_stop_played_and_scrubbed_with_keys(page, compariso
 
 @pytest.mark.parametrize(("width", "height"), [(390, 460), (844, 390)])
 def test_two_clips_sit_side_by_side_on_a_phone(browser, comparison_url, width, height):
+    """In landscape always; held upright where the study asks for it (issue 55: by default
+    they stand one under the other there, tests/studyplatform/test_screens_browser.py)."""
+    from studyplatform.models import Study
+
+    Study.objects.filter(trials__key="cmp-01").update(phone_clips_side_by_side=height > width)
     context = browser.new_context(
         viewport={"width": width, "height": height}, bypass_csp=True, is_mobile=True, has_touch=True
     )

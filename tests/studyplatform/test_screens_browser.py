@@ -1,9 +1,10 @@
-"""Participant pages on a 390×844 touch phone (issue 55, items 3 and 4).
+"""Participant pages on a 390×844 touch phone and a 1366×768 laptop (issue 55, items 3, 4).
 
-Every page of both demo studies fits the screen's width; a comparison's two clips stand
-one under the other at the screen's width (or side by side where the study asks); a
-signed answer is recorded and sent with taps, with a countdown before the recording and
-a running clock while it lasts. Chromium's synthetic camera (tests/conftest.py) films.
+Phone: every page of both demo studies fits the screen's width; a comparison's two clips
+stand one under the other at the screen's width (or side by side where the study asks);
+a signed answer is recorded and sent with taps, with a countdown before the recording
+and a running clock while it lasts (Chromium's synthetic camera films, tests/conftest.py).
+Laptop: a one-clip page shows the whole clip and its first answer without scrolling.
 """
 
 import pytest
@@ -88,3 +89,27 @@ def test_a_signed_answer_is_recorded_and_sent_with_taps(
     phone.wait_for_function(moved.replace("N", number), timeout=15_000)
     participant.refresh_from_db()
     assert participant.position > int(number) or participant.finished_at is not None
+
+
+def test_a_laptop_shows_the_whole_clip_and_the_answer_without_scrolling(
+    browser, live_server, spine, clips_dir, one_clip
+):
+    context = browser.new_context(viewport={"width": 1366, "height": 768}, bypass_csp=True)
+    page = context.new_page()
+    try:
+        _with_clips(spine, one_clip, clips_dir)
+        goto_trial_page(page, live_server, spine, "rate-s1")
+        _wait_ready(page)
+        clip = page.locator("figure.clip").first.bounding_box()  # the clip and its control
+        first = page.locator("fieldset.question").first.locator("label.choice").last.bounding_box()
+        assert clip["y"] + clip["height"] <= 768 and first["y"] + first["height"] <= 768
+        assert clip["width"] >= 400
+        assert page.evaluate("document.documentElement.scrollWidth") <= 1366
+        # No scale point's label spills out of its box.
+        spills = page.evaluate(
+            "[...document.querySelectorAll('label.choice')]"
+            ".filter(l => l.scrollWidth > l.clientWidth + 1).length"
+        )
+        assert spills == 0
+    finally:
+        close_context(context)
