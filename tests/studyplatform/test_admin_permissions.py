@@ -130,6 +130,8 @@ def test_new_study_belongs_to_its_creator(bob_client, bob, alice):
             "owner": alice.pk,  # ignored: researchers cannot give studies away
             "consent_mode": "implicit",
             "allowed_devices": "any",
+            "language": "en",
+            "sign_language": "ASL",
             "thank_you_text": "Thanks",
             **{
                 f"{prefix}-{field}": 0
