@@ -110,36 +110,32 @@ def _create_keyed(
     model: type[models.Model],
     fields: tuple[str, ...],
     study,
-    save,
 ) -> dict[str, Any]:
-    """Create the study's *name* rows of *model* with *save*; return them by key."""
+    """Create the study's *name* rows of *model*; return them by key."""
     created = {}
     for index, row in enumerate(_rows(data, name)):
         where = f"{name}[{index}]"
         obj = model(study=study, **pick(row, fields, where, model))
-        save(obj, where)
+        save_checked(obj, where)
         created[obj.key] = obj
     return created
 
 
 def import_rows(data: dict, study: Study, media: ImportedMedia) -> list[str]:
     """Create every row of the definition *data* for *study*; return the warnings."""
-    save = save_checked
-    conditions = _create_keyed(
-        data, "conditions", Condition, exchange.CONDITION_FIELDS, study, save
-    )
-    items = _create_keyed(data, "items", Item, exchange.ITEM_FIELDS, study, save)
-    questions, options = _import_questions(data, study, save)
-    blocks = _create_keyed(data, "blocks", Block, exchange.BLOCK_FIELDS, study, save)
+    conditions = _create_keyed(data, "conditions", Condition, exchange.CONDITION_FIELDS, study)
+    items = _create_keyed(data, "items", Item, exchange.ITEM_FIELDS, study)
+    questions, options = _import_questions(data, study)
+    blocks = _create_keyed(data, "blocks", Block, exchange.BLOCK_FIELDS, study)
     tables = {"block": blocks, "item": items, "condition_a": conditions, "condition_b": conditions}
-    trials = _import_trials(data, study, save, tables, questions)
+    trials = _import_trials(data, study, tables, questions)
     targets = {"block": blocks, "trial": trials, "question": questions, "answeroption": options}
-    warnings = _import_asl_videos(data, study, save, media, targets)
-    warnings += _import_recordings(data, save, media, items)
-    return warnings + _import_uploaded_clips(data, save, media, conditions, items)
+    warnings = _import_asl_videos(data, study, media, targets)
+    warnings += _import_recordings(data, media, items)
+    return warnings + _import_uploaded_clips(data, media, conditions, items)
 
 
-def _import_questions(data: dict, study: Study, save) -> tuple[dict, dict]:
+def _import_questions(data: dict, study: Study) -> tuple[dict, dict]:
     """Create the questions with their options; return both by key ("question:value")."""
     questions: dict[str, Question] = {}
     options: dict[str, AnswerOption] = {}
@@ -148,7 +144,7 @@ def _import_questions(data: dict, study: Study, save) -> tuple[dict, dict]:
         values = pick(row, (*exchange.QUESTION_FIELDS, "options"), where, Question)
         option_rows = values.pop("options", [])
         question = Question(study=study, **values)
-        save(question, where)
+        save_checked(question, where)
         questions[question.key] = question
         if not isinstance(option_rows, list):
             raise StudyImportError(f"{where}.options: expected a list.")
@@ -158,12 +154,12 @@ def _import_questions(data: dict, study: Study, save) -> tuple[dict, dict]:
                 question=question,
                 **pick(option_row, exchange.OPTION_FIELDS, option_where, AnswerOption),
             )
-            save(option, option_where)
+            save_checked(option, option_where)
             options[f"{question.key}:{option.value}"] = option
     return questions, options
 
 
-def _import_trials(data: dict, study: Study, save, tables: dict, questions: dict) -> dict:
+def _import_trials(data: dict, study: Study, tables: dict, questions: dict) -> dict:
     """Create the trials, each in its block with its clips and questions; return them."""
     trials: dict[str, Trial] = {}
     links = []
@@ -179,7 +175,7 @@ def _import_trials(data: dict, study: Study, save, tables: dict, questions: dict
         if values["block"] is None:
             raise StudyImportError(f"{where}.block: every trial belongs to a block.")
         trial = Trial(study=study, **values)
-        save(trial, where)
+        save_checked(trial, where)
         if not isinstance(question_keys, list):
             raise StudyImportError(f"{where}.questions: expected a list of question keys.")
         asked = [_lookup(questions, key, "question", f"{where}.questions") for key in question_keys]
@@ -194,9 +190,7 @@ def _import_trials(data: dict, study: Study, save, tables: dict, questions: dict
     return trials
 
 
-def _import_asl_videos(
-    data: dict, study: Study, save, media: ImportedMedia, targets: dict
-) -> list[str]:
+def _import_asl_videos(data: dict, study: Study, media: ImportedMedia, targets: dict) -> list[str]:
     """Create the ASL videos of the study and its rows; return what was left out."""
     warnings = []
     for index, row in enumerate(_rows(data, "asl_videos")):
@@ -215,7 +209,7 @@ def _import_asl_videos(
             continue
         if poster is None:
             warnings.append(f"{where}: poster {row.get('poster')!r} is not in media; left out.")
-        save(AslVideo(target=target, video=video, poster=poster or "", **values), where)
+        save_checked(AslVideo(target=target, video=video, poster=poster or "", **values), where)
     return warnings
 
 
@@ -231,7 +225,7 @@ def _asl_target(reference: Any, study: Study, targets: dict, where: str) -> mode
     raise StudyImportError(f"{where}.target: unknown model {model!r}.")
 
 
-def _import_recordings(data: dict, save, media: ImportedMedia, items: dict) -> list[str]:
+def _import_recordings(data: dict, media: ImportedMedia, items: dict) -> list[str]:
     """Create the words' ready recordings whose files came; return what was left out."""
     warnings = []
     for index, row in enumerate(_rows(data, "recordings")):
@@ -263,12 +257,12 @@ def _import_recordings(data: dict, save, media: ImportedMedia, items: dict) -> l
         recording = Recording(
             item=item, status=Recording.Status.READY, progress_percent=100, **found, **values
         )
-        save(recording, where)
+        save_checked(recording, where)
     return warnings
 
 
 def _import_uploaded_clips(
-    data: dict, save, media: ImportedMedia, conditions: dict, items: dict
+    data: dict, media: ImportedMedia, conditions: dict, items: dict
 ) -> list[str]:
     """Create the uploaded conditions' clips whose files came; return what was left out."""
     warnings = []
@@ -302,5 +296,5 @@ def _import_uploaded_clips(
                 f"{condition.key} × {item.key} is not in media; left out."
             )
             continue
-        save(UploadedClip(condition=condition, item=item, **found, **values), where)
+        save_checked(UploadedClip(condition=condition, item=item, **found, **values), where)
     return warnings
