@@ -74,37 +74,32 @@ def _module_file(root: Path, parts: list[str]) -> Path | None:
     return None
 
 
-def _imported(path: Path) -> list[str]:
+def _imported(path: Path) -> tuple[str, ...]:
     """Return every module name a file imports at run time (``from a import b`` names a
     and a.b); imports a type checker alone reads (``if TYPE_CHECKING:``) are not."""
-    names = []
-    for node in ast.walk(_run_time_tree(path)):
-        if isinstance(node, ast.Import):
-            names += [alias.name for alias in node.names]
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            names += [node.module, *(f"{node.module}.{alias.name}" for alias in node.names)]
-    return names
+    return _module_facts(path)[0]
 
 
-def _code(path: Path) -> bytes:
-    """Return what of a file can change a result: a module's syntax tree without its
-    docstrings and type hints (its layout, comments, prose and types cannot), any other
-    file's bytes."""
+def _code_sha256(path: Path) -> bytes:
+    """Return the SHA-256 of what of a file can change a result: a module's syntax tree
+    without its docstrings and type hints (its layout, comments, prose and types cannot),
+    any other file's bytes."""
     if path.suffix != ".py":
-        return path.read_bytes()
-    return ast.dump(_run_time_tree(path)).encode()
+        return hashlib.sha256(path.read_bytes()).digest()
+    return _module_facts(path)[1]
 
 
-def _run_time_tree(path: Path) -> ast.Module:
-    """Return a module's syntax tree without docstrings and type hints, parsed once per
-    version of the file: the imports and the digest both read it, and parsing the engine
-    twice was most of a server's first study page (issue 57)."""
+def _module_facts(path: Path) -> tuple[tuple[str, ...], bytes]:
+    """Return a module's run-time imports and code digest, from one parse per version of
+    the file: the imports and the digest both need its tree, and parsing the engine
+    twice was most of a server's first study page (issue 57). Only the facts are kept,
+    not the trees (tens of megabytes in every process)."""
     stat = path.stat()
-    return _parsed(path, stat.st_mtime_ns, stat.st_size)
+    return _parsed_facts(path, stat.st_mtime_ns, stat.st_size)
 
 
 @cache
-def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
+def _parsed_facts(path: Path, mtime_ns: int, size: int) -> tuple[tuple[str, ...], bytes]:
     tree = ast.parse(path.read_text("utf-8"))
     for node in ast.walk(tree):
         body = getattr(node, "body", None)
@@ -116,7 +111,14 @@ def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
             and isinstance(body[0].value.value, str)
         ):
             node.body = body[1:] or [ast.Pass()]
-    return _WithoutTypes().visit(tree)
+    tree = _WithoutTypes().visit(tree)
+    names: list[str] = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names += [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names += [node.module, *(f"{node.module}.{alias.name}" for alias in node.names)]
+    return tuple(names), hashlib.sha256(ast.dump(tree).encode()).digest()
 
 
 class _WithoutTypes(ast.NodeTransformer):
@@ -164,13 +166,13 @@ def _digest(root: Path, files: list[Path]) -> str:
     digest = hashlib.sha256()
     for path in files:
         digest.update(path.relative_to(root).as_posix().encode() + b"\0")
-        digest.update(hashlib.sha256(_code(path)).digest())
+        digest.update(_code_sha256(path))
     return digest.hexdigest()[:16]
 
 
 @cache
 def engine_digest(root: Path = PACKAGE) -> str:
-    """Return the first 16 hex digits of the SHA-256 over the path and code (:func:`_code`)
+    """Return the first 16 hex digits of the SHA-256 over the path and code (:func:`_code_sha256`)
     of every file a clip can come from (:func:`clip_files`)."""
     return _digest(root, clip_files(root))
 
