@@ -13,7 +13,8 @@ from functools import wraps
 from django.conf import settings
 from django.http import Http404, HttpRequest, HttpResponse
 from django.utils import translation
-from django.views.decorators.cache import cache_control
+from django.utils.translation.trans_real import parse_accept_lang_header
+from django.views.decorators.cache import cache_page
 from django.views.i18n import JavaScriptCatalog
 
 from studyplatform.models import Study
@@ -21,21 +22,14 @@ from studyplatform.models import Study
 
 def browser_language(request: HttpRequest) -> str | None:
     """Return the interface language the browser prefers (Accept-Language), or None."""
+    # Django's own parser (what LocaleMiddleware uses): bounded, checked, by preference.
     header = request.headers.get("Accept-Language", "")
-    weighted = []
-    for order, part in enumerate(header.split(",")[:20]):
-        code, _, quality = part.strip().partition(";q=")
-        try:
-            weight = float(quality) if quality else 1.0
-        except ValueError:
-            continue
-        if code and code != "*" and weight > 0:
-            weighted.append((-weight, order, code))
-    for _, _, code in sorted(weighted):
-        try:
-            return translation.get_supported_language_variant(code)
-        except LookupError:
-            continue
+    for code, _ in parse_accept_lang_header(header):
+        if code != "*":
+            try:
+                return translation.get_supported_language_variant(code)
+            except LookupError:
+                continue
     return None
 
 
@@ -75,10 +69,16 @@ def in_study_language(view):
     return wrapped
 
 
-@cache_control(max_age=3600)
+_CATALOGUE = JavaScriptCatalog.as_view(packages=["studyplatform"])
+
+
+# The same for every request in a language (until a deployment restarts the server):
+# cached, as Django's documentation advises, instead of read from the catalogues on each
+# participant page; browsers keep it for the hour too.
+@cache_page(3600)
 def javascript_catalog(request: HttpRequest, language: str) -> HttpResponse:
     """Serve participate.js's translations in *language* (Django's JavaScript catalogue)."""
     if language not in dict(settings.LANGUAGES):
         raise Http404("No such language.")
     with translation.override(language):
-        return JavaScriptCatalog.as_view(packages=["studyplatform"])(request)
+        return _CATALOGUE(request)
