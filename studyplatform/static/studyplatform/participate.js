@@ -144,8 +144,6 @@
   /* A lost connection is retried until it is back; a server error (5xx) a few times, then
    * the answer waits for the page's Next, which sends every answer again. */
   const SERVER_ERROR_ATTEMPTS = 5;
-  // Seconds the camera shows the signer before a signed answer's recording starts.
-  const COUNTDOWN_S = 3;
   const unsaved = new Set();
   const sending = new Map();  // question → its send loop, until the loop ends
   function send(question) {
@@ -273,6 +271,8 @@
    * has its own id, so the server never joins one take's bytes to another's, and the
    * last chunk says the whole file's SHA-256 and how long the recording ran. */
   const CHUNK_BYTES = 256 * 1024;
+  // Seconds the camera shows the signer before a recording starts, counted down.
+  const COUNTDOWN_S = 3;
   function newTakeId() {
     if (window.crypto && crypto.randomUUID) { return crypto.randomUUID(); }
     const b = crypto.getRandomValues(new Uint8Array(16));
@@ -325,6 +325,7 @@
       recorder = new MediaRecorder(stream);
       recorder.ondataavailable = function (event) { if (event.data.size) { parts.push(event.data); } };
       recorder.onstop = function () {
+        clearInterval(clock);  // however it stopped: the button, or the camera ending
         stream.getTracks().forEach(function (track) { track.stop(); });
         blob = new Blob(parts, {type: recorder.mimeType || "video/webm"});
         preview.srcObject = null;
@@ -361,7 +362,6 @@
       clock = setInterval(shown, 250);
     });
     stop.addEventListener("click", function () {
-      clearInterval(clock);
       // Measured here, not when the stop event arrives (late on a busy page).
       if (recorder && recorder.state !== "inactive") { durationMs = Date.now() - startedAt; recorder.stop(); }
     });
