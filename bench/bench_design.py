@@ -23,6 +23,7 @@ import django
 
 django.setup()
 
+from database import throwaway_database  # noqa: E402
 from django.contrib.auth import get_user_model  # noqa: E402  (needs django.setup())
 from django.db import connection  # noqa: E402
 from machine import timed_ms  # noqa: E402
@@ -126,8 +127,5 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--participants", type=int, default=100)
     arguments = parser.parse_args()
-    old_name = connection.creation.create_test_db(verbosity=0, autoclobber=True)
-    try:
+    with throwaway_database():
         main(arguments.participants)
-    finally:
-        connection.creation.destroy_test_db(old_name, verbosity=0)

@@ -22,6 +22,7 @@ import django
 
 django.setup()
 
+from database import throwaway_database  # noqa: E402
 from django.contrib.auth import get_user_model  # noqa: E402  (needs django.setup())
 from django.db import connection  # noqa: E402
 from machine import describe  # noqa: E402
@@ -51,8 +52,5 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    old_name = connection.creation.create_test_db(verbosity=0, autoclobber=True)
-    try:
+    with throwaway_database():
         main()
-    finally:
-        connection.creation.destroy_test_db(old_name, verbosity=0)

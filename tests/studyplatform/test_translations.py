@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 from django.conf import settings
 from django.urls import reverse
+from django.utils.translation import to_locale
 
 from studyplatform.models import Participant, Study
 from tests.studyplatform.test_participate import _start
@@ -46,17 +47,12 @@ def _languages() -> list[str]:
     return [code for code, _ in settings.LANGUAGES if code != settings.LANGUAGE_CODE]
 
 
-def _folder(code: str) -> str:
-    language, _, region = code.partition("-")
-    return f"{language}_{region.upper()}" if region else language
-
-
 @pytest.mark.parametrize("code", _languages())
 def test_every_catalogue_is_complete_and_keeps_every_placeholder(code):
     """Each interface language translates every message of both domains, none fuzzy,
     and msgfmt finds each translation's placeholders the same as its message id's."""
     for domain in DOMAINS:
-        path = LOCALE / _folder(code) / "LC_MESSAGES" / f"{domain}.po"
+        path = LOCALE / to_locale(code) / "LC_MESSAGES" / f"{domain}.po"
         entries = _entries(path)
         assert len(entries) > (80 if domain == "django" else 30), path
         untranslated = [msgid for msgid, texts in entries.items() if not all(texts)]
@@ -76,7 +72,7 @@ def test_the_catalogues_hold_every_message_the_code_marks(tmp_path):
         ROOT / "studyplatform", copy, ignore=shutil.ignore_patterns("__pycache__", "*.mo")
     )
     shutil.copy(ROOT / "manage.py", tmp_path / "manage.py")
-    languages = [arg for code in _languages() for arg in ("-l", _folder(code))]
+    languages = [arg for code in _languages() for arg in ("-l", to_locale(code))]
     for domain in DOMAINS:
         subprocess.run(
             [
@@ -89,7 +85,7 @@ def test_the_catalogues_hold_every_message_the_code_marks(tmp_path):
         )
     for code in _languages():
         for domain in DOMAINS:
-            relative = Path(_folder(code)) / "LC_MESSAGES" / f"{domain}.po"
+            relative = Path(to_locale(code)) / "LC_MESSAGES" / f"{domain}.po"
             assert set(_entries(copy / "locale" / relative)) == set(_entries(LOCALE / relative))
 
 
