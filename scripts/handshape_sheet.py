@@ -2,7 +2,7 @@
 
     .venv/bin/python scripts/handshape_sheet.py docs/img/alphabet-landmarks.png [LETTERS]
 
-A check of the handshape data (synthesis/data/asl_alphabet.yaml) without rendering.
+A check of the handshape data (synthesis/data/alphabets/asl.yaml) without rendering.
 """
 
 import sys

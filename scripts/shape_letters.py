@@ -17,7 +17,7 @@ then compared with the shared reference of 10,508 human samples of the 26 letter
 The reference is a target to shape toward, not joint angles to copy: what a letter is
 stays in the alphabet file's descriptions and contacts, and in the fist letters' check
 (synthesis/fingerspelling/fist_letters.py). Prints each changed letter's angles in the
-file's terms; ``--write`` puts them into synthesis/data/asl_alphabet.yaml. Afterwards
+file's terms; ``--write`` puts them into synthesis/data/alphabets/asl.yaml. Afterwards
 run scripts/letter_routes.py and bench/bench_letters_reference.py. J and Z, moving
 letters, keep the placement their paths key.
 """
@@ -49,7 +49,7 @@ from synthesis.render.scene import project_px, signing_view  # noqa: E402
 from synthesis.rigs.hand import HandModel  # noqa: E402
 from synthesis.rigs.posture import hand_motion_on  # noqa: E402
 
-ALPHABET = ROOT / "synthesis" / "data" / "asl_alphabet.yaml"
+ALPHABET = ROOT / "synthesis" / "data" / "alphabets" / "asl.yaml"
 WIDTH, HEIGHT = 1280, 720
 MOVING = "JZ"
 # How far each letter's palm turns toward the human median (1 unless noted): the whole

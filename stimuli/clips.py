@@ -19,7 +19,7 @@ from pathlib import Path
 
 from stimuli.quality import checked
 from synthesis.identity import engine_digest, file_sha256
-from synthesis.techniques import ClipError, ClipRequest, build_motion, render_request
+from synthesis.techniques import REGISTRY, ClipError, ClipRequest, build_motion, render_request
 from synthesis.techniques.request import film
 
 __all__ = [
@@ -49,7 +49,10 @@ class ClipSpec(ClipRequest):
 
     @classmethod
     def from_request(cls, request: ClipRequest, engine: str | None = None) -> "ClipSpec":
-        """Return the specification of *request* rendered by this engine (or *engine*)."""
+        """Return the specification of *request* rendered by this engine (or *engine*);
+        ClipError names a text the request cannot sign (a letter its alphabet lacks)
+        before anything is queued to render it."""
+        REGISTRY.check_text(request.kind, request.text, request.parameters)
         values = request.to_dict()
         if engine:
             values["engine"] = engine

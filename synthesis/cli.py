@@ -19,6 +19,12 @@ from pathlib import Path
 
 from synthesis.cli_capture import capture_command, export_motion, render_pose_file_command
 from synthesis.fingerspelling.alphabet import AlphabetError, letter_pose
+from synthesis.fingerspelling.alphabets import (
+    DEFAULT_ALPHABET,
+    alphabet_codes,
+    as_letter,
+    manual_alphabet,
+)
 from synthesis.rigs.hand import HandModel
 from synthesis.rigs.landmarks import landmarks
 from synthesis.skeleton.bvh import BvhError
@@ -37,11 +43,12 @@ from synthesis.terminal import frame_progress as _progress
 
 def _landmarks(args: argparse.Namespace) -> int:
     model = HandModel(args.side)
-    letters = [character for character in args.letters if not character.isspace()]
+    manual = manual_alphabet(args.alphabet)
+    letters = [manual.check(c) for c in as_letter(args.letters) if not c.isspace()]
     result = {}
     for character in letters:
-        points = landmarks(model, letter_pose(character, args.side))
-        result[character.upper()] = [[round(float(v), 6) for v in point] for point in points]
+        points = landmarks(model, letter_pose(character, args.side, args.alphabet))
+        result[character] = [[round(float(v), 6) for v in point] for point in points]
     print(json.dumps(result, indent=args.indent))
     return 0
 
@@ -61,8 +68,11 @@ def _render_pose(args: argparse.Namespace) -> int:
     from synthesis.rigs.posture import hand_motion_on
 
     rig = avatar_and_camera(args.view, args.side)[0].rig
-    dofs = hand_motion_on(rig, args.side, letter_pose(args.letter, args.side)[None])
-    avatar, camera = filming(args.view, args.side, dofs, 1.0, *args.size, word=args.letter)
+    pose = letter_pose(args.letter, args.side, args.alphabet)
+    dofs = hand_motion_on(rig, args.side, pose[None])
+    avatar, camera = filming(
+        args.view, args.side, dofs, 1.0, *args.size, word=args.letter, alphabet=args.alphabet
+    )
     path = render_still(avatar, dofs[0], camera, args.out, *args.size)
     print(f"wrote {path}")
     return 0
@@ -217,6 +227,7 @@ def parser() -> argparse.ArgumentParser:
     marks.add_argument("letters", help="letters, e.g. ABC")
     marks.add_argument("--side", choices=("right", "left"), default="right")
     marks.add_argument("--indent", type=int, default=None)
+    marks.add_argument("--alphabet", choices=alphabet_codes(), default=DEFAULT_ALPHABET)
     marks.set_defaults(run=_landmarks)
 
     def rendering(
@@ -255,6 +266,7 @@ def parser() -> argparse.ArgumentParser:
 
     pose = rendering("render-pose", "render one letter's handshape to a PNG")
     pose.add_argument("--letter", required=True)
+    pose.add_argument("--alphabet", choices=alphabet_codes(), default=DEFAULT_ALPHABET)
     pose.set_defaults(run=_render_pose)
 
     spell = rendering("spell", "render a fingerspelled word to an MP4", out_required=False)

@@ -18,6 +18,7 @@ from studyplatform.rules import (
     condition_item_kinds,
     describe_condition,
     file_help,
+    study_values,
     supported_kinds,
 )
 from synthesis.techniques import REGISTRY, REQUEST_PARAMETERS, Parameter
@@ -104,10 +105,13 @@ class ConditionForm(forms.ModelForm):
     def __init__(self, *args, **kwargs) -> None:
         super().__init__(*args, **kwargs)
         stored = dict(self.instance.parameters or {})
+        study = self.instance.study if self.instance.study_id is not None else None
+        defaults = study_values(study)
         for _, parameters in self.groups:
             for parameter in parameters:
                 field = self.fields[PREFIX + parameter.name]
-                field.initial = stored.pop(parameter.name, parameter.default)
+                default = defaults.get(parameter.name, parameter.default)
+                field.initial = stored.pop(parameter.name, default)
         self.initial["parameters"] = stored
 
     def clean(self):
@@ -115,11 +119,14 @@ class ConditionForm(forms.ModelForm):
         extra = cleaned.get("parameters")
         if extra is None or isinstance(extra, dict):
             parameters = dict(extra or {})
+            # What the study sets for its items (its alphabet) is a default here too.
+            defaults = study_values(cleaned.get("study"))
             for _, declared in self.groups:
                 for parameter in declared:
                     value = cleaned.get(PREFIX + parameter.name)
+                    default = defaults.get(parameter.name, parameter.default)
                     # A default (or an empty file) is not stored: it says nothing.
-                    if value not in (None, "", parameter.default):
+                    if value not in (None, "", default):
                         parameters[parameter.name] = value
         else:
             parameters = extra  # not a mapping: the model's check names what is wrong

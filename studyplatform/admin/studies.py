@@ -148,6 +148,7 @@ class StudyAdmin(
                     "language",
                     "follow_browser_language",
                     "sign_language",
+                    "manual_alphabet",
                     "asl_first",
                     "allow_english_only",
                     "signed_templates",

@@ -24,6 +24,7 @@ STUDY_FIELDS = (
     "language",
     "follow_browser_language",
     "sign_language",
+    "manual_alphabet",
     "phone_clips_side_by_side",
     "asl_first",
     "allow_english_only",

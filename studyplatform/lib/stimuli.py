@@ -7,7 +7,7 @@ from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
 from studyplatform.lib.recordings import with_item_recording
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial, UploadedClip
-from studyplatform.rules import resolve_files
+from studyplatform.rules import resolve_files, study_values
 from synthesis.techniques import ClipRequest
 
 # Rendered clips live in MEDIA_ROOT/stimuli, named by their content hash: one file per
@@ -25,7 +25,8 @@ def clips_folder() -> Path:
 def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     """Return the clip specification of *condition* applied to *item*.
 
-    The condition's parameters override the item's. The seed is the item's (its
+    The condition's parameters override the item's, and the item's the study's (its
+    manual alphabet, :func:`studyplatform.rules.study_values`). The seed is the item's (its
     parameters' ``seed``, else a checksum of its key), so all conditions of an item share
     one performance and one noise. A word's recording, where it has one, is the
     performance of the conditions that retime a capture (:mod:`studyplatform.lib.recordings`);
@@ -33,9 +34,11 @@ def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     file setting's reference (``recording:12``) becomes its stored file
     (:mod:`studyplatform.rules.files`); ClipError names one the study may not use.
     """
-    parameters = {**(item.parameters or {}), **(condition.parameters or {})}
+    study = condition.study
+    own = {**study_values(study, item.kind), **(item.parameters or {})}
+    parameters = {**own, **(condition.parameters or {})}
     # References to stored files become their paths here, and only here (issue 51).
-    parameters = resolve_files(parameters, condition.study.owner)
+    parameters = resolve_files(parameters, study.owner)
     parameters.setdefault("seed", zlib.crc32(item.key.encode()))
     parameters = with_item_recording(parameters, item, condition.key)
     if condition.avatar_id is not None:

@@ -11,7 +11,8 @@ from django.core.exceptions import ValidationError
 from django.core.validators import MinValueValidator
 from django.db import models
 
-from studyplatform.rules import check_condition
+from studyplatform.rules import check_condition, check_study_values
+from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET, alphabet_choices
 from synthesis.techniques.timing import trained_on_simulated
 
 
@@ -86,6 +87,13 @@ class Study(models.Model):
         default="ASL",
         help_text="The sign language's name as participants know it (ASL, Libras, TİD, "
         "BSL …): the pages use it wherever they name the signing.",
+    )
+    manual_alphabet = models.CharField(
+        max_length=20,
+        choices=alphabet_choices,
+        default=DEFAULT_ALPHABET,
+        help_text="The manual alphabet the study's fingerspelled words are spelled in "
+        "(the engine's alphabet files; a condition or an item may set another).",
     )
     phone_clips_side_by_side = models.BooleanField(
         default=False,
@@ -233,6 +241,9 @@ class Study(models.Model):
 
     def __str__(self) -> str:
         return self.title
+
+    def clean(self) -> None:
+        check_study_values(self)
 
     @property
     def design_locked(self) -> bool:

@@ -9,9 +9,11 @@ from studyplatform.rules.techniques import (
     check_condition,
     check_item,
     check_parameters,
+    check_study_values,
     condition_item_kinds,
     describe_condition,
     describe_parameters,
+    study_values,
     supported_kinds,
 )
 
@@ -21,10 +23,12 @@ __all__ = [
     "check_files",
     "check_item",
     "check_parameters",
+    "check_study_values",
     "condition_item_kinds",
     "describe_condition",
     "describe_parameters",
     "file_help",
     "resolve_files",
+    "study_values",
     "supported_kinds",
 ]

@@ -10,7 +10,7 @@ saved condition's study through the instance it is given).
 from collections.abc import Iterable, Mapping
 from typing import Any
 
-from django.core.exceptions import ValidationError
+from django.core.exceptions import ObjectDoesNotExist, ValidationError
 
 from studyplatform.rules.files import check_files
 from synthesis.techniques import (
@@ -22,26 +22,54 @@ from synthesis.techniques import (
     validate_parameters,
 )
 
+# A study's settings that are technique values of its items: field → parameter.
+STUDY_VALUES = {"manual_alphabet": "alphabet"}
+
+
+def study_values(study, kind: str | None = None) -> dict[str, Any]:
+    """Return the technique values *study* sets for its items (of *kind*: those its
+    techniques take), its manual alphabet for words; an item's or a condition's own
+    values override them."""
+    if study is None:
+        return {}
+    values = {name: getattr(study, field) for field, name in STUDY_VALUES.items()}
+    if kind is None:
+        return values
+    known = REGISTRY.parameters(kind) if kind in REGISTRY.kinds else {}
+    return {name: value for name, value in values.items() if name in known}
+
+
+def _technique_values(parameters: Mapping[str, Any]) -> dict[str, Any]:
+    """Return *parameters* without the filming fields (view, size, seed …)."""
+    return {k: v for k, v in parameters.items() if k not in FIELDS}
+
 
 def supported_kinds(kinds: Iterable[str]) -> list[str]:
     """Return the item kinds among *kinds* that the engine renders, in a fixed order."""
     return sorted(kind for kind in set(kinds) if kind in REGISTRY.kinds)
 
 
-def check_parameters(parameters: Any, kinds: Iterable[str]) -> None:
-    """Raise ClipError naming the problem if *parameters* do not suit every kind of *kinds*.
+def check_parameters(parameters: Any, kinds: Iterable[str], study=None) -> None:
+    """Raise ClipError naming the problem if *parameters* do not suit every kind of *kinds*
+    (with the values *study* sets for each kind, :func:`study_values`).
 
     With no kinds, they must suit at least one kind the engine renders.
     """
     kinds = supported_kinds(kinds)
+
+    def with_study(kind: str) -> Any:
+        if not isinstance(parameters, Mapping):
+            return parameters
+        return {**study_values(study, kind), **parameters}
+
     if kinds:
         for kind in kinds:
-            validate_parameters(kind, parameters)
+            validate_parameters(kind, with_study(kind))
         return
     errors = []
     for kind in REGISTRY.kinds:
         try:
-            validate_parameters(kind, parameters)
+            validate_parameters(kind, with_study(kind))
             return
         except ClipError as error:
             # The kind whose techniques know every key says what is wrong with a value.
@@ -84,12 +112,22 @@ def describe_condition(condition) -> str:
 
 
 def check_condition(condition) -> None:
-    """Raise ValidationError on the parameters field if they do not suit the study's items."""
+    """Raise ValidationError on the parameters field if they do not suit the study's items
+    (their kinds, and each word's letters in the alphabet the condition spells it in)."""
+    study = condition.study if condition.study_id is not None else None
+    parameters = as_checked(condition.parameters or {})
     try:
-        check_parameters(as_checked(condition.parameters or {}), condition_item_kinds(condition))
+        check_parameters(parameters, condition_item_kinds(condition), study)
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None
     check_files(condition.parameters, _study_owner(condition))
+    if study is None or study.being_filled or not isinstance(condition.parameters, Mapping):
+        return
+    for item in study.items.all():
+        try:
+            check_text(study, item, parameters)
+        except ClipError as error:
+            raise ValidationError({"parameters": f"Item {item.key!r}: {error}"}) from None
 
 
 def _study_owner(row):
@@ -98,30 +136,85 @@ def _study_owner(row):
 
 
 def check_item(item) -> None:
-    """Raise ValidationError if the engine cannot render *item* under its study's conditions."""
+    """Raise ValidationError if the engine cannot render *item* under its study's conditions.
+
+    Its text is checked as each rendered condition spells it (a word's letters in the
+    alphabet the study, the item or the condition sets), and by a condition added later
+    (:func:`check_condition`): a study without rendered conditions renders nothing, so
+    its texts are the researcher's own words (a TİD study of uploaded clips spells ÇAY).
+    """
     try:
         REGISTRY.kind(item.kind)
     except ClipError as error:
         raise ValidationError({"kind": f"{error} No technique renders it yet."}) from None
     try:
-        REGISTRY.check_text(item.kind, item.text)
-    except ClipError as error:
-        raise ValidationError({"text": str(error)}) from None
-    try:
         validate_parameters(item.kind, item.parameters or {})
     except ClipError as error:
         raise ValidationError({"parameters": str(error)}) from None
     check_files(item.parameters, _study_owner(item))
-    if item.study_id is None:
+    study = _study_of(item)
+    if study is None:
+        _item_text(None, item, {}, "")
+    if study is None or study.pk is None:
+        # A study added on one page with its items: its conditions are not saved yet.
+        # The words are checked when it is saved again and when its clips are specified.
         return
-    for condition in item.study.conditions.all():
+    own = {**study_values(study, item.kind), **(item.parameters or {})}
+    for condition in study.conditions.all():
+        if condition.is_uploaded:
+            continue
         try:
-            parameters = as_checked({**(item.parameters or {}), **condition.parameters})
-            validate_parameters(item.kind, parameters)
+            validate_parameters(item.kind, as_checked({**own, **condition.parameters}))
         except ClipError as error:
             raise ValidationError(
                 {"kind": f"Condition {condition.key!r} cannot render this item: {error}"}
             ) from None
+        _item_text(study, item, condition.parameters, f"Condition {condition.key!r}: ")
+
+
+def check_study_values(study) -> None:
+    """Raise ValidationError on a changed study setting (:data:`STUDY_VALUES`, its manual
+    alphabet) that one of its rendered conditions cannot render an item with."""
+    if study.pk is None or study.being_filled:
+        return
+    saved = type(study)._default_manager.filter(pk=study.pk).values(*STUDY_VALUES).first()
+    if saved is None or all(saved[field] == getattr(study, field) for field in STUDY_VALUES):
+        return
+    rendered = [c for c in study.conditions.all() if not c.is_uploaded]
+    for item in study.items.all() if rendered else ():
+        for condition in rendered:
+            try:
+                check_text(study, item, condition.parameters)
+            except ClipError as error:
+                message = f"Item {item.key!r} under condition {condition.key!r}: {error}"
+                raise ValidationError(dict.fromkeys(STUDY_VALUES, message)) from None
+
+
+def check_text(study, item, condition_parameters: Mapping[str, Any]) -> None:
+    """Raise ClipError if *item*'s text cannot be signed under a condition's parameters
+    (a word's letters in the alphabet the study, the item or the condition sets)."""
+    values = {
+        **study_values(study, item.kind),
+        **(item.parameters or {}),
+        **condition_parameters,
+    }
+    REGISTRY.check_text(item.kind, item.text, _technique_values(as_checked(values)))
+
+
+def _study_of(row):
+    """Return *row*'s study: a saved one, one being added with it, or None."""
+    try:
+        return row.study
+    except ObjectDoesNotExist:
+        return None
+
+
+def _item_text(study, item, condition_parameters: Mapping[str, Any], where: str) -> None:
+    """Raise ValidationError on the text field if the condition cannot sign it."""
+    try:
+        check_text(study, item, condition_parameters)
+    except ClipError as error:
+        raise ValidationError({"text": f"{where}{error}"}) from None
 
 
 def _described(parameter, value) -> str:

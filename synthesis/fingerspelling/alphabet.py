@@ -5,32 +5,35 @@ contacts that define it (D: thumb tip on the middle fingertip; F: thumb and inde
 …). Authored angles are a starting point; a bounded least-squares solve then moves the
 listed DOFs, as little as possible and within their limits, until every contact holds
 (points at the stated distance, which accounts for the fingers' thickness: landmarks
-sit on the bones' axes). J and Z are motion paths: a sequence of keyed poses.
+sit on the bones' axes). J and Z are motion paths: a sequence of keyed poses. A
+two-handed alphabet's letter is a handshape for each hand and where they touch
+(:func:`two_handed_letter`).
 """
 
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 
 import numpy as np
-import yaml
 from scipy.optimize import least_squares
 
 from synthesis.diskcache import cached
+from synthesis.fingerspelling.alphabets import (
+    DEFAULT_ALPHABET,
+    AlphabetError,
+    letter_entry,
+    manual_alphabet,
+)
 from synthesis.rigs.hand import FINGERS, HandModel
 from synthesis.skeleton.rotations import quat_rotate
 
 # The libraries whose versions a solved letter depends on (synthesis.diskcache).
 SOLVER_LIBRARIES = ("numpy", "scipy")
 
+# The ASL alphabet's letters: the routes table and the shaping tools are made for them.
 LETTERS = tuple("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
 # Shorthand groups of the data file → DOF names.
 _FINGER_KEYS = ("mcp_flexion", "pip_flexion", "dip_flexion")
 _THUMB_KEYS = ("cmc_abduction", "cmc_rotation", "cmc_flexion", "mcp_flexion", "ip_flexion")
-
-
-class AlphabetError(ValueError):
-    """A letter that is not in the alphabet, or a malformed alphabet data file."""
 
 
 @dataclass(frozen=True)
@@ -173,14 +176,6 @@ def contact_gaps_m(model: HandModel, dofs_rad: np.ndarray, contacts) -> list[flo
     return [contact_gap_m(model, dofs_rad, c) for c in contacts]
 
 
-def _check_file(data) -> None:
-    if not isinstance(data, dict):
-        raise AlphabetError("The alphabet file must map letters to handshapes.")
-    missing = [letter for letter in LETTERS if letter not in data]
-    if missing:
-        raise AlphabetError(f"The alphabet file lacks {', '.join(missing)}.")
-
-
 def _contacts(entry: dict, model: HandModel, where: str) -> tuple[Contact, ...]:
     """Return a letter's contacts; AlphabetError names a joint the hand does not have."""
     contacts = tuple(
@@ -248,28 +243,73 @@ def parse_letter(letter: str, entry: dict, model: HandModel, solved=None) -> Let
 
 
 @cache
-def _data() -> dict:
-    text = resources.files("synthesis").joinpath("data/asl_alphabet.yaml").read_text("utf-8")
-    data = yaml.safe_load(text)
-    _check_file(data)
-    return data
+def letter(letter: str, side: str = "right", alphabet: str = DEFAULT_ALPHABET) -> Letter:
+    """Return one letter of a one-handed alphabet (solved on first use, then cached in
+    memory and in the engine's disk cache, synthesis.diskcache: solving a letter's
+    contacts takes a quarter of a second, and every render process solved the letters
+    it spells)."""
+    manual = manual_alphabet(alphabet)
+    key = manual.check(letter)
+    if manual.two_handed:
+        raise AlphabetError(
+            f"The {manual.name} manual alphabet is two-handed: each letter is two "
+            "handshapes (two_handed_letter), not one."
+        )
+    model = HandModel(side)
+    entry = letter_entry(alphabet, key)
+    return cached(
+        f"letter-{alphabet}-{side}-{key}",
+        SOLVER_LIBRARIES,
+        lambda: parse_letter(key, entry, model),
+        _solution,
+        lambda stored: parse_letter(key, entry, model, solved=stored),
+    )
+
+
+@dataclass(frozen=True)
+class TwoHandedLetter:
+    """A letter of a two-handed alphabet: each hand's handshape and where they touch."""
+
+    letter: str
+    description: str
+    dominant: Letter
+    nondominant: Letter
+    # The joints that meet: (dominant hand's, nondominant hand's); none when apart.
+    touch: tuple[str, str] | None = None
+
+
+def _other(side: str) -> str:
+    return "left" if side == "right" else "right"
 
 
 @cache
-def letter(letter: str, side: str = "right") -> Letter:
-    """Return one letter of the alphabet (solved on first use, then cached in memory and
-    in the engine's disk cache, synthesis.diskcache: solving a letter's contacts takes
-    a quarter of a second, and every render process solved the letters it spells)."""
-    key = letter.upper() if isinstance(letter, str) else letter
-    if key not in LETTERS:
-        raise AlphabetError(f"{letter!r} is not a letter of the ASL manual alphabet (A–Z).")
-    model = HandModel(side)
-    return cached(
-        f"letter-{side}-{key}",
-        SOLVER_LIBRARIES,
-        lambda: parse_letter(key, _data()[key], model),
-        _solution,
-        lambda stored: parse_letter(key, _data()[key], model, solved=stored),
+def two_handed_letter(
+    letter: str, side: str = "right", alphabet: str = DEFAULT_ALPHABET
+) -> TwoHandedLetter:
+    """Return one letter of a two-handed alphabet, *side* the dominant hand's."""
+    manual = manual_alphabet(alphabet)
+    key = manual.check(letter)
+    if not manual.two_handed:
+        raise AlphabetError(f"The {manual.name} manual alphabet is one-handed: use letter().")
+    entry = letter_entry(alphabet, key)
+    where = f"alphabet {alphabet}, letter {key}"
+    if not isinstance(entry, dict) or not {"dominant", "nondominant"} <= set(entry):
+        raise AlphabetError(f"{where}: a two-handed letter gives dominant and nondominant.")
+    hands = {
+        role: parse_letter(key, entry[role], HandModel(hand_side))
+        for role, hand_side in (("dominant", side), ("nondominant", _other(side)))
+    }
+    touch = entry.get("touch")
+    if touch is not None:
+        model = HandModel(side)
+        if not isinstance(touch, dict) or set(touch) != {"dominant", "nondominant"}:
+            raise AlphabetError(f"{where}: touch names a joint of each hand.")
+        unknown = [name for name in touch.values() if name not in model.skeleton.names]
+        if unknown:
+            raise AlphabetError(f"{where}: unknown joint(s) {', '.join(unknown)} in touch.")
+        touch = (touch["dominant"], touch["nondominant"])
+    return TwoHandedLetter(
+        key, entry.get("description", ""), hands["dominant"], hands["nondominant"], touch
     )
 
 
@@ -280,14 +320,14 @@ def _solution(solved: Letter) -> dict[str, np.ndarray]:
     return {"dofs_rad": solved.dofs_rad, "path_rad": solved.path_rad}
 
 
-def alphabet(side: str = "right") -> dict[str, Letter]:
-    """Return all 26 letters for a right or left hand."""
-    return {key: letter(key, side) for key in LETTERS}
+def alphabet(side: str = "right", code: str = DEFAULT_ALPHABET) -> dict[str, Letter]:
+    """Return every letter of a one-handed alphabet for a right or left hand."""
+    return {key: letter(key, side, code) for key in manual_alphabet(code).letters}
 
 
-def letter_pose(name: str, side: str = "right") -> np.ndarray:
+def letter_pose(name: str, side: str = "right", alphabet: str = DEFAULT_ALPHABET) -> np.ndarray:
     """Return the DOF vector (radians) of one letter; AlphabetError for anything else."""
-    return letter(name, side).dofs_rad
+    return letter(name, side, alphabet).dofs_rad
 
 
 # A relaxed, slightly open hand: where a word starts and ends.
@@ -309,8 +349,10 @@ __all__ = [
     "REST_DEGREES",
     "AlphabetError",
     "Letter",
+    "TwoHandedLetter",
     "alphabet",
     "letter",
     "letter_pose",
     "rest_pose",
+    "two_handed_letter",
 ]

@@ -1,7 +1,7 @@
 """Tell the fist letters apart as ASL describes them: where the thumb lies.
 
 A, E, M, N, S and T close the four fingers and differ by the thumb (the alphabet's own
-descriptions in ``synthesis/data/asl_alphabet.yaml``, after the standard ASL manual
+descriptions in ``synthesis/data/alphabets/asl.yaml``, after the standard ASL manual
 alphabet): **A** beside the index; **S** across the front of the index and middle
 fingers; **T** poking up between the index and middle; **E** under the fingertips bent
 down onto it; **N** tucked under the index and middle, its tip between middle and ring;

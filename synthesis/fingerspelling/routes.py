@@ -10,8 +10,8 @@ that passes no phalanx through another (:func:`synthesis.rigs.collisions.finger_
 and adds little overlap between digits beyond what the two letters themselves have.
 
 Choosing takes about 0.1 s a pair, so the choices for the whole alphabet are computed
-once into ``data/letter_routes.json`` (``scripts/letter_routes.py``); pairs not in it
-are chosen on first use.
+once into ``data/letter_routes.json`` (``scripts/letter_routes.py``) for the ASL
+alphabet; pairs not in it, and every pair of another alphabet, are chosen on first use.
 """
 
 import json
@@ -22,6 +22,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from synthesis.fingerspelling.alphabet import LETTERS, letter, rest_pose
+from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET
 from synthesis.formats import check_header
 from synthesis.rigs.collisions import finger_crossings, overlap_depths_m
 from synthesis.rigs.hand import FINGERS, HandModel
@@ -138,19 +139,19 @@ def choose_route(a_rad, b_rad, side: str = "right") -> str:
     return ROUTES[min(scores)[3]]
 
 
-def end_pose(character: str, side: str = "right") -> np.ndarray:
+def end_pose(character: str, side: str = "right", alphabet: str = DEFAULT_ALPHABET) -> np.ndarray:
     """Return the pose a letter is left from (a path letter's last key; REST the rest)."""
     if character == REST:
         return rest_pose(side)
-    shape = letter(character, side)
+    shape = letter(character, side, alphabet)
     return shape.dofs_rad if shape.path_rad is None else shape.path_rad[-1]
 
 
-def start_pose(character: str, side: str = "right") -> np.ndarray:
+def start_pose(character: str, side: str = "right", alphabet: str = DEFAULT_ALPHABET) -> np.ndarray:
     """Return the pose a letter is reached at (a path letter's first key; REST the rest)."""
     if character == REST:
         return rest_pose(side)
-    shape = letter(character, side)
+    shape = letter(character, side, alphabet)
     return shape.dofs_rad if shape.path_rad is None else shape.path_rad[0]
 
 
@@ -163,15 +164,17 @@ def _table() -> dict[str, str]:
 
 
 @cache
-def letter_route(first: str, second: str) -> str:
+def letter_route(first: str, second: str, alphabet: str = DEFAULT_ALPHABET) -> str:
     """Return the route from one letter to the next, or from or to :data:`REST` (the same
     for either hand: the left hand mirrors the right)."""
     pair = (first + second).upper()
     if first.upper() == second.upper():
         return "direct"  # a doubled letter only slides
-    route = _table().get(pair)
+    route = _table().get(pair) if alphabet == DEFAULT_ALPHABET else None
     if route is None:
-        route = choose_route(end_pose(first), start_pose(second))
+        route = choose_route(
+            end_pose(first, alphabet=alphabet), start_pose(second, alphabet=alphabet)
+        )
     return route
 
 

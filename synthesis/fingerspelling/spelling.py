@@ -18,6 +18,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline, PchipInterpolator
 
 from synthesis.fingerspelling.alphabet import AlphabetError, letter, rest_pose
+from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET, as_letter, manual_alphabet
 from synthesis.fingerspelling.routes import REST, letter_route, route_poses
 from synthesis.fingerspelling.word_timing import WordTiming
 from synthesis.rigs.hand import HandModel
@@ -30,20 +31,30 @@ LEAD_MS = 250.0
 REST_HOLD_MS = 100.0
 
 
-def word_letters(word: str) -> list[str]:
-    """Return the letters of *word* in upper case; AlphabetError names anything else."""
-    letters = [c.upper() for c in word if not c.isspace()]
+def word_letters(word: str, alphabet: str = DEFAULT_ALPHABET) -> list[str]:
+    """Return the letters of *word* in upper case, composed (NFC: "c" and a combining
+    cedilla are one "Ç"); AlphabetError names a character the alphabet lacks, or a
+    two-handed alphabet (spelling moves one hand so far)."""
+    manual = manual_alphabet(alphabet)
+    letters = [c for c in as_letter(word) if not c.isspace()]
     if not letters:
         raise AlphabetError("Nothing to spell: the word is empty.")
     for c in letters:
-        letter(c)  # raises AlphabetError with the offending character
+        manual.check(c)
+    if manual.two_handed:
+        raise AlphabetError(
+            f"The {manual.name} manual alphabet is two-handed: the engine reads its "
+            "letters but spells words with one hand only so far."
+        )
     return letters
 
 
-def simple_timing(word: str) -> WordTiming:
-    """Return the simple default timing: 200 ms holds (450 ms for J and Z), 180 ms moves."""
-    letters = word_letters(word)
-    holds = [SIMPLE_PATH_MS if c in "JZ" else SIMPLE_HOLD_MS for c in letters]
+def simple_timing(word: str, alphabet: str = DEFAULT_ALPHABET) -> WordTiming:
+    """Return the simple default timing: 200 ms holds (450 ms for a letter that moves,
+    as J and Z do), 180 ms moves."""
+    letters = word_letters(word, alphabet)
+    moving = {c for c in letters if letter(c, alphabet=alphabet).path_rad is not None}
+    holds = [SIMPLE_PATH_MS if c in moving else SIMPLE_HOLD_MS for c in letters]
     return WordTiming(
         tuple(letters), tuple(holds), (SIMPLE_TRANSITION_MS,) * (len(letters) - 1), "simple"
     )
@@ -60,11 +71,14 @@ def hold_times_s(timing: WordTiming, lead_ms: float = LEAD_MS) -> np.ndarray:
 
 
 def spelling_keys(
-    timing: WordTiming, side: str = "right", lead_ms: float = LEAD_MS
+    timing: WordTiming,
+    side: str = "right",
+    lead_ms: float = LEAD_MS,
+    alphabet: str = DEFAULT_ALPHABET,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Return key times (k,) in seconds, key poses (k, n_dofs) and which keys are the
     intermediate poses of a routed transition (k,) for a timed word."""
-    word_letters(timing.word)
+    word_letters(timing.word, alphabet)
     model = HandModel(side)
     rest = rest_pose(side)
     slide = model.dof_names.index("forearm_tilt_side")
@@ -76,11 +90,12 @@ def spelling_keys(
     times, poses = ([0.0, still], [rest, rest]) if lead else ([], [])
     via_at: list[int] = []
     for k, character in enumerate(timing.letters):
-        shape = letter(character, side)
+        shape = letter(character, side, alphabet)
         start, hold = holds[k, 0], timing.hold_ms[k] / 1000
         if k or lead:
             previous = timing.letters[k - 1] if k else REST
-            _add_route(times, poses, via_at, previous, character, start, side, shape)
+            route = letter_route(previous, character, alphabet)
+            _add_route(times, poses, via_at, route, start, side, shape)
         if shape.path_rad is not None:
             times += list(start + shape.path_times * hold)
             poses += [np.array(pose) for pose in shape.path_rad]
@@ -92,7 +107,8 @@ def spelling_keys(
         poses += [pose, pose]
     if lead:
         end_s = times[-1] + lead
-        _add_route(times, poses, via_at, timing.letters[-1], REST, end_s, side, None, rest)
+        route = letter_route(timing.letters[-1], REST, alphabet)
+        _add_route(times, poses, via_at, route, end_s, side, None, rest)
         times += [end_s, end_s + still]
         poses += [rest, rest]
     vias = np.zeros(len(times), dtype=bool)
@@ -100,11 +116,10 @@ def spelling_keys(
     return np.array(times), np.stack(poses), vias
 
 
-def _add_route(times, poses, via_at, previous, character, arrive_s, side, shape, target=None):
-    """Append the intermediate keys that keep the fingers clear of each other between the
-    previous letter's last key and this letter's first (fingerspelling.routes); REST
-    stands for the relaxed hand."""
-    route = letter_route(previous, character)
+def _add_route(times, poses, via_at, route, arrive_s, side, shape, target=None):
+    """Append the intermediate keys of *route* that keep the fingers clear of each other
+    between the previous letter's last key and this letter's first
+    (fingerspelling.routes)."""
     if route == "direct":
         return
     if target is None:
@@ -123,17 +138,19 @@ def spell(
     rate_hz: float = 60.0,
     timing: WordTiming | None = None,
     lead_ms: float = LEAD_MS,
+    alphabet: str = DEFAULT_ALPHABET,
 ) -> np.ndarray:
-    """Return the hand's DOF vectors (n_frames, n_dofs) spelling *word* at *rate_hz*.
+    """Return the hand's DOF vectors (n_frames, n_dofs) spelling *word* at *rate_hz* in
+    the manual *alphabet*.
 
     Keys are joined by a monotone cubic (PCHIP), which eases in and out of holds without
     overshooting a pose (no finger flexes past where either letter puts it); a routed
     transition by a clamped cubic spline through its intermediate poses.
     """
-    timing = timing or simple_timing(word)
-    if timing.word != "".join(word_letters(word)):
+    timing = timing or simple_timing(word, alphabet)
+    if timing.word != "".join(word_letters(word, alphabet)):
         raise ValueError(f"The timing is for {timing.word}, not {word.upper()}.")
-    times, poses, vias = spelling_keys(timing, side, lead_ms)
+    times, poses, vias = spelling_keys(timing, side, lead_ms, alphabet)
     count = int(np.floor(times[-1] * rate_hz + 1e-9)) + 1
     if len(times) == 1:  # one letter, no lead: a still
         return HandModel(side).clip(np.repeat(poses, count, axis=0))

@@ -15,20 +15,10 @@ def request_glb(request, build=None, extras: dict | None = None) -> bytes:
     """Return the GLB of *request*: the avatar that films it, moving as the clip does,
     its face's blendshapes keyed per frame, and the clip's camera (seed 004 §4.2.2's
     skinning, written for any glTF 2.0 player)."""
-    from synthesis.techniques import filming
+    from synthesis.techniques.request import film
 
     build = _built(request, build)
-    word = request.text if request.kind == "word" else None
-    avatar, camera = filming(
-        request.view,
-        request.side,
-        build.motion,
-        request.rate_hz,
-        request.width,
-        request.height,
-        word,
-        build.look,
-    )
+    avatar, camera = film(request, build)
     if isinstance(build.motion, np.ndarray):
         pose = avatar.rig.pose(build.motion)
         weights = None if avatar.drive is None else avatar.drive.weights(build.motion)

@@ -6,7 +6,8 @@ have chosen a performance, a timing or synthesis options, makes the motion.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -17,17 +18,17 @@ if TYPE_CHECKING:
     from synthesis.techniques.request import Build
 
 
-def _check_word(text: str) -> None:
+def _check_word(text: str, values: Mapping[str, Any]) -> None:
     from synthesis.fingerspelling.spelling import word_letters
 
     try:
-        word_letters(text)
+        word_letters(text, values["alphabet"])
     except ValueError as error:
         raise ClipError(str(error)) from None
 
 
 def _start_word(build: Build) -> Build:
-    _check_word(build.request.text)
+    _check_word(build.request.text, build.request.parameters)
     return build
 
 
@@ -45,7 +46,8 @@ def _finish_word(build: Build) -> Build:
     if build.performance is None:
         from synthesis.rigs.posture import hand_motion_on
 
-        hand = spell(request.text, request.side, request.rate_hz, timing=build.timing)
+        alphabet = request.parameters["alphabet"]
+        hand = spell(request.text, request.side, request.rate_hz, build.timing, alphabet=alphabet)
         return build.but(motion=hand_motion_on(build.rig, request.side, hand))
     from synthesis.rigs.retarget import retarget
     from synthesis.skeleton.retime import resample
@@ -74,7 +76,7 @@ def _start_sentence(build: Build) -> Build:
     return build.but(options=options)
 
 
-def _check_sign_pair(text: str) -> None:
+def _check_sign_pair(text: str, values: Mapping[str, Any]) -> None:
     """Refuse anything but two glosses: the transition between them is the point."""
     from synthesis.signing.sentence import parse_glosses
     from synthesis.signing.signs import SignError
@@ -91,7 +93,7 @@ def _check_sign_pair(text: str) -> None:
 
 
 def _start_sign_pair(build: Build) -> Build:
-    _check_sign_pair(build.request.text)
+    _check_sign_pair(build.request.text, build.request.parameters)
     return _start_sentence(build)
 
 

@@ -75,8 +75,8 @@ class ItemKind:
 
     *start* turns a request into the first build; *finish* makes the motion from what
     the prepare-stage techniques chose, for the rig of the clip's view; *check_text*
-    refuses a text the kind cannot sign (it raises :class:`ClipError`), before any
-    rendering.
+    refuses a text the kind cannot sign with the techniques' values (a word's letters
+    in its alphabet; it raises :class:`ClipError`), before any rendering.
     """
 
     name: str
@@ -84,7 +84,7 @@ class ItemKind:
     views: tuple[str, ...]
     start: Callable[["Build"], "Build"]
     finish: Callable[["Build"], "Build"]
-    check_text: Callable[[str], None] | None = None
+    check_text: Callable[[str, Mapping[str, Any]], None] | None = None
 
     @property
     def default_view(self) -> str:
@@ -108,11 +108,12 @@ class Registry:
                 f"Unknown item kind {name!r}: the kinds are {', '.join(others)} and {last}."
             ) from None
 
-    def check_text(self, kind: str, text: str) -> None:
-        """Raise :class:`ClipError` when an item of *kind* cannot sign *text*."""
+    def check_text(self, kind: str, text: str, values: Mapping[str, Any] | None = None) -> None:
+        """Raise :class:`ClipError` when an item of *kind* cannot sign *text* with the
+        techniques' *values* (checked and completed with their defaults first)."""
         item_kind = self.kind(kind)
         if item_kind.check_text is not None:
-            item_kind.check_text(text)
+            item_kind.check_text(text, self.normalize(kind, values or {}))
 
     def for_kind(self, kind: str) -> list[Technique]:
         """Return the techniques that apply to items of *kind*."""

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
+from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET
 from synthesis.techniques.parameters import ClipError, Parameter
 
 if TYPE_CHECKING:  # the pipeline's parts, imported where a clip is made
@@ -260,10 +261,12 @@ def filming(
     height: int,
     word: str | None = None,
     look=None,
+    alphabet: str = DEFAULT_ALPHABET,
 ):
     """Return the avatar of *view* (in *look*) and the camera that films *motion* (DOF
     vectors or a Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`)
-    at the scale that fits every letter of *word* (so all conditions of a word share it)
+    at the scale that fits every letter of *word* in *alphabet* (so all conditions of a
+    word share it)
     and from the rest pose's framing at both ends; the signing view's stands still."""
     avatar, camera = avatar_and_camera(view, side, look, width, height)
     if view == "hand":
@@ -277,7 +280,7 @@ def filming(
         # would cost every render process seconds.
         letters = None
         if word:
-            shapes = [letter(c, side) for c in word_letters(word)]
+            shapes = [letter(c, side, alphabet) for c in word_letters(word, alphabet)]
             # A J's or Z's path keys too: the camera keeps a path in view from one place.
             letters = np.vstack(
                 [s.dofs_rad if s.path_rad is None else s.path_rad for s in shapes]
@@ -308,6 +311,7 @@ def film(request: ClipRequest, build: Build):
         request.height,
         word,
         build.look,
+        request.parameters.get("alphabet", DEFAULT_ALPHABET),
     )
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
+from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET, alphabet_choices, alphabet_codes
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
 from synthesis.techniques.timing import DEFAULT_TIMING
@@ -72,6 +73,12 @@ def retimes_recording(parameters: Mapping[str, Any]) -> bool:
 
 
 def _check(values) -> None:
+    if values["source"] != "alphabet" and values["alphabet"] != DEFAULT_ALPHABET:
+        # Captures are ASL: their holds are found by matching ASL's handshapes.
+        raise ClipError(
+            f"source {values['source']!r} is a capture of ASL fingerspelling: with the "
+            f"{values['alphabet']!r} alphabet, set source to 'alphabet'."
+        )
     if values["source"] == "recording" and not values["recording"]:
         raise ClipError(
             "source 'recording' needs the recording: set recording to a BVH or .pose file of "
@@ -124,6 +131,14 @@ TECHNIQUE = Technique(
         ),
         Parameter(
             "recording", "file", "", "A BVH or .pose recording of the word (source 'recording')."
+        ),
+        Parameter(
+            "alphabet",
+            "choice",
+            DEFAULT_ALPHABET,
+            "The manual alphabet the word is spelled in (a study sets it for all its words).",
+            choices=alphabet_codes(),
+            labels=dict(alphabet_choices()),
         ),
     ),
     source="seed 000 §4.3",

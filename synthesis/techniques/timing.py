@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET
 from synthesis.techniques.parameters import ClipError, Parameter
 from synthesis.techniques.registry import Technique
 from synthesis.timing.constant import HOLD_MS, LAST_HOLD_MS, TRANSITION_MS
@@ -40,6 +41,13 @@ def variable_model(values):
 
 
 def _check(values) -> None:
+    alphabet = values.get("alphabet", DEFAULT_ALPHABET)
+    if values["timing"] in ("variable", "normalized") and alphabet != DEFAULT_ALPHABET:
+        raise ClipError(
+            f"timing {values['timing']!r} uses the Variable model, fitted to ASL "
+            f"fingerspelling: with the {alphabet!r} alphabet, use timing 'simple' or "
+            "'constant'."
+        )
     if values["timing"] == "mocap" and values["source"] == "alphabet" and not values["timing_file"]:
         raise ClipError(
             "timing 'mocap' plays a performance as performed: set source to 'recording' "
@@ -63,7 +71,8 @@ def word_timing(values, text: str, performance=None):
     from synthesis.fingerspelling.word_timing import TimingError
     from synthesis.timing import constant_timing, normalized_constant_timing
 
-    word = "".join(word_letters(text))
+    alphabet = values.get("alphabet", DEFAULT_ALPHABET)
+    word = "".join(word_letters(text, alphabet))
     if values["timing_file"]:
         return _read_timing_file(values["timing_file"], word)
     timing = values["timing"]
@@ -86,7 +95,7 @@ def word_timing(values, text: str, performance=None):
         if timing == "variable":
             return variable
         return normalized_constant_timing(word, variable, **constant)
-    return simple_timing(text)
+    return simple_timing(text, alphabet)
 
 
 def _summary(values) -> str:

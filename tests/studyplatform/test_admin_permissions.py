@@ -132,6 +132,7 @@ def test_new_study_belongs_to_its_creator(bob_client, bob, alice):
             "allowed_devices": "any",
             "language": "en",
             "sign_language": "ASL",
+            "manual_alphabet": "asl",
             "thank_you_text": "Thanks",
             **{
                 f"{prefix}-{field}": 0

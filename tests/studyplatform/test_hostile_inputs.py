@@ -9,7 +9,8 @@ parameters. :data:`HARNESS` holds an entry for each, and
 
 Each entry sends what its kind of input can be, made hostile: issue 51's named cases,
 then Hypothesis's damage to good files (tests/hostile.py) — glTF/VRM JSON and binary
-chunks, BVH, ``.pose``, videos, zips and manifests, definitions, parameters. Every
+chunks, BVH, ``.pose``, videos, zips and manifests, definitions, parameters, and the
+language code the JavaScript catalogue takes in its URL. Every
 answer must be a 4xx or an accepted object, never ≥ 500, within its CPU time (the wall
 clock only guards against a hang) and with the web process's Python allocations under
 64 MB (parsers run confined, outside it); what a victim researcher had saved must be
@@ -28,9 +29,11 @@ from collections import Counter, defaultdict
 from collections.abc import Callable
 from dataclasses import dataclass
 from html.parser import HTMLParser
+from urllib.parse import quote
 
 import numpy as np
 import pytest
+from django.conf import settings as django_settings
 from django.core.files.uploadedfile import SimpleUploadedFile
 from django.db import models
 from django.test import Client
@@ -384,6 +387,8 @@ PARAMETER_VALUES = st.one_of(
             "file:///etc/passwd",
             "x" * 5000,
             "\x00",
+            "libras",
+            "../alphabets/asl",
         ]
     ),
     st.integers(-(2**70), 2**70),
@@ -404,6 +409,7 @@ PARAMETER_NAMES = st.sampled_from(
         "model",
         "timing_file",
         "source",
+        "alphabet",
         "timing",
         "rate_hz",
         "seed",
@@ -450,6 +456,32 @@ def _send_signed_answer(ctx: Ctx, sent: tuple[dict, bytes]):
     participant, number = SIGNED_PAGE[0]
     url = f"/p/{participant.token}/{number}/signed/comments/"
     return Client().post(url, body, content_type="application/octet-stream", headers=headers)
+
+
+def _language_input(data: st.DataObject) -> str:
+    return data.draw(st.one_of(st.text(min_size=1, max_size=300), st.sampled_from(LANGUAGE_CASES)))
+
+
+LANGUAGE_CASES = (
+    "pt-br",
+    "PT-BR",
+    "tr\x00",
+    "..",
+    "%2e%2e%2fsettings",
+    "en;rm -rf",
+    "x" * 5000,
+    "zh-hans",
+    "../../locale/tr/LC_MESSAGES/django.po",
+)
+
+
+def _send_language(ctx: Ctx, language: str):
+    """Ask for a JavaScript catalogue in a hostile language code (the URL's one part)."""
+    response = Client().get(f"/jsi18n/{quote(language, safe='')}/")
+    known = {code for code, _ in django_settings.LANGUAGES}
+    wanted = (200,) if language in known else range(400, 500)
+    assert response.status_code in wanted, (language, response.status_code)
+    return response
 
 
 ASL_PREFIX = "studyplatform-aslvideo-content_type-object_id"
@@ -561,6 +593,9 @@ HARNESS: dict[str, Entry] = {
         "technique parameters",
         lambda ctx, parameters: _send_condition(ctx, parameters, change=True),
         _parameters_input,
+    ),
+    "javascript_catalog": Entry(
+        "language code", _send_language, _language_input, lambda: LANGUAGE_CASES, seconds=5.0
     ),
     "participant_signed_answer": Entry(
         "signed-answer chunks", _send_signed_answer, _signed_answer_input, seconds=60.0

@@ -17,7 +17,7 @@ def cache(monkeypatch, tmp_path):
 
 def test_a_solved_letter_is_kept_and_loaded_back_the_same(cache, monkeypatch):
     solved = alphabet.letter("J")
-    (stored,) = cache.glob("letter-right-J-*.npz")
+    (stored,) = cache.glob("letter-asl-right-J-*.npz")
     alphabet.letter.cache_clear()
     # Loaded, not solved: solving now would fail.
     monkeypatch.setattr(alphabet, "solve_contacts", lambda *args: pytest.fail("solved again"))
@@ -30,7 +30,7 @@ def test_a_solved_letter_is_kept_and_loaded_back_the_same(cache, monkeypatch):
 
 def test_an_unreadable_or_misshapen_file_is_solved_again(cache):
     solved = alphabet.letter("A")
-    (stored,) = cache.glob("letter-right-A-*.npz")
+    (stored,) = cache.glob("letter-asl-right-A-*.npz")
     for damage in (b"not a zip file", None):
         if damage is None:
             save_arrays(stored, {"dofs_rad": np.zeros(3)})

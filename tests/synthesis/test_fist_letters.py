@@ -1,6 +1,6 @@
 """The fist letters differ as ASL says they do: where the thumb lies (issue 52).
 
-Reference: the alphabet's own descriptions (synthesis/data/asl_alphabet.yaml, after the
+Reference: the alphabet's own descriptions (synthesis/data/alphabets/asl.yaml, after the
 standard ASL manual alphabet): A beside the index, S across the front of index and
 middle, T between index and middle, E under the bent fingertips, N under two fingers
 with its tip between middle and ring, M under three with its tip between ring and pinky.
