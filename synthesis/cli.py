@@ -91,6 +91,11 @@ def _request(args: argparse.Namespace, kind: str, text: str, **values) -> ClipRe
     return ClipRequest(kind, text, {**technique_values(args), **values}, **fields)
 
 
+def _exports(args: argparse.Namespace) -> bool:
+    """Return whether *args* ask for the motion as a file (BVH, .pose or GLB)."""
+    return any(path is not None for path in (args.export_pose, args.export_bvh, args.export_glb))
+
+
 def _spell(args: argparse.Namespace) -> int:
     given = technique_values(args)
     values = {}
@@ -110,7 +115,12 @@ def _spell(args: argparse.Namespace) -> int:
         print(json.dumps(build.timing.to_dict(), indent=2))
         return 0
     if args.out is None:
-        raise ValueError("Give --out FILE.mp4 (or --timing-only to print the timing).")
+        if _exports(args):
+            return 0  # the motion was what was asked for: nothing to render
+        raise ValueError(
+            "Give --out FILE.mp4, an export (--export-bvh, --export-pose, --export-glb) "
+            "or --timing-only to print the timing."
+        )
     info = render_request(
         request,
         args.out,

@@ -172,7 +172,7 @@ def fit_arms(
     # Holistic's metric pose, where the file has it: its depth is far surer than the
     # image landmarks' (the arm fit only needs directions and proportions).
     component = (
-        POSE_WORLD_COMPONENT if recording.has_component(POSE_WORLD_COMPONENT) else (POSE_COMPONENT)
+        POSE_WORLD_COMPONENT if recording.found_component(POSE_WORLD_COMPONENT) else POSE_COMPONENT
     )
     points, confidence = recording.component(component, POSE_POINTS)
     points = to_mediapipe(points)

@@ -10,7 +10,8 @@ engine writes) or must be calibrated per signer (captures; see
 """
 
 import io
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import cache
 from pathlib import Path
 
 import numpy as np
@@ -96,6 +97,11 @@ class PoseRecording:
     def has_component(self, name: str) -> bool:
         return any(component == name for component, _ in self.components)
 
+    def found_component(self, name: str) -> bool:
+        """Return whether *name* is in the file and was found in some frame (a Holistic
+        file lays out every component, the ones its writer had no points for unfound)."""
+        return self.has_component(name) and bool(np.any(self.component(name)[1] > 0))
+
     def component(
         self, name: str, point_names: tuple[str, ...] | None = None
     ) -> tuple[np.ndarray, np.ndarray]:
@@ -171,14 +177,63 @@ def read_pose(path: str | Path) -> PoseRecording:
     return parse_pose(path.read_bytes(), str(path))
 
 
+@cache
+def _holistic_components() -> tuple:
+    """Return pose-format's MediaPipe Holistic components (names, points, limbs, colours)."""
+    _pose_format()
+    from pose_format.utils.holistic import holistic_components
+
+    return tuple(holistic_components("XYZC"))
+
+
+def holistic_layout(recording: PoseRecording) -> PoseRecording:
+    """Return *recording* laid out as MediaPipe Holistic: pose-format's components in its
+    order, each with all its points; the points *recording* lacks (a face mesh, the legs)
+    are there unfound (confidence 0), as Holistic writes what it did not see.
+
+    PoseFileError names a component or point that is not Holistic's.
+    """
+    layout = tuple((c.name, tuple(c.points)) for c in _holistic_components())
+    known = dict(layout)
+    for name, names in recording.components:
+        if name not in known:
+            raise PoseFileError(f"{name} is not a MediaPipe Holistic component.")
+        extra = [p for p in names if p not in known[name]]
+        if extra:
+            raise PoseFileError(f"{name} has no Holistic point(s) {', '.join(extra)}.")
+    total = sum(len(names) for _, names in layout)
+    points = np.zeros((recording.n_frames, total, 3))
+    confidence = np.zeros((recording.n_frames, total))
+    offset = 0
+    for name, names in layout:
+        if recording.has_component(name):
+            own = dict(recording.components)[name]
+            values, seen = recording.component(name, own)
+            at = [offset + names.index(p) for p in own]
+            points[:, at], confidence[:, at] = values, seen
+        offset += len(names)
+    return replace(recording, components=layout, points=points, confidence=confidence)
+
+
 def format_pose(recording: PoseRecording) -> bytes:
-    """Return *recording* as the bytes of a .pose file (one person, XYZC points)."""
+    """Return *recording* as the bytes of a .pose file (one person, XYZC points).
+
+    A recording of Holistic components is written in Holistic's full layout with its
+    limbs and colours (:func:`holistic_layout`), so pose-format's tools read it as
+    Holistic; any other as it is.
+    """
     pose_format = _pose_format()
     from pose_format.numpy.pose_body import NumPyPoseBody
     from pose_format.pose_header import PoseHeader, PoseHeaderComponent, PoseHeaderDimensions
 
+    holistic = {c.name: c for c in _holistic_components()}
+    if all(name in holistic for name, _ in recording.components):
+        recording = holistic_layout(recording)
     components = []
     for name, names in recording.components:
+        if name in holistic:
+            components.append(holistic[name])
+            continue
         limbs = list(HAND_LIMBS) if name in HAND_COMPONENTS.values() else []
         colors = [(255, 255, 255)] * max(len(limbs), 1)
         components.append(PoseHeaderComponent(name, list(names), limbs, colors, "XYZC"))

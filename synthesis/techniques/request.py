@@ -266,8 +266,8 @@ def filming(
     """Return the avatar of *view* (in *look*) and the camera that films *motion* (DOF
     vectors or a Pose): the close-up's follows the hand (:mod:`synthesis.render.follow`)
     at the scale that fits every letter of *word* in *alphabet* (so all conditions of a
-    word share it)
-    and from the rest pose's framing at both ends; the signing view's stands still."""
+    word share it) and from the rest pose's framing at both ends; the signing view's
+    stands still."""
     avatar, camera = avatar_and_camera(view, side, look, width, height)
     if view == "hand":
         import numpy as np

@@ -98,6 +98,16 @@ def test_preview_shows_every_page_in_order(alice_client, fingerspelling):
     assert "simulated" in page.text
 
 
+def test_preview_shows_the_participant_widgets_in_the_study_language(alice_client, fingerspelling):
+    """The researcher's page stays English; the questions read as participants see them."""
+    Study.objects.filter(pk=fingerspelling.pk).update(language="tr")
+    page = alice_client.get(reverse("admin:studyplatform_study_preview", args=[fingerspelling.pk]))
+    assert 'class="preview-questions" lang="tr"' in page.text
+    assert "E-posta adresiniz" in page.text  # the e-mail question's "Your e-mail address"
+    assert "Every page in design order" in page.text
+    assert 'lang="en"' in page.text.split("<body", 1)[0]
+
+
 def test_export_downloads_the_definition(alice_client, fingerspelling):
     url = reverse("admin:studyplatform_study_export", args=[fingerspelling.pk])
     download = alice_client.get(url)

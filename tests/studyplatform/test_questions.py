@@ -109,7 +109,7 @@ def test_the_preview_shows_the_participants_own_widgets(client, alice, fingerspe
         reverse("admin:studyplatform_study_preview", args=[fingerspelling.pk])
     ).content.decode()
     # The participant page's fieldset, legend and scale markup, disabled.
-    assert '<fieldset class="preview-questions" disabled>' in html
+    assert '<fieldset class="preview-questions" lang="en" disabled>' in html
     assert 'class="question" data-question="most-natural"' in html
     assert 'name="q-most-natural"' in html and 'name="q-age"' in html
     assert 'class="question scale" data-question="compare-clips"' in html

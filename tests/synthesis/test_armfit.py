@@ -30,11 +30,13 @@ def test_a_sentence_exported_as_pose_landmarks_fits_back():
     body, truth = _signed()
     recording = parse_pose(format_pose(from_body_motion(body, truth, 30.0)))
     assert "NOSE" in dict(recording.components)["POSE_LANDMARKS"]
-    assert {c for c, _ in recording.components} == {
+    assert [c for c, _ in recording.components] == [
         "POSE_LANDMARKS",
+        "FACE_LANDMARKS",
         "LEFT_HAND_LANDMARKS",
         "RIGHT_HAND_LANDMARKS",
-    }
+        "POSE_WORLD_LANDMARKS",
+    ]
     fit = fit_arms(body, recording)
     assert fit.found.all() and np.nanmax(fit.residual_mm) < 1.0
     true_pose, fitted_pose = body.pose(truth), body.pose(fit.dofs_rad)
@@ -107,10 +109,12 @@ def test_a_signer_turning_and_tilting_is_fitted_where_the_landmarks_show_it():
 
 
 def test_files_without_arms_are_refused_by_name():
-    hand = parse_pose(format_pose(from_hand_motion(HandModel(), np.zeros((3, 30)), 10)))
+    hand = from_hand_motion(HandModel(), np.zeros((3, 30)), 10)
     body, truth = _signed()
     with pytest.raises(PoseFileError, match="no component POSE_LANDMARKS"):
         fit_arms(body, hand)
+    with pytest.raises(PoseFileError, match="No arm was found"):
+        fit_arms(body, parse_pose(format_pose(hand)))  # Holistic: a body never found
     recording = from_body_motion(body, truth[:3], 30.0)
     unseen = type(recording)(
         recording.fps,

@@ -28,6 +28,8 @@ from synthesis.rigs import HandModel
 from synthesis.rigs.landmarks import landmarks
 
 pose_format = pytest.importorskip("pose_format")
+from pose_format.utils.generic import detect_known_pose_format  # noqa: E402
+from pose_format.utils.holistic import holistic_components  # noqa: E402
 
 
 @cache
@@ -45,12 +47,22 @@ def test_an_exported_motion_opens_with_pose_format_and_round_trips(tmp_path):
     recording = from_hand_motion(model, motion, 30)
     path = write_pose(recording, tmp_path / "cab.pose")
     theirs = pose_format.Pose.read(path.read_bytes())
-    assert [c.name for c in theirs.header.components] == ["RIGHT_HAND_LANDMARKS"]
-    assert theirs.body.data.shape == (len(motion), 1, 21, 3) and theirs.body.fps == 30
+    # Issue 54 (4): the full Holistic layout pose-format's own tools expect.
+    holistic = holistic_components("XYZC")
+    assert [c.name for c in theirs.header.components] == [c.name for c in holistic]
+    for ours, reference in zip(theirs.header.components, holistic, strict=True):
+        assert list(ours.points) == list(reference.points)
+        assert [tuple(limb) for limb in ours.limbs] == [tuple(limb) for limb in reference.limbs]
+        assert [tuple(c) for c in ours.colors] == [tuple(c) for c in reference.colors]
+    assert detect_known_pose_format(theirs) == "holistic"
+    face = theirs.get_components(["FACE_LANDMARKS", "RIGHT_HAND_LANDMARKS"])
+    assert face.body.data.shape == (len(motion), 1, 468 + 21, 3) and theirs.body.fps == 30
+    assert not theirs.body.confidence[:, 0, :33].any()  # no body in a hand close-up
     again = read_pose(path)
-    np.testing.assert_allclose(again.points, recording.points, atol=1e-3)  # float32 on disk
-    assert again.components == recording.components
-    assert parse_pose(format_pose(again)).points.shape == recording.points.shape
+    hand, seen = again.hand("right")
+    np.testing.assert_allclose(hand, recording.points, atol=1e-3)  # float32 on disk
+    assert seen.all() and again.found_hands() == {"left": 0.0, "right": 1.0}
+    assert parse_pose(format_pose(again)).points.shape == again.points.shape
 
 
 def test_points_are_looked_up_by_name_whatever_the_layout():
@@ -215,8 +227,9 @@ def test_fuzzed_files_give_a_clear_error_or_a_recording(noise, position):
 def test_a_file_without_hands_says_so():
     recording = from_hand_motion(HandModel(), letter_pose("A")[None], 10)
     with pytest.raises(PoseFileError, match="no component LEFT_HAND_LANDMARKS"):
-        parse_pose(format_pose(recording)).hand("left")
-    assert parse_pose(format_pose(recording)).found_hands() == {"right": 1.0}
+        recording.hand("left")
+    # Written, it is a Holistic file: the left hand is there, never found.
+    assert parse_pose(format_pose(recording)).found_hands() == {"left": 0.0, "right": 1.0}
 
 
 def test_a_pose_recording_is_timed_like_a_bvh_one(tmp_path):

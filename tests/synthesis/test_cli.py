@@ -1,5 +1,7 @@
 """Test the rendering commands: render-pose, spell and render-bvh, and their errors."""
 
+import json
+
 import imageio.v3 as iio
 import numpy as np
 import pytest
@@ -46,6 +48,26 @@ def test_unknown_letter_is_one_clear_error(tmp_path, capsys):
     assert main(["spell", "HE7LO", "--out", str(tmp_path / "x.mp4")]) == 2
     assert "'7' is not a letter of the ASL manual alphabet" in capsys.readouterr().err
     assert not (tmp_path / "x.mp4").exists()
+
+
+def test_spell_exports_the_motion_without_rendering_it(tmp_path, capsys):
+    """Issue 54 (7): spell with an export and no --out wrote the export and exited 2."""
+    bvh = tmp_path / "cab.bvh"
+    assert main(["spell", "CAB", "--export-bvh", str(bvh)]) == 0
+    assert bvh.read_text().startswith("HIERARCHY")
+    assert main(["spell", "CAB"]) == 2
+    assert "Give --out FILE.mp4, an export" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cab.bvh"]
+
+
+def test_a_libras_word_spells_in_its_alphabet_and_asl_names_the_letter(tmp_path, capsys):
+    out = tmp_path / "cay.mp4"
+    assert main(["spell", "ÇAY", "--alphabet", "libras", "--out", str(out), "--size", "96x72"]) == 0
+    assert out.stat().st_size > 0
+    assert main(["spell", "ÇAY", "--out", str(tmp_path / "x.mp4")]) == 2
+    assert "'Ç' is not a letter of the ASL manual alphabet (A–Z)" in capsys.readouterr().err
+    assert main(["landmarks", "çay", "--alphabet", "libras"]) == 0
+    assert list(json.loads(capsys.readouterr().out)) == ["Ç", "A", "Y"]
 
 
 def test_render_bvh_renders_a_hand_file(tmp_path):
