@@ -20,36 +20,81 @@ def without_trials(definition: dict, leave_out) -> dict:
     return definition
 
 
-def take_study(browser, url: str, slug: str, answer: Callable) -> tuple[Participant, dict]:
+def interface_text(text: str, language: str, domain: str = "django") -> str:
+    """Return the participant interface's *text* in *language* (djangojs: the catalogue
+    participate.js speaks from)."""
+    import gettext
+
+    from django.conf import settings
+    from django.utils import translation
+
+    if domain == "djangojs":
+        if language == "en":
+            return text
+        locale = translation.to_locale(language)
+        return gettext.translation(domain, settings.LOCALE_PATHS[0], [locale]).gettext(text)
+    with translation.override(language):
+        return translation.gettext(text)
+
+
+def take_study(
+    browser, url: str, slug: str, answer: Callable, language: str = "en"
+) -> tuple[Participant, dict]:
     """Take the study at /s/*slug*/ to its end; return the participant and the answers.
 
     *answer(page, trial_key, page_number)* fills the page's answers and returns what it
-    chose (kept by trial key); the helper waits for "Answer saved." and goes on.
+    chose (kept by trial key); the helper waits for "Answer saved." and goes on. The
+    pages' buttons and messages are looked for in the study's *language*.
     """
+    consent = interface_text("Continue (I agree to take part)", language)
+    saved = interface_text("Answer saved.", language, "djangojs")
+    finish = interface_text("Finish", language)
     context = browser.new_context(bypass_csp=True)
     answers = {}
     try:
         page = context.new_page()
         page.goto(f"{url}/s/{slug}/")
-        page.get_by_role("button", name="Continue (I agree to take part)").click()
+        page.get_by_role("button", name=consent).click()
         while True:
             page.wait_for_selector("#page-form.ready")
             form = page.locator("#page-form")
             number, key = int(form.get_attribute("data-page")), form.get_attribute("data-trial")
             answers[key] = answer(page, key, number)
-            page.get_by_text("Answer saved.").wait_for()
+            page.locator("#save-status").get_by_text(saved).wait_for()
             button = page.locator("#next-button")
-            finishing = button.text_content().strip() == "Finish"
+            finishing = button.text_content().strip() == finish
             button.click()
             if finishing:
                 break
             page.wait_for_function(
                 f"document.getElementById('page-form').dataset.page !== '{number}'"
             )
-        page.get_by_text("Thank you", exact=True).wait_for()
+        page.get_by_text(interface_text("Thank you", language), exact=True).wait_for()
     finally:
         close_context(context)
     return Participant.objects.filter(study__slug=slug).order_by("-pk").first(), answers
+
+
+def save_study_page(page) -> None:
+    """Save the admin page that is open, expecting no error and its success message."""
+    from playwright.sync_api import expect
+
+    page.get_by_role("button", name="Save and continue editing").click()
+    page.wait_for_load_state("load")
+    errors = page.locator(".errorlist, .errornote").all_text_contents()
+    assert not errors, errors
+    expect(page.locator(".messagelist .success")).to_be_visible()
+
+
+def film_small(page, url: str, condition, width: int, height: int) -> None:
+    """Set a condition's clip size (and 20 fps) on its admin page: quick to render."""
+    from playwright.sync_api import expect
+
+    page.goto(f"{url}/admin/studyplatform/condition/{condition.pk}/change/")
+    for label, value in (("Width:", width), ("Height:", height), ("Rate hz:", 20)):
+        page.get_by_label(label, exact=True).fill(str(value))
+    page.get_by_role("button", name="Save", exact=True).click()
+    expect(page.locator(".messagelist .success")).to_be_visible()
 
 
 def sign_in_at(page, url: str, path: str) -> None:

@@ -13,19 +13,23 @@ CAÇA (one letter makes another word; too short for a misspelling to count).
 """
 
 import csv
-import gettext
 import io
 import zipfile
 from pathlib import Path
 
 import pytest
-from django.conf import settings
-from django.utils import translation
 from playwright.sync_api import expect
 
-from studyplatform.models import Condition, Participant, Study, Trial
-from tests.conftest import close_context
-from tests.studyplatform.taking import download_report, generate_and_open, sign_in_at
+from studyplatform.models import Condition, Study, Trial
+from tests.studyplatform.taking import (
+    download_report,
+    film_small,
+    generate_and_open,
+    interface_text,
+    save_study_page,
+    sign_in_at,
+    take_study,
+)
 from tests.studyplatform.test_uploaded_clips import make_video
 
 pytestmark = pytest.mark.django_db(transaction=True)
@@ -64,14 +68,6 @@ PORTUGUESE = {
 }
 
 
-def _save(page) -> None:
-    page.get_by_role("button", name="Save and continue editing").click()
-    page.wait_for_load_state("load")
-    errors = page.locator(".errorlist, .errornote").all_text_contents()
-    assert not errors, errors
-    expect(page.locator(".messagelist .success")).to_be_visible()
-
-
 def _build(page, url: str, spec: dict, uploaded: bool) -> Study:
     """Add the study on the admin's study page and build its pages with the builder."""
     sign_in_at(page, url, "/admin/studyplatform/study/add/")
@@ -95,17 +91,12 @@ def _build(page, url: str, spec: dict, uploaded: bool) -> Study:
     page.locator('[name="questions-0-key"]').fill("word")
     page.locator('[name="questions-0-kind"]').select_option("intelligibility")
     page.locator('[name="questions-0-text"]').fill(spec["question"])
-    _save(page)
+    save_study_page(page)
     study = Study.objects.get(title=spec["title"])
     assert study.slug == spec["slug"], study.slug
     assert (study.language, study.manual_alphabet) == (spec["language"], spec["manual_alphabet"])
-    if not uploaded:  # small and quick to render
-        condition = Condition.objects.get(study=study, key="signer")
-        page.goto(f"{url}/admin/studyplatform/condition/{condition.pk}/change/")
-        for label, value in (("Width:", "96"), ("Height:", "72"), ("Rate hz:", "20")):
-            page.get_by_label(label, exact=True).fill(value)
-        page.get_by_role("button", name="Save", exact=True).click()
-        expect(page.locator(".messagelist .success")).to_be_visible()
+    if not uploaded:
+        film_small(page, url, Condition.objects.get(study=study, key="signer"), 96, 72)
     page.goto(f"{url}/admin/studyplatform/study/{study.pk}/design/")
     page.locator('input[name="design"][value="ratings"]').check()
     page.locator('input[name="questions"]').check()  # the study's one question
@@ -131,59 +122,28 @@ def _upload(page, url: str, study: Study, spec: dict, tmp_path: Path) -> None:
     )
 
 
-def _in_language(text: str, language: str, domain: str = "django") -> str:
-    """Return *text* from the catalogue of *language* (djangojs: participate.js's)."""
-    if domain == "djangojs":
-        locale = translation.to_locale(language)
-        return gettext.translation(domain, settings.LOCALE_PATHS[0], [locale]).gettext(text)
-    with translation.override(language):
-        return translation.gettext(text)
-
-
-def _take(browser, url: str, study: Study, spec: dict) -> tuple[Participant, dict]:
-    """Take the study in Chromium, checking each page speaks the study's language."""
+def _answer(study: Study, spec: dict):
+    """Type each word's answer, checking the page speaks the study's language."""
     language = spec["language"]
     typed = {key: answer for key, _, _, answer, _ in spec["items"]}
-    saved = _in_language("Answer saved.", language, "djangojs")
-    assert saved != "Answer saved."  # the catalogue has it
-    context = browser.new_context(bypass_csp=True, locale="en-US")  # the browser asks English
-    answers = {}
-    try:
-        page = context.new_page()
-        page.goto(f"{url}/s/{study.slug}/")
+
+    def answer(page, key: str, number: int) -> str:
         assert page.evaluate("document.documentElement.lang") == language
-        page.get_by_role(
-            "button", name=_in_language("Continue (I agree to take part)", language)
-        ).click()
-        while True:
-            page.wait_for_selector("#page-form.ready")
-            assert page.evaluate("document.documentElement.lang") == language
-            form = page.locator("#page-form")
-            number, key = int(form.get_attribute("data-page")), form.get_attribute("data-trial")
-            item = Trial.objects.get(study=study, key=key).item.key
-            field = page.locator('[name="q-word"]')
-            field.fill(typed[item])
-            field.press("Tab")
-            page.locator("#save-status").get_by_text(saved).wait_for()
-            answers[item] = typed[item]
-            if number == 1:
-                SCREENSHOTS.mkdir(exist_ok=True)
-                page.screenshot(path=SCREENSHOTS / f"participant-{language}.png")
-            body = page.locator("main").inner_text()
-            assert not [text for text in ENGLISH if text in body], body
-            button = page.locator("#next-button")
-            finishing = button.text_content().strip() == _in_language("Finish", language)
-            button.click()
-            if finishing:
-                break
-            page.wait_for_function(
-                f"document.getElementById('page-form').dataset.page !== '{number}'"
-            )
-        page.get_by_text(_in_language("Thank you", language), exact=True).wait_for()
-        assert page.evaluate("document.documentElement.lang") == language
-    finally:
-        close_context(context)
-    return Participant.objects.filter(study=study).get(), answers
+        item = Trial.objects.get(study=study, key=key).item.key
+        field = page.locator('[name="q-word"]')
+        field.fill(typed[item])
+        field.press("Tab")
+        page.locator("#save-status").get_by_text(
+            interface_text("Answer saved.", language, "djangojs")
+        ).wait_for()
+        if number == 1:
+            SCREENSHOTS.mkdir(exist_ok=True)
+            page.screenshot(path=SCREENSHOTS / f"participant-{language}.png")
+        body = page.locator("main").inner_text()
+        assert not [text for text in ENGLISH if text in body], body
+        return typed[item]
+
+    return answer
 
 
 @pytest.mark.parametrize("spec", [TURKISH, PORTUGUESE], ids=["tr-tid", "pt-br-libras"])
@@ -197,9 +157,12 @@ def test_a_study_in_its_language_is_built_taken_and_scored_letter_by_letter(
     if uploaded:
         _upload(page, url, study, spec, tmp_path)
     generate_and_open(page, url, study)
-    participant, answers = _take(browser, url, study, spec)
+    assert interface_text("Answer saved.", spec["language"], "djangojs") != "Answer saved."
+    answer = _answer(study, spec)
+    participant, answers = take_study(browser, url, study.slug, answer, spec["language"])
     assert participant.is_finished
-    assert answers == {key: typed for key, _, _, typed, _ in spec["items"]}
+    shown = {Trial.objects.get(study=study, key=k).item.key: v for k, v in answers.items()}
+    assert shown == {key: typed for key, _, _, typed, _ in spec["items"]}
 
     archive = download_report(page, url, study)
     rows = list(csv.DictReader(io.StringIO(archive.read("report/intelligibility.csv").decode())))

@@ -20,7 +20,9 @@ from studyplatform.models import Condition, Stimulus, Study, Trial, UploadedClip
 from tests.studyplatform.taking import (
     check_pair_wins,
     download_report,
+    film_small,
     generate_and_open,
+    save_study_page,
     take_study,
 )
 from tests.studyplatform.test_uploaded_clips import make_video
@@ -28,14 +30,6 @@ from tests.studyplatform.test_uploaded_clips import make_video
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
 
 pytestmark = pytest.mark.django_db(transaction=True)
-
-
-def _save(page) -> None:
-    page.get_by_role("button", name="Save and continue editing").click()
-    page.wait_for_load_state("load")
-    errors = page.locator(".errorlist, .errornote").all_text_contents()
-    assert not errors, errors
-    expect(page.locator(".messagelist .success")).to_be_visible()
 
 
 def _build(page, url: str) -> Study:
@@ -54,16 +48,11 @@ def _build(page, url: str) -> Study:
         page.get_by_role("button", name="Add another Item").click()
         page.locator(f'[name="items-{index}-key"]').fill(word)
         page.locator(f'[name="items-{index}-text"]').fill(word)
-    _save(page)
+    save_study_page(page)
     study = Study.objects.get(title="Filmed vs rendered")
     assert Condition.objects.get(study=study, key="filmed").source == "uploaded"
     # The rendered condition films as small as the uploads, quick to render.
-    avatar = Condition.objects.get(study=study, key="avatar")
-    page.goto(f"{url}/admin/studyplatform/condition/{avatar.pk}/change/")
-    for label, value in (("Width:", "160"), ("Height:", "120"), ("Rate hz:", "20")):
-        page.get_by_label(label, exact=True).fill(value)
-    page.get_by_role("button", name="Save", exact=True).click()
-    expect(page.locator(".messagelist .success")).to_be_visible()
+    film_small(page, url, Condition.objects.get(study=study, key="avatar"), 160, 120)
     page.goto(f"{url}/admin/studyplatform/study/{study.pk}/design/")
     page.get_by_label("Attention checks").fill("0")
     page.get_by_role("button", name="Build the pages").click()
