@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from synthesis.capture.depth import depth_from_lengths, flat_depth
 from synthesis.capture.posefile import (
     EXPORT_METRES_PER_UNIT,
     EXPORT_SIZE,
@@ -54,13 +55,19 @@ class ArmFit:
     elbow and wrist of the left then right arm against the observed ones, both scaled
     to the model and placed at the model's shoulders; *found* (n_frames, 2) whether
     each arm (left, right) was seen; *trunk* the spine, neck and head fit (None when
-    the recording has no head or hips: the trunk then stays at rest).
+    the recording has no head or hips: the trunk then stays at rest). *depth* says
+    where the points' depth came from: "file", or "lengths" where the file's was flat
+    (:mod:`synthesis.capture.depth`); *image_miss* (n_frames, 6) how far the fitted
+    shoulders, elbows and wrists fall from the file's image landmarks, seen from the
+    camera, in shoulder widths (NaN where unseen; None without image landmarks).
     """
 
     dofs_rad: np.ndarray
     residual_mm: np.ndarray
     found: np.ndarray
     trunk: TrunkFit | None = None
+    depth: str = "file"
+    image_miss: np.ndarray | None = None
 
 
 def _joint(body: BodyModel, side: str, part: str) -> int:
@@ -170,10 +177,16 @@ def fit_arms(
     from synthesis.rigs.ik import solve_arm
 
     # Holistic's metric pose, where the file has it: its depth is far surer than the
-    # image landmarks' (the arm fit only needs directions and proportions).
-    component = (
-        POSE_WORLD_COMPONENT if recording.found_component(POSE_WORLD_COMPONENT) else POSE_COMPONENT
-    )
+    # image landmarks' (the arm fit only needs directions and proportions). A file may
+    # have flattened both: the depth is then rebuilt from the model's proportions.
+    world = recording.found_component(POSE_WORLD_COMPONENT)
+    component = POSE_COMPONENT
+    if world and not flat_depth(recording, POSE_WORLD_COMPONENT):
+        component = POSE_WORLD_COMPONENT
+    image = recording
+    depth = "file"
+    if recording.has_component(component) and flat_depth(recording, component):
+        recording, depth = depth_from_lengths(recording, component, body), "lengths"
     points, confidence = recording.component(component, POSE_POINTS)
     points = to_mediapipe(points)
     n = recording.n_frames
@@ -209,7 +222,27 @@ def fit_arms(
             residual[:, 3 * column + k] = np.where(seen, miss, np.nan)
     if not fitted_any:
         raise PoseFileError("No arm was found in any frame (shoulder, elbow and wrist).")
-    return ArmFit(dofs, residual, found, trunk)
+    return ArmFit(dofs, residual, found, trunk, depth, _image_miss(body, dofs, image, found))
+
+
+def _image_miss(body: BodyModel, dofs, recording: PoseRecording, found) -> np.ndarray | None:
+    """Return how far the fitted arms' joints fall from the file's image landmarks
+    (n_frames, 6), seen from the camera (x and y), in shoulder widths: both placed at
+    their shoulders' midpoint. None without found image landmarks."""
+    if not recording.found_component(POSE_COMPONENT):
+        return None
+    observed, _ = recording.component(POSE_COMPONENT, POSE_POINTS)
+    positions = body.pose(dofs).positions_m
+    fitted = to_mediapipe(positions[:, [body.skeleton.index(n.lower()) for n in POSE_POINTS]])
+
+    def centred(points):  # (n, 6, 2), shoulder widths from the shoulders' midpoint
+        xy = points[..., :2]
+        shoulders = xy[:, [0, 3]]
+        width = np.linalg.norm(shoulders[:, 0] - shoulders[:, 1], axis=-1).clip(1e-12)
+        return (xy - shoulders.mean(axis=1, keepdims=True)) / width[:, None, None]
+
+    miss = np.linalg.norm(centred(fitted) - centred(observed), axis=-1)
+    return np.where(np.repeat(found, 3, axis=1), miss, np.nan)
 
 
 def _nearest_seen(seen: np.ndarray) -> np.ndarray:

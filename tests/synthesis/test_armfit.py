@@ -165,3 +165,54 @@ def test_the_command_line_exports_a_sentence_and_renders_it_back(tmp_path, rende
         == 0
     )
     assert count_frames(out) == read_bvh(bvh).n_frames
+
+
+def test_a_file_whose_depth_was_flattened_is_fitted_from_its_image():
+    """Issue 54 (3): spoken-to-signed's letter O (ase/fs-sts13206…pose) has z = 250 ± 3
+    for every point, in POSE_LANDMARKS and POSE_WORLD_LANDMARKS alike. Its image points
+    show the right forearm raised, the wrist at shoulder height (frame 12: shoulder
+    (155, 250), elbow (49, 386), wrist (107, 236) px), as pose-format's visualiser draws
+    it; the fit had it pointing sideways and down, the wrist 14 cm below the shoulder,
+    and the head turned away."""
+    from synthesis.capture import read_pose
+    from synthesis.capture.depth import flat_depth
+    from tests.synthesis.test_capture import human_letters
+
+    recording = read_pose(human_letters()["O"])
+    assert flat_depth(recording, "POSE_LANDMARKS") and flat_depth(recording, "POSE_WORLD_LANDMARKS")
+    body, _ = _signed()
+    fit = fit_arms(body, recording)
+    assert fit.depth == "lengths" and fit.found[:, 1].all()
+    # While the letter is held (the first frames raise the hand, the last lower it).
+    at = body.pose(fit.dofs_rad[4:-2]).positions_m
+    shoulder, elbow, wrist = (
+        at[:, body.skeleton.index(f"right_{j}")] for j in ("shoulder", "elbow", "wrist")
+    )
+    assert np.all(np.abs(wrist[:, 1] - shoulder[:, 1]) < 0.08)  # the hand at shoulder height
+    assert np.all(wrist[:, 1] > elbow[:, 1] + 0.15)  # the forearm raised
+    assert np.all(wrist[:, 2] >= shoulder[:, 2])  # not behind the body
+    head = body.dof_names.index("head_rotation")
+    assert np.degrees(np.abs(fit.dofs_rad[:, head])).max() < 5.0
+    # The fitted arm, seen from the camera, lies on the file's image points.
+    assert np.nanmedian(fit.image_miss[:, 5]) < 0.2  # the right wrist, in shoulder widths
+
+
+def test_a_flattened_export_is_rebuilt_and_lies_on_its_image_points():
+    """The engine's own export with its depth removed: flat, fitted from the image, and
+    the fit's arms project onto the image points (the model's own proportions)."""
+    from dataclasses import replace
+
+    from synthesis.capture.depth import flat_depth
+
+    body, truth = _signed()
+    exported = parse_pose(format_pose(from_body_motion(body, truth, 30.0)))
+    assert not flat_depth(exported, "POSE_LANDMARKS")
+    points = exported.points.copy()
+    points[..., 2] = 250.0
+    flattened = replace(exported, points=points)
+    assert flat_depth(flattened, "POSE_LANDMARKS")
+    fit = fit_arms(body, flattened, hands=False)
+    assert fit.depth == "lengths" and fit.found.all()
+    assert np.nanmedian(fit.image_miss) < 0.02 and np.nanmax(fit.image_miss) < 0.1
+    depth_fit = fit_arms(body, exported, hands=False)
+    assert depth_fit.depth == "file" and np.nanmax(depth_fit.image_miss) < 0.01
