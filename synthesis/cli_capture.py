@@ -5,6 +5,8 @@ import argparse
 import json
 from pathlib import Path
 
+import numpy as np
+
 from synthesis.rigs.hand import HandModel
 from synthesis.techniques import avatar_and_camera
 from synthesis.terminal import frame_progress as _progress
@@ -168,4 +170,12 @@ def _arms_found(fit) -> str:
     parts = list(zip(("left arm", "right arm"), fit.found.mean(axis=0), strict=True))
     if fit.trunk is not None:
         parts += zip(("trunk", "head"), fit.trunk.found.mean(axis=0), strict=True)
-    return ", ".join(f"{part} {share:.0%}" for part, share in parts)
+    said = ", ".join(f"{part} {share:.0%}" for part, share in parts)
+    if fit.depth == "lengths":
+        said += "; the file's depth was flat: rebuilt from the model's proportions"
+    if fit.image_miss is not None and np.isfinite(fit.image_miss).any():
+        said += (
+            f"; the arms lie within {np.nanmedian(fit.image_miss):.2f} shoulder widths "
+            f"of its image points (median; worst {np.nanmax(fit.image_miss):.2f})"
+        )
+    return said
