@@ -9,6 +9,7 @@ from synthesis.capture import PoseFileError, format_pose, from_hand_motion, pars
 from synthesis.capture.armfit import fit_arms, from_body_motion
 from synthesis.cli import main
 from synthesis.rigs.hand import HandModel
+from synthesis.rigs.landmarks import to_mediapipe
 from synthesis.skeleton.rotations import quat_to_matrix
 from synthesis.techniques import ClipRequest, build_motion
 
@@ -39,6 +40,12 @@ def test_a_sentence_exported_as_pose_landmarks_fits_back():
     ]
     fit = fit_arms(body, recording)
     assert fit.found.all() and np.nanmax(fit.residual_mm) < 1.0
+    # pose-format reads it as the Holistic file it says it is (issue 54's acceptance).
+    from pose_format import Pose
+
+    theirs = Pose.read(format_pose(from_body_motion(body, truth[:3], 30.0)))
+    names = ["POSE_LANDMARKS", "FACE_LANDMARKS", "LEFT_HAND_LANDMARKS", "RIGHT_HAND_LANDMARKS"]
+    assert theirs.get_components(names).body.data.shape == (3, 1, 33 + 468 + 21 + 21, 3)
     true_pose, fitted_pose = body.pose(truth), body.pose(fit.dofs_rad)
     for side in ("right", "left"):
         for joint in ("elbow", "wrist", "index_tip", "thumb_tip"):
@@ -195,6 +202,15 @@ def test_a_file_whose_depth_was_flattened_is_fitted_from_its_image():
     assert np.degrees(np.abs(fit.dofs_rad[:, head])).max() < 5.0
     # The fitted arm, seen from the camera, lies on the file's image points.
     assert np.nanmedian(fit.image_miss[:, 5]) < 0.2  # the right wrist, in shoulder widths
+    # Issue 54's acceptance: the forearm's direction within 20° of pose-format's own
+    # reading of the file (its image points, elbow → wrist) while the letter is held.
+    observed, _ = recording.component("POSE_LANDMARKS", ("RIGHT_ELBOW", "RIGHT_WRIST"))
+    seen = observed[4:-2, 1, :2] - observed[4:-2, 0, :2]
+    fitted = to_mediapipe(wrist - elbow)[:, :2]
+    cosine = np.sum(seen * fitted, axis=1) / (
+        np.linalg.norm(seen, axis=1) * np.linalg.norm(fitted, axis=1)
+    )
+    assert np.degrees(np.arccos(np.clip(cosine, -1, 1))).max() < 20.0
 
 
 def test_a_flattened_export_is_rebuilt_and_lies_on_its_image_points():
