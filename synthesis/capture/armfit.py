@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from synthesis.capture.depth import depth_from_lengths, flat_depth
+from synthesis.capture.depth import ARM_POINTS, MIN_CONFIDENCE, depth_from_lengths, flat_depth
 from synthesis.capture.posefile import (
     EXPORT_METRES_PER_UNIT,
     EXPORT_SIZE,
@@ -34,12 +34,7 @@ from synthesis.capture.trunkfit import BODY_POINTS, TrunkFit, body_points, fit_t
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.landmarks import LANDMARK_JOINTS, LANDMARK_NAMES, to_mediapipe
 
-ARM_POINTS = {
-    side: tuple(f"{side.upper()}_{part}" for part in ("SHOULDER", "ELBOW", "WRIST"))
-    for side in ("right", "left")
-}
 POSE_POINTS = (*ARM_POINTS["left"], *ARM_POINTS["right"])
-MIN_CONFIDENCE = 0.2
 _names = list(BODY_POINTS)
 # The trunk's and head's points that are not also an arm's (BODY_POINTS positions).
 _HEAD_AND_HIPS = tuple(k for k, name in enumerate(_names) if name not in POSE_POINTS)

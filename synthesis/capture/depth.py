@@ -22,10 +22,11 @@ from synthesis.rigs.body import BodyModel
 from synthesis.rigs.landmarks import to_mediapipe
 
 # A file whose points' depths spread less than this share of the shoulder width, in
-# its typical frame, has no depth (a real signer's nose is ~0.6 widths before the ears).
+# its typical frame, has no depth (a real signer's nose is ~0.3 widths before the ears).
 FLAT_DEPTH = 0.02
+# The least confidence of an arm's point that counts it as seen.
 MIN_CONFIDENCE = 0.2
-_ARMS = {
+ARM_POINTS = {
     side: tuple(f"{side.upper()}_{p}" for p in ("SHOULDER", "ELBOW", "WRIST"))
     for side in ("left", "right")
 }
@@ -94,7 +95,7 @@ def depth_from_lengths(recording: PoseRecording, component: str, body: BodyModel
     for name in names:
         if name in depths:
             z[:, names.index(name)] = depths[name] * scale
-    for side, (shoulder, elbow, wrist) in _ARMS.items():
+    for side, (shoulder, elbow, wrist) in ARM_POINTS.items():
         if not {shoulder, elbow, wrist} <= set(names):
             continue
         upper_m, fore_m, _ = _segment_lengths(body, side)
@@ -117,4 +118,4 @@ def depth_from_lengths(recording: PoseRecording, component: str, body: BodyModel
     return replace(recording, points=everything)
 
 
-__all__ = ["FLAT_DEPTH", "depth_from_lengths", "flat_depth"]
+__all__ = ["ARM_POINTS", "FLAT_DEPTH", "MIN_CONFIDENCE", "depth_from_lengths", "flat_depth"]
