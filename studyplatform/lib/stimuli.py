@@ -7,7 +7,7 @@ from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
 from studyplatform.lib.recordings import with_item_recording
 from studyplatform.models import Block, Condition, Item, Stimulus, Study, Trial, UploadedClip
-from studyplatform.rules import resolve_files, study_values
+from studyplatform.rules import item_values, resolve_files
 from synthesis.techniques import ClipRequest
 
 # Rendered clips live in MEDIA_ROOT/stimuli, named by their content hash: one file per
@@ -35,8 +35,7 @@ def clip_spec(condition: Condition, item: Item) -> ClipSpec:
     (:mod:`studyplatform.rules.files`); ClipError names one the study may not use.
     """
     study = condition.study
-    own = {**study_values(study, item.kind), **(item.parameters or {})}
-    parameters = {**own, **(condition.parameters or {})}
+    parameters = {**item_values(study, item), **(condition.parameters or {})}
     # References to stored files become their paths here, and only here (issue 51).
     parameters = resolve_files(parameters, study.owner)
     parameters.setdefault("seed", zlib.crc32(item.key.encode()))

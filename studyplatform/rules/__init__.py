@@ -13,6 +13,7 @@ from studyplatform.rules.techniques import (
     condition_item_kinds,
     describe_condition,
     describe_parameters,
+    item_values,
     study_values,
     supported_kinds,
 )
@@ -28,6 +29,7 @@ __all__ = [
     "describe_condition",
     "describe_parameters",
     "file_help",
+    "item_values",
     "resolve_files",
     "study_values",
     "supported_kinds",

@@ -125,7 +125,7 @@ def check_condition(condition) -> None:
         return
     for item in study.items.all():
         try:
-            check_text(study, item, parameters)
+            check_text(item, as_checked({**item_values(study, item), **parameters}))
         except ClipError as error:
             raise ValidationError({"parameters": f"Item {item.key!r}: {error}"}) from None
 
@@ -153,23 +153,24 @@ def check_item(item) -> None:
         raise ValidationError({"parameters": str(error)}) from None
     check_files(item.parameters, _study_owner(item))
     study = _study_of(item)
+    own = item_values(study, item)
     if study is None:
-        _item_text(None, item, {}, "")
+        _item_text(item, as_checked(own), "")
     if study is None or study.pk is None:
         # A study added on one page with its items: its conditions are not saved yet.
         # The words are checked when it is saved again and when its clips are specified.
         return
-    own = {**study_values(study, item.kind), **(item.parameters or {})}
     for condition in study.conditions.all():
         if condition.is_uploaded:
             continue
+        parameters = as_checked({**own, **condition.parameters})
         try:
-            validate_parameters(item.kind, as_checked({**own, **condition.parameters}))
+            validate_parameters(item.kind, parameters)
         except ClipError as error:
             raise ValidationError(
                 {"kind": f"Condition {condition.key!r} cannot render this item: {error}"}
             ) from None
-        _item_text(study, item, condition.parameters, f"Condition {condition.key!r}: ")
+        _item_text(item, parameters, f"Condition {condition.key!r}: ")
 
 
 def check_study_values(study) -> None:
@@ -182,23 +183,26 @@ def check_study_values(study) -> None:
         return
     rendered = [c for c in study.conditions.all() if not c.is_uploaded]
     for item in study.items.all() if rendered else ():
+        own = item_values(study, item)
         for condition in rendered:
             try:
-                check_text(study, item, condition.parameters)
+                check_text(item, as_checked({**own, **condition.parameters}))
             except ClipError as error:
                 message = f"Item {item.key!r} under condition {condition.key!r}: {error}"
                 raise ValidationError(dict.fromkeys(STUDY_VALUES, message)) from None
 
 
-def check_text(study, item, condition_parameters: Mapping[str, Any]) -> None:
-    """Raise ClipError if *item*'s text cannot be signed under a condition's parameters
-    (a word's letters in the alphabet the study, the item or the condition sets)."""
-    values = {
-        **study_values(study, item.kind),
-        **(item.parameters or {}),
-        **condition_parameters,
-    }
-    REGISTRY.check_text(item.kind, item.text, _technique_values(as_checked(values)))
+def item_values(study, item) -> dict[str, Any]:
+    """Return the values *item* renders with before its condition's: its study's
+    (:func:`study_values`), then its own parameters."""
+    return {**study_values(study, item.kind), **(item.parameters or {})}
+
+
+def check_text(item, parameters: Mapping[str, Any]) -> None:
+    """Raise ClipError if *item*'s text cannot be signed with *parameters* (as a
+    condition renders it, :func:`item_values` and the condition's; filming fields are
+    left out): a word's letters in the alphabet they name."""
+    REGISTRY.check_text(item.kind, item.text, _technique_values(parameters))
 
 
 def _study_of(row):
@@ -209,10 +213,10 @@ def _study_of(row):
         return None
 
 
-def _item_text(study, item, condition_parameters: Mapping[str, Any], where: str) -> None:
-    """Raise ValidationError on the text field if the condition cannot sign it."""
+def _item_text(item, parameters: Mapping[str, Any], where: str) -> None:
+    """Raise ValidationError on the text field if *parameters* cannot sign it."""
     try:
-        check_text(study, item, condition_parameters)
+        check_text(item, parameters)
     except ClipError as error:
         raise ValidationError({"text": f"{where}{error}"}) from None
 

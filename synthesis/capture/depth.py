@@ -68,14 +68,10 @@ def _rest_depths(body: BodyModel) -> dict[str, float]:
     return {name: float(z - middle) for name, z in depths.items()}
 
 
-def _segment_lengths(body: BodyModel, side: str) -> tuple[float, float, float]:
-    """Return the model's upper arm, forearm and shoulder width, metres."""
-    rest = body.pose(body.neutral()).positions_m[0]
-    at = {j: rest[body.skeleton.index(f"{side}_{j}")] for j in ("shoulder", "elbow", "wrist")}
-    other = "left" if side == "right" else "right"
-    width = np.linalg.norm(at["shoulder"] - rest[body.skeleton.index(f"{other}_shoulder")])
-    upper = np.linalg.norm(at["elbow"] - at["shoulder"])
-    return float(upper), float(np.linalg.norm(at["wrist"] - at["elbow"])), float(width)
+def _length_m(rest: np.ndarray, body: BodyModel, a: str, b: str) -> float:
+    """Return the distance between joints *a* and *b* of the model at rest, metres."""
+    index = body.skeleton.index
+    return float(np.linalg.norm(rest[index(a)] - rest[index(b)]))
 
 
 def depth_from_lengths(recording: PoseRecording, component: str, body: BodyModel) -> PoseRecording:
@@ -88,7 +84,8 @@ def depth_from_lengths(recording: PoseRecording, component: str, body: BodyModel
     names = dict(recording.components)[component]
     points, _ = recording.component(component)
     points = points.copy()
-    _, _, model_width = _segment_lengths(body, "right")
+    rest = body.pose(body.neutral()).positions_m[0]
+    model_width = _length_m(rest, body, "left_shoulder", "right_shoulder")
     scale = _shoulder_width(points, names) / model_width  # file units per metre (n,)
     depths = _rest_depths(body)
     z = np.zeros(points.shape[:2])
@@ -98,7 +95,8 @@ def depth_from_lengths(recording: PoseRecording, component: str, body: BodyModel
     for side, (shoulder, elbow, wrist) in ARM_POINTS.items():
         if not {shoulder, elbow, wrist} <= set(names):
             continue
-        upper_m, fore_m, _ = _segment_lengths(body, side)
+        upper_m = _length_m(rest, body, f"{side}_shoulder", f"{side}_elbow")
+        fore_m = _length_m(rest, body, f"{side}_elbow", f"{side}_wrist")
         s, e, w = (names.index(n) for n in (shoulder, elbow, wrist))
         for start, end, length_m in ((s, e, upper_m), (e, w, fore_m)):
             seen_m = np.linalg.norm(points[:, end, :2] - points[:, start, :2], axis=-1)
