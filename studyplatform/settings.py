@@ -31,6 +31,7 @@ from pathlib import Path
 
 import dj_database_url
 from csp.constants import NONCE, NONE, SELF, UNSAFE_INLINE
+from django.core.exceptions import ImproperlyConfigured
 
 BASE_DIR = Path(__file__).resolve().parent.parent
 # What the platform writes (the database, media, backups, keys, the ledger) is its own
@@ -178,11 +179,10 @@ AUTH_PASSWORD_VALIDATORS = [
     {"NAME": "django.contrib.auth.password_validation.NumericPasswordValidator"},
 ]
 
-# The researcher's pages are in LANGUAGE_CODE; a participant's in their study's language
-# (Study.language, one of LANGUAGES: the interface's catalogues in studyplatform/locale,
-# made as docs/translations.md says). No LocaleMiddleware: a browser's language changes
-# a participant's pages only where their study allows it.
-LANGUAGE_CODE = "en"
+# The researcher's pages are in LANGUAGE_CODE (SIGNSTUDY_LANGUAGE, one of LANGUAGES);
+# a participant's in their study's language (Study.language: the interface's catalogues
+# in studyplatform/locale, made as docs/translations.md says). No LocaleMiddleware: a
+# browser's language changes a participant's pages only where their study allows it.
 LANGUAGES = [
     ("en", "English"),
     ("pt-br", "Português (Brasil)"),
@@ -191,6 +191,12 @@ LANGUAGES = [
     ("fr", "Français"),
     ("de", "Deutsch"),
 ]
+LANGUAGE_CODE = os.environ.get("SIGNSTUDY_LANGUAGE", "en")
+if LANGUAGE_CODE not in dict(LANGUAGES):
+    raise ImproperlyConfigured(
+        f"SIGNSTUDY_LANGUAGE={LANGUAGE_CODE!r} is not one of the interface's languages "
+        f"({', '.join(dict(LANGUAGES))})."
+    )
 LOCALE_PATHS = [BASE_DIR / "studyplatform" / "locale"]
 TIME_ZONE = "UTC"
 USE_I18N = True

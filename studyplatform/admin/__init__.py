@@ -1,6 +1,7 @@
 """Register the researcher's admin pages; every one is limited to the user's own studies."""
 
 from django.contrib import admin
+from django.utils.translation import gettext_lazy
 
 from studyplatform.admin import (  # noqa: F401
     avatars,
@@ -22,5 +23,5 @@ NOT_EDITED_HERE = {
 }
 
 admin.site.site_header = "SignStudy"
-admin.site.site_title = "SignStudy admin"
-admin.site.index_title = "Studies, stimuli and responses"
+admin.site.site_title = gettext_lazy("SignStudy admin")
+admin.site.index_title = gettext_lazy("Studies, stimuli and responses")

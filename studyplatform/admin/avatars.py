@@ -9,6 +9,7 @@ from django.db.models import Count
 from django.http import HttpRequest
 from django.urls import reverse
 from django.utils.html import format_html, format_html_join
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.actions.avatars import (
     check_avatar_file,
@@ -25,10 +26,12 @@ class AvatarForm(forms.ModelForm):
 
     upload = forms.FileField(
         required=False,
-        label="GLB or VRM file",
-        help_text="A humanoid glTF 2.0 binary (.glb) or VRM (.vrm): a skeleton with skin "
-        "weights; finger bones to fingerspell; ARKit-named morph targets or VRM "
-        "expressions for the face. At most 200 MB.",
+        label=gettext_lazy("GLB or VRM file"),
+        help_text=gettext_lazy(
+            "A humanoid glTF 2.0 binary (.glb) or VRM (.vrm): a skeleton with skin "
+            "weights; finger bones to fingerspell; ARKit-named morph targets or VRM "
+            "expressions for the face. At most 200 MB."
+        ),
     )
 
     class Meta:
@@ -69,8 +72,8 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
             return [(None, {"fields": ("upload", "name", "licence", "source")})]
         return [
             (None, {"fields": ("stills", "name", "licence", "source", "status", "error")}),
-            ("What the engine found", {"fields": ("findings", "bone_mapping")}),
-            ("File", {"fields": ("original_name", "sha256")}),
+            (gettext("What the engine found"), {"fields": ("findings", "bone_mapping")}),
+            (gettext("File"), {"fields": ("original_name", "sha256")}),
         ]
 
     def get_queryset(self, request: HttpRequest):
@@ -96,30 +99,34 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
             do_map_avatar_bones(obj, data["bone_mapping"])
             messages.info(
                 request,
-                "The mapping is saved in the file; clips filmed with the "
-                "avatar will be rendered again.",
+                gettext(
+                    "The mapping is saved in the file; clips filmed with the "
+                    "avatar will be rendered again."
+                ),
             )
 
-    @admin.display(description="signs")
+    @admin.display(description=gettext_lazy("signs"))
     def body(self, avatar: Avatar) -> bool:
         return avatar.signs
 
-    @admin.display(description="fingerspells")
+    @admin.display(description=gettext_lazy("fingerspells"))
     def fingers(self, avatar: Avatar) -> bool:
         return avatar.fingerspells
 
-    @admin.display(description="face channels")
+    @admin.display(description=gettext_lazy("face channels"))
     def face(self, avatar: Avatar) -> int:
         return len(avatar.report.get("face_channels", []))
 
-    @admin.display(description="conditions", ordering="_conditions")
+    @admin.display(description=gettext_lazy("conditions"), ordering="_conditions")
     def condition_count(self, avatar: Avatar) -> int:
         return avatar._conditions
 
-    @admin.display(description="previews")
+    @admin.display(description=gettext_lazy("previews"))
     def stills(self, avatar: Avatar) -> str:
         if avatar.status != Avatar.Status.READY:
-            return "Being rendered; reload the page." if avatar.status == "preparing" else "—"
+            return (
+                gettext("Being rendered; reload the page.") if avatar.status == "preparing" else "—"
+            )
         return format_html_join(
             " ",
             '<figure style="display:inline-block;margin:0 8px 0 0"><img src="{}" '
@@ -127,49 +134,64 @@ class AvatarAdmin(OwnedMixin, admin.ModelAdmin):
             (
                 (reverse("private_media", args=[field.name]), label, label)
                 for field, label in (
-                    (avatar.still_rest, "at rest"),
-                    (avatar.still_letter, "the letter B"),
-                    (avatar.still_face, "brows raised (a question)"),
+                    (avatar.still_rest, gettext("at rest")),
+                    (avatar.still_letter, gettext("the letter B")),
+                    (avatar.still_face, gettext("brows raised (a question)")),
                 )
             ),
         )
 
-    @admin.display(description="bones and face")
+    @admin.display(description=gettext_lazy("bones and face"))
     def findings(self, avatar: Avatar) -> str:
         report = avatar.report or {}
         missing = report.get("missing_fingers") or {}
         hands = "; ".join(
-            f"{side} hand: {'all finger bones' if not names else 'lacks ' + ', '.join(names)}"
+            gettext("%(side)s hand: all finger bones") % {"side": side}
+            if not names
+            else gettext("%(side)s hand: lacks %(bones)s")
+            % {"side": side, "bones": ", ".join(names)}
             for side, names in missing.items()
         )
         channels = report.get("face_channels") or []
         face = (
-            f"plays {len(channels)} channels ({', '.join(channels[:8])}"
-            f"{'…' if len(channels) > 8 else ''})"
+            gettext("plays %(count)d channels (%(names)s)")
+            % {
+                "count": len(channels),
+                "names": ", ".join(channels[:8]) + ("…" if len(channels) > 8 else ""),
+            }
             if channels
-            else "no morph target the face channels drive (ARKit names or VRM expressions): "
-            "non-manual signals are not shown"
+            else gettext(
+                "no morph target the face channels drive (ARKit names or VRM expressions): "
+                "non-manual signals are not shown"
+            )
         )
         body = report.get("missing_body") or []
         warning = (
             format_html(
-                '<strong class="errornote">Not mapped, so they stay as the avatar was '
-                "modelled while the rest signs (a T-pose's arms held out): {}. Map these "
-                "bones below.</strong><br>",
-                ", ".join(body),
+                '<strong class="errornote">{}</strong><br>',
+                gettext(
+                    "Not mapped, so they stay as the avatar was modelled while the rest "
+                    "signs (a T-pose's arms held out): %(bones)s. Map these bones below."
+                )
+                % {"bones": ", ".join(body)},
             )
             if body
             else ""
         )
         return format_html(
-            "{}{} of {} joints mapped to the engine's; not mapped: {}.<br>{}.<br>Face: {}.<br>"
-            "Height {} m.<br><details><summary>The mapping</summary><pre>{}</pre></details>",
+            "{}{}<br>{}.<br>{}<br>{}<br><details><summary>{}</summary><pre>{}</pre></details>",
             warning,
-            len(report.get("mapped", {})),
-            report.get("joints", 0),
-            ", ".join(report.get("unmapped", [])) or "none",
+            gettext(
+                "%(mapped)d of %(joints)d joints mapped to the engine's; not mapped: %(unmapped)s."
+            )
+            % {
+                "mapped": len(report.get("mapped", {})),
+                "joints": report.get("joints", 0),
+                "unmapped": ", ".join(report.get("unmapped", [])) or gettext("none"),
+            },
             hands,
-            face,
-            report.get("height_m"),
+            gettext("Face: %(face)s.") % {"face": face},
+            gettext("Height %(height)s m.") % {"height": report.get("height_m")},
+            gettext("The mapping"),
             json.dumps(report.get("mapped", {}), indent=1),
         )

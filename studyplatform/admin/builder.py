@@ -5,6 +5,7 @@ from django.contrib import messages
 from django.http import HttpRequest, HttpResponse
 from django.shortcuts import redirect
 from django.urls import path, reverse
+from django.utils.translation import gettext, gettext_lazy
 
 from stimuli.plan import Design, DesignError, DesignSpec
 from studyplatform.actions.design import DesignRejected, do_build_design
@@ -22,57 +23,67 @@ def builder_question_kinds(trial_kinds=Trial.TWO_CLIP_KINDS | Trial.ONE_CLIP_KIN
 
 def _questions_help() -> str:
     pages = "; ".join(
-        f"{Trial.Kind(kind).label.lower()}: "
-        + ", ".join(question_type(k).label for k in builder_question_kinds(frozenset({kind})))
+        f"{str(Trial.Kind(kind).label).lower()}: "
+        + ", ".join(str(question_type(k).label) for k in builder_question_kinds(frozenset({kind})))
         for kind in sorted(Trial.TWO_CLIP_KINDS) + sorted(Trial.ONE_CLIP_KINDS)
     )
-    return (
-        f"What each page asks, questions one kind of page may ask together ({pages}). "
+    return gettext(
+        "What each page asks, questions one kind of page may ask together (%(pages)s). "
         "None chosen: a standard question is created (“Which clip looks more natural?”, "
         "or a 5-point naturalness rating)."
-    )
+    ) % {"pages": pages}
 
 
 class DesignForm(forms.Form):
     """Choose the design, its conditions and items, practice, questions and checks."""
 
     design = forms.ChoiceField(
-        choices=[(d.value, d.label) for d in Design],
+        label=gettext_lazy("Design"),
+        choices=[(d.value, gettext_lazy(d.label)) for d in Design],
         widget=forms.RadioSelect,
         initial=Design.BALANCED_PAIRS.value,
     )
     conditions = forms.ModelMultipleChoiceField(
+        label=gettext_lazy("Conditions"),
         queryset=None,
         widget=forms.CheckboxSelectMultiple,
-        help_text="The conditions compared (add them on the study page first).",
+        help_text=gettext_lazy("The conditions compared (add them on the study page first)."),
     )
     items = forms.ModelMultipleChoiceField(
+        label=gettext_lazy("Items"),
         queryset=None,
         widget=forms.CheckboxSelectMultiple,
-        help_text="The items shown in every condition.",
+        help_text=gettext_lazy("The items shown in every condition."),
     )
     practice_items = forms.ModelMultipleChoiceField(
+        label=gettext_lazy("Practice items"),
         queryset=None,
         required=False,
         widget=forms.CheckboxSelectMultiple,
-        help_text="One practice page each, before the trials; practice answers are not analysed.",
+        help_text=gettext_lazy(
+            "One practice page each, before the trials; practice answers are not analysed."
+        ),
     )
     questions = forms.ModelMultipleChoiceField(
+        label=gettext_lazy("Questions"),
         queryset=None,
         required=False,
         widget=forms.CheckboxSelectMultiple,
     )
     attention_checks = forms.IntegerField(
+        label=gettext_lazy("Attention checks"),
         min_value=0,
         max_value=20,
         initial=1,
-        help_text=(
+        help_text=gettext_lazy(
             "Pages with a known answer, flagged in the data: two identical clips on pair "
             "designs (answer: no difference), an instructed answer on rating designs."
         ),
     )
     randomize_order = forms.BooleanField(
-        required=False, initial=True, label="Shuffle the trial pages per participant (seeded)"
+        required=False,
+        initial=True,
+        label=gettext_lazy("Shuffle the trial pages per participant (seeded)"),
     )
 
     def __init__(self, study: Study, *args, **kwargs) -> None:
@@ -118,7 +129,10 @@ class DesignForm(forms.Form):
         practice = {i.key for i in cleaned["practice_items"]}
         both = sorted(practice & {i.key for i in cleaned["items"]})
         if both:
-            self.add_error("practice_items", f"Also a trial item: {', '.join(both)}.")
+            self.add_error(
+                "practice_items",
+                gettext("Also a trial item: %(keys)s.") % {"keys": ", ".join(both)},
+            )
             return cleaned
         try:
             cleaned["spec"] = DesignSpec(
@@ -163,8 +177,11 @@ class StudyDesignMixin:
         copy = do_create_study_version(study, owner=request.user)
         messages.success(
             request,
-            f"Made “{copy.title}”, a draft: change its design, generate, pilot and open it. "
-            f"“{study.title}” and its participants stay as they were.",
+            gettext(
+                "Made “%(copy)s”, a draft: change its design, generate, pilot and open it. "
+                "“%(study)s” and its participants stay as they were."
+            )
+            % {"copy": copy.title, "study": study.title},
         )
         return redirect(reverse("admin:studyplatform_study_change", args=[copy.pk]))
 
@@ -193,20 +210,30 @@ class StudyDesignMixin:
                 if created is not None:
                     messages.info(
                         request,
-                        f"Created the question “{created.text}” ({created.key}); "
-                        "edit its wording on its page.",
+                        gettext(
+                            "Created the question “%(text)s” (%(key)s); "
+                            "edit its wording on its page."
+                        )
+                        % {"text": created.text, "key": created.key},
                     )
                 messages.success(
                     request,
-                    f"Built {built.pages} pages ({built.practice_pages} practice, "
-                    f"{built.attention_checks} attention checks).",
+                    gettext(
+                        "Built %(pages)d pages (%(practice)d practice, "
+                        "%(checks)d attention checks)."
+                    )
+                    % {
+                        "pages": built.pages,
+                        "practice": built.practice_pages,
+                        "checks": built.attention_checks,
+                    },
                 )
                 return redirect(reverse("admin:studyplatform_study_design", args=[study.pk]))
         summary = summarize_design(study)
         return self._page(
             request,
             "design.html",
-            f"Design of “{study.title}”",
+            gettext("Design of “%(title)s”") % {"title": study.title},
             study=study,
             form=form,
             summary=summary,

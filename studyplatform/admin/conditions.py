@@ -10,13 +10,15 @@ the model's check names it.
 from django import forms
 from django.contrib import admin
 from django.http import HttpRequest
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.admin.design import OwnStudyFilter
 from studyplatform.admin.permissions import DesignLockMixin, StudyScopedMixin
+from studyplatform.lib.engine_texts import parameter_title
 from studyplatform.models import Condition
 from studyplatform.rules import (
     condition_item_kinds,
-    describe_condition,
+    english_description,
     file_help,
     study_values,
     supported_kinds,
@@ -32,15 +34,16 @@ FILMING = tuple(p for p in REQUEST_PARAMETERS if p.name != "seed")
 
 def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
     """Return the form field that edits *parameter*, showing *initial*."""
-    help_text = parameter.help
-    common = {"label": parameter.name.replace("_", " ").capitalize(), "initial": initial}
+    # The engine's texts, translated through the catalogues (studyplatform.lib.engine_texts).
+    help_text = gettext(parameter.help)
+    common = {"label": gettext(parameter_title(parameter)), "initial": initial}
     if parameter.type == "choice":
         labels = parameter.labels or {}
-        choices = [(value, labels.get(value, value)) for value in parameter.choices]
+        choices = [(value, gettext(labels.get(value, value))) for value in parameter.choices]
         return forms.ChoiceField(choices=choices, help_text=help_text, **common)
     if parameter.type == "bool":
         return forms.TypedChoiceField(
-            choices=[(True, "On"), (False, "Off")],
+            choices=[(True, gettext_lazy("On")), (False, gettext_lazy("Off"))],
             coerce=lambda v: v in (True, "True"),
             help_text=help_text,
             **common,
@@ -49,13 +52,26 @@ def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
         help_text += f" {file_help(parameter.name)}"
         return forms.CharField(required=False, help_text=help_text, **common)
     field = forms.IntegerField if parameter.type == "int" else forms.FloatField
-    default = parameter.label_of(parameter.default)  # with its units
+    default = value_text(parameter, parameter.default)
     return field(
         min_value=parameter.minimum,
         max_value=parameter.maximum,
-        help_text=f"{help_text} Default: {default}.",
+        help_text=gettext_lazy("%(help)s Default: %(default)s.")
+        % {"help": help_text, "default": default},
         **common,
     )
+
+
+def value_text(parameter: Parameter, value) -> str:
+    """Return *value* of *parameter* in words, in the researcher's language."""
+    if parameter.type == "choice":
+        return gettext((parameter.labels or {}).get(value, str(value)))
+    if parameter.type == "bool":
+        return gettext("On") if value else gettext("Off")
+    if parameter.type in ("int", "float"):
+        units = f" {gettext(parameter.units)}" if parameter.units else ""
+        return f"{value:g}{units}"
+    return str(value) if value else "—"
 
 
 def technique_groups(kinds) -> list[tuple[str, tuple[Parameter, ...]]]:
@@ -65,15 +81,23 @@ def technique_groups(kinds) -> list[tuple[str, tuple[Parameter, ...]]]:
     for technique in REGISTRY.techniques:
         if technique.kinds & set(kinds) and technique.name not in seen:
             seen.add(technique.name)
-            title = (
-                f"{technique.label} ({technique.source})" if technique.source else technique.label
-            )
+            label = gettext(technique.label)
+            title = f"{label} ({technique.source})" if technique.source else label
             # An imported avatar is chosen from the researcher's Avatars (the condition's
             # avatar field), not typed as a path.
             shown = tuple(p for p in technique.parameters if p.name not in ADMIN_HIDDEN)
             groups.append((title, shown))
-    groups.append(("Filming", FILMING))
+    groups.append((gettext_lazy("Filming"), FILMING))
     return groups
+
+
+# Every parameter a condition page may show, by name.
+_PARAMETERS = {
+    parameter.name: parameter
+    for technique in REGISTRY.techniques
+    for parameter in (*technique.parameters, *FILMING)
+    if parameter.name not in ADMIN_HIDDEN
+}
 
 
 class ConditionForm(forms.ModelForm):
@@ -94,9 +118,9 @@ class ConditionForm(forms.ModelForm):
             "is_simulated",
             "parameters",
         )
-        labels = {"parameters": "Other parameters (JSON)"}
+        labels = {"parameters": gettext_lazy("Other parameters (JSON)")}
         help_texts = {
-            "parameters": (
+            "parameters": gettext_lazy(
                 "Settings no field above offers; normally empty {}. Checked on save against "
                 "the parameters' JSON Schema (linked from Import study)."
             )
@@ -172,12 +196,29 @@ class ConditionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
         fieldsets = [(None, {"fields": main})]
         for title, parameters in technique_groups(condition_item_kinds(obj)):
             fieldsets.append((title, {"fields": [PREFIX + p.name for p in parameters]}))
-        fieldsets.append(("Other parameters", {"fields": ["parameters"], "classes": ["collapse"]}))
+        fieldsets.append(
+            (gettext("Other parameters"), {"fields": ["parameters"], "classes": ["collapse"]})
+        )
         return fieldsets
 
-    @admin.display(description="What it compares")
+    @admin.display(description=gettext_lazy("What it compares"))
     def compares(self, obj: Condition) -> str:
-        return describe_condition(obj)
+        return english_description(obj)
+
+    def __getattr__(self, name: str):
+        # A locked design's condition page is read-only: Django makes no form then and
+        # looks each technique field up on the admin, so it is answered here with the
+        # parameter's value in words (else every field would read "None").
+        parameter = _PARAMETERS.get(name.removeprefix(PREFIX)) if name.startswith(PREFIX) else None
+        if parameter is None:
+            raise AttributeError(name)
+
+        @admin.display(description=gettext_lazy(parameter_title(parameter)))
+        def value(condition: Condition) -> str:
+            values = {**study_values(condition.study), **(condition.parameters or {})}
+            return value_text(parameter, values.get(parameter.name, parameter.default))
+
+        return value
 
     def formfield_for_foreignkey(self, db_field, request: HttpRequest, **kwargs):
         if db_field.name == "avatar" and not request.user.is_superuser:

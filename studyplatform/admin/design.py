@@ -2,6 +2,7 @@
 
 from django.contrib import admin
 from django.http import HttpRequest
+from django.utils.translation import gettext
 
 from studyplatform.actions.design import do_add_default_options
 from studyplatform.admin.forms import TrialForm
@@ -59,8 +60,11 @@ class QuestionAdmin(DesignLockMixin, StudyScopedMixin, admin.ModelAdmin):
         if added:
             self.message_user(
                 request,
-                f"“{form.instance.key}” starts with {added} labelled points; edit their "
-                "labels below to fit the question.",
+                gettext(
+                    "“%(key)s” starts with %(count)d labelled points; edit their "
+                    "labels below to fit the question."
+                )
+                % {"key": form.instance.key, "count": added},
             )
 
 

@@ -2,6 +2,7 @@
 
 from django import forms
 from django.core.exceptions import ValidationError
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.lib import strict_json
 from studyplatform.lib.bundle import BundleRejected, read_bundle
@@ -23,9 +24,12 @@ class StudyForm(forms.ModelForm):
         if backward and study.real_participants:
             self.add_error(
                 "status",
-                f"{participants_have(study.real_participants)} taken this study "
-                "(pilots aside), so it cannot go back to draft or pilot: their answers refer "
-                "to its design. Close it, or make a new version of the study to change it.",
+                gettext(
+                    "%(who)s taken this study (pilots aside), so it cannot go back to draft "
+                    "or pilot: their answers refer to its design. Close it, or make a new "
+                    "version of the study to change it."
+                )
+                % {"who": participants_have(study.real_participants)},
             )
         opening = cleaned.get("status") in (Study.Status.PILOT, Study.Status.OPEN)
         was_closed = study.pk is None or study.status in (Study.Status.DRAFT, Study.Status.CLOSED)
@@ -36,7 +40,8 @@ class StudyForm(forms.ModelForm):
             if identical:
                 self.add_error(
                     "status",
-                    f"{describe_identical(identical)} (tick “identical clips intended” below).",
+                    gettext("%(identical)s (tick “identical clips intended” below).")
+                    % {"identical": describe_identical(identical)},
                 )
         return cleaned
 
@@ -83,12 +88,16 @@ class StudyImportForm(forms.Form):
     MAX_BUNDLE_BYTES = 1024 * 1024 * 1024
 
     definition = forms.FileField(
-        help_text="A .json file from “Export as JSON”, or a .zip from “Export with media”."
+        label=gettext_lazy("Definition"),
+        help_text=gettext_lazy(
+            "A .json file from “Export as JSON”, or a .zip from “Export with media”."
+        ),
     )
     slug = forms.SlugField(
+        label=gettext_lazy("Slug"),
         required=False,
         max_length=80,
-        help_text="Optional. Empty: the file's slug, or a free variant of it.",
+        help_text=gettext_lazy("Optional. Empty: the file's slug, or a free variant of it."),
     )
 
     def clean_definition(self):
@@ -98,56 +107,67 @@ class StudyImportForm(forms.Form):
         upload.seek(0)
         if head == b"PK\x03\x04":
             if upload.size > self.MAX_BUNDLE_BYTES:
-                raise ValidationError("The bundle is larger than 1 GB.")
+                raise ValidationError(gettext("The bundle is larger than 1 GB."))
             try:
                 return read_bundle(upload)  # read while the import runs
             except BundleRejected as error:
-                raise ValidationError(f"The file is {error}.") from None
+                raise ValidationError(
+                    gettext("The file is %(problem)s.") % {"problem": error}
+                ) from None
         if upload.size > self.MAX_BYTES:
-            raise ValidationError("The file is larger than 5 MB; a study definition is not.")
+            raise ValidationError(
+                gettext("The file is larger than 5 MB; a study definition is not.")
+            )
         try:
             return strict_json.loads(upload.read()), {}
         except strict_json.JsonRejected as error:
-            raise ValidationError(f"The file is {error}.") from None
+            raise ValidationError(
+                gettext("The file is %(problem)s.") % {"problem": error}
+            ) from None
 
 
 class ResultsForm(forms.Form):
     """Choose exclusions and test options for a study's results page (a GET form)."""
 
     applied = forms.BooleanField(widget=forms.HiddenInput, initial=True, required=False)
-    exclude_pilot = forms.BooleanField(required=False, initial=True, label="Exclude pilot")
+    exclude_pilot = forms.BooleanField(
+        required=False, initial=True, label=gettext_lazy("Exclude pilot")
+    )
     exclude_failed_attention = forms.BooleanField(
-        required=False, initial=True, label="Exclude failed attention checks"
+        required=False, initial=True, label=gettext_lazy("Exclude failed attention checks")
     )
     exclude_incomplete = forms.BooleanField(
-        required=False, initial=True, label="Exclude incomplete sessions"
+        required=False, initial=True, label=gettext_lazy("Exclude incomplete sessions")
     )
     exclude_early_answers = forms.BooleanField(
         required=False,
         initial=False,
-        label="Exclude participants who answered before the clips ended",
+        label=gettext_lazy("Exclude participants who answered before the clips ended"),
     )
     min_median_page_s = forms.FloatField(
         required=False,
         min_value=0,
-        label="Exclude participants whose median time on a page is under (s)",
-        help_text="Empty: no limit.",
+        label=gettext_lazy("Exclude participants whose median time on a page is under (s)"),
+        help_text=gettext_lazy("Empty: no limit."),
         widget=forms.NumberInput(attrs={"step": "0.5", "style": "width: 5em"}),
     )
     ties = forms.ChoiceField(
-        choices=[("exclude", "excluded from tests"), ("split", "split across the pair")],
+        choices=[
+            ("exclude", gettext_lazy("excluded from tests")),
+            ("split", gettext_lazy("split across the pair")),
+        ],
         initial="exclude",
-        label="“Cannot see a difference”",
+        label=gettext_lazy("“Cannot see a difference”"),
     )
     correction = forms.ChoiceField(
         choices=[
             ("holm", "Holm"),
             ("bonferroni", "Bonferroni"),
             ("fdr_bh", "Benjamini–Hochberg"),
-            ("none", "none"),
+            ("none", gettext_lazy("none")),
         ],
         initial="holm",
-        label="Multiple comparisons",
+        label=gettext_lazy("Multiple comparisons"),
     )
 
     def __init__(self, data, *, demographic_questions):
@@ -165,8 +185,8 @@ class ResultsForm(forms.Form):
                 choices=[(label, label) for label in options],
                 required=False,
                 widget=forms.CheckboxSelectMultiple,
-                label=f"Only participants whose {question.key} is",
-                help_text="None ticked: no filter.",
+                label=gettext("Only participants whose %(key)s is") % {"key": question.key},
+                help_text=gettext("None ticked: no filter."),
             )
             self.demographic_fields.append((name, question.key))
 

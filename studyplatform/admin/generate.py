@@ -5,6 +5,7 @@ from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path, reverse
 from django.utils.html import format_html
+from django.utils.translation import gettext, gettext_lazy
 
 from stimuli.clips import ClipError
 from stimuli.manifest import manifest_dict
@@ -62,7 +63,7 @@ class StudyGenerateMixin:
         except IdenticalClips as refusal:
             return None, refusal
         except ClipError as error:
-            messages.error(request, f"“{study.title}”: {error}")
+            messages.error(request, f"“{study.title}”: {error}")  # the engine says what
             return None, None
 
     def generate_view(self, request: HttpRequest, object_id: str) -> HttpResponse:
@@ -77,7 +78,7 @@ class StudyGenerateMixin:
                 return redirect(reverse("admin:studyplatform_study_stimuli", args=[study.pk]))
             if refusal is None:
                 return redirect(reverse("admin:studyplatform_study_generate", args=[study.pk]))
-        title = f"Generate the stimuli of “{study.title}”"
+        title = gettext("Generate the stimuli of “%(title)s”") % {"title": study.title}
         pairs = needed_pairs(study)
         hashed = hashed_pairs(pairs)  # the page's two counts share the hashing
         return self._page(
@@ -101,7 +102,7 @@ class StudyGenerateMixin:
         return self._page(
             request,
             "stimuli.html",
-            f"Stimuli of “{study.title}”",
+            gettext("Stimuli of “%(title)s”") % {"title": study.title},
             study=study,
             progress=stimuli_progress(study),
             checks=checks,
@@ -119,23 +120,26 @@ class StudyGenerateMixin:
         response["Content-Disposition"] = f'attachment; filename="{study.slug}-stimuli.json"'
         return response
 
-    @admin.action(description="Generate stimuli (render missing clips)")
+    @admin.action(description=gettext_lazy("Generate stimuli (render missing clips)"))
     def generate_stimuli(self, request: HttpRequest, queryset):
         """Start generating the selected studies' clips; one study opens its progress page."""
         studies, started = list(queryset), []
         for study in studies:
             if not self.has_change_permission(request, study):
-                messages.error(request, f"You cannot change “{study.title}”.")
+                messages.error(
+                    request, gettext("You cannot change “%(title)s”.") % {"title": study.title}
+                )
                 continue
             result, refusal = self._generate(request, study, allow_identical=False)
             if refusal is not None:
                 messages.error(
                     request,
                     format_html(
-                        "“{}”: {} <a href='{}'>Review and confirm</a>.",
+                        "“{}”: {} <a href='{}'>{}</a>.",
                         study.title,
                         str(refusal),
                         reverse("admin:studyplatform_study_generate", args=[study.pk]),
+                        gettext("Review and confirm"),
                     ),
                 )
             if result is None:
@@ -144,10 +148,11 @@ class StudyGenerateMixin:
             messages.success(
                 request,
                 format_html(
-                    "“{}”: {} <a href='{}'>Progress</a>",
+                    "“{}”: {} <a href='{}'>{}</a>",
                     study.title,
                     _generated(result),
                     reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
+                    gettext("Progress"),
                 ),
             )
         if len(studies) == 1 and started:
@@ -157,10 +162,14 @@ class StudyGenerateMixin:
 
 def _generated(result) -> str:
     """Say what generation did: clips queued, ready, and uploads still missing."""
-    text = f"{result.total} clips: {result.queued} being rendered, {result.ready} ready."
+    text = gettext("%(total)d clips: %(queued)d being rendered, %(ready)d ready.") % {
+        "total": result.total,
+        "queued": result.queued,
+        "ready": result.ready,
+    }
     if result.missing:
-        text += (
-            f" {result.missing} of the uploaded conditions' clips are not uploaded yet "
+        text += " " + gettext(
+            "%(missing)d of the uploaded conditions' clips are not uploaded yet "
             "(Uploaded clips page)."
-        )
+        ) % {"missing": result.missing}
     return text

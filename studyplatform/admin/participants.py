@@ -4,6 +4,7 @@ import re
 
 from django.contrib import admin
 from django.http import HttpRequest
+from django.utils.translation import gettext_lazy
 
 from studyplatform.actions import do_withdraw_participant
 from studyplatform.admin.design import OwnStudyFilter
@@ -49,7 +50,9 @@ class ParticipantAdmin(StudyScopedMixin, ReadOnlyMixin, admin.ModelAdmin):
     # A participant who writes in is found by their link, completion code or the
     # recruitment service's id (PROLIFIC_PID, in the parameters they arrived with).
     search_fields = ("=token", "=completion_code", "recruitment_params")
-    search_help_text = "A participant's link (or its token), completion code or Prolific id."
+    search_help_text = gettext_lazy(
+        "A participant's link (or its token), completion code or Prolific id."
+    )
     date_hierarchy = "started_at"
     readonly_fields = (
         "study",

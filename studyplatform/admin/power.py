@@ -9,6 +9,7 @@ from django import forms
 from django.http import HttpRequest
 from django.template.response import TemplateResponse
 from django.urls import path
+from django.utils.translation import gettext, gettext_lazy
 
 from analysis import ExclusionRules, TidyFormatError, apply_exclusions, check_responses
 from analysis.power import design_from_responses, power_curve
@@ -21,34 +22,52 @@ class PlanForm(forms.Form):
     """What to plan: the kind of answer, the range of N and how many simulations."""
 
     kind = forms.ChoiceField(
-        choices=[("pairwise", "pairwise choices"), ("rating", "ratings of one question")],
+        label=gettext_lazy("Kind"),
+        choices=[
+            ("pairwise", gettext_lazy("pairwise choices")),
+            ("rating", gettext_lazy("ratings of one question")),
+        ],
         initial="pairwise",
-        help_text="Which planned test to simulate: the mixed Bradley–Terry model and "
-        "binomial tests, or the ordinal mixed model and paired t-tests.",
+        help_text=gettext_lazy(
+            "Which planned test to simulate: the mixed Bradley–Terry model and "
+            "binomial tests, or the ordinal mixed model and paired t-tests."
+        ),
     )
     question = forms.CharField(
-        required=False, help_text="The rated question's key (for ratings only)."
+        label=gettext_lazy("Question"),
+        required=False,
+        help_text=gettext_lazy("The rated question's key (for ratings only)."),
     )
-    smallest = forms.IntegerField(min_value=2, max_value=1000, initial=10, label="From N")
-    largest = forms.IntegerField(min_value=2, max_value=1000, initial=60, label="To N")
-    step = forms.IntegerField(min_value=1, max_value=500, initial=10, label="Step")
+    smallest = forms.IntegerField(
+        min_value=2, max_value=1000, initial=10, label=gettext_lazy("From N")
+    )
+    largest = forms.IntegerField(
+        min_value=2, max_value=1000, initial=60, label=gettext_lazy("To N")
+    )
+    step = forms.IntegerField(min_value=1, max_value=500, initial=10, label=gettext_lazy("Step"))
     simulations = forms.IntegerField(
+        label=gettext_lazy("Simulations"),
         min_value=10,
         max_value=500,
         initial=100,
-        help_text="Simulated studies per N; 100 gives power ± 5 points, 400 ± 2.5.",
+        help_text=gettext_lazy("Simulated studies per N; 100 gives power ± 5 points, 400 ± 2.5."),
     )
-    seed = forms.IntegerField(min_value=0, initial=1, help_text="Repeat a plan with its seed.")
+    seed = forms.IntegerField(
+        label=gettext_lazy("Seed"),
+        min_value=0,
+        initial=1,
+        help_text=gettext_lazy("Repeat a plan with its seed."),
+    )
 
     def clean(self):
         data = super().clean()
         if data.get("smallest") and data.get("largest") and data["largest"] < data["smallest"]:
-            raise forms.ValidationError("“To N” must not be below “From N”.")
+            raise forms.ValidationError(gettext("“To N” must not be below “From N”."))
         if data.get("kind") == "rating" and not data.get("question"):
-            raise forms.ValidationError("Name the rated question to plan ratings.")
+            raise forms.ValidationError(gettext("Name the rated question to plan ratings."))
         sizes = range(data.get("smallest", 2), data.get("largest", 2) + 1, data.get("step", 1))
         if len(sizes) > 12:
-            raise forms.ValidationError("Plan at most 12 values of N at once.")
+            raise forms.ValidationError(gettext("Plan at most 12 values of N at once."))
         return data
 
 
@@ -70,7 +89,9 @@ class StudyPowerMixin:
         form = PlanForm(request.GET if "kind" in request.GET else None)
         curve = figure = error = None
         if study.status != Study.Status.PILOT:
-            error = "Sample-size planning uses a pilot: set the study's status to Pilot first."
+            error = gettext(
+                "Sample-size planning uses a pilot: set the study's status to Pilot first."
+            )
         elif form.is_valid():
             try:
                 curve, figure = self._plan(study, form.cleaned_data)
@@ -80,7 +101,7 @@ class StudyPowerMixin:
             **self.admin_site.each_context(request),
             "opts": self.opts,
             "study": study,
-            "title": f"Plan sample size for “{study.title}”",
+            "title": gettext("Plan sample size for “%(title)s”") % {"title": study.title},
             "form": form,
             "curve": curve,
             "table": None if curve is None else curve.table().to_dict("records"),

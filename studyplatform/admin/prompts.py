@@ -8,6 +8,7 @@ from django.db.models import Count
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.actions.prompts import do_attach_asl_video
 from studyplatform.admin.permissions import OwnedMixin
@@ -21,8 +22,8 @@ class AslVideoInline(GenericTabularInline):
     model = AslVideo
     extra = 0
     fields = ("field_name", "video", "poster", "transcript", "credit")
-    verbose_name = "ASL video"
-    verbose_name_plural = "ASL videos of these texts"
+    verbose_name = gettext_lazy("ASL video")
+    verbose_name_plural = gettext_lazy("ASL videos of these texts")
 
     def get_formset(self, request, obj=None, **kwargs):
         model_name = self.parent_model._meta.model_name
@@ -33,7 +34,7 @@ class AslVideoInline(GenericTabularInline):
         kwargs["form"] = type(
             "AslVideoForm",
             (forms.ModelForm,),
-            {"field_name": forms.ChoiceField(choices=choices, label="Text")},
+            {"field_name": forms.ChoiceField(choices=choices, label=gettext("Text"))},
         )
         return super().get_formset(request, obj, **kwargs)
 
@@ -68,18 +69,18 @@ class StudyAslMixin:
                 message = error.messages[0] if isinstance(error, ValidationError) else str(error)
                 if request.headers.get("Accept") == "application/json":
                     return JsonResponse({"error": message}, status=400)
-                messages.error(request, f"Not saved: {message}")
+                messages.error(request, gettext("Not saved: %(problem)s") % {"problem": message})
             else:
                 if request.headers.get("Accept") == "application/json":
                     return JsonResponse({"saved": True, "url": video.video.url})
-                messages.success(request, "ASL video saved.")
+                messages.success(request, gettext("ASL video saved."))
             return redirect(request.path)
         prompts = study_prompts(study)
         signed = sum(1 for prompt in prompts if prompt.video is not None)
         return self._page(
             request,
             "asl.html",
-            f"ASL videos of “{study.title}”",
+            gettext("ASL videos of “%(title)s”") % {"title": study.title},
             study=study,
             prompts=prompts,
             signed=signed,
@@ -90,12 +91,12 @@ def _posted_id(value) -> int:
     """Return a posted row number, or ValidationError naming no Python internals."""
     text = str(value or "")
     if not (text.isascii() and text.isdigit() and len(text) <= 18):
-        raise ValidationError("This text is not part of the study.")
+        raise ValidationError(gettext("This text is not part of the study."))
     return int(text)
 
 
 def _missing_file():
-    raise ValidationError("Choose a video file or record one.")
+    raise ValidationError(gettext("Choose a video file or record one."))
 
 
 @admin.register(SignedTemplate)
@@ -110,7 +111,7 @@ class SignedTemplateAdmin(OwnedMixin, admin.ModelAdmin):
         queryset = super().get_queryset(request).annotate(_studies=Count("studies"))
         return queryset if request.user.is_superuser else queryset.filter(owner=request.user)
 
-    @admin.display(description="studies", ordering="_studies")
+    @admin.display(description=gettext_lazy("studies"), ordering="_studies")
     def study_count(self, template: SignedTemplate) -> int:
         return template._studies
 

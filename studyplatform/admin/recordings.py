@@ -6,6 +6,7 @@ from django.core.exceptions import PermissionDenied, ValidationError
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path
+from django.utils.translation import gettext
 
 from studyplatform.actions.recordings import do_attach_recording
 from studyplatform.lib.recordings import recordings_overview
@@ -38,10 +39,12 @@ class StudyRecordingsMixin:
             try:
                 item = study.items.filter(pk=_number(request.POST.get("item"))).first()
                 if item is None:
-                    raise ValidationError("This word is not part of the study.")
+                    raise ValidationError(gettext("This word is not part of the study."))
                 upload = request.FILES.get("recording")
                 if upload is None:
-                    raise ValidationError("Choose a video, .pose or BVH file, or record one.")
+                    raise ValidationError(
+                        gettext("Choose a video, .pose or BVH file, or record one.")
+                    )
                 do_attach_recording(
                     item,
                     upload,
@@ -51,16 +54,22 @@ class StudyRecordingsMixin:
             except ValidationError as error:
                 if wants_json:
                     return JsonResponse({"error": error.messages[0]}, status=400)
-                messages.error(request, f"Not saved: {error.messages[0]}")
+                messages.error(
+                    request, gettext("Not saved: %(problem)s") % {"problem": error.messages[0]}
+                )
             else:
                 if wants_json:
                     return JsonResponse({"saved": True})
-                messages.success(request, f"Recording of {item.key} saved; it is being prepared.")
+                messages.success(
+                    request,
+                    gettext("Recording of %(key)s saved; it is being prepared.")
+                    % {"key": item.key},
+                )
             return redirect(request.path)
         return self._page(
             request,
             "recordings.html",
-            f"Recordings of “{study.title}”",
+            gettext("Recordings of “%(title)s”") % {"title": study.title},
             study=study,
             overview=recordings_overview(study),
         )

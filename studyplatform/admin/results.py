@@ -3,12 +3,23 @@
 from django.http import HttpRequest, HttpResponse
 from django.template.response import TemplateResponse
 from django.urls import path
+from django.utils.translation import gettext, gettext_lazy
 
 from analysis import TidyFormatError, results_json
 from studyplatform.admin.forms import ResultsForm
 from studyplatform.lib.results import StudyResults, analyse_study, figure_images, report_archive
 from studyplatform.lib.signed import signed_summary
 from studyplatform.models import Block, Question, Study
+
+# What each of the report's figures (analysis.figures, by file name) shows, for its alt.
+FIGURE_DESCRIPTIONS = {
+    "participant_flow": gettext_lazy(
+        "Participant flow: started, consented, finished, excluded by each rule, analysed"
+    ),
+    "condition_rates": gettext_lazy("Each condition's win rate, with its interval"),
+    "pairwise_matrix": gettext_lazy("How often each condition was chosen over each other"),
+    "ratings_boxplots": gettext_lazy("Each item's ratings per condition, as box plots"),
+}
 
 
 def _signed_summary(study: Study) -> dict[str, float] | None:
@@ -72,7 +83,7 @@ class StudyResultsMixin:
             **self.admin_site.each_context(request),
             "opts": self.opts,
             "study": study,
-            "title": f"Results of “{study.title}”",
+            "title": gettext("Results of “%(title)s”") % {"title": study.title},
             "form": form,
             "error": error,
             "results": None
@@ -80,6 +91,7 @@ class StudyResultsMixin:
             else results_json(results.report),
             "report": None if results is None else results.report,
             "figures": {} if results is None else figure_images(results),
+            "figure_descriptions": FIGURE_DESCRIPTIONS,
             "query": request.GET.urlencode(),
             "signed": _signed_summary(study),
             "refresh": request.GET.get("refresh") == "1",

@@ -4,6 +4,7 @@ from django.contrib import messages
 from django.http import HttpRequest, HttpResponse
 from django.shortcuts import redirect
 from django.urls import path, reverse
+from django.utils.translation import gettext, ngettext
 
 from studyplatform.actions import do_review_participants
 from studyplatform.admin.forms import ResultsForm
@@ -42,10 +43,18 @@ class StudyRosterMixin:
                 if v.isascii() and v.isdigit() and len(v) <= 18
             ]
             if review is None or not chosen:
-                messages.error(request, "Tick participants and choose Approve or Reject.")
+                messages.error(request, gettext("Tick participants and choose Approve or Reject."))
             else:
                 count = do_review_participants(study, chosen, review)
-                messages.success(request, f"{count} participant(s): {review.label.lower()}.")
+                messages.success(
+                    request,
+                    ngettext(
+                        "%(count)d participant: %(review)s.",
+                        "%(count)d participants: %(review)s.",
+                        count,
+                    )
+                    % {"count": count, "review": str(review.label).lower()},
+                )
             query = request.POST.get("query", "")
             url = reverse("admin:studyplatform_study_participants", args=[study.pk])
             return redirect(f"{url}?{query}" if query else url)
@@ -55,7 +64,7 @@ class StudyRosterMixin:
         return self._page(
             request,
             "participants.html",
-            f"Participants of “{study.title}”",
+            gettext("Participants of “%(title)s”") % {"title": study.title},
             study=study,
             rows=rows,
             problem=problem,

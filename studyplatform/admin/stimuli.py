@@ -4,6 +4,7 @@ from django.contrib import admin
 from django.http import Http404, HttpRequest, HttpResponse
 from django.urls import path, reverse
 from django.utils.html import format_html
+from django.utils.translation import gettext, gettext_lazy, ngettext
 
 from studyplatform.actions.stimuli import do_retry_stimuli
 from studyplatform.admin.design import OwnStudyFilter
@@ -55,39 +56,53 @@ class StimulusAdmin(StudyScopedMixin, admin.ModelAdmin):
     def has_add_permission(self, request) -> bool:
         return False
 
-    @admin.action(description="Retry the selected clips (those not rendered)")
+    @admin.action(description=gettext_lazy("Retry the selected clips (those not rendered)"))
     def retry_stimuli(self, request, queryset) -> None:
         count = do_retry_stimuli(queryset, background=True)
-        self.message_user(request, f"{count} clip(s) queued again.")
+        self.message_user(
+            request,
+            ngettext("%(count)d clip queued again.", "%(count)d clips queued again.", count)
+            % {"count": count},
+        )
 
-    @admin.display(description="clip")
+    @admin.display(description=gettext_lazy("clip"))
     def player(self, stimulus: Stimulus) -> str:
         if not stimulus.video_url:
-            return "Not uploaded yet." if stimulus.condition.is_uploaded else "Not rendered yet."
+            return (
+                gettext("Not uploaded yet.")
+                if stimulus.condition.is_uploaded
+                else gettext("Not rendered yet.")
+            )
         return format_html(
             '<video src="{}" poster="{}" controls preload="metadata" width="480"></video>',
             stimulus.video_url,
             stimulus.poster_url,
         )
 
-    @admin.display(description="motion")
+    @admin.display(description=gettext_lazy("motion"))
     def motion(self, stimulus: Stimulus) -> str:
         """Offer the clip's motion as GLB (avatar, face and camera too) and BVH."""
         if stimulus.pk is None or stimulus.condition.is_uploaded:
-            return "An uploaded video: no motion."
+            return gettext("An uploaded video: no motion.")
         links = [
             format_html(
                 '<a href="{}" download>{}</a>',
                 reverse("admin:studyplatform_stimulus_motion", args=[stimulus.pk, fmt]),
                 label,
             )
-            for fmt, label in (("glb", "GLB: avatar, motion, face and camera"), ("bvh", "BVH"))
+            for fmt, label in (
+                ("glb", gettext("GLB: avatar, motion, face and camera")),
+                ("bvh", "BVH"),
+            )
         ]
         return format_html(
-            '{} · {}<div class="help">Open exactly what participants saw in Blender, Unity or '
-            "three.js (GLB), or the joints' motion in any BVH tool; made again from the "
-            "clip's parameters by this installation's engine.</div>",
+            '{} · {}<div class="help">{}</div>',
             *links,
+            gettext(
+                "Open exactly what participants saw in Blender, Unity or three.js (GLB), or "
+                "the joints' motion in any BVH tool; made again from the clip's parameters "
+                "by this installation's engine."
+            ),
         )
 
     def get_urls(self):

@@ -14,6 +14,7 @@ from django.shortcuts import redirect
 from django.template.response import TemplateResponse
 from django.urls import path, reverse
 from django.utils.html import format_html
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
 from studyplatform.actions.design import do_add_default_options
@@ -33,7 +34,7 @@ from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.preview import build_preview
 from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.models import Block, Condition, Item, Question, SignedTemplate, Study, Trial
-from studyplatform.rules import describe_condition
+from studyplatform.rules import english_description
 
 # Compact cells keep the study page within the window; each object's page has the room.
 COMPACT_TEXT = {
@@ -49,11 +50,11 @@ class ConditionInline(DesignLockMixin, StudyInline):
     # The techniques are set field by field on each condition's page (its change link).
     fields = ("position", "key", "label", "source", "is_simulated", "compares")
     readonly_fields = ("compares",)
-    verbose_name_plural = "conditions (open one to set its techniques field by field)"
+    verbose_name_plural = gettext_lazy("conditions (open one to set its techniques field by field)")
 
-    @admin.display(description="What it compares")
+    @admin.display(description=gettext_lazy("What it compares"))
     def compares(self, obj: Condition) -> str:
-        return describe_condition(obj)
+        return english_description(obj)
 
 
 class ItemInline(DesignLockMixin, StudyInline):
@@ -77,7 +78,9 @@ class BlockInline(DesignLockMixin, StudyInline):
 class TrialInline(DesignLockMixin, StudyInline):
     formfield_overrides = COMPACT_TEXT
     model = Trial
-    verbose_name_plural = "trials (pages; the design builder makes them, edit one here)"
+    verbose_name_plural = gettext_lazy(
+        "trials (pages; the design builder makes them, edit one here)"
+    )
     form = TrialForm
     fields = (
         "block",
@@ -142,7 +145,7 @@ class StudyAdmin(
     fieldsets = (
         (None, {"fields": ("title", "slug", "status", "owner", "participant_link", "version_of")}),
         (
-            "Language",
+            gettext_lazy("Language"),
             {
                 "fields": (
                     "language",
@@ -156,13 +159,16 @@ class StudyAdmin(
             },
         ),
         (
-            "What participants read",
+            gettext_lazy("What participants read"),
             {"fields": ("description", "consent_text", "consent_mode", "thank_you_text")},
         ),
-        ("Completion", {"fields": ("completion_code", "unique_completion_codes", "redirect_url")}),
-        ("Privacy", {"fields": ("personal_data_retention_days",)}),
         (
-            "Rules",
+            gettext_lazy("Completion"),
+            {"fields": ("completion_code", "unique_completion_codes", "redirect_url")},
+        ),
+        (gettext_lazy("Privacy"), {"fields": ("personal_data_retention_days",)}),
+        (
+            gettext_lazy("Rules"),
             {
                 "fields": (
                     "allowed_devices",
@@ -193,15 +199,15 @@ class StudyAdmin(
             )
         )
 
-    @admin.display(description="conditions", ordering="_conditions")
+    @admin.display(description=gettext_lazy("conditions"), ordering="_conditions")
     def condition_count(self, study: Study) -> int:
         return study._conditions
 
-    @admin.display(description="trials", ordering="_trials")
+    @admin.display(description=gettext_lazy("trials"), ordering="_trials")
     def trial_count(self, study: Study) -> int:
         return study._trials
 
-    @admin.display(description="participants", ordering="_participants")
+    @admin.display(description=gettext_lazy("participants"), ordering="_participants")
     def participant_count(self, study: Study) -> int:
         return study._participants
 
@@ -221,26 +227,31 @@ class StudyAdmin(
         locked = ("rotate_conditions", "randomize_positions") if obj and obj.design_locked else ()
         return (*own, *locked, "participant_link", "version_of")
 
-    @admin.display(description="version")
+    @admin.display(description=gettext_lazy("version"))
     def version_of(self, study: Study) -> str:
         """Say which version this is and what it was made from."""
         if study.previous_version is None:
             return str(study.version)
         url = reverse("admin:studyplatform_study_change", args=[study.previous_version.pk])
         return format_html(
-            '{} (made from <a href="{}">{}</a>)', study.version, url, study.previous_version.title
+            gettext('%(version)s (made from <a href="{}">{}</a>)') % {"version": study.version},
+            url,
+            study.previous_version.title,
         )
 
-    @admin.display(description="participant link")
+    @admin.display(description=gettext_lazy("participant link"))
     def participant_link(self, study: Study) -> str:
         """Show the link to send participants (recruitment services append their ids)."""
         if study.pk is None:
-            return "Save the study first."
+            return gettext("Save the study first.")
         url = reverse("study_welcome", args=[study.slug])
         return format_html(
-            '<a href="{}" target="_blank" rel="noopener">{}</a> on this server<div class="help">'
-            "Send this link to participants; parameters such as <code>?PROLIFIC_PID=…</code> "
-            "are kept. It works while the study is in pilot or open.</div>",
+            gettext(
+                '<a href="{}" target="_blank" rel="noopener">{}</a> on this server'
+                '<div class="help">Send this link to participants; parameters such as '
+                "<code>?PROLIFIC_PID=…</code> are kept. It works while the study is in pilot "
+                "or open.</div>"
+            ),
             url,
             url,
         )
@@ -257,9 +268,12 @@ class StudyAdmin(
             if prompts and not any(p.video for p in prompts):
                 messages.warning(
                     request,
-                    f"ASL first is on, but none of the {len(prompts)} texts participants "
-                    "read has an ASL video: they see English only. Add videos on the ASL "
-                    "videos page, or attach signed templates under Language.",
+                    gettext(
+                        "Signing first is on, but none of the %(count)d texts participants "
+                        "read has a signed video: they see the written text only. Add videos "
+                        "on the ASL videos page, or attach signed templates under Language."
+                    )
+                    % {"count": len(prompts)},
                 )
         return super().change_view(request, object_id, form_url, extra_context)
 
@@ -358,7 +372,7 @@ class StudyAdmin(
         return self._page(
             request,
             "preview.html",
-            f"Preview of “{study.title}”",
+            gettext("Preview of “%(title)s”") % {"title": study.title},
             study=study,
             preview=build_preview(study),
         )
@@ -382,7 +396,7 @@ class StudyAdmin(
             if isinstance(original, str) and (
                 Study.objects.filter(owner=request.user, title=original).exists()
             ):
-                title = f"{original} (imported)"[:200]
+                title = (gettext("%(title)s (imported)") % {"title": original})[:200]
             try:
                 result = do_import_study(
                     definition,
@@ -393,31 +407,35 @@ class StudyAdmin(
                     files=files,
                 )
             except StudyImportError as error:
-                form.add_error("definition", f"Not imported: {error}")
+                form.add_error(
+                    "definition", gettext("Not imported: %(problem)s") % {"problem": error}
+                )
             else:
-                messages.success(request, f"Imported “{result.study.title}”.")
+                messages.success(
+                    request, gettext("Imported “%(title)s”.") % {"title": result.study.title}
+                )
                 for warning in result.warnings:
                     messages.warning(request, warning)
                 return redirect(reverse("admin:studyplatform_study_change", args=[result.study.pk]))
-        page = self._page(request, "import.html", "Import a study definition", form=form)
+        page = self._page(request, "import.html", gettext("Import a study definition"), form=form)
         if request.method == "POST":
             page.status_code = 400  # refused: the form says why
         return page
 
-    @admin.action(description="Duplicate the selected studies (as drafts)")
+    @admin.action(description=gettext_lazy("Duplicate the selected studies (as drafts)"))
     def duplicate_studies(self, request: HttpRequest, queryset) -> None:
         for study in queryset:
             copy = do_duplicate_study(study, owner=request.user)
             messages.success(
                 request,
                 format_html(
-                    "Created <a href='{}'>{}</a>.",
+                    gettext("Created <a href='{}'>{}</a>."),
                     reverse("admin:studyplatform_study_change", args=[copy.pk]),
                     copy.title,
                 ),
             )
 
-    @admin.action(description="Export the selected studies as JSON")
+    @admin.action(description=gettext_lazy("Export the selected studies as JSON"))
     def export_studies(self, request: HttpRequest, queryset) -> HttpResponse:
         studies = list(queryset)
         if len(studies) == 1:

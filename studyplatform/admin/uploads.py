@@ -6,6 +6,7 @@ from django.core.exceptions import PermissionDenied, ValidationError
 from django.http import HttpRequest, HttpResponse, JsonResponse
 from django.shortcuts import redirect
 from django.urls import path
+from django.utils.translation import gettext
 
 from studyplatform.actions.clip_uploads import do_queue_clip, do_queue_clips_zip
 from studyplatform.actions.clips import do_remove_uploaded_clip
@@ -37,7 +38,9 @@ class StudyUploadsMixin:
             except ValidationError as error:
                 if wants_json:
                     return JsonResponse({"error": error.messages[0]}, status=400)
-                messages.error(request, f"Nothing saved: {error.messages[0]}")
+                messages.error(
+                    request, gettext("Nothing saved: %(problem)s") % {"problem": error.messages[0]}
+                )
             else:
                 if wants_json:
                     return JsonResponse({"saved": done})
@@ -47,7 +50,7 @@ class StudyUploadsMixin:
         return self._page(
             request,
             "uploads.html",
-            f"Uploaded clips of “{study.title}”",
+            gettext("Uploaded clips of “%(title)s”") % {"title": study.title},
             study=study,
             conditions=conditions,
             rows=rows,
@@ -63,18 +66,21 @@ class StudyUploadsMixin:
                 pk=_number(request.POST["remove"]), condition__study=study
             ).first()
             if clip is None:
-                raise ValidationError("No such clip in this study.")
+                raise ValidationError(gettext("No such clip in this study."))
             do_remove_uploaded_clip(clip)
-            return f"Clip of {clip.item.key} in {clip.condition.key} removed."
+            return gettext("Clip of %(item)s in %(condition)s removed.") % {
+                "item": clip.item.key,
+                "condition": clip.condition.key,
+            }
         if "archive" in request.FILES:
             return self._outcome(do_queue_clips_zip(study, request.FILES["archive"]))
         condition = study.conditions.filter(pk=_number(request.POST.get("condition"))).first()
         item = study.items.filter(pk=_number(request.POST.get("item"))).first()
         if condition is None or item is None:
-            raise ValidationError("That condition or item is not part of the study.")
+            raise ValidationError(gettext("That condition or item is not part of the study."))
         upload = request.FILES.get("clip")
         if upload is None:
-            raise ValidationError("Choose a video file (MP4, WebM or MOV).")
+            raise ValidationError(gettext("Choose a video file (MP4, WebM or MOV)."))
         return self._outcome(do_queue_clip(condition, item, upload))
 
     @staticmethod
@@ -86,10 +92,9 @@ class StudyUploadsMixin:
             raise ValidationError(job.message)
         if job.status == ClipUpload.Status.DONE:
             return job.message
-        return (
-            f"{job.original_name} is being converted in the background; this page lists "
-            "it until it is saved."
-        )
+        return gettext(
+            "%(name)s is being converted in the background; this page lists it until it is saved."
+        ) % {"name": job.original_name}
 
 
 def _number(value) -> int:

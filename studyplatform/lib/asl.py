@@ -4,6 +4,7 @@ from dataclasses import dataclass
 
 from django.contrib.contenttypes.models import ContentType
 from django.db.models import Q
+from django.utils.text import capfirst
 
 from studyplatform.models import PARTICIPANT_FACING_FIELDS, AslVideo, SignedTemplate, Study
 
@@ -26,7 +27,7 @@ class Prompt:
     def where(self) -> str:
         model = self.obj._meta.verbose_name
         field = self.obj._meta.get_field(self.field_name).verbose_name
-        return f"{model.capitalize()} “{self.obj}” · {field}"
+        return f"{capfirst(model)} “{self.obj}” · {field}"
 
     @property
     def content_type_id(self) -> int:

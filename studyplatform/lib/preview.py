@@ -2,6 +2,8 @@
 
 from dataclasses import dataclass, field
 
+from django.utils.translation import gettext
+
 from studyplatform.models import Block, Condition, Question, Stimulus, Study, Trial
 
 
@@ -42,14 +44,16 @@ def build_preview(study: Study) -> list[PreviewPage]:
     )
     # Consent and thank-you are unnumbered, as participants see them: "Page n of N"
     # counts the pages between.
-    pages = [PreviewPage(number=0, kind="consent", title="Consent", text=study.consent_text)]
+    pages = [
+        PreviewPage(number=0, kind="consent", title=gettext("Consent"), text=study.consent_text)
+    ]
     for trial in trials:
         clips = []
         if trial.condition_a is not None and trial.item is not None:
             two = trial.condition_b is not None
             for label, condition in (
-                ("Clip 1" if two else "Clip", trial.condition_a),
-                ("Clip 2", trial.condition_b),
+                (gettext("Clip 1") if two else gettext("Clip"), trial.condition_a),
+                (gettext("Clip 2"), trial.condition_b),
             ):
                 if condition is not None:
                     stimulus = ready.get((condition.pk, trial.item_id))
@@ -66,5 +70,7 @@ def build_preview(study: Study) -> list[PreviewPage]:
                 questions=tuple(sorted(trial.questions.all(), key=lambda q: (q.position, q.pk))),
             )
         )
-    pages.append(PreviewPage(number=0, kind="thanks", title="Thank you", text=study.thank_you_text))
+    pages.append(
+        PreviewPage(number=0, kind="thanks", title=gettext("Thank you"), text=study.thank_you_text)
+    )
     return pages

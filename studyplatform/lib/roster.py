@@ -3,6 +3,8 @@
 from dataclasses import dataclass
 from datetime import timedelta
 
+from django.utils.translation import gettext
+
 from analysis import ExclusionRules, TidyFormatError, apply_exclusions
 from studyplatform.lib.export import tidy_table
 from studyplatform.lib.quality import device_of
@@ -56,7 +58,8 @@ def roster(study: Study, rules: ExclusionRules) -> tuple[list[RosterRow], str]:
                 duration=duration,
                 device=device_of(participant.user_agent),
                 # reached is the next page to show: past the last one once finished.
-                pages=f"{min(participant.reached, total)} of {total}",
+                pages=gettext("%(reached)d of %(total)d")
+                % {"reached": min(participant.reached, total), "total": total},
                 recruitment_id=next(iter(params.values()), "") if params else "",
                 reasons=tuple(reasons.get(str(participant.pk), ())),
             )

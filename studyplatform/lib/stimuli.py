@@ -3,6 +3,8 @@
 import zlib
 from pathlib import Path
 
+from django.utils.translation import gettext
+
 from stimuli.clips import ClipError, ClipSpec, RenderedClip
 from stimuli.manifest import Entry
 from studyplatform.lib.recordings import with_item_recording
@@ -216,9 +218,9 @@ def identical_clips(study: Study) -> list[tuple[Item, list[Condition]]]:
 def describe_identical(pairs: list[tuple[Item, list[Condition]]]) -> str:
     """Return one sentence naming the items whose conditions render identical clips."""
     parts = [f"{item.key} ({', '.join(c.key for c in same)})" for item, same in pairs[:5]]
-    more = f" and {len(pairs) - 5} more" if len(pairs) > 5 else ""
-    return (
-        f"Conditions render identical clips for {'; '.join(parts)}{more}: their settings "
-        "change nothing the clip shows. Give each condition the technique settings it "
-        "compares (open the condition), or confirm that identical clips are intended."
-    )
+    more = gettext(" and %(count)d more") % {"count": len(pairs) - 5} if len(pairs) > 5 else ""
+    return gettext(
+        "Conditions render identical clips for %(clips)s: their settings change nothing the "
+        "clip shows. Give each condition the technique settings it compares (open the "
+        "condition), or confirm that identical clips are intended."
+    ) % {"clips": "; ".join(parts) + more}

@@ -5,6 +5,7 @@ from datetime import timedelta
 from itertools import combinations
 
 from django.utils import timezone
+from django.utils.translation import gettext
 
 from studyplatform.lib.stimuli import needed_pairs
 from studyplatform.models import Block, ClipUpload, Stimulus, Study, Trial, UploadedClip
@@ -76,16 +77,26 @@ def mismatched_pairs(study: Study) -> list[str]:
         a, b = clips.get((item, first)), clips.get((item, second))
         if a is None or b is None:
             continue
-        where = f"{a.item.key}: {a.condition.key} and {b.condition.key}"
+        where = gettext("%(item)s: %(a)s and %(b)s") % {
+            "item": a.item.key,
+            "a": a.condition.key,
+            "b": b.condition.key,
+        }
         if (a.width, a.height) != (b.width, b.height):
             warnings.append(
-                f"{where} differ in frame size ({a.width}×{a.height} and {b.width}×{b.height})."
+                gettext("%(where)s differ in frame size (%(a)s and %(b)s).")
+                % {"where": where, "a": f"{a.width}×{a.height}", "b": f"{b.width}×{b.height}"}
             )
         shorter, longer = sorted((a.duration_ms or 0, b.duration_ms or 0))
         if shorter and longer / shorter > MAX_DURATION_RATIO:
-            seconds = f"{a.duration_ms / 1000:.2f} s and {b.duration_ms / 1000:.2f} s"
             warnings.append(
-                f"{where} differ in length by {100 * (longer / shorter - 1):.0f} % ({seconds})."
+                gettext("%(where)s differ in length by %(percent).0f %% (%(a).2f s and %(b).2f s).")
+                % {
+                    "where": where,
+                    "percent": 100 * (longer / shorter - 1),
+                    "a": a.duration_ms / 1000,
+                    "b": b.duration_ms / 1000,
+                }
             )
     return warnings
 

@@ -11,6 +11,7 @@ from collections.abc import Iterable
 from django.contrib.contenttypes.fields import GenericRelation
 from django.core.exceptions import ValidationError
 from django.db import models
+from django.utils.translation import gettext_lazy as _
 
 from studyplatform.models.items import Item
 from studyplatform.models.studies import Condition, Study, check_unlocked, position_field
@@ -21,37 +22,52 @@ from studyplatform.questions.base import MAX_KIND_LENGTH
 class Question(models.Model):
     """A reusable question within a study; its answer options hold per-point labels."""
 
-    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="questions")
+    study = models.ForeignKey(
+        Study, verbose_name=_("study"), on_delete=models.CASCADE, related_name="questions"
+    )
     key = models.SlugField(
-        max_length=60, help_text="Name used in exported data, e.g. 'naturalness' or 'age'."
+        _("key"),
+        max_length=60,
+        help_text=_("Name used in exported data, e.g. 'naturalness' or 'age'."),
     )
     # The registered question types (studyplatform.questions): a new one needs no migration.
-    kind = models.CharField(max_length=MAX_KIND_LENGTH, choices=question_kind_choices)
-    text = models.TextField(help_text="The question as participants read it.")
-    help_text = models.TextField(blank=True)
-    required = models.BooleanField(default=True)
+    kind = models.CharField(_("kind"), max_length=MAX_KIND_LENGTH, choices=question_kind_choices)
+    text = models.TextField(_("text"), help_text=_("The question as participants read it."))
+    help_text = models.TextField(_("help text"), blank=True)
+    required = models.BooleanField(_("required"), default=True)
     allow_no_difference = models.BooleanField(
-        "allow 'Cannot see a difference'",
+        _("allow 'Cannot see a difference'"),
         default=False,
-        help_text="Pairwise questions: offer a third answer, 'Cannot see a difference'.",
+        help_text=_("Pairwise questions: offer a third answer, 'Cannot see a difference'."),
     )
     no_difference_label = models.CharField(
-        max_length=100, blank=True, default="Cannot see a difference"
+        _("no difference label"), max_length=100, blank=True, default="Cannot see a difference"
     )
     allow_signed_answer = models.BooleanField(
-        default=False, help_text="Open questions: participants may record a signed answer."
+        _("allow signed answer"),
+        default=False,
+        help_text=_("Open questions: participants may record a signed answer."),
     )
     is_personal = models.BooleanField(
+        _("is personal"),
         default=False,
-        help_text="Identifying data (name, e-mail): stored apart from responses, never exported.",
+        help_text=_(
+            "Identifying data (name, e-mail): stored apart from responses, never exported."
+        ),
     )
-    min_value = models.FloatField(null=True, blank=True, help_text="Number questions: minimum.")
-    max_value = models.FloatField(null=True, blank=True, help_text="Number questions: maximum.")
+    min_value = models.FloatField(
+        _("min value"), null=True, blank=True, help_text=_("Number questions: minimum.")
+    )
+    max_value = models.FloatField(
+        _("max value"), null=True, blank=True, help_text=_("Number questions: maximum.")
+    )
     position = position_field()
 
-    asl_videos = GenericRelation("studyplatform.AslVideo")
+    asl_videos = GenericRelation("studyplatform.AslVideo", verbose_name=_("ASL videos"))
 
     class Meta:
+        verbose_name = _("question")
+        verbose_name_plural = _("questions")
         ordering = ["study", "position", "pk"]
         constraints = [
             models.UniqueConstraint(fields=["study", "key"], name="question_key_unique_in_study")
@@ -86,7 +102,7 @@ class Question(models.Model):
             and self.max_value is not None
             and self.min_value > self.max_value
         ):
-            errors["max_value"] = "The maximum is below the minimum."
+            errors["max_value"] = _("The maximum is below the minimum.")
         if errors:
             raise ValidationError(errors)
 
@@ -94,14 +110,20 @@ class Question(models.Model):
 class AnswerOption(models.Model):
     """One point of a scale or one option of a choice, with its label."""
 
-    question = models.ForeignKey(Question, on_delete=models.CASCADE, related_name="options")
-    value = models.SmallIntegerField(help_text="Stored and analysed value, e.g. 1–5.")
-    label = models.CharField(max_length=200, blank=True)
+    question = models.ForeignKey(
+        Question, verbose_name=_("question"), on_delete=models.CASCADE, related_name="options"
+    )
+    value = models.SmallIntegerField(
+        _("value"), help_text=_("Stored and analysed value, e.g. 1–5.")
+    )
+    label = models.CharField(_("label"), max_length=200, blank=True)
     position = position_field()
 
-    asl_videos = GenericRelation("studyplatform.AslVideo")
+    asl_videos = GenericRelation("studyplatform.AslVideo", verbose_name=_("ASL videos"))
 
     class Meta:
+        verbose_name = _("answer option")
+        verbose_name_plural = _("answer options")
         ordering = ["question", "position", "value"]
         constraints = [
             models.UniqueConstraint(
@@ -120,25 +142,33 @@ class Block(models.Model):
     """A section of the study, shown in order between consent and thank-you."""
 
     class Kind(models.TextChoices):
-        DEMOGRAPHICS = "demographics", "Demographics"
-        INSTRUCTIONS = "instructions", "Instructions"
-        PRACTICE = "practice", "Practice"
-        TRIALS = "trials", "Trials"
-        CLOSING = "closing", "Closing questions"
+        DEMOGRAPHICS = "demographics", _("Demographics")
+        INSTRUCTIONS = "instructions", _("Instructions")
+        PRACTICE = "practice", _("Practice")
+        TRIALS = "trials", _("Trials")
+        CLOSING = "closing", _("Closing questions")
 
-    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="blocks")
-    key = models.SlugField(max_length=60, help_text="Name used in exported data.")
-    kind = models.CharField(max_length=20, choices=Kind.choices, default=Kind.TRIALS)
-    title = models.CharField(max_length=200, blank=True)
-    intro_text = models.TextField(blank=True, help_text="Shown before the block's first page.")
+    study = models.ForeignKey(
+        Study, verbose_name=_("study"), on_delete=models.CASCADE, related_name="blocks"
+    )
+    key = models.SlugField(_("key"), max_length=60, help_text=_("Name used in exported data."))
+    kind = models.CharField(_("kind"), max_length=20, choices=Kind.choices, default=Kind.TRIALS)
+    title = models.CharField(_("title"), max_length=200, blank=True)
+    intro_text = models.TextField(
+        _("intro text"), blank=True, help_text=_("Shown before the block's first page.")
+    )
     randomize_order = models.BooleanField(
-        default=False, help_text="Shuffle the block's pages per participant (seeded)."
+        _("randomize order"),
+        default=False,
+        help_text=_("Shuffle the block's pages per participant (seeded)."),
     )
     position = position_field()
 
-    asl_videos = GenericRelation("studyplatform.AslVideo")
+    asl_videos = GenericRelation("studyplatform.AslVideo", verbose_name=_("ASL videos"))
 
     class Meta:
+        verbose_name = _("block")
+        verbose_name_plural = _("blocks")
         ordering = ["study", "position", "pk"]
         constraints = [
             models.UniqueConstraint(fields=["study", "key"], name="block_key_unique_in_study")
@@ -163,56 +193,76 @@ class Trial(models.Model):
     """What one page shows: an optional clip or pair of clips and the questions about it."""
 
     class Kind(models.TextChoices):
-        INFO = "info", "Information or instructions (no questions)"
-        PAIRWISE = "pairwise", "Pairwise forced choice"
-        COMPARATIVE = "comparative", "Comparative scale"
-        RATING = "rating", "Ratings of one clip"
-        INTELLIGIBILITY = "intelligibility", "Intelligibility"
-        OPEN = "open", "Open questions"
-        DEMOGRAPHIC = "demographic", "Demographic questions"
+        INFO = "info", _("Information or instructions (no questions)")
+        PAIRWISE = "pairwise", _("Pairwise forced choice")
+        COMPARATIVE = "comparative", _("Comparative scale")
+        RATING = "rating", _("Ratings of one clip")
+        INTELLIGIBILITY = "intelligibility", _("Intelligibility")
+        OPEN = "open", _("Open questions")
+        DEMOGRAPHIC = "demographic", _("Demographic questions")
 
     TWO_CLIP_KINDS = frozenset({Kind.PAIRWISE, Kind.COMPARATIVE})
     ONE_CLIP_KINDS = frozenset({Kind.RATING, Kind.INTELLIGIBILITY})
 
-    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="trials")
-    block = models.ForeignKey(Block, on_delete=models.CASCADE, related_name="trials")
-    key = models.SlugField(max_length=80, help_text="Name used in exported data.")
-    kind = models.CharField(max_length=20, choices=Kind.choices)
-    title = models.CharField(max_length=200, blank=True)
-    text = models.TextField(blank=True, help_text="Text shown on the page above the clips.")
+    study = models.ForeignKey(
+        Study, verbose_name=_("study"), on_delete=models.CASCADE, related_name="trials"
+    )
+    block = models.ForeignKey(
+        Block, verbose_name=_("block"), on_delete=models.CASCADE, related_name="trials"
+    )
+    key = models.SlugField(_("key"), max_length=80, help_text=_("Name used in exported data."))
+    kind = models.CharField(_("kind"), max_length=20, choices=Kind.choices)
+    title = models.CharField(_("title"), max_length=200, blank=True)
+    text = models.TextField(
+        _("text"), blank=True, help_text=_("Text shown on the page above the clips.")
+    )
     item = models.ForeignKey(
-        Item, on_delete=models.RESTRICT, null=True, blank=True, related_name="trials"
+        Item,
+        verbose_name=_("item"),
+        on_delete=models.RESTRICT,
+        null=True,
+        blank=True,
+        related_name="trials",
     )
     condition_a = models.ForeignKey(
         Condition,
+        verbose_name=_("condition a"),
         on_delete=models.RESTRICT,
         null=True,
         blank=True,
         related_name="+",
-        help_text="Clip 1 (the only clip of a rating trial; an example clip on an info page).",
+        help_text=_("Clip 1 (the only clip of a rating trial; an example clip on an info page)."),
     )
     condition_b = models.ForeignKey(
         Condition,
+        verbose_name=_("condition b"),
         on_delete=models.RESTRICT,
         null=True,
         blank=True,
         related_name="+",
-        help_text="Clip 2 of a pairwise or comparative trial.",
+        help_text=_("Clip 2 of a pairwise or comparative trial."),
     )
-    questions = models.ManyToManyField(Question, blank=True, related_name="trials")
+    questions = models.ManyToManyField(
+        Question, verbose_name=_("questions"), blank=True, related_name="trials"
+    )
     is_attention_check = models.BooleanField(
-        default=False, help_text="Flag failures in the data (e.g. a pair of identical clips)."
+        _("is attention check"),
+        default=False,
+        help_text=_("Flag failures in the data (e.g. a pair of identical clips)."),
     )
     expected_answer = models.CharField(
+        _("expected answer"),
         max_length=60,
         blank=True,
-        help_text="Attention checks: the correct answer (a condition key, 'none', or a value).",
+        help_text=_("Attention checks: the correct answer (a condition key, 'none', or a value)."),
     )
     position = position_field()
 
-    asl_videos = GenericRelation("studyplatform.AslVideo")
+    asl_videos = GenericRelation("studyplatform.AslVideo", verbose_name=_("ASL videos"))
 
     class Meta:
+        verbose_name = _("trial")
+        verbose_name_plural = _("trials")
         ordering = ["study", "block__position", "position", "pk"]
         constraints = [
             models.UniqueConstraint(fields=["study", "key"], name="trial_key_unique_in_study"),
@@ -237,11 +287,11 @@ class Trial(models.Model):
         """Name the block, item or conditions that belong to another study."""
         errors = {}
         if self.block_id and self.study_id and self.block.study_id != self.study_id:
-            errors["block"] = "The block belongs to another study."
+            errors["block"] = _("The block belongs to another study.")
         for field in ("item", "condition_a", "condition_b"):
             related = getattr(self, field)
             if related is not None and related.study_id != self.study_id:
-                errors[field] = "This belongs to another study."
+                errors[field] = _("This belongs to another study.")
         return errors
 
     def _clip_problems(self) -> dict[str, str]:
@@ -250,14 +300,14 @@ class Trial(models.Model):
         if self.kind in self.TWO_CLIP_KINDS:
             for field in ("item", "condition_a", "condition_b"):
                 if getattr(self, field) is None:
-                    errors[field] = "A comparison needs an item and two conditions."
+                    errors[field] = _("A comparison needs an item and two conditions.")
             same = self.condition_a_id and self.condition_a_id == self.condition_b_id
             if same and not self.is_attention_check:
-                errors["condition_b"] = "Identical clips are only allowed in attention checks."
+                errors["condition_b"] = _("Identical clips are only allowed in attention checks.")
         elif self.kind in self.ONE_CLIP_KINDS and (self.item is None or self.condition_a is None):
-            errors["item"] = "This trial needs an item and the condition of its clip."
+            errors["item"] = _("This trial needs an item and the condition of its clip.")
         if self.condition_b is not None and self.kind not in self.TWO_CLIP_KINDS:
-            errors["condition_b"] = "Only pairwise and comparative trials show a second clip."
+            errors["condition_b"] = _("Only pairwise and comparative trials show a second clip.")
         return errors
 
     def check_questions(self, questions: Iterable[Question]) -> None:
@@ -267,10 +317,13 @@ class Trial(models.Model):
         wrong = [q.key for q in questions if q.kind not in allowed]
         if wrong:
             raise ValidationError(
-                f"A {self.get_kind_display().lower()} trial cannot ask {', '.join(wrong)}."
+                _("A %(kind)s trial cannot ask %(questions)s.")
+                % {"kind": str(self.get_kind_display()).lower(), "questions": ", ".join(wrong)}
             )
         foreign = [q.key for q in questions if q.study_id != self.study_id]
         if foreign:
-            raise ValidationError(f"Questions of another study: {', '.join(foreign)}.")
+            raise ValidationError(
+                _("Questions of another study: %(keys)s.") % {"keys": ", ".join(foreign)}
+            )
         if self.kind != self.Kind.INFO and not questions:
-            raise ValidationError("This trial asks no question.")
+            raise ValidationError(_("This trial asks no question."))

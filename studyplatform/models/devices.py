@@ -2,6 +2,8 @@
 
 from django.conf import settings
 from django.db import models
+from django.utils.translation import gettext
+from django.utils.translation import gettext_lazy as _
 
 
 class KnownDevice(models.Model):
@@ -12,13 +14,21 @@ class KnownDevice(models.Model):
     """
 
     user = models.ForeignKey(
-        settings.AUTH_USER_MODEL, on_delete=models.CASCADE, related_name="known_devices"
+        settings.AUTH_USER_MODEL,
+        verbose_name=_("user"),
+        on_delete=models.CASCADE,
+        related_name="known_devices",
     )
-    token_sha256 = models.CharField(max_length=64, unique=True)
-    created_at = models.DateTimeField(auto_now_add=True, db_index=True)
+    token_sha256 = models.CharField(_("token sha256"), max_length=64, unique=True)
+    created_at = models.DateTimeField(_("created at"), auto_now_add=True, db_index=True)
 
     class Meta:
+        verbose_name = _("known device")
+        verbose_name_plural = _("known devices")
         ordering = ["-created_at"]
 
     def __str__(self) -> str:
-        return f"a browser of {self.user} since {self.created_at:%Y-%m-%d}"
+        return gettext("a browser of %(user)s since %(date)s") % {
+            "user": self.user,
+            "date": f"{self.created_at:%Y-%m-%d}",
+        }

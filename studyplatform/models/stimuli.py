@@ -3,6 +3,7 @@ the files researchers upload for conditions whose clips they bring."""
 
 from django.db import models
 from django.urls import reverse
+from django.utils.translation import gettext_lazy as _
 
 from studyplatform.files.storage import private_storage
 from studyplatform.models.items import Item
@@ -17,33 +18,44 @@ class UploadedClip(models.Model):
     study takes participants (:func:`studyplatform.views.uploaded_clip`).
     """
 
-    condition = models.ForeignKey(Condition, on_delete=models.CASCADE, related_name="uploads")
-    item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="uploads")
-    video = models.FileField(upload_to="uploads/", storage=private_storage)
-    poster = models.FileField(upload_to="uploads/", storage=private_storage)
-    original_name = models.CharField(max_length=255, help_text="The file's name as uploaded.")
-    source_sha256 = models.CharField(
-        "SHA-256 of the file as uploaded",
-        max_length=64,
-        help_text="Differs from the stored file's when it was converted for browsers.",
+    condition = models.ForeignKey(
+        Condition, verbose_name=_("condition"), on_delete=models.CASCADE, related_name="uploads"
     )
-    sha256 = models.CharField("SHA-256 of the stored video", max_length=64, db_index=True)
-    source_codec = models.CharField(max_length=40, blank=True)
+    item = models.ForeignKey(
+        Item, verbose_name=_("item"), on_delete=models.CASCADE, related_name="uploads"
+    )
+    video = models.FileField(_("video"), upload_to="uploads/", storage=private_storage)
+    poster = models.FileField(_("poster"), upload_to="uploads/", storage=private_storage)
+    original_name = models.CharField(
+        _("original name"), max_length=255, help_text=_("The file's name as uploaded.")
+    )
+    source_sha256 = models.CharField(
+        _("SHA-256 of the file as uploaded"),
+        max_length=64,
+        help_text=_("Differs from the stored file's when it was converted for browsers."),
+    )
+    sha256 = models.CharField(_("SHA-256 of the stored video"), max_length=64, db_index=True)
+    source_codec = models.CharField(_("source codec"), max_length=40, blank=True)
     converted = models.CharField(
+        _("converted"),
         max_length=20,
         blank=True,
-        help_text="How the upload was made playable: '' kept as it came, 'remuxed' "
-        "(frames copied into a browser's container), 'transcoded' (re-encoded as H.264).",
+        help_text=_(
+            "How the upload was made playable: '' kept as it came, 'remuxed' "
+            "(frames copied into a browser's container), 'transcoded' (re-encoded as H.264)."
+        ),
     )
-    duration_ms = models.PositiveIntegerField()
-    frame_count = models.PositiveIntegerField()
-    frame_rate = models.FloatField()
-    width = models.PositiveSmallIntegerField()
-    height = models.PositiveSmallIntegerField()
-    size_bytes = models.PositiveBigIntegerField()
-    uploaded_at = models.DateTimeField(auto_now=True)
+    duration_ms = models.PositiveIntegerField(_("duration ms"))
+    frame_count = models.PositiveIntegerField(_("frame count"))
+    frame_rate = models.FloatField(_("frame rate"))
+    width = models.PositiveSmallIntegerField(_("width"))
+    height = models.PositiveSmallIntegerField(_("height"))
+    size_bytes = models.PositiveBigIntegerField(_("size bytes"))
+    uploaded_at = models.DateTimeField(_("uploaded at"), auto_now=True)
 
     class Meta:
+        verbose_name = _("uploaded clip")
+        verbose_name_plural = _("uploaded clips")
         ordering = ["condition", "item__position", "pk"]
         constraints = [
             models.UniqueConstraint(fields=["condition", "item"], name="one_upload_per_clip")
@@ -57,49 +69,61 @@ class Stimulus(models.Model):
     """One rendered clip: a condition applied to an item, with its poster frame."""
 
     class Status(models.TextChoices):
-        PENDING = "pending", "Pending"
-        RENDERING = "rendering", "Rendering"
-        READY = "ready", "Ready"
-        FAILED = "failed", "Failed"
-        MISSING = "missing", "Not uploaded yet"
+        PENDING = "pending", _("Pending")
+        RENDERING = "rendering", _("Rendering")
+        READY = "ready", _("Ready")
+        FAILED = "failed", _("Failed")
+        MISSING = "missing", _("Not uploaded yet")
 
-    condition = models.ForeignKey(Condition, on_delete=models.CASCADE, related_name="stimuli")
-    item = models.ForeignKey(Item, on_delete=models.CASCADE, related_name="stimuli")
+    condition = models.ForeignKey(
+        Condition, verbose_name=_("condition"), on_delete=models.CASCADE, related_name="stimuli"
+    )
+    item = models.ForeignKey(
+        Item, verbose_name=_("item"), on_delete=models.CASCADE, related_name="stimuli"
+    )
     content_hash = models.CharField(
+        _("content hash"),
         max_length=64,
         db_index=True,
-        help_text="Hash of everything that determines the clip's pixels (its file name); "
-        "studies that show the same clip share the file.",
+        help_text=_(
+            "Hash of everything that determines the clip's pixels (its file name); "
+            "studies that show the same clip share the file."
+        ),
     )
     status = models.CharField(
-        max_length=10, choices=Status.choices, default=Status.PENDING, db_index=True
+        _("status"), max_length=10, choices=Status.choices, default=Status.PENDING, db_index=True
     )
-    error = models.TextField(blank=True)
-    video = models.FileField(upload_to="stimuli/", blank=True)
-    poster = models.FileField(upload_to="stimuli/", blank=True)
+    error = models.TextField(_("error"), blank=True)
+    video = models.FileField(_("video"), upload_to="stimuli/", blank=True)
+    poster = models.FileField(_("poster"), upload_to="stimuli/", blank=True)
     parameters = models.JSONField(
-        default=dict, blank=True, help_text="Synthesis parameters the clip was rendered with."
+        _("parameters"),
+        default=dict,
+        blank=True,
+        help_text=_("Synthesis parameters the clip was rendered with."),
     )
-    engine_version = models.CharField(max_length=40, blank=True)
-    duration_ms = models.PositiveIntegerField(null=True, blank=True)
-    frame_count = models.PositiveIntegerField(null=True, blank=True)
-    width = models.PositiveSmallIntegerField(null=True, blank=True)
-    height = models.PositiveSmallIntegerField(null=True, blank=True)
-    size_bytes = models.PositiveBigIntegerField(null=True, blank=True)
-    sha256 = models.CharField("SHA-256 of the video file", max_length=64, blank=True)
+    engine_version = models.CharField(_("engine version"), max_length=40, blank=True)
+    duration_ms = models.PositiveIntegerField(_("duration ms"), null=True, blank=True)
+    frame_count = models.PositiveIntegerField(_("frame count"), null=True, blank=True)
+    width = models.PositiveSmallIntegerField(_("width"), null=True, blank=True)
+    height = models.PositiveSmallIntegerField(_("height"), null=True, blank=True)
+    size_bytes = models.PositiveBigIntegerField(_("size bytes"), null=True, blank=True)
+    sha256 = models.CharField(_("SHA-256 of the video file"), max_length=64, blank=True)
     upload = models.ForeignKey(
         UploadedClip,
+        verbose_name=_("upload"),
         on_delete=models.SET_NULL,
         null=True,
         blank=True,
         related_name="+",
-        help_text="The uploaded file this clip is (conditions of uploaded clips only).",
+        help_text=_("The uploaded file this clip is (conditions of uploaded clips only)."),
     )
-    created_at = models.DateTimeField(auto_now_add=True)
-    rendered_at = models.DateTimeField(null=True, blank=True)
+    created_at = models.DateTimeField(_("created at"), auto_now_add=True)
+    rendered_at = models.DateTimeField(_("rendered at"), null=True, blank=True)
 
     class Meta:
-        verbose_name_plural = "stimuli"
+        verbose_name = _("stimulus")
+        verbose_name_plural = _("stimuli")
         ordering = ["condition__study", "item__position", "condition__position", "pk"]
         indexes = [models.Index(fields=["condition", "item"])]
 
@@ -132,31 +156,52 @@ class ClipUpload(models.Model):
     """
 
     class Status(models.TextChoices):
-        QUEUED = "queued", "Waiting to be converted"
-        CONVERTING = "converting", "Converting"
-        DONE = "done", "Saved"
-        FAILED = "failed", "Nothing saved"
+        QUEUED = "queued", _("Waiting to be converted")
+        CONVERTING = "converting", _("Converting")
+        DONE = "done", _("Saved")
+        FAILED = "failed", _("Nothing saved")
 
     study = models.ForeignKey(
-        "studyplatform.Study", on_delete=models.CASCADE, related_name="clip_uploads"
+        "studyplatform.Study",
+        verbose_name=_("study"),
+        on_delete=models.CASCADE,
+        related_name="clip_uploads",
     )
     condition = models.ForeignKey(
-        Condition, on_delete=models.CASCADE, null=True, blank=True, related_name="+"
+        Condition,
+        verbose_name=_("condition"),
+        on_delete=models.CASCADE,
+        null=True,
+        blank=True,
+        related_name="+",
     )
     item = models.ForeignKey(
-        Item, on_delete=models.CASCADE, null=True, blank=True, related_name="+"
+        Item,
+        verbose_name=_("item"),
+        on_delete=models.CASCADE,
+        null=True,
+        blank=True,
+        related_name="+",
     )
-    incoming = models.CharField(max_length=100, help_text="The file's name under incoming/.")
-    original_name = models.CharField(max_length=255)
+    incoming = models.CharField(
+        _("incoming"), max_length=100, help_text=_("The file's name under incoming/.")
+    )
+    original_name = models.CharField(_("original name"), max_length=255)
     status = models.CharField(
-        max_length=10, choices=Status.choices, default=Status.QUEUED, db_index=True
+        _("status"), max_length=10, choices=Status.choices, default=Status.QUEUED, db_index=True
     )
-    done = models.PositiveIntegerField(default=0, help_text="Clips converted so far.")
-    total = models.PositiveIntegerField(default=1, help_text="Clips the upload holds.")
-    message = models.TextField(blank=True, help_text="What was saved, or why nothing was.")
-    created_at = models.DateTimeField(auto_now_add=True)
+    done = models.PositiveIntegerField(_("done"), default=0, help_text=_("Clips converted so far."))
+    total = models.PositiveIntegerField(
+        _("total"), default=1, help_text=_("Clips the upload holds.")
+    )
+    message = models.TextField(
+        _("message"), blank=True, help_text=_("What was saved, or why nothing was.")
+    )
+    created_at = models.DateTimeField(_("created at"), auto_now_add=True)
 
     class Meta:
+        verbose_name = _("clip upload")
+        verbose_name_plural = _("clip uploads")
         ordering = ["-created_at", "-pk"]
 
     def __str__(self) -> str:

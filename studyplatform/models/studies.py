@@ -10,6 +10,8 @@ from django.contrib.contenttypes.fields import GenericRelation
 from django.core.exceptions import ValidationError
 from django.core.validators import MinValueValidator
 from django.db import models
+from django.utils.translation import gettext, ngettext
+from django.utils.translation import gettext_lazy as _
 
 from studyplatform.rules import check_condition, check_study_values
 from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET, alphabet_choices
@@ -20,10 +22,18 @@ def position_field() -> models.SmallIntegerField:
     """Return the field that orders a study's rows (conditions, items, blocks …)."""
     # Signed: a row can go before the others without renumbering them.
     return models.SmallIntegerField(
+        _("position"),
         default=0,
-        help_text="Order: lower comes first; a negative number puts it before the others. "
-        "New rows left at 0 are numbered after the existing ones.",
+        help_text=_(
+            "Order: lower comes first; a negative number puts it before the others. "
+            "New rows left at 0 are numbered after the existing ones."
+        ),
     )
+
+
+def manual_alphabets() -> list[tuple[str, str]]:
+    """Return the engine's manual alphabets as choices, named in the researcher's language."""
+    return [(code, gettext(name)) for code, name in alphabet_choices()]
 
 
 def interface_languages() -> list[tuple[str, str]]:
@@ -35,19 +45,19 @@ class Study(models.Model):
     """A perceptual study: its settings, what participants see first and last."""
 
     class Status(models.TextChoices):
-        DRAFT = "draft", "Draft"
-        PILOT = "pilot", "Pilot (responses flagged, excluded from analysis)"
-        OPEN = "open", "Open"
-        CLOSED = "closed", "Closed"
+        DRAFT = "draft", _("Draft")
+        PILOT = "pilot", _("Pilot (responses flagged, excluded from analysis)")
+        OPEN = "open", _("Open")
+        CLOSED = "closed", _("Closed")
 
     class ConsentMode(models.TextChoices):
-        IMPLICIT = "implicit", "Continuing means consent"
-        EXPLICIT = "explicit", "Explicit consent checkbox"
+        IMPLICIT = "implicit", _("Continuing means consent")
+        EXPLICIT = "explicit", _("Explicit consent checkbox")
 
     class Devices(models.TextChoices):
-        ANY = "any", "Any device"
-        DESKTOP = "desktop", "Desktop or laptop only"
-        MOBILE = "mobile", "Phone or tablet only"
+        ANY = "any", _("Any device")
+        DESKTOP = "desktop", _("Desktop or laptop only")
+        MOBILE = "mobile", _("Phone or tablet only")
 
     # True on the draft do_import_study creates and fills: the action made it a moment
     # ago and opens it only once every row is in, so its rows need not ask the database
@@ -56,187 +66,247 @@ class Study(models.Model):
 
     owner = models.ForeignKey(
         settings.AUTH_USER_MODEL,
+        verbose_name=_("owner"),
         on_delete=models.PROTECT,
         related_name="studies",
-        help_text="The researcher who owns the study; only they (and superusers) see it.",
+        help_text=_("The researcher who owns the study; only they (and superusers) see it."),
     )
     slug = models.SlugField(
+        _("slug"),
         max_length=80,
         unique=True,
-        help_text="Short name used in the participant link and in exported data.",
+        help_text=_("Short name used in the participant link and in exported data."),
     )
-    title = models.CharField(max_length=200)
-    description = models.TextField(blank=True, help_text="Shown on the study's welcome page.")
+    title = models.CharField(_("title"), max_length=200)
+    description = models.TextField(
+        _("description"), blank=True, help_text=_("Shown on the study's welcome page.")
+    )
     status = models.CharField(
-        max_length=10, choices=Status.choices, default=Status.DRAFT, db_index=True
+        _("status"), max_length=10, choices=Status.choices, default=Status.DRAFT, db_index=True
     )
     language = models.CharField(
+        _("language"),
         max_length=10,
         choices=interface_languages,
         default="en",
-        help_text="The language of the participant's pages: their buttons and messages. "
-        "Write the study's own texts in it too.",
+        help_text=_(
+            "The language of the participant's pages: their buttons and messages. "
+            "Write the study's own texts in it too."
+        ),
     )
     follow_browser_language = models.BooleanField(
+        _("follow browser language"),
         default=False,
-        help_text="Show the pages in the participant's browser language where it is one "
-        "of the interface's languages, else in the study's language.",
+        help_text=_(
+            "Show the pages in the participant's browser language where it is one "
+            "of the interface's languages, else in the study's language."
+        ),
     )
     sign_language = models.CharField(
+        _("sign language"),
         max_length=40,
         default="ASL",
-        help_text="The sign language's name as participants know it (ASL, Libras, TİD, "
-        "BSL …): the pages use it wherever they name the signing.",
+        help_text=_(
+            "The sign language's name as participants know it (ASL, Libras, TİD, "
+            "BSL …): the pages use it wherever they name the signing."
+        ),
     )
     manual_alphabet = models.CharField(
+        _("manual alphabet"),
         max_length=20,
-        choices=alphabet_choices,
+        choices=manual_alphabets,
         default=DEFAULT_ALPHABET,
-        help_text="The manual alphabet the study's fingerspelled words are spelled in "
-        "(the engine's alphabet files; a condition or an item may set another).",
+        help_text=_(
+            "The manual alphabet the study's fingerspelled words are spelled in "
+            "(the engine's alphabet files; a condition or an item may set another)."
+        ),
     )
     phone_clips_side_by_side = models.BooleanField(
+        _("phone clips side by side"),
         default=False,
-        help_text="On a phone held upright, show a page's two clips side by side (small, "
-        "kept at the top while the questions scroll) instead of one under the other at "
-        "the screen's full width.",
+        help_text=_(
+            "On a phone held upright, show a page's two clips side by side (small, "
+            "kept at the top while the questions scroll) instead of one under the other at "
+            "the screen's full width."
+        ),
     )
     asl_first = models.BooleanField(
-        "signing first",
+        _("signing first"),
         default=False,
-        help_text="Show each prompt's sign-language video first and large, with the written "
-        "text secondary.",
+        help_text=_(
+            "Show each prompt's sign-language video first and large, with the written "
+            "text secondary."
+        ),
     )
     allow_english_only = models.BooleanField(
-        "allow written text only",
+        _("allow written text only"),
         default=True,
-        help_text="Let participants switch the study to its written text only.",
+        help_text=_("Let participants switch the study to its written text only."),
     )
-    consent_text = models.TextField(blank=True)
+    consent_text = models.TextField(_("consent text"), blank=True)
     consent_mode = models.CharField(
-        max_length=10, choices=ConsentMode.choices, default=ConsentMode.IMPLICIT
+        _("consent mode"), max_length=10, choices=ConsentMode.choices, default=ConsentMode.IMPLICIT
     )
     thank_you_text = models.TextField(
-        blank=True, default="Thank you for taking part in this study."
+        _("thank you text"), blank=True, default="Thank you for taking part in this study."
     )
     completion_code = models.CharField(
+        _("completion code"),
         max_length=64,
         blank=True,
-        help_text="Code shown at the end, e.g. for a recruitment service.",
+        help_text=_("Code shown at the end, e.g. for a recruitment service."),
     )
     unique_completion_codes = models.BooleanField(
+        _("unique completion codes"),
         default=False,
         help_text=(
-            "Give each participant a code of their own (the code above, if any, then a "
-            "dash and 8 random characters), so a recruitment service's submissions can be "
-            "matched to participants one by one."
+            _(
+                "Give each participant a code of their own (the code above, if any, then a "
+                "dash and 8 random characters), so a recruitment service's submissions can be "
+                "matched to participants one by one."
+            )
         ),
     )
     redirect_url = models.URLField(
+        _("redirect url"),
         blank=True,
         max_length=500,
         help_text=(
-            "Where to send participants at the end (automatically, after a few seconds). "
-            "Recruitment parameters kept from the link and the completion code can be "
-            "inserted, e.g. https://app.prolific.com/submissions/complete?cc={CODE}&pid="
-            "{PROLIFIC_PID}."
+            _(
+                "Where to send participants at the end (automatically, after a few seconds). "
+                "Recruitment parameters kept from the link and the completion code can be "
+                "inserted, e.g. https://app.prolific.com/submissions/complete?cc={CODE}&pid="
+                "{PROLIFIC_PID}."
+            )
         ),
     )
-    allowed_devices = models.CharField(max_length=10, choices=Devices.choices, default=Devices.ANY)
+    allowed_devices = models.CharField(
+        _("allowed devices"), max_length=10, choices=Devices.choices, default=Devices.ANY
+    )
     one_sitting = models.BooleanField(
-        default=False, help_text="The study must be completed in one sitting."
+        _("one sitting"), default=False, help_text=_("The study must be completed in one sitting.")
     )
     shared_computer = models.BooleanField(
-        "shared computer",
+        _("shared computer"),
         default=False,
         help_text=(
-            "For a lab computer that participants take in turns: when one finishes, the "
-            "study link starts afresh in that browser, and the thank-you page has a button "
-            "for the next participant. The study link with ?new=1 starts afresh even if "
-            "the one before left without finishing."
+            _(
+                "For a lab computer that participants take in turns: when one finishes, the "
+                "study link starts afresh in that browser, and the thank-you page has a button "
+                "for the next participant. The study link with ?new=1 starts afresh even if "
+                "the one before left without finishing."
+            )
         ),
     )
     time_limit_minutes = models.PositiveIntegerField(
-        null=True, blank=True, validators=[MinValueValidator(1)], help_text="Empty: no limit."
+        _("time limit minutes"),
+        null=True,
+        blank=True,
+        validators=[MinValueValidator(1)],
+        help_text=_("Empty: no limit."),
     )
     personal_data_retention_days = models.PositiveIntegerField(
-        "keep personal data for (days)",
+        _("keep personal data for (days)"),
         null=True,
         blank=True,
         validators=[MinValueValidator(1)],
         help_text=(
-            "Days after a participant finishes (or last took part) until their personal "
-            "data is deleted: answers marked personal (name, e-mail), signed-answer videos "
-            "and recruitment ids. Their other answers stay, anonymous. Empty: keep."
+            _(
+                "Days after a participant finishes (or last took part) until their personal "
+                "data is deleted: answers marked personal (name, e-mail), signed-answer videos "
+                "and recruitment ids. Their other answers stay, anonymous. Empty: keep."
+            )
         ),
     )
     target_n = models.PositiveIntegerField(
-        "target N", null=True, blank=True, help_text="Number of participants wanted."
+        _("target N"), null=True, blank=True, help_text=_("Number of participants wanted.")
     )
     allow_back = models.BooleanField(
-        default=True, help_text="Show a Prev button; answers can be changed until the end."
+        _("allow back"),
+        default=True,
+        help_text=_("Show a Prev button; answers can be changed until the end."),
     )
     replay_limit = models.PositiveSmallIntegerField(
-        null=True, blank=True, help_text="Plays allowed per clip; empty means unlimited."
+        _("replay limit"),
+        null=True,
+        blank=True,
+        help_text=_("Plays allowed per clip; empty means unlimited."),
     )
     require_full_view = models.BooleanField(
-        default=False, help_text="Participants must watch every clip to its end before answering."
+        _("require full view"),
+        default=False,
+        help_text=_("Participants must watch every clip to its end before answering."),
     )
     rotate_conditions = models.BooleanField(
+        _("rotate conditions"),
         default=False,
         help_text=(
-            "Latin-square rotation: participant n sees the trial blocks' conditions relabelled "
-            "by row n of a balanced Latin square, so cells balance over every k participants "
-            "(k conditions). Needs every condition rendered for every item."
+            _(
+                "Latin-square rotation: participant n sees the trial blocks' conditions relabelled "
+                "by row n of a balanced Latin square, so cells balance over every k participants "
+                "(k conditions). Needs every condition rendered for every item."
+            )
         ),
     )
     randomize_positions = models.BooleanField(
+        _("randomize positions"),
         default=True,
-        help_text="Swap Clip 1 and Clip 2 at random per participant (seeded, reproducible).",
+        help_text=_("Swap Clip 1 and Clip 2 at random per participant (seeded, reproducible)."),
     )
     allow_identical_clips = models.BooleanField(
-        "identical clips intended",
+        _("identical clips intended"),
         default=False,
         help_text=(
-            "Conditions may render the same clip for an item (say, a control identical by "
-            "design). Off: generating stimuli and opening the study are refused while two "
-            "conditions of an item would show identical clips."
+            _(
+                "Conditions may render the same clip for an item (say, a control identical by "
+                "design). Off: generating stimuli and opening the study are refused while two "
+                "conditions of an item would show identical clips."
+            )
         ),
     )
     version = models.PositiveSmallIntegerField(
-        default=1, editable=False, help_text="1 for a new study; a new version counts on."
+        _("version"),
+        default=1,
+        editable=False,
+        help_text=_("1 for a new study; a new version counts on."),
     )
     previous_version = models.ForeignKey(
         "self",
+        verbose_name=_("previous version"),
         on_delete=models.SET_NULL,
         null=True,
         blank=True,
         editable=False,
         related_name="next_versions",
-        help_text="The study this version was made from; its participants stay with it.",
+        help_text=_("The study this version was made from; its participants stay with it."),
     )
     design = models.JSONField(
+        _("design"),
         default=dict,
         blank=True,
         editable=False,
-        help_text="What the design builder last built: its choices and the blocks it made.",
+        help_text=_("What the design builder last built: its choices and the blocks it made."),
     )
-    created_at = models.DateTimeField(auto_now_add=True)
-    updated_at = models.DateTimeField(auto_now=True)
+    created_at = models.DateTimeField(_("created at"), auto_now_add=True)
+    updated_at = models.DateTimeField(_("updated at"), auto_now=True)
 
     signed_templates = models.ManyToManyField(
         "studyplatform.SignedTemplate",
+        verbose_name=_("signed templates"),
         blank=True,
         related_name="studies",
         help_text=(
-            "Signed texts you recorded once (consent, instructions, thank-you, what the "
-            "buttons do): they sign those texts where this study has no video of its own."
+            _(
+                "Signed texts you recorded once (consent, instructions, thank-you, what the "
+                "buttons do): they sign those texts where this study has no video of its own."
+            )
         ),
     )
-    asl_videos = GenericRelation("studyplatform.AslVideo")
+    asl_videos = GenericRelation("studyplatform.AslVideo", verbose_name=_("ASL videos"))
 
     class Meta:
-        verbose_name_plural = "studies"
+        verbose_name = _("study")
+        verbose_name_plural = _("studies")
         ordering = ["-created_at", "pk"]
 
     def __str__(self) -> str:
@@ -286,7 +356,9 @@ class Study(models.Model):
 
 def participants_have(count: int) -> str:
     """Return "1 participant has" or "N participants have"."""
-    return f"{count} participant{'s have' if count != 1 else ' has'}"
+    return ngettext("%(count)d participant has", "%(count)d participants have", count) % {
+        "count": count
+    }
 
 
 def check_unlocked(study: Study | None) -> None:
@@ -302,15 +374,23 @@ def check_unlocked(study: Study | None) -> None:
     locked = [Study.Status.OPEN, Study.Status.CLOSED]
     if Study.objects.filter(pk=study.pk, status__in=locked).exists():
         raise ValidationError(
-            f"“{study.title}” is {study.get_status_display().lower()}: its design is locked. "
-            "Make a new version of the study to change it."
+            _(
+                "“%(title)s” is %(status)s: its design is locked. "
+                "Make a new version of the study to change it."
+            )
+            % {"title": study.title, "status": str(study.get_status_display()).lower()}
         )
     taken = study.count_real_participants()
     if taken:
         raise ValidationError(
-            f"“{study.title}” has been taken by {taken} participant"
-            f"{'s' if taken != 1 else ''}: its design is locked whatever its status. "
-            "Make a new version of the study to change it."
+            ngettext(
+                "“%(title)s” has been taken by %(count)d participant: its design is locked "
+                "whatever its status. Make a new version of the study to change it.",
+                "“%(title)s” has been taken by %(count)d participants: its design is locked "
+                "whatever its status. Make a new version of the study to change it.",
+                taken,
+            )
+            % {"title": study.title, "count": taken}
         )
 
 
@@ -319,52 +399,71 @@ class Condition(models.Model):
     a set of clips the researcher brings (a filmed signer, another lab's animation)."""
 
     class Source(models.TextChoices):
-        RENDERED = "rendered", "Rendered by the engine"
-        UPLOADED = "uploaded", "Uploaded clips (one video per item)"
+        RENDERED = "rendered", _("Rendered by the engine")
+        UPLOADED = "uploaded", _("Uploaded clips (one video per item)")
 
-    study = models.ForeignKey(Study, on_delete=models.CASCADE, related_name="conditions")
-    key = models.SlugField(max_length=40, help_text="Name used in exported data, e.g. 'variable'.")
-    label = models.CharField(max_length=100, help_text="Name shown in the admin and reports.")
-    description = models.TextField(blank=True)
+    study = models.ForeignKey(
+        Study, verbose_name=_("study"), on_delete=models.CASCADE, related_name="conditions"
+    )
+    key = models.SlugField(
+        _("key"), max_length=40, help_text=_("Name used in exported data, e.g. 'variable'.")
+    )
+    label = models.CharField(
+        _("label"), max_length=100, help_text=_("Name shown in the admin and reports.")
+    )
+    description = models.TextField(_("description"), blank=True)
     is_simulated = models.BooleanField(
+        _("is simulated"),
         default=False,
         help_text=(
-            "A simulated stand-in (e.g. a simulated reference performance instead of a "
-            "motion capture recording); labelled 'simulated' everywhere it appears."
+            _(
+                "A simulated stand-in (e.g. a simulated reference performance instead of a "
+                "motion capture recording); labelled 'simulated' everywhere it appears."
+            )
         ),
     )
     source = models.CharField(
-        "clips",
+        _("clips"),
         max_length=10,
         choices=Source.choices,
         default=Source.RENDERED,
-        help_text="Rendered: the engine renders each item with this condition's settings. "
-        "Uploaded: you upload one video per item (MP4, WebM or MOV) on the study's "
-        "Uploaded clips page; the condition has no settings.",
+        help_text=_(
+            "Rendered: the engine renders each item with this condition's settings. "
+            "Uploaded: you upload one video per item (MP4, WebM or MOV) on the study's "
+            "Uploaded clips page; the condition has no settings."
+        ),
     )
     avatar = models.ForeignKey(
         "studyplatform.Avatar",
+        verbose_name=_("avatar"),
         on_delete=models.PROTECT,
         null=True,
         blank=True,
         related_name="conditions",
-        help_text="Film this condition's clips with your own avatar (Avatars in the menu) "
-        "instead of the built-in signer; the avatar settings below then stay at their "
-        "defaults.",
+        help_text=_(
+            "Film this condition's clips with your own avatar (Avatars in the menu) "
+            "instead of the built-in signer; the avatar settings below then stay at their "
+            "defaults."
+        ),
     )
     parameters = models.JSONField(
+        _("parameters"),
         default=dict,
         blank=True,
         help_text=(
-            'The techniques\' settings for this condition, e.g. {"timing": "variable", '
-            '"source": "simulated"}; checked against the technique registry on save '
-            "(python -m synthesis techniques lists every parameter). Leave out a setting "
-            "to take its default."
+            _(
+                'The techniques\' settings for this condition, e.g. {"timing": "variable", '
+                '"source": "simulated"}; checked against the technique registry on save '
+                "(python -m synthesis techniques lists every parameter). Leave out a setting "
+                "to take its default."
+            )
         ),
     )
     position = position_field()
 
     class Meta:
+        verbose_name = _("condition")
+        verbose_name_plural = _("conditions")
         ordering = ["study", "position", "pk"]
         constraints = [
             models.UniqueConstraint(fields=["study", "key"], name="condition_key_unique_in_study")
@@ -389,13 +488,15 @@ class Condition(models.Model):
     def clean(self) -> None:
         check_unlocked(self.study if self.study_id else None)
         if self.is_uploaded and self.avatar_id is not None:
-            raise ValidationError({"avatar": "Uploaded clips are not filmed with an avatar."})
+            raise ValidationError({"avatar": _("Uploaded clips are not filmed with an avatar.")})
         if not self.is_uploaded:
             check_condition(self)
         elif self.parameters:
             raise ValidationError(
                 {
-                    "parameters": "A condition of uploaded clips renders nothing: leave its "
-                    "settings empty (they would change nothing participants see)."
+                    "parameters": _(
+                        "A condition of uploaded clips renders nothing: leave its "
+                        "settings empty (they would change nothing participants see)."
+                    )
                 }
             )

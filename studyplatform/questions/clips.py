@@ -1,6 +1,6 @@
 """Questions about the clips on the page: which of two is better (pairwise forced choice)."""
 
-from django.utils.translation import gettext
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.questions.base import (
     NO_DIFFERENCE,
@@ -16,7 +16,7 @@ class PairwiseQuestion(QuestionType):
     """Clip 1 or Clip 2 (or "Cannot see a difference"); stored as the chosen condition."""
 
     kind = "pairwise"
-    label = "Pairwise forced choice (Clip 1 / Clip 2)"
+    label = gettext_lazy("Pairwise forced choice (Clip 1 / Clip 2)")
     shows_clips = True
     template = "studyplatform/questions/pairwise.html"
     export_kind = "pairwise"

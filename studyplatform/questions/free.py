@@ -1,6 +1,6 @@
 """Questions answered in the participant's own words or numbers."""
 
-from django.utils.translation import gettext
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.questions.base import (
     Answer,
@@ -15,7 +15,7 @@ class NumberQuestion(QuestionType):
     """A number within the question's range (a demographic column)."""
 
     kind = "number"
-    label = "Number (demographic)"
+    label = gettext_lazy("Number (demographic)")
     template = "studyplatform/questions/number.html"
     trial_kinds = frozenset({"demographic"})
     has_range = True
@@ -66,7 +66,7 @@ class ShortTextQuestion(TextQuestion):
     """A short text about the participant; identifying ones (name, e-mail) stay apart."""
 
     kind = "short_text"
-    label = "Short text (demographic)"
+    label = gettext_lazy("Short text (demographic)")
     template = "studyplatform/questions/short_text.html"
     trial_kinds = frozenset({"demographic"})
     can_be_personal = True
@@ -76,7 +76,7 @@ class EmailQuestion(ShortTextQuestion):
     """An e-mail address (checked like Django's EmailValidator); usually personal."""
 
     kind = "email"
-    label = "E-mail address (demographic, usually personal)"
+    label = gettext_lazy("E-mail address (demographic, usually personal)")
     template = "studyplatform/questions/email.html"
 
     def response_values(self, question, answer, shown) -> dict:
@@ -99,7 +99,7 @@ class OpenQuestion(TextQuestion):
     """An open question, answered in writing or signed on camera."""
 
     kind = "open"
-    label = "Open question"
+    label = gettext_lazy("Open question")
     export_kind = "text"
     trial_kinds = frozenset({"open"})
     takes_signed_answer = True
@@ -109,7 +109,7 @@ class IntelligibilityQuestion(OpenQuestion):
     """ "What is the signer saying?": free text scored against the item's target words."""
 
     kind = "intelligibility"
-    label = "Intelligibility (free text, scored)"
+    label = gettext_lazy("Intelligibility (free text, scored)")
     trial_kinds = frozenset({"intelligibility"})
     is_scored = True
 

@@ -1,6 +1,6 @@
 """Questions answered with one of their answer options: scales and single choices."""
 
-from django.utils.translation import gettext
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.questions.base import (
     AnswerRejected,
@@ -34,7 +34,7 @@ class ComparativeQuestion(OptionsQuestion):
     """A 5-point scale between two clips (Clip 1 a lot better … Clip 2 a lot better)."""
 
     kind = "comparative"
-    label = "Comparative scale between two clips"
+    label = gettext_lazy("Comparative scale between two clips")
     starting_options = tuple(
         enumerate(
             (
@@ -55,7 +55,7 @@ class LikertQuestion(OptionsQuestion):
     """A Likert rating of one clip, with a label per point."""
 
     kind = "likert"
-    label = "Likert rating"
+    label = gettext_lazy("Likert rating")
     starting_options = tuple(
         enumerate(("Not at all", "Slightly", "Moderately", "Very", "Extremely"), 1)
     )
@@ -67,7 +67,7 @@ class ChoiceQuestion(OptionsQuestion):
     """A single choice about the participant (a demographic column)."""
 
     kind = "choice"
-    label = "Single choice (demographic)"
+    label = gettext_lazy("Single choice (demographic)")
     trial_kinds = frozenset({"demographic"})
     is_scale = False
     scale = ""

@@ -1,6 +1,6 @@
 """A continuous rating: a slider between two labelled ends, which starts untouched."""
 
-from django.utils.translation import gettext
+from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.questions.base import (
     AnswerRejected,
@@ -31,7 +31,7 @@ class SliderQuestion(WholeNumberQuestion):
     """
 
     kind = "slider"
-    label = "Slider rating (continuous)"
+    label = gettext_lazy("Slider rating (continuous)")
     template = "studyplatform/questions/slider.html"
     export_kind = "rating"
     scale = "continuous"

@@ -21,6 +21,7 @@ from typing import Any
 
 from django.apps import apps
 from django.core.exceptions import ValidationError
+from django.utils.translation import gettext, gettext_noop
 
 from synthesis.techniques import REGISTRY, ClipError
 
@@ -37,7 +38,7 @@ class FileSource:
     where: str  # where a researcher finds the object's id
 
     def describe(self) -> str:
-        return f"{self.kind}:<id> ({self.where})"
+        return f"{self.kind}:<id> ({gettext(self.where)})"
 
 
 RECORDING = FileSource(
@@ -46,9 +47,9 @@ RECORDING = FileSource(
     "item__study__owner",
     "motion",
     {"status": "ready"},
-    "a ready recording on a word's Recordings page",
+    gettext_noop("a ready recording on a word's Recordings page"),
 )
-AVATAR = FileSource("avatar", "Avatar", "owner", "file", {}, "one of your Avatars")
+AVATAR = FileSource("avatar", "Avatar", "owner", "file", {}, gettext_noop("one of your Avatars"))
 
 # Which stored kinds each file parameter takes (studyplatform.checks holds it to the
 # registry). A file parameter not named here takes none: the platform keeps it empty.
@@ -75,9 +76,9 @@ def file_help(name: str) -> str:
     """Return what file parameter *name* takes on the platform, for its form field."""
     sources = FILE_SOURCES.get(name, ())
     if not sources:
-        return "The engine's command line only: leave it empty here."
-    shown = " or ".join(source.describe() for source in sources)
-    return f"Names a stored file: {shown}; empty: none."
+        return gettext("The engine's command line only: leave it empty here.")
+    shown = gettext(" or ").join(source.describe() for source in sources)
+    return gettext("Names a stored file: %(sources)s; empty: none.") % {"sources": shown}
 
 
 def _owned_row(source: FileSource, pk: int, owner):
@@ -96,24 +97,30 @@ def _resolve_one(name: str, value: Any, owner) -> str:
     sources = FILE_SOURCES.get(name, ())
     if not sources:
         raise ClipError(
-            f"{name} names a file on the rendering machine, which the platform does not "
-            "open for researchers: leave it empty here (the engine's command line takes "
-            "a path)."
+            gettext(
+                "%(name)s names a file on the rendering machine, which the platform does not "
+                "open for researchers: leave it empty here (the engine's command line takes "
+                "a path)."
+            )
+            % {"name": name}
         )
-    shown = " or ".join(source.describe() for source in sources)
+    shown = gettext(" or ").join(source.describe() for source in sources)
     match = REFERENCE.fullmatch(value) if isinstance(value, str) else None
     by_kind = {source.kind: source for source in sources}
     if match is None or match["kind"] not in by_kind:
         raise ClipError(
-            f"{name} must name a stored file as {shown}, not {str(value)[:80]!r}: the "
-            "platform takes no paths."
+            gettext(
+                "%(name)s must name a stored file as %(shown)s, not %(value)r: the platform "
+                "takes no paths."
+            )
+            % {"name": name, "shown": shown, "value": str(value)[:80]}
         )
     source = by_kind[match["kind"]]
     row = _owned_row(source, int(match["pk"]), owner)
     if row is None:
         raise ClipError(
-            f"{name}: no {source.kind} {match['pk']} that this study's owner may use "
-            f"(use {source.describe()})."
+            gettext("%(name)s: no %(kind)s %(pk)s that this study's owner may use (use %(shown)s).")
+            % {"name": name, "kind": source.kind, "pk": match["pk"], "shown": source.describe()}
         )
     return getattr(row, source.file_field).path
 

@@ -11,6 +11,8 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from django.core.exceptions import ObjectDoesNotExist, ValidationError
+from django.utils.html import format_html
+from django.utils.translation import gettext
 
 from studyplatform.rules.files import check_files
 from synthesis.techniques import (
@@ -94,6 +96,15 @@ def condition_item_kinds(condition) -> list[str]:
     return list(condition.study.items.values_list("kind", flat=True))
 
 
+def english_description(condition) -> str:
+    """Return :func:`describe_condition` marked as English for a page in another language.
+
+    The description is the engine's own wording (techniques describe their values in
+    English), the same the report's methods section uses.
+    """
+    return format_html('<span lang="en">{}</span>', describe_condition(condition))
+
+
 def describe_condition(condition) -> str:
     """Return what a saved condition compares, in plain words ("—" for a new one)."""
     if condition is None or condition.pk is None:
@@ -127,7 +138,12 @@ def check_condition(condition) -> None:
         try:
             check_text(item, as_checked({**item_values(study, item), **parameters}))
         except ClipError as error:
-            raise ValidationError({"parameters": f"Item {item.key!r}: {error}"}) from None
+            raise ValidationError(
+                {
+                    "parameters": gettext("Item %(key)r: %(problem)s")
+                    % {"key": item.key, "problem": error}
+                }
+            ) from None
 
 
 def _study_owner(row):
@@ -146,7 +162,9 @@ def check_item(item) -> None:
     try:
         REGISTRY.kind(item.kind)
     except ClipError as error:
-        raise ValidationError({"kind": f"{error} No technique renders it yet."}) from None
+        raise ValidationError(
+            {"kind": gettext("%(problem)s No technique renders it yet.") % {"problem": error}}
+        ) from None
     try:
         validate_parameters(item.kind, item.parameters or {})
     except ClipError as error:
@@ -168,9 +186,12 @@ def check_item(item) -> None:
             validate_parameters(item.kind, parameters)
         except ClipError as error:
             raise ValidationError(
-                {"kind": f"Condition {condition.key!r} cannot render this item: {error}"}
+                {
+                    "kind": gettext("Condition %(key)r cannot render this item: %(problem)s")
+                    % {"key": condition.key, "problem": error}
+                }
             ) from None
-        _item_text(item, parameters, f"Condition {condition.key!r}: ")
+        _item_text(item, parameters, gettext("Condition %(key)r: ") % {"key": condition.key})
 
 
 def check_study_values(study) -> None:
@@ -188,7 +209,11 @@ def check_study_values(study) -> None:
             try:
                 check_text(item, as_checked({**own, **condition.parameters}))
             except ClipError as error:
-                message = f"Item {item.key!r} under condition {condition.key!r}: {error}"
+                message = gettext("Item %(item)r under condition %(condition)r: %(problem)s") % {
+                    "item": item.key,
+                    "condition": condition.key,
+                    "problem": error,
+                }
                 raise ValidationError(dict.fromkeys(STUDY_VALUES, message)) from None
 
 

@@ -133,3 +133,21 @@ def test_without_a_broker_jobs_run_here_quietly(tmp_path):
     assert result.stderr == ""
     broker = {"SIGNSTUDY_VAR_DIR": str(tmp_path), "CELERY_BROKER_URL": "redis://127.0.0.1:6379/9"}
     assert _settings_in_subprocess(broker, "settings.CELERY_TASK_ALWAYS_EAGER") == "False"
+
+
+def test_the_researchers_language_is_a_setting(tmp_path):
+    """SIGNSTUDY_LANGUAGE sets the researcher's pages' language; one the interface does
+    not have stops the server at start, naming the setting."""
+    env = {"SIGNSTUDY_VAR_DIR": str(tmp_path)}
+    assert _settings_in_subprocess(env, "settings.LANGUAGE_CODE") == "en"
+    german = {**env, "SIGNSTUDY_LANGUAGE": "de"}
+    assert _settings_in_subprocess(german, "settings.LANGUAGE_CODE") == "de"
+    refused = subprocess.run(
+        [sys.executable, "manage.py", "check"],
+        cwd=ROOT,
+        env={**os.environ, **env, "SIGNSTUDY_LANGUAGE": "xx"},
+        capture_output=True,
+        text=True,
+    )
+    assert refused.returncode != 0
+    assert "SIGNSTUDY_LANGUAGE='xx' is not one of the interface's languages" in refused.stderr

@@ -1,5 +1,7 @@
 """Test that conditions and items are a validated contract in the admin and on import."""
 
+import re
+
 import pytest
 from django.core.exceptions import ValidationError
 from django.urls import reverse
@@ -231,3 +233,20 @@ def test_an_item_s_text_is_checked_for_its_kind(spine):
         item.full_clean()
     item.text = "WHERE SURPRISE"
     item.full_clean()
+
+
+def test_a_locked_conditions_page_shows_each_technique_value(alice_client, fingerspelling):
+    """A condition of an open study is shown read-only: each technique field with its
+    value in words (Django would show "None" for a field only the form has)."""
+    condition = fingerspelling.conditions.get(key="constant")
+    page = alice_client.get(_change_url(condition)).content.decode()
+    values = {
+        label.strip(): value.strip()
+        for label, value in re.findall(
+            r'<label>([^<]*):</label>\s*<div class="readonly">([^<]*)</div>', page
+        )
+    }
+    timing = next(t for t in REGISTRY.techniques if t.name == "timing").parameters[0]
+    assert values["Timing"] == timing.labels["constant"]
+    assert values["Hold ms"] == f"{condition.parameters['hold_ms']:g} ms"
+    assert "None" not in values.values()

@@ -3,7 +3,8 @@
  * delete box) are empty; a screen reader then announces columns without names. */
 (function () {
   "use strict";
-  const names = {original: "Row", delete: "Delete"};
+  // The script element's data attributes carry the names, in the researcher's language.
+  const names = document.currentScript.dataset;
   document.querySelectorAll(".inline-related table thead th").forEach(function (cell) {
     if (cell.textContent.trim()) { return; }
     const hidden = document.createElement("span");
