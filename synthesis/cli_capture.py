@@ -26,18 +26,22 @@ def export_motion(
         return
     import numpy as np
 
-    from synthesis.capture import from_hand_motion, write_pose
-    from synthesis.capture.armfit import from_body_motion
+    from synthesis.capture import write_pose
+    from synthesis.capture.filmed import filmed_body_motion, filmed_hand_motion
     from synthesis.skeleton.bvh import write_bvh
+    from synthesis.techniques.request import film
 
     dofs = build.motion
     if not isinstance(dofs, np.ndarray):
         raise ValueError("Only the engine's own motions export (not a retargeted recording).")
     if pose_path is not None:
-        if isinstance(build.rig, HandModel):
-            landmarks = from_hand_motion(build.rig, dofs, request.rate_hz)
-        else:
-            landmarks = from_body_motion(build.rig, dofs, request.rate_hz)
+        # The landmarks as the clip films them: its avatar's skeleton, its camera, its size.
+        avatar, camera = film(request, build)
+        filmed = filmed_hand_motion if isinstance(build.rig, HandModel) else filmed_body_motion
+        size = (request.width, request.height)
+        # An imported avatar's own skeleton has other joints: the engine's then stands in.
+        rig = avatar.rig if type(avatar.rig) is type(build.rig) else build.rig
+        landmarks = filmed(rig, dofs, request.rate_hz, camera, *size)
         print(f"wrote {write_pose(landmarks, pose_path)}")
     if bvh_path is not None:
         write_bvh(build.rig.as_motion(dofs, request.rate_hz), bvh_path)

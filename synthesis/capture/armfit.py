@@ -69,13 +69,17 @@ def _joint(body: BodyModel, side: str, part: str) -> int:
     return body.skeleton.index(f"{side}_{part.lower()}")
 
 
-def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> PoseRecording:
-    """Return body DOFs (n_frames, n_dofs) as a .pose recording: shoulders, elbows,
-    wrists, nose, ears and hips (POSE_LANDMARKS) and both hands' 21 landmarks, in
-    millimetres.
+BODY_COMPONENTS = (
+    (POSE_COMPONENT, (*POSE_POINTS, *(_names[k] for k in _HEAD_AND_HIPS))),
+    (HAND_COMPONENTS["left"], LANDMARK_NAMES),
+    (HAND_COMPONENTS["right"], LANDMARK_NAMES),
+)
 
-    The shoulders' midpoint sits at the middle of a 1000 × 1000 "image".
-    """
+
+def body_landmarks_m(body: BodyModel, dofs_rad: np.ndarray) -> np.ndarray:
+    """Return the :data:`BODY_COMPONENTS` points (n_frames, k, 3) of body DOFs
+    (n_frames, n_dofs), engine axes, metres: shoulders, elbows, wrists, nose, ears and
+    hips, then both hands' 21 landmarks."""
     positions = body.pose(np.atleast_2d(dofs_rad)).positions_m
     index = body.skeleton.index
     arms = positions[:, [index(name.lower()) for name in POSE_POINTS]]
@@ -84,14 +88,20 @@ def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> P
         positions[:, [index(f"{side}_{joint}") for joint in LANDMARK_JOINTS]]
         for side in ("left", "right")
     ]
-    points = to_mediapipe(np.concatenate([pose, *hands], axis=1))
+    return np.concatenate([pose, *hands], axis=1)
+
+
+def from_body_motion(body: BodyModel, dofs_rad: np.ndarray, rate_hz: float) -> PoseRecording:
+    """Return body DOFs (n_frames, n_dofs) as a .pose recording of
+    :func:`body_landmarks_m`, in millimetres.
+
+    The shoulders' midpoint sits at the middle of a 1000 × 1000 "image" (a clip's
+    export is in its frame's pixels instead: :mod:`synthesis.capture.filmed`).
+    """
+    points = to_mediapipe(body_landmarks_m(body, dofs_rad))
     centre = points[:, : len(POSE_POINTS)][:, [0, 3]].mean(axis=1, keepdims=True)
     units = (points - centre) / EXPORT_METRES_PER_UNIT + np.array([EXPORT_SIZE / 2] * 2 + [0.0])
-    components = (
-        (POSE_COMPONENT, (*POSE_POINTS, *(_names[k] for k in _HEAD_AND_HIPS))),
-        (HAND_COMPONENTS["left"], LANDMARK_NAMES),
-        (HAND_COMPONENTS["right"], LANDMARK_NAMES),
-    )
+    components = BODY_COMPONENTS
     return PoseRecording(
         float(rate_hz),
         components,

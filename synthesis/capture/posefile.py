@@ -264,7 +264,8 @@ def from_hand_motion(
     """Return a hand motion (n_frames, n_dofs) as a .pose recording of its 21 landmarks.
 
     Units are millimetres (:data:`EXPORT_METRES_PER_UNIT`) in MediaPipe's image axes
-    (x right, y down), the palm centre at the middle of a 1000 × 1000 image.
+    (x right, y down), the palm centre at the middle of a 1000 × 1000 image (a clip's
+    export is in its frame's pixels instead: :mod:`synthesis.capture.filmed`).
     """
     side = side or model.side
     marks = np.atleast_3d(landmarks(model, np.atleast_2d(dofs_rad)))
