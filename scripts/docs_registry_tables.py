@@ -36,7 +36,7 @@ def questions_table() -> str:
     body = [
         [
             f"`{kind}`",
-            t.label,
+            str(t.label),
             ", ".join(sorted(t.trial_kinds)),
             f"`{t.export_kind}`" if t.export_kind else "participant column",
             t.exported_scale,
