@@ -55,6 +55,20 @@ if [ ! -f "$stamp" ]; then
   touch "$stamp"
 fi
 
+# --- npm packages ----------------------------------------------------------------
+# The field's own tools that read our exports in the tests (package.json; the lock pins
+# them): the Khronos glTF-Validator, run with the machine's Node.js and npm.
+if command -v npm >/dev/null 2>&1; then
+  npm_stamp="node_modules/.installed-$(sha256sum package-lock.json | cut -c1-16)"
+  if [ ! -f "$npm_stamp" ]; then
+    echo "bootstrap: installing npm packages into node_modules"
+    npm ci --no-audit --no-fund --loglevel=error >/dev/null
+    touch "$npm_stamp"
+  fi
+else
+  echo "bootstrap: npm not found: the glTF-Validator test is skipped without Node.js and npm" >&2
+fi
+
 # The interface's translations, compiled from the catalogues (studyplatform/locale/*.po);
 # the .mo files are built here, never committed.
 env -u DATABASE_URL "$VENV/bin/python" manage.py compilemessages -v0 --ignore=.venv

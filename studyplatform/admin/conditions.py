@@ -10,6 +10,7 @@ the model's check names it.
 from django import forms
 from django.contrib import admin
 from django.http import HttpRequest
+from django.utils.html import escape
 from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.admin.design import OwnStudyFilter
@@ -34,8 +35,9 @@ FILMING = tuple(p for p in REQUEST_PARAMETERS if p.name != "seed")
 
 def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
     """Return the form field that edits *parameter*, showing *initial*."""
-    # The engine's texts, translated through the catalogues (studyplatform.lib.engine_texts).
-    help_text = gettext(parameter.help)
+    # The engine's texts, translated through the catalogues (studyplatform.lib.engine_texts),
+    # and escaped: the admin shows help as HTML, where "recording:<id>" lost its "<id>".
+    help_text = escape(gettext(parameter.help))
     common = {"label": gettext(parameter_title(parameter)), "initial": initial}
     if parameter.type == "choice":
         labels = parameter.labels or {}
@@ -49,15 +51,15 @@ def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
             **common,
         )
     if parameter.type == "file":
-        help_text += f" {file_help(parameter.name)}"
+        help_text += escape(f" {file_help(parameter.name)}")
         return forms.CharField(required=False, help_text=help_text, **common)
     field = forms.IntegerField if parameter.type == "int" else forms.FloatField
     default = value_text(parameter, parameter.default)
     return field(
         min_value=parameter.minimum,
         max_value=parameter.maximum,
-        help_text=gettext_lazy("%(help)s Default: %(default)s.")
-        % {"help": help_text, "default": default},
+        help_text=escape(gettext("%(help)s Default: %(default)s."))
+        % {"help": help_text, "default": escape(default)},
         **common,
     )
 
@@ -94,8 +96,7 @@ def technique_groups(kinds) -> list[tuple[str, tuple[Parameter, ...]]]:
 # Every parameter a condition page may show, by name.
 _PARAMETERS = {
     parameter.name: parameter
-    for technique in REGISTRY.techniques
-    for parameter in (*technique.parameters, *FILMING)
+    for parameter in (*(p for t in REGISTRY.techniques for p in t.parameters), *FILMING)
     if parameter.name not in ADMIN_HIDDEN
 }
 

@@ -2,12 +2,11 @@
 
 from django import forms
 from django.core.exceptions import ValidationError
-from django.utils.translation import gettext, gettext_lazy
+from django.utils.translation import gettext, gettext_lazy, ngettext
 
 from studyplatform.lib import strict_json
 from studyplatform.lib.bundle import BundleRejected, read_bundle
 from studyplatform.models import Study, Trial
-from studyplatform.models.studies import participants_have
 
 
 class StudyForm(forms.ModelForm):
@@ -24,12 +23,16 @@ class StudyForm(forms.ModelForm):
         if backward and study.real_participants:
             self.add_error(
                 "status",
-                gettext(
-                    "%(who)s taken this study (pilots aside), so it cannot go back to draft "
-                    "or pilot: their answers refer to its design. Close it, or make a new "
-                    "version of the study to change it."
+                ngettext(
+                    "%(count)d participant has taken this study (pilots aside), so it cannot "
+                    "go back to draft or pilot: their answers refer to its design. Close it, "
+                    "or make a new version of the study to change it.",
+                    "%(count)d participants have taken this study (pilots aside), so it "
+                    "cannot go back to draft or pilot: their answers refer to its design. "
+                    "Close it, or make a new version of the study to change it.",
+                    study.real_participants,
                 )
-                % {"who": participants_have(study.real_participants)},
+                % {"count": study.real_participants},
             )
         opening = cleaned.get("status") in (Study.Status.PILOT, Study.Status.OPEN)
         was_closed = study.pk is None or study.status in (Study.Status.DRAFT, Study.Status.CLOSED)

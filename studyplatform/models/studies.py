@@ -31,6 +31,11 @@ def position_field() -> models.SmallIntegerField:
     )
 
 
+def default_thank_you_text() -> str:
+    """Return a new study's thank-you text, in the researcher's language (who edits it)."""
+    return gettext("Thank you for taking part in this study.")
+
+
 def manual_alphabets() -> list[tuple[str, str]]:
     """Return the engine's manual alphabets as choices, named in the researcher's language."""
     return [(code, gettext(name)) for code, name in alphabet_choices()]
@@ -148,7 +153,7 @@ class Study(models.Model):
         _("consent mode"), max_length=10, choices=ConsentMode.choices, default=ConsentMode.IMPLICIT
     )
     thank_you_text = models.TextField(
-        _("thank you text"), blank=True, default="Thank you for taking part in this study."
+        _("thank you text"), blank=True, default=default_thank_you_text
     )
     completion_code = models.CharField(
         _("completion code"),
@@ -329,9 +334,15 @@ class Study(models.Model):
     def lock_reason(self) -> str:
         """Say why the design is locked ("" if it is not), for the admin's notes."""
         if self.status in {self.Status.OPEN, self.Status.CLOSED}:
-            return f"the study is {self.get_status_display().lower()}"
+            return gettext("the study is %(status)s") % {
+                "status": str(self.get_status_display()).lower()
+            }
         taken = self.real_participants
-        return f"{participants_have(taken)} taken it" if taken else ""
+        if not taken:
+            return ""
+        return ngettext(
+            "%(count)d participant has taken it", "%(count)d participants have taken it", taken
+        ) % {"count": taken}
 
     @cached_property
     def real_participants(self) -> int:
@@ -352,13 +363,6 @@ class Study(models.Model):
     def is_accepting_participants(self) -> bool:
         """Return whether the participant link works (pilot or open)."""
         return self.status in {self.Status.PILOT, self.Status.OPEN}
-
-
-def participants_have(count: int) -> str:
-    """Return "1 participant has" or "N participants have"."""
-    return ngettext("%(count)d participant has", "%(count)d participants have", count) % {
-        "count": count
-    }
 
 
 def check_unlocked(study: Study | None) -> None:

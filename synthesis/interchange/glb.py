@@ -141,6 +141,9 @@ def distinct_weights(skin, n_joints: int) -> tuple[np.ndarray, np.ndarray]:
     its one bone in every slot."""
     matrix = skin.matrix(n_joints).tocsr()
     matrix.sum_duplicates()
+    # The engine's sums leave rounding dust (−2.2e-16): no weight, where glTF's are
+    # non-negative and sum to one (§3.7.3.1; the Khronos validator refused it).
+    matrix.data[matrix.data < 0] = 0.0
     matrix.eliminate_zeros()
     counts = np.diff(matrix.indptr)
     rows = np.repeat(np.arange(len(counts)), counts)
@@ -148,7 +151,7 @@ def distinct_weights(skin, n_joints: int) -> tuple[np.ndarray, np.ndarray]:
     joints = np.zeros((len(counts), 4), dtype=np.intp)
     weights = np.zeros((len(counts), 4))
     joints[rows, slots], weights[rows, slots] = matrix.indices, matrix.data
-    return joints, weights
+    return joints, weights / weights.sum(axis=1, keepdims=True)
 
 
 def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joints: int) -> int:

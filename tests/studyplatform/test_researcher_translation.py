@@ -21,6 +21,7 @@ import pytest
 from django.apps import apps
 from django.conf import settings
 from django.contrib import admin
+from django.contrib.auth import get_user_model
 from django.db import models
 from django.urls import URLPattern, reverse
 
@@ -179,19 +180,50 @@ class _VisibleText(HTMLParser):
 DJANGO_UNTRANSLATED = {"Search", "True", "False"}
 # Names: the product, and the multiple-comparison corrections named after their authors.
 NAMES = {"SignStudy", "Holm", "Bonferroni", "Benjamini", "Hochberg", "holm"}
-# A placeholder the researcher types as it is, e.g. {PROLIFIC_PID} in a redirect address.
-PLACEHOLDER = re.compile(r"\{[A-Z_]+\}")
+# What the researcher types as it is: a placeholder ({PROLIFIC_PID} in a redirect address)
+# or a stored file's reference (recording:<id>).
+PLACEHOLDER = re.compile(r"\{[A-Z_]+\}|\b[a-z_]+:<id>")
+IDENTIFIER = re.compile(r"[a-z0-9_.:-]*")
+
+
+def _researchers_texts_in_look_alikes() -> None:
+    """Rewrite the researchers' own texts in the database (titles, labels, questions,
+    consent …) into look-alike letters too: an English word left on a page is then
+    never theirs, however common (the demo's texts are English prose)."""
+    for model in apps.get_app_config("studyplatform").get_models():
+        names = [
+            f.attname
+            for f in model._meta.concrete_fields
+            if isinstance(f, models.CharField | models.TextField)
+            and not isinstance(f, models.SlugField)
+            and not f.choices
+            and not f.unique
+        ]
+        for row in model.objects.values("pk", *names) if names else ():
+            # Keys copied into other rows (a response's chosen condition) stay keys.
+            changed = {
+                name: pseudo(row[name])
+                for name in names
+                if row[name] and not IDENTIFIER.fullmatch(row[name])
+            }
+            model.objects.filter(pk=row["pk"]).update(**changed)
 
 
 def _allowed_words() -> set[str]:
-    """Return the words a page may show as they are: the researchers' own texts and keys
-    stored in the database, names (the product, the interface's languages in their own
-    words) and the citations that say where a technique comes from ("seed 003 §4")."""
+    """Return the words a page may show as they are: the keys the researchers chose (slugs)
+    and settings stored as JSON, user names, names (the product, the interface's
+    languages in their own words, the corrections' authors) and the citations that say
+    where a technique comes from ("seed 003 §4")."""
     texts = [*NAMES, *DJANGO_UNTRANSLATED, *(name for _, name in settings.LANGUAGES)]
     texts += [technique.source or "" for technique in REGISTRY.techniques]
-    for model in apps.get_models():
-        stored = (models.CharField, models.TextField, models.JSONField)
-        fields = [f.attname for f in model._meta.concrete_fields if isinstance(f, stored)]
+    texts += list(get_user_model().objects.values_list("username", flat=True))
+    for model in apps.get_app_config("studyplatform").get_models():
+        fields = [
+            f.attname
+            for f in model._meta.concrete_fields
+            if isinstance(f, models.SlugField | models.JSONField)
+            or (isinstance(f, models.CharField) and f.unique)  # tokens, codes
+        ]
         for row in model.objects.values_list(*fields) if fields else ():
             texts += [json.dumps(value) if not isinstance(value, str) else value for value in row]
     return set(re.findall(r"[A-Za-z]+", " ".join(texts)))
@@ -260,6 +292,7 @@ def test_every_researcher_page_shows_only_translated_text(client, bob, spine, ps
     take_spine_study(spine)  # an open study with answers: its results, participants
     draft = do_duplicate_study(spine, owner=bob)  # a draft: its design can be edited
     client.force_login(bob)
+    _researchers_texts_in_look_alikes()
     allowed = _allowed_words()
     found, shown = {}, 0
     for url in _admin_pages([spine, draft]):

@@ -4,9 +4,8 @@ is the rig's motion (issue 37, motion out).
 
 The reader below follows the glTF 2.0 specification: node TRS composed down the node
 tree (§3.5), sparse accessors (§3.6.2.3), morph targets (§3.7.2.2) and joint matrices
-``globalTransform(joint) · inverseBindMatrix`` (§3.7.3). The Khronos glTF validator
-(npm gltf-validator 2.0.0-dev.3.10) found no error, warning, info or hint in the GLBs
-of these two clips when this was written; it is not part of the suite (no Node there).
+``globalTransform(joint) · inverseBindMatrix`` (§3.7.3). The Khronos glTF-Validator
+checks every GLB kind in test_gltf_validator.py.
 """
 
 import numpy as np
