@@ -260,13 +260,17 @@ def avatar_glb(
 ) -> bytes:
     """Return a GLB of *avatar* moving through *pose* (global transforms, one per frame)
     at *rate_hz*, its blendshapes at *morph_weights* (frames, the drive's names), filmed
-    by *camera*; *extras* (JSON data) is kept in the asset's extras.
+    by *camera*; *extras* (JSON data) is kept in the asset's extras, with the frame rate
+    as ``signstudy.rate_hz`` (glTF keys times in seconds and names no rate; Blender
+    places the keys at its scene's rate, 24 fps unless set: researcher guide).
     """
     skeleton = avatar.rig.skeleton
     parents = np.asarray(skeleton.parents)
     n_frames = len(pose.quaternions)
     gltf = gl.GLTF2(asset=gl.Asset(generator="SignStudy synthesis", version="2.0"))
-    gltf.asset.extras = extras or {}
+    extras = dict(extras or {})
+    extras["signstudy"] = {**extras.get("signstudy", {}), "rate_hz": float(rate_hz)}
+    gltf.asset.extras = extras
     gltf.animations.append(gl.Animation(name=name))
     buffer = BufferBuilder(gltf)
     bind_q, bind_t = local_transforms(parents, avatar.bind_pose)

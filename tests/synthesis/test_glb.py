@@ -195,6 +195,8 @@ def test_the_command_line_writes_the_glb(tmp_path):
     assert main(["spell", "AB", "--rate", "15", "--export-glb", str(out), "--timing-only"]) == 0
     reader = GlbReader(out.read_bytes())
     assert reader.gltf.animations[0].channels and reader.gltf.cameras
+    # glTF names no frame rate; the file says its own for Blender's scene (issue 54, 7).
+    assert reader.gltf.asset.extras["signstudy"]["rate_hz"] == 15.0
 
 
 def test_vertex_colours_are_linear_as_gltf_defines_them_and_read_back_as_shown():

@@ -9,6 +9,7 @@ The humanoids are built by tests/synthesis/humanoids.py (boxes on a T-posed skel
 import base64
 import json
 import struct
+from pathlib import Path
 
 import imageio.v3 as iio
 import numpy as np
@@ -220,3 +221,16 @@ def test_a_gltf_with_embedded_buffers_reads_as_its_glb():
 def test_bad_files_are_refused_naming_the_problem(data, message):
     with pytest.raises(GltfError, match=message):
         read_gltf_avatar(data, "upload.glb")
+
+
+SIMPLE_SKIN = Path("/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf")
+
+
+@pytest.mark.skipif(
+    not SIMPLE_SKIN.exists(), reason="NO assimp-testmodels: scripts/bootstrap.sh installs them"
+)
+def test_a_skinned_model_that_is_no_body_is_refused_as_no_humanoid():
+    """Issue 54 (7): glTF's two-bone skin sample (assimp-testmodels' simple_skin.gltf) was
+    refused as "0.00 units tall", as if its scale were wrong."""
+    with pytest.raises(GltfError, match=r"is no humanoid: its skeleton has 2 joint\(s\)"):
+        read_gltf_avatar(SIMPLE_SKIN.read_bytes(), SIMPLE_SKIN.name)

@@ -313,13 +313,39 @@ def _read_avatar(data: bytes, source: str) -> ImportedAvatar:
         meta=meta,
         bones=_saved_bones(gltf),
     )
-    low, high = HEIGHT_RANGE_M
-    if not low <= avatar.height_m <= high:
-        raise GltfError(
-            f"{source}'s skeleton is {avatar.height_m:.2f} units tall: glTF is in "
-            "metres (export with the scale applied)."
-        )
+    _check_standing_humanoid(avatar, source)
     return avatar
+
+
+# A humanoid has at least VRM's required bones: hips, spine, chest, neck, head, and
+# each side's upper arm, lower arm, hand, upper leg, lower leg and foot.
+MIN_HUMANOID_JOINTS = 15
+
+
+def _check_standing_humanoid(avatar: ImportedAvatar, source: str) -> None:
+    """Raise GltfError naming why *avatar* cannot be a signer: too few joints for a body,
+    lying down, or not in metres."""
+    low, high = HEIGHT_RANGE_M
+    if low <= avatar.height_m <= high:
+        return
+    joints = avatar.joint_names
+    if len(joints) < MIN_HUMANOID_JOINTS:
+        shown = ", ".join(joints[:6]) + (" …" if len(joints) > 6 else "")
+        raise GltfError(
+            f"{source} is no humanoid: its skeleton has {len(joints)} joint(s) ({shown}); "
+            f"a signer needs a body of at least {MIN_HUMANOID_JOINTS} (hips, spine, head, "
+            "arms and hands)."
+        )
+    extent = float(np.ptp(avatar.bind.positions_m[0], axis=0).max())
+    if low <= extent <= high:
+        raise GltfError(
+            f"{source}'s skeleton is {extent:.2f} m long but {avatar.height_m:.2f} m tall: "
+            "it does not stand along +Y, glTF's up (export it standing, Y up)."
+        )
+    raise GltfError(
+        f"{source}'s skeleton is {avatar.height_m:.2f} units tall: glTF is in "
+        "metres (export with the scale applied)."
+    )
 
 
 def _saved_bones(gltf) -> dict[str, str]:
