@@ -57,7 +57,7 @@ fi
 
 # --- npm packages ----------------------------------------------------------------
 # The field's own tools that read our exports in the tests (package.json; the lock pins
-# them): the Khronos glTF-Validator, run with the machine's Node.js and npm.
+# them): the Khronos glTF-Validator and three.js, run with the machine's Node.js and npm.
 if command -v npm >/dev/null 2>&1; then
   npm_stamp="node_modules/.installed-$(sha256sum package-lock.json | cut -c1-16)"
   if [ ! -f "$npm_stamp" ]; then
