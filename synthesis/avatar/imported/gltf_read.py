@@ -12,6 +12,9 @@ hung a web worker, an accessor claiming 10¹⁵ elements asked for petabytes).
 import base64
 import json
 import struct
+from collections.abc import Mapping
+from pathlib import Path
+from urllib.parse import unquote
 
 import numpy as np
 import pygltflib as gl
@@ -58,8 +61,15 @@ def damaged(source: str, what: str, error: Exception) -> GltfError:
     return GltfError(f"{source} is damaged: its {what} cannot be read ({type(error).__name__}).")
 
 
-def load(data: bytes, source: str = "the file") -> tuple[gl.GLTF2, list[bytes]]:
-    """Return the parsed glTF of *data* (GLB or JSON) and its buffers' bytes."""
+def load(
+    data: bytes, source: str = "the file", resources: Mapping[str, bytes] | None = None
+) -> tuple[gl.GLTF2, list[bytes]]:
+    """Return the parsed glTF of *data* (GLB or JSON) and its buffers' bytes.
+
+    A ``.gltf`` may keep a buffer in a separate file: *resources* gives those files'
+    bytes by the URI the document names (:func:`files_beside` reads them on the command
+    line); an upload has none, so it must be one file.
+    """
     if len(data) > MAX_FILE_BYTES:
         raise GltfError(f"{source} is larger than {MAX_FILE_BYTES // 1024**2} MB.")
     if data[:4] == b"glTF" and len(data) >= 12:
@@ -87,10 +97,13 @@ def load(data: bytes, source: str = "the file") -> tuple[gl.GLTF2, list[bytes]]:
             blob = gltf.binary_blob() or b""
         elif buffer.uri.startswith("data:"):
             blob = base64.b64decode(buffer.uri.split(",", 1)[1])
+        elif resources is not None and buffer.uri in resources:
+            blob = resources[buffer.uri]
         else:
             raise GltfError(
                 f"{source}: buffer {index} is the separate file {buffer.uri!r}; "
-                "upload a GLB (one file) instead."
+                "upload a GLB (one file) instead, or keep the file beside the .gltf on "
+                "the command line."
             )
         if len(blob) < (buffer.byteLength or 0):
             raise GltfError(
@@ -100,6 +113,33 @@ def load(data: bytes, source: str = "the file") -> tuple[gl.GLTF2, list[bytes]]:
         buffers.append(blob)
     check_structure(gltf, buffers, source)
     return gltf, buffers
+
+
+def files_beside(path: Path, data: bytes) -> dict[str, bytes]:
+    """Return the separate buffer files the ``.gltf`` *data* at *path* names, read from
+    its folder, by URI: only plain file names there (no folder, no ``..``), and at most
+    :data:`MAX_FILE_BYTES` in all; GltfError names one that is not."""
+    document = _json_document(data, path.name)
+    _check_counts(document, path.name)
+    found, total = {}, len(data)
+    for buffer in document.get("buffers") or []:
+        uri = buffer.get("uri") if isinstance(buffer, dict) else None
+        if not isinstance(uri, str) or uri.startswith("data:"):
+            continue
+        name = unquote(uri)
+        beside = path.parent / name
+        if Path(name).name != name or name in (".", "..") or not beside.is_file():
+            raise GltfError(
+                f"{path.name}: buffer file {uri!r} is not a file beside it (a .gltf may name "
+                "only files in its own folder)."
+            )
+        total += beside.stat().st_size
+        if total > MAX_FILE_BYTES:
+            raise GltfError(
+                f"{path.name} and its buffers are larger than {MAX_FILE_BYTES // 1024**2} MB."
+            )
+        found[uri] = beside.read_bytes()
+    return found
 
 
 def _json_document(data: bytes, source: str):

@@ -13,12 +13,20 @@ the root, so the motion is in metres, Y up, as the engine's. The motion then goe
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 from scipy.spatial.transform import Rotation, Slerp
 
-from synthesis.avatar.imported.gltf_read import DAMAGE, GltfError, Reader, damaged, load
+from synthesis.avatar.imported.gltf_read import (
+    DAMAGE,
+    GltfError,
+    Reader,
+    damaged,
+    files_beside,
+    load,
+)
 from synthesis.skeleton.motion import Motion
 from synthesis.skeleton.skeleton import Joint, Skeleton
 
@@ -93,6 +101,10 @@ def _tracks(reader: Reader, animation) -> dict:
     """Return each animated (node, path)'s key times, values and interpolation."""
     tracks = {}
     for channel in animation.channels:
+        if channel.target.path == "weights":
+            # Morph weights (a face's blendshapes) are no joint's motion; each key holds
+            # one value per target, which the count check below would take for damage.
+            continue
         sampler = animation.samplers[channel.sampler]
         times = reader.read(sampler.input)[:, 0]
         values = reader.read(sampler.output)
@@ -169,19 +181,27 @@ def _local(tracks: dict, node, n, times: np.ndarray) -> tuple[np.ndarray, Rotati
     return translation, Rotation.from_quat(quaternions)
 
 
-def read_gltf_motion(data: bytes, source: str = "the file", rate_hz: float | None = None) -> Motion:
+def read_gltf_motion(
+    data: bytes,
+    source: str = "the file",
+    rate_hz: float | None = None,
+    resources: Mapping[str, bytes] | None = None,
+) -> Motion:
     """Return the first animation of glTF *data* as a Motion sampled at *rate_hz*
-    (the keys' own rate, at most 120 Hz, when None)."""
+    (the keys' own rate, at most 120 Hz, when None); *resources* are a ``.gltf``'s
+    separate buffer files (:func:`~synthesis.avatar.imported.gltf_read.load`)."""
     try:
-        return _read_motion(data, source, rate_hz)
+        return _read_motion(data, source, rate_hz, resources)
     except GltfError:
         raise
     except DAMAGE as error:  # keys scipy cannot turn (zero quaternions, wrong widths), …
         raise damaged(source, "animation", error) from None
 
 
-def _read_motion(data: bytes, source: str, rate_hz: float | None) -> Motion:
-    gltf, buffers = load(data, source)
+def _read_motion(
+    data: bytes, source: str, rate_hz: float | None, resources: Mapping[str, bytes] | None
+) -> Motion:
+    gltf, buffers = load(data, source, resources)
     reader = Reader(gltf, buffers, source)
     if not gltf.animations:
         raise GltfError(f"{source} has no animation: there is no motion to bring in.")
@@ -241,7 +261,10 @@ def read_motion_file(path: str | Path, rate_hz: float | None = None) -> Motion:
             else motion
         )
     if suffix in GLTF_SUFFIXES:
-        return read_gltf_motion(path.read_bytes(), path.name, rate_hz)
+        data = path.read_bytes()
+        # A .gltf on the command line may keep its buffers in files beside it.
+        resources = files_beside(path, data) if suffix == ".gltf" else None
+        return read_gltf_motion(data, path.name, rate_hz, resources)
     if suffix in ASSIMP_SUFFIXES:
         return read_gltf_motion(assimp_to_glb(path), path.name, rate_hz)
     raise GltfError(
