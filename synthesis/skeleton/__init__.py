@@ -3,7 +3,14 @@
 The lowest layer of the engine: it imports no other subpackage.
 """
 
-from synthesis.skeleton.bvh import BvhError, format_bvh, parse_bvh, read_bvh, write_bvh
+from synthesis.skeleton.bvh import (
+    BvhError,
+    BvhWarning,
+    format_bvh,
+    parse_bvh,
+    read_bvh,
+    write_bvh,
+)
 from synthesis.skeleton.kinematics import Pose, forward_kinematics, forward_kinematics_arrays
 from synthesis.skeleton.mapping import JOINT_NAME_TABLES, JointMapping, detect_mapping
 from synthesis.skeleton.motion import Motion
@@ -21,6 +28,7 @@ from synthesis.skeleton.skeleton import Joint, Skeleton, guess_length_unit
 __all__ = [
     "JOINT_NAME_TABLES",
     "BvhError",
+    "BvhWarning",
     "Joint",
     "JointMapping",
     "Motion",

@@ -9,6 +9,7 @@ issue 51). End Sites become joints named ``<parent>_End``.
 
 import io
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +32,10 @@ def _described(token: str) -> str:
     except ValueError:
         return f"other text ({len(token)} character{'s' if len(token) != 1 else ''})"
     return "a number"
+
+
+class BvhWarning(UserWarning):
+    """A BVH file read leniently, as the field's tools read it (a frame line too many)."""
 
 
 class BvhError(ValueError):
@@ -240,7 +245,14 @@ def _parse_values(
             f"has {len(rows)} frame lines (cut short?)."
         )
     # Lines past the declared count are left out, as assimp does (CMU's Boxing_Toes.bvh
-    # declares 3069 frames above 3070 lines; Blender and bvhio read it too).
+    # declares 3069 frames above 3070 lines; Blender and bvhio read it too), and said.
+    if len(rows) > n_frames:
+        warnings.warn(
+            f"{source}: 'Frames: {n_frames}' above {len(rows)} frame lines; the last "
+            f"{len(rows) - n_frames} left out, as assimp reads it.",
+            BvhWarning,
+            stacklevel=2,
+        )
     rows = rows[:n_frames]
     if n_frames == 0:
         return np.zeros((0, n_channels))
