@@ -178,6 +178,25 @@ class JointMapping:
             c.startswith(("hips", "spine", "neck", "head")) for c in self.to_canonical.values()
         )
 
+    def unmapped_parts(self) -> list[str]:
+        """Return a body's parts none of whose joints is mapped (the spine, an arm, a
+        hand's fingers): retargeted, they stay at rest. A hand alone has only its fingers."""
+        mapped = set(self.to_canonical.values())
+        digits = ("thumb", *_DIGITS_FINGERS)
+
+        def has(prefixes: tuple[str, ...]) -> bool:
+            return any(name.startswith(prefixes) for name in mapped)
+
+        if self.is_single_hand:
+            return [] if has(digits) else ["fingers"]
+        missing = [] if has(("spine",)) else ["spine"]
+        for side in ("left", "right"):
+            if not {f"{side}_{joint}" for joint in ("shoulder", "elbow", "wrist")} & mapped:
+                missing.append(f"{side} arm")
+            if not has(tuple(f"{side}_{digit}" for digit in digits)):
+                missing.append(f"{side} hand's fingers")
+        return missing
+
     def side(self) -> str | None:
         """Return the only side this mapping covers, or None for both or neither."""
         sides = {c.split("_", 1)[0] for c in self.to_canonical.values()} & {"right", "left"}

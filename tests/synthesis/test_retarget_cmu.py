@@ -7,6 +7,7 @@ scripts/system-packages.txt installs the package; without it these tests say so 
 """
 
 import shutil
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -14,12 +15,14 @@ import pytest
 
 from synthesis.avatar.imported.gltf_read import GltfError
 from synthesis.avatar.imported.motion import assimp_to_glb, read_gltf_motion, read_motion_file
+from synthesis.cli import main
 from synthesis.rigs.body import BodyModel
 from synthesis.rigs.retarget import bone_direction_errors_deg, retarget
 from synthesis.skeleton.bvh import BvhError, BvhWarning, read_bvh
 from synthesis.skeleton.kinematics import forward_kinematics
 from synthesis.skeleton.mapping import detect_mapping
 from synthesis.skeleton.retime import resample
+from synthesis.techniques import ClipRequest, build_motion
 
 MODELS = Path("/usr/share/assimp/models")
 needs_models = pytest.mark.skipif(
@@ -161,3 +164,62 @@ def test_an_fbx_goes_in_through_assimp_and_a_skeleton_that_is_no_humanoid_is_nam
         detect_mapping(motion.skeleton)
     with pytest.raises(GltfError, match="assimp cannot read"):
         read_motion_file(MODELS / "FBX" / "transparentTest.fbx")  # no animation: none to read
+
+
+@needs_models
+def test_the_mapping_says_which_parts_stay_at_rest():
+    """Issue 54 (6): a partial mapping used to pass in silence. CMU's clips have no
+    fingers; the engine's own motion maps every part."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BvhWarning)
+        cmu = detect_mapping(read_bvh(MODELS / "BVH" / "01_01.bvh").skeleton)
+    assert cmu.unmapped_parts() == ["left hand's fingers", "right hand's fingers"]
+    build = build_motion(ClipRequest.from_parameters("sentence", "ME", {"rate_hz": 15.0}))
+    ours = build.rig.as_motion(build.motion, 15.0)
+    assert detect_mapping(ours.skeleton).unmapped_parts() == []
+
+
+TRUNK_ONLY = (
+    """HIERARCHY
+ROOT Hips
+{
+  OFFSET 0 0 0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation
+  JOINT LowerBack
+  {
+    OFFSET 0 2 0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    JOINT Spine
+    {
+      OFFSET 0 2 0
+      CHANNELS 3 Zrotation Xrotation Yrotation
+      JOINT Neck
+      {
+        OFFSET 0 2 0
+        CHANNELS 3 Zrotation Xrotation Yrotation
+        JOINT Head
+        {
+          OFFSET 0 2 0
+          CHANNELS 3 Zrotation Xrotation Yrotation
+          End Site
+          {
+            OFFSET 0 2 0
+          }
+        }
+      }
+    }
+  }
+}
+MOTION
+Frames: 2
+Frame Time: 0.033333
+"""
+    + "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n" * 2
+)
+
+
+def test_a_motion_without_arms_is_refused_by_name(tmp_path, capsys):
+    path = tmp_path / "trunk.bvh"
+    path.write_text(TRUNK_ONLY)
+    assert main(["render-bvh", str(path), "--out", str(tmp_path / "trunk.mp4")]) == 2
+    assert "trunk.bvh: no arm joint is mapped" in capsys.readouterr().err
