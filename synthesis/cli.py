@@ -187,7 +187,8 @@ def _render_bvh(args: argparse.Namespace) -> int:
     side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
     rig = avatar_and_camera(view, side)[0].rig
     # A fixed camera films a body in place; a hand's travel is its signing.
-    pose = retarget(motion, rig, mapping, in_place=not mapping.is_single_hand)
+    in_place = not mapping.is_single_hand and not args.as_captured
+    pose = retarget(motion, rig, mapping, in_place=in_place)
     avatar, camera = filming(view, side, pose, motion.rate_hz, *args.size)
     info = render_clip(
         avatar,
@@ -372,6 +373,12 @@ def parser() -> argparse.ArgumentParser:
     )
     bvh.add_argument("file", type=Path)
     bvh.add_argument("--rate", type=float, default=None, help="resample to this frame rate")
+    bvh.add_argument(
+        "--as-captured",
+        action="store_true",
+        help="keep a body's facing and its travel across the floor as captured (by default "
+        "it is turned to face the camera and kept in place, as signing is filmed)",
+    )
     clip_options(bvh)
     bvh.set_defaults(run=_render_bvh)
     return main

@@ -223,3 +223,17 @@ def test_a_motion_without_arms_is_refused_by_name(tmp_path, capsys):
     path.write_text(TRUNK_ONLY)
     assert main(["render-bvh", str(path), "--out", str(tmp_path / "trunk.mp4")]) == 2
     assert "trunk.bvh: no arm joint is mapped" in capsys.readouterr().err
+
+
+@needs_models
+def test_render_bvh_films_a_capture_in_place_unless_asked_to_keep_it_as_captured(
+    tmp_path, renderable, capsys
+):
+    """Issue 54 (2, 5): facing and travel are normalised by default, an option keeps them."""
+    source = MODELS / "BVH" / "01_01.bvh"
+    for option, out in (([], "in-place.mp4"), (["--as-captured"], "as-captured.mp4")):
+        arguments = [str(source), "--rate", "4", "--size", "64x48", "--out", str(tmp_path / out)]
+        assert main(["render-bvh", *arguments, *option]) == 0
+    assert (tmp_path / "in-place.mp4").stat().st_size > 0
+    assert (tmp_path / "as-captured.mp4").stat().st_size > 0
+    assert "not mapped, so at rest: left hand's fingers" in capsys.readouterr().err
