@@ -12,6 +12,7 @@ from studyplatform.actions.recordings import relabel_stand_ins
 from studyplatform.lib import exchange
 from studyplatform.lib.bundle import BundleFiles, definition_files
 from studyplatform.models import Study
+from studyplatform.models.studies import LEGACY_CLIP_SIZE
 from synthesis.formats import check_header
 
 
@@ -81,6 +82,9 @@ def import_study(
         raise StudyImportError("A study definition must be a JSON object.")
     check_header(data, exchange.FORMAT, exchange.VERSION, "study definition", StudyImportError)
     values = pick(data.get("study"), exchange.STUDY_FIELDS, "study", Study)
+    # A definition from before the clip size was a setting was made at the engine's size.
+    values.setdefault("clip_width", LEGACY_CLIP_SIZE[0])
+    values.setdefault("clip_height", LEGACY_CLIP_SIZE[1])
     if slug:
         values["slug"] = slug
     elif "slug" in values and isinstance(values["slug"], str):

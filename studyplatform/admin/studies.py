@@ -171,6 +171,7 @@ class StudyAdmin(
             gettext_lazy("Rules"),
             {
                 "fields": (
+                    ("clip_width", "clip_height"),
                     "allowed_devices",
                     "phone_clips_side_by_side",
                     "one_sitting",

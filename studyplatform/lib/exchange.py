@@ -25,6 +25,8 @@ STUDY_FIELDS = (
     "follow_browser_language",
     "sign_language",
     "manual_alphabet",
+    "clip_width",
+    "clip_height",
     "phone_clips_side_by_side",
     "asl_first",
     "allow_english_only",

@@ -8,7 +8,7 @@ from functools import cached_property
 from django.conf import settings
 from django.contrib.contenttypes.fields import GenericRelation
 from django.core.exceptions import ValidationError
-from django.core.validators import MinValueValidator
+from django.core.validators import MaxValueValidator, MinValueValidator
 from django.db import models
 from django.utils.translation import gettext, ngettext
 from django.utils.translation import gettext_lazy as _
@@ -29,6 +29,11 @@ def position_field() -> models.SmallIntegerField:
             "New rows left at 0 are numbered after the existing ones."
         ),
     )
+
+
+# A new study's clip size, and that of a study made before it was a setting (the engine's).
+CLIP_SIZE = (1280, 720)
+LEGACY_CLIP_SIZE = (640, 480)
 
 
 def default_thank_you_text() -> str:
@@ -125,6 +130,25 @@ class Study(models.Model):
             "The manual alphabet the study's fingerspelled words are spelled in "
             "(the engine's alphabet files; a condition or an item may set another)."
         ),
+    )
+    # A new study films in HD: at 640 × 480 a fist letter's hand was about 21 × 32 px and
+    # A, E, M, N, S, T could not be told apart (issue 52). A study made before the
+    # setting existed, or imported from a definition without it, keeps LEGACY_CLIP_SIZE.
+    clip_width = models.PositiveSmallIntegerField(
+        _("clip width"),
+        default=CLIP_SIZE[0],
+        validators=[MinValueValidator(16), MaxValueValidator(3840)],
+        help_text=_(
+            "Pixels. Every rendered condition's clips, unless a condition sets its own "
+            "size. 1280 × 720 by default, so letters and hands read at the size "
+            "participants see them."
+        ),
+    )
+    clip_height = models.PositiveSmallIntegerField(
+        _("clip height"),
+        default=CLIP_SIZE[1],
+        validators=[MinValueValidator(16), MaxValueValidator(2160)],
+        help_text=_("Pixels (see clip width)."),
     )
     phone_clips_side_by_side = models.BooleanField(
         _("phone clips side by side"),
@@ -318,6 +342,10 @@ class Study(models.Model):
         return self.title
 
     def clean(self) -> None:
+        odd = [name for name in ("clip_width", "clip_height") if (getattr(self, name) or 0) % 2]
+        if odd:
+            # H.264 (the clips' codec, 4:2:0) encodes only even sizes.
+            raise ValidationError(dict.fromkeys(odd, _("Clip sizes are even numbers of pixels.")))
         check_study_values(self)
 
     @property

@@ -24,8 +24,8 @@ from synthesis.techniques import (
     validate_parameters,
 )
 
-# A study's settings that are technique values of its items: field → parameter.
-STUDY_VALUES = {"manual_alphabet": "alphabet"}
+# A study's settings that are technique or filming values of its items: field → parameter.
+STUDY_VALUES = {"manual_alphabet": "alphabet", "clip_width": "width", "clip_height": "height"}
 
 
 def study_values(study, kind: str | None = None) -> dict[str, Any]:
@@ -37,7 +37,7 @@ def study_values(study, kind: str | None = None) -> dict[str, Any]:
     values = {name: getattr(study, field) for field, name in STUDY_VALUES.items()}
     if kind is None:
         return values
-    known = REGISTRY.parameters(kind) if kind in REGISTRY.kinds else {}
+    known = set(REGISTRY.parameters(kind)) | set(FIELDS) if kind in REGISTRY.kinds else set()
     return {name: value for name, value in values.items() if name in known}
 
 
