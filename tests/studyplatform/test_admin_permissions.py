@@ -133,6 +133,8 @@ def test_new_study_belongs_to_its_creator(bob_client, bob, alice):
             "language": "en",
             "sign_language": "ASL",
             "manual_alphabet": "asl",
+            "clip_width": 1280,
+            "clip_height": 720,
             "thank_you_text": "Thanks",
             **{
                 f"{prefix}-{field}": 0
