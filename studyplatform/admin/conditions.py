@@ -10,7 +10,7 @@ the model's check names it.
 from django import forms
 from django.contrib import admin
 from django.http import HttpRequest
-from django.utils.html import escape
+from django.utils.html import escape, format_html
 from django.utils.translation import gettext, gettext_lazy
 
 from studyplatform.admin.design import OwnStudyFilter
@@ -19,7 +19,7 @@ from studyplatform.lib.engine_texts import parameter_title
 from studyplatform.models import Condition
 from studyplatform.rules import (
     condition_item_kinds,
-    english_description,
+    describe_condition,
     file_help,
     study_values,
     supported_kinds,
@@ -62,6 +62,12 @@ def parameter_formfield(parameter: Parameter, initial) -> forms.Field:
         % {"help": help_text, "default": escape(default)},
         **common,
     )
+
+
+def english_description(condition: Condition) -> str:
+    """Return :func:`~studyplatform.rules.describe_condition` marked as English for a page
+    in another language: the engine's own wording, as the report's methods section uses."""
+    return format_html('<span lang="en">{}</span>', describe_condition(condition))
 
 
 def value_text(parameter: Parameter, value) -> str:

@@ -19,6 +19,7 @@ from django.utils.translation import gettext, gettext_lazy
 from studyplatform.actions import StudyImportError, do_duplicate_study, do_import_study
 from studyplatform.actions.design import do_add_default_options
 from studyplatform.admin.builder import StudyDesignMixin
+from studyplatform.admin.conditions import english_description
 from studyplatform.admin.forms import StudyForm, StudyImportForm, TrialForm
 from studyplatform.admin.generate import StudyGenerateMixin
 from studyplatform.admin.permissions import DesignLockMixin, StudyInline, StudyScopedMixin
@@ -34,7 +35,6 @@ from studyplatform.lib.bundle import definition_json, write_bundle
 from studyplatform.lib.preview import build_preview
 from studyplatform.lib.stimuli import describe_identical, identical_clips
 from studyplatform.models import Block, Condition, Item, Question, SignedTemplate, Study, Trial
-from studyplatform.rules import english_description
 
 # Compact cells keep the study page within the window; each object's page has the room.
 COMPACT_TEXT = {

@@ -11,7 +11,6 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from django.core.exceptions import ObjectDoesNotExist, ValidationError
-from django.utils.html import format_html
 from django.utils.translation import gettext
 
 from studyplatform.rules.files import check_files
@@ -94,15 +93,6 @@ def condition_item_kinds(condition) -> list[str]:
         # was a fifth of a large import's time in its one transaction.
         return []
     return list(condition.study.items.values_list("kind", flat=True))
-
-
-def english_description(condition) -> str:
-    """Return :func:`describe_condition` marked as English for a page in another language.
-
-    The description is the engine's own wording (techniques describe their values in
-    English), the same the report's methods section uses.
-    """
-    return format_html('<span lang="en">{}</span>', describe_condition(condition))
 
 
 def describe_condition(condition) -> str:
@@ -199,8 +189,11 @@ def check_study_values(study) -> None:
     alphabet) that one of its rendered conditions cannot render an item with."""
     if study.pk is None or study.being_filled:
         return
-    saved = type(study)._default_manager.filter(pk=study.pk).values(*STUDY_VALUES).first()
-    if saved is None or all(saved[field] == getattr(study, field) for field in STUDY_VALUES):
+    # Only the technique values decide whether a text can be signed: a new clip size
+    # (a filming field) needs no pass over every item and condition.
+    fields = [field for field, name in STUDY_VALUES.items() if name not in FIELDS]
+    saved = type(study)._default_manager.filter(pk=study.pk).values(*fields).first()
+    if saved is None or all(saved[field] == getattr(study, field) for field in fields):
         return
     rendered = [c for c in study.conditions.all() if not c.is_uploaded]
     for item in study.items.all() if rendered else ():
@@ -214,7 +207,7 @@ def check_study_values(study) -> None:
                     "condition": condition.key,
                     "problem": error,
                 }
-                raise ValidationError(dict.fromkeys(STUDY_VALUES, message)) from None
+                raise ValidationError(dict.fromkeys(fields, message)) from None
 
 
 def item_values(study, item) -> dict[str, Any]:

@@ -77,8 +77,10 @@ def filmed_recording(
     reference = np.empty(n_frames)
     for frame in range(n_frames):
         seen_by = _camera_at(camera, frame)
-        pixels[frame], depth[frame] = project_with_depth(seen_by, world[frame], width, height)
-        reference[frame] = project_with_depth(seen_by, origin[frame], width, height)[1]
+        # The points and the reference in one projection (the camera inverted once).
+        both = np.vstack([world[frame], origin[frame]])
+        seen, distance = project_with_depth(seen_by, both, width, height)
+        pixels[frame], depth[frame], reference[frame] = seen[:-1], distance[:-1], distance[-1]
     # A depth difference seen at the reference's distance, in pixels (pinhole camera).
     focal_px = height / (2 * np.tan(np.radians(camera.yfov_deg) / 2))
     z = (depth - reference[:, None]) * focal_px / reference[:, None]
