@@ -74,7 +74,7 @@ class StudyGenerateMixin:
             confirmed = request.POST.get("allow_identical") == "1"
             result, refusal = self._generate(request, study, confirmed)
             if result is not None:
-                messages.success(request, _generated(result))
+                messages.success(request, _generated(result), extra_tags="generation-started")
                 return redirect(reverse("admin:studyplatform_study_stimuli", args=[study.pk]))
             if refusal is None:
                 return redirect(reverse("admin:studyplatform_study_generate", args=[study.pk]))
@@ -154,6 +154,7 @@ class StudyGenerateMixin:
                     reverse("admin:studyplatform_study_stimuli", args=[study.pk]),
                     gettext("Progress"),
                 ),
+                extra_tags="generation-started",
             )
         if len(studies) == 1 and started:
             return redirect(reverse("admin:studyplatform_study_stimuli", args=[started[0].pk]))

@@ -38,6 +38,11 @@ class PageClip:
     width: int = 640
     height: int = 480
 
+    @property
+    def aspect(self) -> str:
+        """Return width / height as a CSS number (the page caps the clip's height with it)."""
+        return f"{self.width / self.height:.4f}"
+
 
 @dataclass(frozen=True)
 class PageQuestion:

@@ -39,6 +39,17 @@ def one_clip(renderable, tmp_path_factory):
     return render(spec, tmp_path_factory.mktemp("clip"))
 
 
+@pytest.fixture(scope="session")
+def hd_clip(renderable, tmp_path_factory):
+    """Render the example word at a new study's size, 1280 × 720, once for the session."""
+    from stimuli.clips import ClipSpec, render
+
+    spec = ClipSpec(
+        "word", "DOOR", {"timing": "constant"}, seed=1, width=1280, height=720, rate_hz=10.0
+    )
+    return render(spec, tmp_path_factory.mktemp("hd-clip"))
+
+
 @pytest.fixture
 def clips_dir(one_clip, settings, tmp_path):
     settings.MEDIA_ROOT = tmp_path

@@ -4,7 +4,8 @@ Phone: every page of both demo studies fits the screen's width; a comparison's t
 stand one under the other at the screen's width (or side by side where the study asks);
 a signed answer is recorded and sent with taps, with a countdown before the recording
 and a running clock while it lasts (Chromium's synthetic camera films, tests/conftest.py).
-Laptop: a one-clip page shows the whole clip and its first answer without scrolling.
+Laptop: a one-clip page shows the whole clip and its first answer without scrolling, the
+clip as large as the screen allows but never larger than rendered (issue 52, item 2).
 """
 
 import pytest
@@ -35,12 +36,12 @@ def _fits(page) -> None:
 
 
 def test_every_page_fits_a_phone_and_a_comparison_stacks_its_clips(
-    phone, live_server, fingerspelling, spine, clips_dir, one_clip
+    phone, live_server, fingerspelling, spine, clips_dir, one_clip, hd_clip
 ):
     from studyplatform.actions import do_enroll_participant
 
-    for study in (fingerspelling, spine):
-        _with_clips(study, one_clip, clips_dir)
+    for study, clip in ((fingerspelling, hd_clip), (spine, one_clip)):
+        _with_clips(study, clip, clips_dir)
         phone.goto(f"{live_server.url}/s/{study.slug}/")
         _fits(phone)
         participant = do_enroll_participant(study, consented=True)
@@ -51,7 +52,7 @@ def test_every_page_fits_a_phone_and_a_comparison_stacks_its_clips(
             _wait_ready(phone)
             _fits(phone)
     open_trial_page(phone, live_server, fingerspelling, "cmp-01")
-    first, second = (box.bounding_box() for box in phone.locator("figure.clip").all())
+    first, second = (box.bounding_box() for box in phone.locator(".clip-slot").all())
     assert first["width"] >= 340 and second["width"] >= 340  # they were 175 px side by side
     assert second["y"] >= first["y"] + first["height"]
     Study.objects.filter(pk=fingerspelling.pk).update(phone_clips_side_by_side=True)
@@ -92,18 +93,22 @@ def test_a_signed_answer_is_recorded_and_sent_with_taps(
 
 
 def test_a_laptop_shows_the_whole_clip_and_the_answer_without_scrolling(
-    browser, live_server, spine, clips_dir, one_clip
+    browser, live_server, spine, clips_dir, hd_clip
 ):
     context = browser.new_context(viewport={"width": 1366, "height": 768}, bypass_csp=True)
     page = context.new_page()
     try:
-        _with_clips(spine, one_clip, clips_dir)
+        _with_clips(spine, hd_clip, clips_dir)
         goto_trial_page(page, live_server, spine, "rate-s1")
         _wait_ready(page)
         clip = page.locator("figure.clip").first.bounding_box()  # the clip and its control
         first = page.locator("fieldset.question").first.locator("label.choice").last.bounding_box()
         assert clip["y"] + clip["height"] <= 768 and first["y"] + first["height"] <= 768
-        assert clip["width"] >= 400
+        # A 1280 × 720 clip as large as a 1366 × 768 screen allows beside its questions
+        # (it was 450 px wide in a 960 px column), its shape kept.
+        video = page.locator("video.stimulus").first.bounding_box()
+        assert 800 <= video["width"] <= 1280, video
+        assert video["width"] / video["height"] == pytest.approx(16 / 9, abs=0.01)
         assert page.evaluate("document.documentElement.scrollWidth") <= 1366
         # No scale point's label spills out of its box.
         spills = page.evaluate(
@@ -111,5 +116,21 @@ def test_a_laptop_shows_the_whole_clip_and_the_answer_without_scrolling(
             ".filter(l => l.scrollWidth > l.clientWidth + 1).length"
         )
         assert spills == 0
+    finally:
+        close_context(context)
+
+
+def test_a_clip_is_never_shown_larger_than_it_was_rendered(
+    browser, live_server, spine, clips_dir, one_clip
+):
+    """An enlarged clip is a blurred one (issue 52: 640 × 480 clips upscaled on laptops)."""
+    context = browser.new_context(viewport={"width": 1366, "height": 768}, bypass_csp=True)
+    page = context.new_page()
+    try:
+        _with_clips(spine, one_clip, clips_dir)
+        goto_trial_page(page, live_server, spine, "rate-s1")
+        _wait_ready(page)
+        video = page.locator("video.stimulus").first.bounding_box()
+        assert (video["width"], video["height"]) == (one_clip.width, one_clip.height)
     finally:
         close_context(context)
