@@ -80,6 +80,14 @@ def main(path: str, frame: int, width: int, height: int, out: str) -> None:
                 "shape_keys": sum(
                     len(o.data.shape_keys.key_blocks) - 1 for o in meshes if o.data.shape_keys
                 ),
+                "shape_key_names": sorted(
+                    {
+                        k.name
+                        for o in meshes
+                        if o.data.shape_keys
+                        for k in o.data.shape_keys.key_blocks
+                    }
+                ),
                 "cameras": len(cameras),
                 "fps": scene.render.fps / scene.render.fps_base,
                 "frame": at,

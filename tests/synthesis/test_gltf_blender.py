@@ -8,7 +8,9 @@ silhouette must be ours at the same frame: intersection over union at least 0.98
 every outline pixel within 2 px of the other's, at 320 × 240. The check must tell
 frames apart: our frame eight frames earlier fails it. Both views are checked: the
 signing view with the face's morph targets, and the close-up whose camera follows the
-hand. Reference: glTF 2.0 §3.7.3 (skins), §3.11 (animations), §3.10 (cameras).
+hand. Blender names the face's shape keys from the meshes' ``extras.targetNames``
+(ARKit's names), where three.js reads them too (test_gltf_three_browser.py).
+Reference: glTF 2.0 §3.7.3 (skins), §3.11 (animations), §3.10 (cameras).
 """
 
 import json
@@ -86,6 +88,8 @@ def test_blender_draws_our_frame(name, tmp_path):
     assert found["blender"].startswith("3.") and found["fps"] == 15.0
     assert (found["bones"], found["shape_keys"], found["cameras"]) == (bones, shape_keys, 1)
     assert found["skinned"] == found["meshes"] == 2
+    if shape_keys:  # named from the mesh's extras.targetNames, as Blender reads them
+        assert {"jawOpen", "browInnerUp", "eyeBlinkLeft"} <= set(found["shape_key_names"])
     theirs = _silhouette(iio.imread(tmp_path / "blender.png")[..., 3] > 127)
 
     avatar, camera = film(request, build)

@@ -49,7 +49,11 @@ new GLTFLoader().load("/clip.glb", (gltf) => {
   const gl = renderer.getContext();
   const pixels = new Uint8Array(WIDTH * HEIGHT * 4);
   gl.readPixels(0, 0, WIDTH, HEIGHT, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-  window.result = {pixels: Array.from(pixels), revision: THREE.REVISION};
+  const morphNames = [];
+  scene.traverse((o) => {
+    if (o.morphTargetDictionary) morphNames.push(...Object.keys(o.morphTargetDictionary));
+  });
+  window.result = {pixels: Array.from(pixels), revision: THREE.REVISION, morphNames};
 }, undefined, (error) => { window.result = {error: String(error)}; });
 </script></body></html>""".replace("WIDTH", str(WIDTH)).replace("HEIGHT", str(HEIGHT))
 
@@ -89,6 +93,8 @@ def test_threejs_shows_the_signers_skin_in_our_colour():
         chromium.close()
     assert "error" not in result, result
     assert result["revision"] == "187"
+    # The face's morph targets by ARKit name, from the meshes' extras.targetNames.
+    assert {"jawOpen", "browInnerUp", "eyeBlinkLeft"} <= set(result["morphNames"])
     pixels = np.array(result["pixels"], dtype=np.uint8).reshape(HEIGHT, WIDTH, 4)[..., :3]
     ours = np.array(SKIN_TONES[DEFAULT_SKIN_TONE][0]) * 255  # sRGB (178.5, 127.5, 96.9)
     colours, counts = np.unique(pixels.reshape(-1, 3), axis=0, return_counts=True)
