@@ -145,6 +145,7 @@ def test_a_rendered_signer_is_captured_with_holistic_and_its_arms_fitted(tmp_pat
     assert main(["capture", str(path), "--body", "--out", str(pose)]) == 0
     recording = read_pose(pose)
     assert recording.has_component("POSE_WORLD_LANDMARKS")
+    _opens_as_holistic_in_pose_format(pose, 480, 360, len(build.motion))
     fit = fit_arms(build.rig, recording)
     assert fit.found.mean() > 0.9
     # Holistic sees the shoulders, ears and nose: the trunk and head are fitted too.
@@ -153,3 +154,27 @@ def test_a_rendered_signer_is_captured_with_holistic_and_its_arms_fitted(tmp_pat
     elbow = build.rig.skeleton.index("right_elbow")
     miss_mm = np.linalg.norm(fitted.positions_m[:, elbow] - truth.positions_m[:, elbow], axis=1)
     assert np.median(miss_mm) * 1000 < 80
+
+
+def _opens_as_holistic_in_pose_format(path, width: int, height: int, frames: int) -> None:
+    """Check a capture's .pose with pose-format's own reader (issue 54, item 4): MediaPipe
+    Holistic's components in pose-format's order and names, in the video's pixels."""
+    pose_format = pytest.importorskip("pose_format")
+    from pose_format.utils.generic import detect_known_pose_format
+    from pose_format.utils.holistic import holistic_components
+
+    theirs = pose_format.Pose.read(path.read_bytes())
+    reference = holistic_components("XYZC")
+    assert [c.name for c in theirs.header.components] == [c.name for c in reference]
+    for ours, expected in zip(theirs.header.components, reference, strict=True):
+        assert list(ours.points) == list(expected.points)
+    assert detect_known_pose_format(theirs) == "holistic"
+    assert (theirs.header.dimensions.width, theirs.header.dimensions.height) == (width, height)
+    hands = theirs.get_components(["POSE_LANDMARKS", "FACE_LANDMARKS", "RIGHT_HAND_LANDMARKS"])
+    assert hands.body.data.shape[:3] == (frames, 1, 33 + 468 + 21)
+    # In the video's pixels: the nose is inside the frame whenever it was seen.
+    nose = theirs.body.data[:, 0, 0, :2]
+    seen = ~np.ma.getmaskarray(nose).any(axis=1) & (theirs.body.confidence[:, 0, 0] > 0)
+    assert seen.mean() > 0.9
+    inside = (nose[seen] >= 0).all(axis=1) & (nose[seen, 0] < width) & (nose[seen, 1] < height)
+    assert inside.all()
