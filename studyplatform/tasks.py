@@ -5,6 +5,7 @@ file is moved into place whole; a worker killed mid-render leaves the stimulus
 "rendering", never "ready", and the broker hands the job to another worker.
 """
 
+import warnings
 from pathlib import Path
 
 from celery import shared_task
@@ -82,7 +83,7 @@ def prepare_now(recording_id: int) -> str:
 def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | None, bytes | None]:
     from studyplatform.lib.recordings import retimes_recordings
     from synthesis.capture import captured_hand, parse_pose, read_pose
-    from synthesis.skeleton.bvh import read_bvh
+    from synthesis.skeleton.bvh import BvhWarning, read_bvh
     from synthesis.timing.recordings import Recording as Performance
 
     item, path = recording.item, Path(recording.upload.path)
@@ -106,10 +107,15 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
         bvh = read["bvh"].encode()
         motion = parse_bvh(read["bvh"], path.name)
         quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
+        quality["warnings"] = _mapping_warnings(motion, side, path.name)
     else:
         landmarks = None
-        motion = read_bvh(path)
+        with warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always", BvhWarning)
+            motion = read_bvh(path)
         quality = {"frames": motion.n_frames, "fps": motion.rate_hz}
+        quality["warnings"] = [str(w.message) for w in said if issubclass(w.category, BvhWarning)]
+        quality["warnings"] += _mapping_warnings(motion, side, path.name)
     if landmarks is not None:
         hand = captured_hand(landmarks, side)
         motion, quality = hand.motion, hand.quality(landmarks)
@@ -119,6 +125,19 @@ def _prepare(recording, report_progress) -> tuple[dict, bytes | None, bytes | No
     if retimes_recordings(item.study):
         quality["holds_found"] = len(performance.extraction.timing.letters)
     return quality, pose, sheet, bvh
+
+
+def _mapping_warnings(motion, side: str, name: str) -> list[str]:
+    """Return what the recording's joint mapping leaves at rest on the signing side (a
+    render would show that arm or hand still, as ``render-bvh`` warns; issue 54)."""
+    from synthesis.skeleton.mapping import detect_mapping
+
+    mapping = detect_mapping(motion.skeleton)
+    wanted = {"fingers", f"{side} arm", f"{side} hand's fingers"}
+    unmapped = [part for part in mapping.unmapped_parts() if part in wanted]
+    if not unmapped:
+        return []
+    return [f"{name}: not mapped ({mapping.convention} names), so at rest: {', '.join(unmapped)}."]
 
 
 def _captured(recording, path: Path, side: str, report_progress) -> tuple[bytes, bytes | None]:

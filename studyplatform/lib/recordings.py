@@ -112,6 +112,7 @@ def _describe(recording: Recording | None) -> dict | None:
         "frames": quality.get("frames"),
         "hand_found_percent": round(100 * max(found.values())) if found else None,
         "residual_mm": quality.get("residual_mm_median"),
+        "warnings": quality.get("warnings") or [],
     }
 
 

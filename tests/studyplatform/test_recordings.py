@@ -348,3 +348,41 @@ def test_glb_and_fbx_motion_come_in_as_bvh(
         failed = _attach(item, upload, django_capture_on_commit_callbacks)
         assert failed.status == Recording.Status.FAILED
         assert "Cannot map this skeleton's joints" in failed.error
+
+
+def test_the_recordings_page_shows_what_reading_a_motion_file_warned(
+    client, alice, fingerspelling, media, django_capture_on_commit_callbacks
+):
+    """Issue 54: a BVH with more frame lines than it declares reads, as assimp, Blender
+    and bvhio read it, and the researcher sees the warning, as on the command line."""
+    client.force_login(alice)
+    url = f"/admin/studyplatform/study/{fingerspelling.pk}/recordings/"
+    item = fingerspelling.items.get(key="HEAVEN")
+    motion, _ = _simulated("HEAVEN", 1)
+    text = format_bvh(motion)
+    extra = text.rstrip("\n") + "\n" + text.rstrip("\n").rsplit("\n", 1)[-1] + "\n"
+    upload = SimpleUploadedFile("HEAVEN.bvh", extra.encode())
+    with django_capture_on_commit_callbacks(execute=True):
+        assert client.post(url, {"item": item.pk, "recording": upload}).status_code == 302
+    recording = Recording.objects.get()
+    assert recording.status == Recording.Status.READY
+    assert recording.quality["frames"] == motion.n_frames
+    page = client.get(url).text
+    assert f"above {motion.n_frames + 1} frame lines; the last 1 left out" in page
+    assert "Warning:" in page
+
+
+def test_a_motion_files_unmapped_signing_hand_is_a_warning():
+    """CMU's 01_01.bvh (Debian's assimp-testmodels) names no finger joints: a recording
+    made from it keeps the signing hand's fingers at rest, which the page must say."""
+    from pathlib import Path
+
+    from studyplatform.tasks import _mapping_warnings
+    from synthesis.skeleton.bvh import read_bvh
+
+    path = Path("/usr/share/assimp/models/BVH/01_01.bvh")
+    if not path.is_file():
+        pytest.skip("assimp-testmodels is not installed (scripts/bootstrap.sh installs it)")
+    warned = _mapping_warnings(read_bvh(path), "right", path.name)
+    assert len(warned) == 1 and "so at rest: right hand's fingers" in warned[0]
+    assert _mapping_warnings(_simulated("HEAVEN", 1)[0], "right", "HEAVEN.bvh") == []
