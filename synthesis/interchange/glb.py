@@ -1,10 +1,11 @@
 """Write a clip as glTF 2.0 binary (GLB): the skinned avatar, its motion and the camera.
 
 What Blender, Unity or three.js open is what the renderer drew: each skinned part is a
-mesh with the engine's bind-pose vertices, normals, colours and four bone weights a
-vertex; its joints are nodes whose inverse bind matrices are the engine's ``B⁻¹``; the
-animation keys every joint's local rotation and translation at every frame (linear
-interpolation, so a player between frames blends as the engine would resample); the
+mesh with the engine's bind-pose vertices, normals, colours (a palette texture where
+the part has a colour edge) and four bone weights a vertex; its joints are nodes whose
+inverse bind matrices are the engine's ``B⁻¹``; the animation keys every joint's local
+rotation and translation at every frame (linear interpolation, so a player between
+frames blends as the engine would resample); the
 face's blendshapes are morph targets (sparse: only the vertices they move) whose
 weights are keyed per frame. glTF shares the engine's frame (metres, +Y up, the signer
 facing +Z) and its scalar-last quaternions, so nothing is converted. Skinned that way
@@ -19,12 +20,13 @@ from scipy.spatial.transform import Rotation
 
 from synthesis.avatar.colour import srgb_to_linear
 from synthesis.avatar.imported.gltf_read import COLOR_ACROSS, COLOR_INSIDE, EDGE, MAIN_JOINT
+from synthesis.interchange.edge_texture import EdgeTexture, edge_texture
 from synthesis.render.scene import CameraPath, CameraPreset, look_at
 from synthesis.skeleton.kinematics import Pose, local_transforms
 from synthesis.skeleton.rotations import quat_to_matrix
 
 FLOAT, UINT16, UINT32 = gl.FLOAT, gl.UNSIGNED_SHORT, gl.UNSIGNED_INT
-_TYPES = {1: gl.SCALAR, 3: gl.VEC3, 4: gl.VEC4, 16: gl.MAT4}
+_TYPES = {1: gl.SCALAR, 2: gl.VEC2, 3: gl.VEC3, 4: gl.VEC4, 16: gl.MAT4}
 _DTYPES = {FLOAT: np.float32, UINT16: np.uint16, UINT32: np.uint32}
 
 
@@ -97,6 +99,10 @@ class BufferBuilder:
         self.gltf.accessors.append(accessor)
         return len(self.gltf.accessors) - 1
 
+    def add_bytes(self, data: bytes) -> int:
+        """Add raw bytes (an image) as a buffer view; return its index."""
+        return self._view(data)
+
     def _view(self, data: bytes, target: int | None = None) -> int:
         padding = (-self.length) % 4
         if padding:
@@ -154,50 +160,110 @@ def distinct_weights(skin, n_joints: int) -> tuple[np.ndarray, np.ndarray]:
     return joints, weights / weights.sum(axis=1, keepdims=True)
 
 
+def _edge_material(gltf: gl.GLTF2, buffer: BufferBuilder, texture: EdgeTexture) -> int:
+    """Add a material coloured by *texture*, sampled NEAREST (the edge stays sharp)."""
+    import imageio.v3 as iio
+
+    png = iio.imwrite("<bytes>", texture.image_srgb, extension=".png")
+    gltf.images.append(gl.Image(bufferView=buffer.add_bytes(png), mimeType="image/png"))
+    gltf.samplers.append(
+        gl.Sampler(
+            magFilter=gl.NEAREST,
+            minFilter=gl.NEAREST,
+            wrapS=gl.CLAMP_TO_EDGE,
+            wrapT=gl.CLAMP_TO_EDGE,
+        )
+    )
+    gltf.textures.append(gl.Texture(sampler=len(gltf.samplers) - 1, source=len(gltf.images) - 1))
+    gltf.materials.append(
+        gl.Material(
+            name="clothes and face (edge palette)",
+            doubleSided=False,
+            pbrMetallicRoughness=gl.PbrMetallicRoughness(
+                baseColorFactor=[1, 1, 1, 1],
+                baseColorTexture=gl.TextureInfo(index=len(gltf.textures) - 1),
+                metallicFactor=0.0,
+                roughnessFactor=0.7,
+            ),
+        )
+    )
+    return len(gltf.materials) - 1
+
+
 def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joints: int) -> int:
-    """Add one skinned part as a mesh (its blendshapes as sparse targets); return it."""
+    """Add one skinned part as a mesh (its blendshapes as sparse targets); return it.
+
+    A part with a colour edge is drawn by its edge palette texture
+    (:mod:`synthesis.interchange.edge_texture`), which keeps the edge sharp where vertex
+    colours would blur it across its triangles in every other tool. Its triangles whose
+    corners have different colour pairs, which the engine blends, keep vertex colours
+    in a second primitive over the same vertices.
+    """
     joints, weights = distinct_weights(part.weights, n_joints)
-    attributes = gl.Attributes(
-        POSITION=buffer.add(part.vertices_m, FLOAT, gl.ARRAY_BUFFER, bounds=True),
-        NORMAL=buffer.add(part.normals, FLOAT, gl.ARRAY_BUFFER),
-        COLOR_0=buffer.add(srgb_to_linear(part.vertex_rgb()), FLOAT, gl.ARRAY_BUFFER),
-        JOINTS_0=buffer.add(joints, UINT16, gl.ARRAY_BUFFER),
-        WEIGHTS_0=buffer.add(weights, FLOAT, gl.ARRAY_BUFFER),
-    )
-    primitive = gl.Primitive(
-        attributes=attributes,
-        material=material,
-        indices=buffer.add(np.asarray(part.faces).reshape(-1, 1), UINT32, gl.ELEMENT_ARRAY_BUFFER),
-    )
-    # What only the engine draws, for an import of this file to look the same: a colour
-    # edge through triangles (a neckline, a cuff) and parts that cast no shadow.
+    shared = {
+        "POSITION": buffer.add(part.vertices_m, FLOAT, gl.ARRAY_BUFFER, bounds=True),
+        "NORMAL": buffer.add(part.normals, FLOAT, gl.ARRAY_BUFFER),
+        "JOINTS_0": buffer.add(joints, UINT16, gl.ARRAY_BUFFER),
+        "WEIGHTS_0": buffer.add(weights, FLOAT, gl.ARRAY_BUFFER),
+    }
+    # The engine's own reader takes the edge back exactly from these (other tools ignore
+    # them), and each vertex's main joint.
     if part.edge_m is not None:
-        setattr(attributes, EDGE, buffer.add(part.edge_m.reshape(-1, 1), FLOAT, gl.ARRAY_BUFFER))
-        setattr(attributes, COLOR_INSIDE, buffer.add(part.colors_rgb, FLOAT, gl.ARRAY_BUFFER))
-        setattr(attributes, COLOR_ACROSS, buffer.add(part.across_rgb, FLOAT, gl.ARRAY_BUFFER))
-    setattr(
-        attributes,
-        MAIN_JOINT,
-        buffer.add(part.weights.main_joints().reshape(-1, 1), FLOAT, gl.ARRAY_BUFFER),
+        shared[EDGE] = buffer.add(part.edge_m.reshape(-1, 1), FLOAT, gl.ARRAY_BUFFER)
+        shared[COLOR_INSIDE] = buffer.add(part.colors_rgb, FLOAT, gl.ARRAY_BUFFER)
+        shared[COLOR_ACROSS] = buffer.add(part.across_rgb, FLOAT, gl.ARRAY_BUFFER)
+    main_joints = part.weights.main_joints().reshape(-1, 1)
+    shared[MAIN_JOINT] = buffer.add(main_joints, FLOAT, gl.ARRAY_BUFFER)
+    faces = np.asarray(part.faces)
+    edged = (
+        None if part.edge_m is None else edge_texture(part.edge_m, part.colors_rgb, part.across_rgb)
     )
+
+    def vertex_colours() -> dict:
+        rgb = srgb_to_linear(part.vertex_rgb())
+        return {"COLOR_0": buffer.add(rgb, FLOAT, gl.ARRAY_BUFFER)}
+
+    if edged is None:
+        drawn = [(faces, vertex_colours(), material)]  # (triangles, attributes, material)
+    else:
+        one_pair = (edged.rows[faces] == edged.rows[faces][:, :1]).all(axis=1)
+        texcoords = {"TEXCOORD_0": buffer.add(edged.texcoords, FLOAT, gl.ARRAY_BUFFER)}
+        drawn = [(faces[one_pair], texcoords, _edge_material(gltf, buffer, edged))]
+        if not one_pair.all():
+            drawn.append((faces[~one_pair], vertex_colours(), material))
+    targets = []
+    if part.morphs is not None:
+        count = len(part.vertices_m)
+        targets = [
+            {
+                "POSITION": buffer.add_sparse(
+                    count, part.morphs.vertices, part.morphs.offsets_m[k]
+                ),
+                "NORMAL": buffer.add_sparse(
+                    count, part.morphs.vertices, part.morphs.normal_offsets[k]
+                ),
+            }
+            for k in range(len(part.morphs.names))
+        ]
+    primitives = []
+    for triangles, extra, used in drawn:
+        attributes = gl.Attributes()
+        for name, accessor in {**shared, **extra}.items():
+            setattr(attributes, name, accessor)
+        primitives.append(
+            gl.Primitive(
+                attributes=attributes,
+                material=used,
+                indices=buffer.add(triangles.reshape(-1, 1), UINT32, gl.ELEMENT_ARRAY_BUFFER),
+                targets=list(targets),
+            )
+        )
     mesh = gl.Mesh(
         name=part.name,
-        primitives=[primitive],
+        primitives=primitives,
         extras={"signstudy": {"casts_shadow": bool(part.casts_shadow)}},
     )
     if part.morphs is not None:
-        count = len(part.vertices_m)
-        for k, _ in enumerate(part.morphs.names):
-            primitive.targets.append(
-                {
-                    "POSITION": buffer.add_sparse(
-                        count, part.morphs.vertices, part.morphs.offsets_m[k]
-                    ),
-                    "NORMAL": buffer.add_sparse(
-                        count, part.morphs.vertices, part.morphs.normal_offsets[k]
-                    ),
-                }
-            )
         mesh.weights = [0.0] * len(part.morphs.names)
         mesh.extras["targetNames"] = list(part.morphs.names)
     gltf.meshes.append(mesh)

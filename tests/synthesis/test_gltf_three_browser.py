@@ -39,7 +39,9 @@ new GLTFLoader().load("/clip.glb", (gltf) => {
   const scene = gltf.scene;
   scene.background = new THREE.Color(0, 0, 0);
   scene.traverse((o) => {
-    if (o.isMesh) o.material = new THREE.MeshBasicMaterial({vertexColors: true});
+    // Unlit, each mesh in its own colours: vertex colours or its base colour texture.
+    if (o.isMesh) o.material = new THREE.MeshBasicMaterial({
+      vertexColors: Boolean(o.geometry.attributes.color), map: o.material.map});
   });
   new THREE.AnimationMixer(scene).clipAction(gltf.animations[0]).play().getMixer().update(0);
   const camera = gltf.cameras[0];

@@ -12,7 +12,7 @@ which faces −Z, is turned to face +Z as glTF and the engine do.
 """
 
 import io
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -190,6 +190,18 @@ def _weights(reader: Reader, attributes, count: int, skin_to_order: np.ndarray):
     return joints, weights / total
 
 
+def _faces(reader: Reader, primitive, count: int, name) -> np.ndarray:
+    """Return a triangle primitive's faces (n, 3), checked against its *count* vertices."""
+    faces = (
+        reader.read(primitive.indices).astype(np.intp).reshape(-1, 3)
+        if primitive.indices is not None
+        else np.arange(count).reshape(-1, 3)
+    )
+    if faces.size and faces.max() >= count:
+        raise GltfError(f"Mesh {name} has triangles naming missing vertices.")
+    return faces
+
+
 def _mesh(
     reader: Reader, node: int, primitive, number: int, skin_to_order: np.ndarray, turn: np.ndarray
 ) -> ImportedMesh:
@@ -201,13 +213,7 @@ def _mesh(
         raise GltfError(f"Mesh {mesh.name or node} has a primitive without positions.")
     positions = reader.read(attributes.POSITION)
     count = len(positions)
-    faces = (
-        reader.read(primitive.indices).astype(np.intp).reshape(-1, 3)
-        if primitive.indices is not None
-        else np.arange(count).reshape(-1, 3)
-    )
-    if faces.size and faces.max() >= count:
-        raise GltfError(f"Mesh {mesh.name or node} has triangles naming missing vertices.")
+    faces = _faces(reader, primitive, count, mesh.name or node)
     normals = reader.read(attributes.NORMAL) if attributes.NORMAL is not None else None
     joints, weights = _weights(reader, attributes, count, skin_to_order)
     names = (mesh.extras or {}).get("targetNames") or []
@@ -291,10 +297,22 @@ def _read_avatar(data: bytes, source: str) -> ImportedAvatar:
     for node in skinned:
         if gltf.nodes[node].skin != skin_index:
             continue
+        read: dict[object, int] = {}  # the engine's edged part: its vertices, read once
         for number, primitive in enumerate(gltf.meshes[gltf.nodes[node].mesh].primitives):
-            if (primitive.mode if primitive.mode is not None else TRIANGLES) == TRIANGLES:
-                meshes.append(_mesh(reader, node, primitive, number, skin_to_order, turn))
-                nodes_of.append(node)
+            if (primitive.mode if primitive.mode is not None else TRIANGLES) != TRIANGLES:
+                continue
+            # The engine writes an edged part as primitives over one vertex set (one drawn
+            # by the edge palette, one by vertex colours): one part again.
+            same = getattr(primitive.attributes, EDGE, None) is not None
+            key = primitive.attributes.POSITION if same else ("primitive", number)
+            if key in read:
+                first = meshes[read[key]]
+                more = _faces(reader, primitive, len(first.vertices_m), first.name)
+                meshes[read[key]] = replace(first, faces=np.concatenate([first.faces, more]))
+                continue
+            read[key] = len(meshes)
+            meshes.append(_mesh(reader, node, primitive, number, skin_to_order, turn))
+            nodes_of.append(node)
     if not meshes:
         raise GltfError(f"{source}'s skinned meshes have no triangles.")
     meshes = with_expressions(gltf, meshes, nodes_of)
