@@ -3,13 +3,14 @@
 Run inside Blender (Debian's ``blender``, scripts/system-packages.txt):
 
     blender -b --factory-startup --python scripts/blender_frame.py -- \\
-        CLIP.glb FRAME WIDTH HEIGHT OUT.png
+        CLIP.glb FRAME WIDTH HEIGHT OUT.png [COLOURS.png]
 
 The scene's frame rate is set to the file's ``asset.extras.signstudy.rate_hz`` before
 the import, as the researcher guide tells a user to (the keys then land on whole
 frames). FRAME counts from the animation's first key. The frame is drawn through the
 file's own camera with Workbench, flat and white on a transparent film, so the PNG's
-alpha is the signer's silhouette as Blender places it. Prints one JSON line: Blender's
+alpha is the signer's silhouette as Blender places it; COLOURS.png is the same frame
+unlit in the file's texture colours (Workbench, no tone curve). Prints one JSON line: Blender's
 version, the imported objects' counts and the frame drawn.
 """
 
@@ -45,8 +46,9 @@ def _first_key(objects) -> float:
     return min(frames, default=bpy.context.scene.frame_start)
 
 
-def main(path: str, frame: int, width: int, height: int, out: str) -> None:
-    """Import *path*, pose it at *frame* and write the silhouette through its camera."""
+def main(path: str, frame: int, width: int, height: int, out: str, colours: str | None) -> None:
+    """Import *path*, pose it at *frame* and write the silhouette through its camera (and
+    the frame in its textures' colours to *colours*, if given)."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     rate_hz = float(_asset_extras(path).get("rate_hz", 24.0))
@@ -69,6 +71,11 @@ def main(path: str, frame: int, width: int, height: int, out: str) -> None:
     scene.render.image_settings.color_mode = "RGBA"
     scene.render.filepath = out
     bpy.ops.render.render(write_still=True)
+    if colours is not None:  # the same frame in the file's own colours, unlit
+        scene.display.shading.color_type = "TEXTURE"
+        scene.view_settings.view_transform = "Standard"  # sRGB out, no tone curve
+        scene.render.filepath = colours
+        bpy.ops.render.render(write_still=True)
     meshes = [o for o in objects if o.type == "MESH"]
     print(
         json.dumps(
@@ -98,4 +105,5 @@ def main(path: str, frame: int, width: int, height: int, out: str) -> None:
 
 if __name__ == "__main__":
     arguments = sys.argv[sys.argv.index("--") + 1 :]
-    main(arguments[0], int(arguments[1]), int(arguments[2]), int(arguments[3]), arguments[4])
+    path, frame, width, height, out = arguments[:5]
+    main(path, int(frame), int(width), int(height), out, (arguments[5:] or [None])[0])
