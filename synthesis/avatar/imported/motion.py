@@ -233,7 +233,10 @@ def _sampled(
             rotation = turn * rotation
             channels = ROOT_CHANNELS
             columns.append(np.column_stack([translation, rotation.as_euler("ZXY", degrees=True)]))
-            offset = translation[0]
+            # The channels hold the root's whole position, so no offset: our kinematics
+            # adds the two (assimp's sample simple_skin.gltf stood at twice its height),
+            # and Blender's BVH importer takes the channels alone; at zero both agree.
+            offset = np.zeros(3)
         else:
             channels = JOINT_CHANNELS
             columns.append(rotation.as_euler("ZXY", degrees=True))
