@@ -91,6 +91,7 @@ def test_capture_on_the_command_line_writes_pose_bvh_report_and_timing(clip, tmp
     # Constant timing: 243 ms holds, the last 800 ms; captured within 150 ms.
     assert np.allclose(timing["hold_ms"], [243, 243, 243, 800], atol=150)
     assert read_pose(pose).n_frames > 60 and bvh.stat().st_size > 0
+    _opens_as_holistic_in_pose_format(pose, 480, 360, read_pose(pose).n_frames, body=False)
     quality = json.loads((report / "quality.json").read_text())
     assert quality["hands_found"]["right"] > 0.9 and (report / "quality.png").exists()
     sheet = iio.imread(report / "contact.png")
@@ -156,9 +157,12 @@ def test_a_rendered_signer_is_captured_with_holistic_and_its_arms_fitted(tmp_pat
     assert np.median(miss_mm) * 1000 < 80
 
 
-def _opens_as_holistic_in_pose_format(path, width: int, height: int, frames: int) -> None:
+def _opens_as_holistic_in_pose_format(
+    path, width: int, height: int, frames: int, body: bool = True
+) -> None:
     """Check a capture's .pose with pose-format's own reader (issue 54, item 4): MediaPipe
-    Holistic's components in pose-format's order and names, in the video's pixels."""
+    Holistic's components in pose-format's order and names, in the video's pixels (the
+    nose for a *body*'s capture, the right hand's wrist for a hand's)."""
     pose_format = pytest.importorskip("pose_format")
     from pose_format.utils.generic import detect_known_pose_format
     from pose_format.utils.holistic import holistic_components
@@ -172,9 +176,10 @@ def _opens_as_holistic_in_pose_format(path, width: int, height: int, frames: int
     assert (theirs.header.dimensions.width, theirs.header.dimensions.height) == (width, height)
     hands = theirs.get_components(["POSE_LANDMARKS", "FACE_LANDMARKS", "RIGHT_HAND_LANDMARKS"])
     assert hands.body.data.shape[:3] == (frames, 1, 33 + 468 + 21)
-    # In the video's pixels: the nose is inside the frame whenever it was seen.
-    nose = theirs.body.data[:, 0, 0, :2]
-    seen = ~np.ma.getmaskarray(nose).any(axis=1) & (theirs.body.confidence[:, 0, 0] > 0)
+    # In the video's pixels: the point is inside the frame whenever it was seen.
+    point = 0 if body else 33 + 468 + 21  # the nose, or the right hand's wrist
+    where = theirs.body.data[:, 0, point, :2]
+    seen = ~np.ma.getmaskarray(where).any(axis=1) & (theirs.body.confidence[:, 0, point] > 0)
     assert seen.mean() > 0.9
-    inside = (nose[seen] >= 0).all(axis=1) & (nose[seen, 0] < width) & (nose[seen, 1] < height)
+    inside = (where[seen] >= 0).all(axis=1) & (where[seen, 0] < width) & (where[seen, 1] < height)
     assert inside.all()
