@@ -12,7 +12,9 @@ hand. Unlit in the file's own colours, Blender's skin is ours within 3 levels of
 Blender's BVH importer puts every joint of our BVH where our forward kinematics does
 (within 0.01 mm; the issue measured 0.001 mm). Blender names the face's shape keys
 from the meshes' ``extras.targetNames`` (ARKit's names), where three.js reads them too
-(test_gltf_three_browser.py). Debian's Blender needs two shims, in the scripts.
+(test_gltf_three_browser.py), and Unity's glTFast (its schema's
+``MeshExtras.targetNames``, docs.unity3d.com; Unity does not run here). Debian's
+Blender needs two shims, in the scripts.
 Reference: glTF 2.0 §3.7.3 (skins), §3.11 (animations), §3.10 (cameras).
 """
 
