@@ -3,14 +3,16 @@
 from typing import Any
 
 from studyplatform.lib import exchange
+from studyplatform.models.studies import CLIP_SIZE
 
 
 def definition(study: dict[str, Any], **parts: list[dict[str, Any]]) -> dict[str, Any]:
-    """Wrap the parts of a study in the exchange format's envelope."""
+    """Wrap the parts of a study in the exchange format's envelope, filmed at a new
+    study's clip size (HD: issue 52)."""
     return {
         "format": exchange.FORMAT,
         "version": exchange.VERSION,
-        "study": study,
+        "study": {"clip_width": CLIP_SIZE[0], "clip_height": CLIP_SIZE[1], **study},
         "conditions": parts.get("conditions", []),
         "items": parts.get("items", []),
         "questions": parts.get("questions", []),
