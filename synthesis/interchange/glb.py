@@ -1,17 +1,16 @@
 """Write a clip as glTF 2.0 binary (GLB): the skinned avatar, its motion and the camera.
 
 What Blender, Unity or three.js open is what the renderer drew: each skinned part is a
-mesh with the engine's bind-pose vertices, normals, colours (a palette texture where
-the part has a colour edge) and four bone weights a vertex; its joints are nodes whose
+mesh with the engine's bind-pose vertices, normals, colours (a palette texture where the
+part has a colour edge) and four bone weights a vertex; its joints are nodes whose
 inverse bind matrices are the engine's ``B⁻¹``; the animation keys every joint's local
 rotation and translation at every frame (linear interpolation, so a player between
-frames blends as the engine would resample); the
-face's blendshapes are morph targets (sparse: only the vertices they move) whose
-weights are keyed per frame. glTF shares the engine's frame (metres, +Y up, the signer
-facing +Z) and its scalar-last quaternions, so nothing is converted. Skinned that way
-(glTF 2.0 §3.7.3), a frame's vertices are the engine's to float32 precision
-(tests/synthesis/test_glb.py). The camera that filmed the clip is a camera node,
-keyed per frame when it follows the hand.
+frames blends as the engine would resample); the face's blendshapes are morph targets
+(sparse: only the vertices they move) whose weights are keyed per frame. glTF shares the
+engine's frame (metres, +Y up, the signer facing +Z) and its scalar-last quaternions, so
+nothing is converted. Skinned that way (glTF 2.0 §3.7.3), a frame's vertices are the
+engine's to float32 precision (tests/synthesis/test_glb.py). The camera that filmed the
+clip is a camera node, keyed per frame when it follows the hand.
 """
 
 import numpy as np
@@ -190,6 +189,20 @@ def _edge_material(gltf: gl.GLTF2, buffer: BufferBuilder, texture: EdgeTexture) 
     return len(gltf.materials) - 1
 
 
+def _morph_targets(buffer: BufferBuilder, part) -> list[dict]:
+    """Add a part's blendshapes as sparse morph targets; return them (none without)."""
+    if part.morphs is None:
+        return []
+    count, rows = len(part.vertices_m), part.morphs.vertices
+    return [
+        {
+            "POSITION": buffer.add_sparse(count, rows, part.morphs.offsets_m[k]),
+            "NORMAL": buffer.add_sparse(count, rows, part.morphs.normal_offsets[k]),
+        }
+        for k in range(len(part.morphs.names))
+    ]
+
+
 def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joints: int) -> int:
     """Add one skinned part as a mesh (its blendshapes as sparse targets); return it.
 
@@ -231,20 +244,7 @@ def _part_mesh(gltf: gl.GLTF2, buffer: BufferBuilder, part, material: int, n_joi
         drawn = [(faces[one_pair], texcoords, _edge_material(gltf, buffer, edged))]
         if not one_pair.all():
             drawn.append((faces[~one_pair], vertex_colours(), material))
-    targets = []
-    if part.morphs is not None:
-        count = len(part.vertices_m)
-        targets = [
-            {
-                "POSITION": buffer.add_sparse(
-                    count, part.morphs.vertices, part.morphs.offsets_m[k]
-                ),
-                "NORMAL": buffer.add_sparse(
-                    count, part.morphs.vertices, part.morphs.normal_offsets[k]
-                ),
-            }
-            for k in range(len(part.morphs.names))
-        ]
+    targets = _morph_targets(buffer, part)
     primitives = []
     for triangles, extra, used in drawn:
         attributes = gl.Attributes()
