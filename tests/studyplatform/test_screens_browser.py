@@ -22,6 +22,7 @@ from tests.studyplatform.test_participate_browser import (
 
 pytestmark = pytest.mark.django_db(transaction=True)
 PHONE = {"width": 390, "height": 844}
+LAPTOP = {"width": 1366, "height": 768}
 
 
 @pytest.fixture
@@ -92,45 +93,42 @@ def test_a_signed_answer_is_recorded_and_sent_with_taps(
     assert participant.position > int(number) or participant.finished_at is not None
 
 
+@pytest.fixture
+def laptop(browser):
+    context = browser.new_context(viewport=LAPTOP, bypass_csp=True)
+    yield context.new_page()
+    close_context(context)
+
+
 def test_a_laptop_shows_the_whole_clip_and_the_answer_without_scrolling(
-    browser, live_server, spine, clips_dir, hd_clip
+    laptop, live_server, spine, clips_dir, hd_clip
 ):
-    context = browser.new_context(viewport={"width": 1366, "height": 768}, bypass_csp=True)
-    page = context.new_page()
-    try:
-        _with_clips(spine, hd_clip, clips_dir)
-        goto_trial_page(page, live_server, spine, "rate-s1")
-        _wait_ready(page)
-        clip = page.locator("figure.clip").first.bounding_box()  # the clip and its control
-        first = page.locator("fieldset.question").first.locator("label.choice").last.bounding_box()
-        assert clip["y"] + clip["height"] <= 768 and first["y"] + first["height"] <= 768
-        # A 1280 × 720 clip as large as a 1366 × 768 screen allows beside its questions
-        # (it was 450 px wide in a 960 px column), its shape kept.
-        video = page.locator("video.stimulus").first.bounding_box()
-        assert 800 <= video["width"] <= 1280, video
-        assert video["width"] / video["height"] == pytest.approx(16 / 9, abs=0.01)
-        assert page.evaluate("document.documentElement.scrollWidth") <= 1366
-        # No scale point's label spills out of its box.
-        spills = page.evaluate(
-            "[...document.querySelectorAll('label.choice')]"
-            ".filter(l => l.scrollWidth > l.clientWidth + 1).length"
-        )
-        assert spills == 0
-    finally:
-        close_context(context)
+    _with_clips(spine, hd_clip, clips_dir)
+    goto_trial_page(laptop, live_server, spine, "rate-s1")
+    _wait_ready(laptop)
+    clip = laptop.locator("figure.clip").first.bounding_box()  # the clip and its control
+    first = laptop.locator("fieldset.question").first.locator("label.choice").last.bounding_box()
+    assert clip["y"] + clip["height"] <= 768 and first["y"] + first["height"] <= 768
+    # A 1280 × 720 clip as large as a 1366 × 768 screen allows beside its questions
+    # (it was 450 px wide in a 960 px column), its shape kept.
+    video = laptop.locator("video.stimulus").first.bounding_box()
+    assert 800 <= video["width"] <= 1280, video
+    assert video["width"] / video["height"] == pytest.approx(16 / 9, abs=0.01)
+    assert laptop.evaluate("document.documentElement.scrollWidth") <= LAPTOP["width"]
+    # No scale point's label spills out of its box.
+    spills = laptop.evaluate(
+        "[...document.querySelectorAll('label.choice')]"
+        ".filter(l => l.scrollWidth > l.clientWidth + 1).length"
+    )
+    assert spills == 0
 
 
 def test_a_clip_is_never_shown_larger_than_it_was_rendered(
-    browser, live_server, spine, clips_dir, one_clip
+    laptop, live_server, spine, clips_dir, one_clip
 ):
     """An enlarged clip is a blurred one (issue 52: 640 × 480 clips upscaled on laptops)."""
-    context = browser.new_context(viewport={"width": 1366, "height": 768}, bypass_csp=True)
-    page = context.new_page()
-    try:
-        _with_clips(spine, one_clip, clips_dir)
-        goto_trial_page(page, live_server, spine, "rate-s1")
-        _wait_ready(page)
-        video = page.locator("video.stimulus").first.bounding_box()
-        assert (video["width"], video["height"]) == (one_clip.width, one_clip.height)
-    finally:
-        close_context(context)
+    _with_clips(spine, one_clip, clips_dir)
+    goto_trial_page(laptop, live_server, spine, "rate-s1")
+    _wait_ready(laptop)
+    video = laptop.locator("video.stimulus").first.bounding_box()
+    assert (video["width"], video["height"]) == (one_clip.width, one_clip.height)

@@ -136,19 +136,31 @@ def test_blender_draws_our_frame(name, tmp_path):
 CMU_01_01 = Path("/usr/share/assimp/models/BVH/01_01.bvh")
 
 
+def _our_export(tmp_path: Path, suffix: str) -> Path:
+    """Write the signing view's example sentence as our .bvh or .glb; return its path."""
+    values = {"rate_hz": 15.0, "width": WIDTH, "height": HEIGHT, "view": "upper-body"}
+    request = ClipRequest.from_parameters("sentence", "ME HAPPY", values)
+    build = build_motion(request)
+    path = tmp_path / f"clip{suffix}"
+    if suffix == ".bvh":
+        path.write_text(request_bvh(request, build))
+    else:
+        path.write_bytes(request_glb(request, build))
+    return path
+
+
+def _installed(path: Path) -> Path:
+    """Return a real file of Debian's assimp-testmodels, or skip saying how to get it."""
+    if not path.is_file():
+        pytest.skip("assimp-testmodels is not installed (scripts/bootstrap.sh installs it)")
+    return path
+
+
 @pytest.mark.parametrize("source", ["our BVH", "CMU 01_01"])
 def test_blender_reads_bvh_joints_where_we_put_them(source, tmp_path):
     """Our BVH export, and a real capture (CMU's 01_01.bvh from Debian's
     assimp-testmodels, in its own unit), read by us and by Blender's BVH importer."""
-    if source == "our BVH":
-        values = {"rate_hz": 15.0, "width": WIDTH, "height": HEIGHT, "view": "upper-body"}
-        request = ClipRequest.from_parameters("sentence", "ME HAPPY", values)
-        path = tmp_path / "clip.bvh"
-        path.write_text(request_bvh(request, build_motion(request)))
-    elif CMU_01_01.is_file():
-        path = CMU_01_01
-    else:
-        pytest.skip("assimp-testmodels is not installed (scripts/bootstrap.sh installs it)")
+    path = _our_export(tmp_path, ".bvh") if source == "our BVH" else _installed(CMU_01_01)
     motion = read_bvh(path)
     unit = motion.skeleton.metres_per_unit  # Blender keeps the file's own unit
     ours = forward_kinematics(motion).positions_m / unit
@@ -173,15 +185,7 @@ def test_a_gltf_motion_is_read_where_blender_puts_its_joints(source, tmp_path):
     """Our glTF motion reader (render-bvh, motion uploads) against Blender's glTF importer:
     every joint within 0.01 mm, on our own export and on a real file (assimp-testmodels'
     simple_skin.gltf, whose root we read at twice its height before this test)."""
-    if source == "our GLB":
-        values = {"rate_hz": 15.0, "width": WIDTH, "height": HEIGHT, "view": "upper-body"}
-        request = ClipRequest.from_parameters("sentence", "ME HAPPY", values)
-        path = tmp_path / "clip.glb"
-        path.write_bytes(request_glb(request, build_motion(request)))
-    elif SIMPLE_SKIN.is_file():
-        path = SIMPLE_SKIN
-    else:
-        pytest.skip("assimp-testmodels is not installed (scripts/bootstrap.sh installs it)")
+    path = _our_export(tmp_path, ".glb") if source == "our GLB" else _installed(SIMPLE_SKIN)
     motion = read_motion_file(path)
     ours = forward_kinematics(motion).positions_m
     frame = motion.n_frames // 2
