@@ -5,6 +5,8 @@ technique or question type registered in code is in the docs' table without anyo
 keeping the two in step (issue 57); tests/test_docs_figures.py fails on drift.
 """
 
+import os
+
 from docs_figure_blocks import _block, _table
 
 
@@ -31,6 +33,11 @@ def techniques_table() -> str:
 
 def questions_table() -> str:
     """Return a row per registered question type: its label, pages, export and scale."""
+    import django
+
+    # The labels are translatable (issue 55): their English needs Django's apps loaded.
+    os.environ.setdefault("DJANGO_SETTINGS_MODULE", "studyplatform.settings")
+    django.setup()
     from studyplatform.questions import QUESTION_TYPES
 
     body = [

@@ -62,5 +62,5 @@ def test_the_size_travels_with_a_study_and_an_old_definition_keeps_its_own(fresh
     del old["study"]["clip_width"], old["study"]["clip_height"]
     legacy = do_import_study(old, owner=alice, slug="fresh-old").study
     assert (legacy.clip_width, legacy.clip_height) == LEGACY_CLIP_SIZE
-    # The demo studies' definitions name no size: their clips are as before.
-    assert (spine.clip_width, spine.clip_height) == LEGACY_CLIP_SIZE
+    # The demo studies film at a new study's size (issue 52: HD for the demo too).
+    assert (spine.clip_width, spine.clip_height) == CLIP_SIZE

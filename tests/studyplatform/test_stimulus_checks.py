@@ -19,9 +19,12 @@ pytestmark = [pytest.mark.django_db, pytest.mark.slow]
 
 @pytest.fixture
 def first_pair(alice, settings, tmp_path):
-    """The demo transitions study cut to its first item's pages."""
+    """The demo transitions study cut to its first item's pages, at 640×480 (the demo
+    films at 1280×720 now, where its hands are large enough: no size warning)."""
     settings.MEDIA_ROOT = tmp_path
-    study = do_import_study(transitions_study(), owner=alice).study
+    definition = transitions_study()
+    definition["study"].update(clip_width=640, clip_height=480)
+    study = do_import_study(definition, owner=alice).study
     first = study.items.order_by("position").first()
     Trial.objects.filter(block__study=study).exclude(item=first).exclude(item=None).delete()
     return study
