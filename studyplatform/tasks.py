@@ -132,12 +132,9 @@ def _mapping_warnings(motion, side: str, name: str) -> list[str]:
     render would show that arm or hand still, as ``render-bvh`` warns; issue 54)."""
     from synthesis.skeleton.mapping import detect_mapping
 
-    mapping = detect_mapping(motion.skeleton)
-    wanted = {"fingers", f"{side} arm", f"{side} hand's fingers"}
-    unmapped = [part for part in mapping.unmapped_parts() if part in wanted]
-    if not unmapped:
-        return []
-    return [f"{name}: not mapped ({mapping.convention} names), so at rest: {', '.join(unmapped)}."]
+    signing = {"fingers", f"{side} arm", f"{side} hand's fingers"}
+    warning = detect_mapping(motion.skeleton).at_rest_warning(name, signing)
+    return [warning] if warning else []
 
 
 def _captured(recording, path: Path, side: str, report_progress) -> tuple[bytes, bytes | None]:

@@ -178,11 +178,9 @@ def _render_bvh(args: argparse.Namespace) -> int:
             f"{Path(args.file).name}: no arm joint is mapped ({mapping.convention} names), "
             "so nothing would sign."
         )
-    if unmapped:
-        print(
-            f"warning: {Path(args.file).name}: not mapped, so at rest: {', '.join(unmapped)}",
-            file=sys.stderr,
-        )
+    warning = mapping.at_rest_warning(Path(args.file).name)
+    if warning:
+        print(f"warning: {warning}", file=sys.stderr)
     view = args.view or ("hand" if mapping.is_single_hand else "upper-body")
     side = (mapping.side() or args.side) if mapping.is_single_hand else args.side
     rig = avatar_and_camera(view, side)[0].rig

@@ -15,6 +15,7 @@ from django.utils.translation import gettext_lazy as _
 
 from studyplatform.rules import check_condition, check_study_values
 from synthesis.fingerspelling.alphabets import DEFAULT_ALPHABET, alphabet_choices
+from synthesis.techniques.request import REQUEST_PARAMETERS
 from synthesis.techniques.timing import trained_on_simulated
 
 
@@ -31,9 +32,17 @@ def position_field() -> models.SmallIntegerField:
     )
 
 
-# A new study's clip size, and that of a study made before it was a setting (the engine's).
+# The engine's clip size parameters: their bounds are the fields', and their defaults
+# the size of a study made before it was a setting. A new study films in HD.
+_FILMING = {p.name: p for p in REQUEST_PARAMETERS if p.name in ("width", "height")}
 CLIP_SIZE = (1280, 720)
-LEGACY_CLIP_SIZE = (640, 480)
+LEGACY_CLIP_SIZE = (_FILMING["width"].default, _FILMING["height"].default)
+
+
+def _clip_size_validators(name: str) -> list:
+    """Return the engine's bounds of clip size parameter *name* as field validators."""
+    parameter = _FILMING[name]
+    return [MinValueValidator(parameter.minimum), MaxValueValidator(parameter.maximum)]
 
 
 def default_thank_you_text() -> str:
@@ -137,7 +146,7 @@ class Study(models.Model):
     clip_width = models.PositiveSmallIntegerField(
         _("clip width"),
         default=CLIP_SIZE[0],
-        validators=[MinValueValidator(16), MaxValueValidator(3840)],
+        validators=_clip_size_validators("width"),
         help_text=_(
             "Pixels. Every rendered condition's clips, unless a condition sets its own "
             "size. 1280 × 720 by default, so letters and hands read at the size "
@@ -147,7 +156,7 @@ class Study(models.Model):
     clip_height = models.PositiveSmallIntegerField(
         _("clip height"),
         default=CLIP_SIZE[1],
-        validators=[MinValueValidator(16), MaxValueValidator(2160)],
+        validators=_clip_size_validators("height"),
         help_text=_("Pixels (see clip width)."),
     )
     phone_clips_side_by_side = models.BooleanField(

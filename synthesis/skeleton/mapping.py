@@ -10,6 +10,7 @@ compared without case, separators or a namespace prefix (``mixamorig:``), so
 """
 
 import re
+from collections.abc import Collection
 from dataclasses import dataclass
 
 from synthesis.skeleton.skeleton import Skeleton
@@ -196,6 +197,14 @@ class JointMapping:
             if not has(tuple(f"{side}_{digit}" for digit in digits)):
                 missing.append(f"{side} hand's fingers")
         return missing
+
+    def at_rest_warning(self, source: str, parts: Collection[str] | None = None) -> str | None:
+        """Return the warning naming what this mapping leaves at rest in *source*'s motion
+        (of *parts* only, if given), or None when nothing is."""
+        unmapped = [p for p in self.unmapped_parts() if parts is None or p in parts]
+        if not unmapped:
+            return None
+        return f"{source}: not mapped, so at rest: {', '.join(unmapped)}"
 
     def side(self) -> str | None:
         """Return the only side this mapping covers, or None for both or neither."""
