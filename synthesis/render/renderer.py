@@ -19,6 +19,9 @@ from synthesis.render.scene import (
 from synthesis.skeleton.kinematics import Pose
 
 BACKGROUND_RGB = (0.42, 0.47, 0.53)
+# Each pixel's alpha holds its luma for the anti-aliasing pass (shaders/mesh.frag): the
+# background's too, through the clear colour.
+LUMA_WEIGHTS = (0.299, 0.587, 0.114)
 SHADERS = Path(__file__).with_name("shaders")
 # The key light's shadow map: the hands' shadows on the torso stay sharp at 1024 px (a
 # texel is about 2 mm over the scene), and pyrender's 2048 cost a tenth of a frame.
@@ -68,7 +71,8 @@ class Renderer:
         self.path = camera if isinstance(camera, CameraPath) else None
         if self.path is not None:
             camera = self.path.at(0)
-        self.scene = pyrender.Scene(bg_color=(*background_rgb, 1.0), ambient_light=(0.0,) * 3)
+        luma = float(np.dot(background_rgb, LUMA_WEIGHTS))
+        self.scene = pyrender.Scene(bg_color=(*background_rgb, luma), ambient_light=(0.0,) * 3)
         self._camera_node = self.scene.add(
             pyrender.PerspectiveCamera(
                 yfov=np.radians(camera.yfov_deg), aspectRatio=width / height, znear=0.05

@@ -1,4 +1,6 @@
 #version 330 core
+#extension GL_ARB_texture_gather : require
+#extension GL_ARB_gpu_shader5 : require
 // SignStudy's anti-aliasing pass, fragment stage: fast approximate anti-aliasing after
 // Lottes (NVIDIA, FXAA 3.11, its "quality" form), in pixel units with north at +y.
 // A pixel whose neighbourhood spans enough luma contrast lies on an edge; the edge runs
@@ -7,6 +9,9 @@
 // (found by walking along it), which turns a staircase into a ramp. A pixel brighter
 // or darker than all around it (a thin feature) blends with them too. Flat areas keep
 // their colour, so skin shading and the background pass through unchanged.
+// The scene's pass leaves each pixel's luma in its alpha (mesh.frag, the renderer's
+// clear colour), so the neighbourhood is two gathers of one channel: on llvmpipe the
+// neighbourhood test over every pixel was most of this pass's cost (issue 52).
 
 uniform sampler2D frame;
 uniform vec2 texel;
@@ -23,38 +28,34 @@ const float SUBPIXEL = 0.75;
 const int STEPS = 5;
 const float STEP_PX[STEPS] = float[](1.0, 2.0, 4.0, 4.0, 8.0);
 
-float luma(vec3 rgb)
-{
-    return dot(rgb, vec3(0.299, 0.587, 0.114));
-}
-
 float luma_at(ivec2 pixel)
 {
     ivec2 last = textureSize(frame, 0) - 1;
-    return luma(texelFetch(frame, clamp(pixel, ivec2(0), last), 0).rgb);
+    return texelFetch(frame, clamp(pixel, ivec2(0), last), 0).a;
 }
 
 void main()
 {
-    // Unfiltered fetches for the neighbourhood: a software rasteriser filters slowly.
+    // The four neighbours' lumas in two gathers (texels around a corner; the texture
+    // clamps at the frame's border). A flat pixel keeps its colour: nothing is written.
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec3 middle = texelFetch(frame, pixel, 0).rgb;
-    float l_m = luma(middle);
-    float l_n = luma_at(pixel + ivec2(0, 1));
-    float l_s = luma_at(pixel + ivec2(0, -1));
-    float l_e = luma_at(pixel + ivec2(1, 0));
-    float l_w = luma_at(pixel + ivec2(-1, 0));
+    vec4 south_west = textureGather(frame, vec2(pixel) * texel, 3);
+    vec4 north_east = textureGather(frame, vec2(pixel + 1) * texel, 3);
+    float l_m = south_west.y;
+    float l_w = south_west.x;
+    float l_s = south_west.z;
+    float l_n = north_east.x;
+    float l_e = north_east.z;
     float l_min = min(l_m, min(min(l_n, l_s), min(l_e, l_w)));
     float l_max = max(l_m, max(max(l_n, l_s), max(l_e, l_w)));
     float contrast = l_max - l_min;
     if (contrast < max(EDGE_MIN, l_max * EDGE_RELATIVE)) {
-        frag_color = vec4(middle, 1.0);
-        return;
+        discard;
     }
-    float l_ne = luma_at(pixel + ivec2(1, 1));
+    float l_ne = north_east.y;
     float l_nw = luma_at(pixel + ivec2(-1, 1));
     float l_se = luma_at(pixel + ivec2(1, -1));
-    float l_sw = luma_at(pixel + ivec2(-1, -1));
+    float l_sw = south_west.w;
 
     // An edge along x changes most from south to north.
     float across_y = abs(l_nw + l_sw - 2.0 * l_w) + 2.0 * abs(l_n + l_s - 2.0 * l_m)
@@ -86,12 +87,12 @@ void main()
     for (int i = 0; i < STEPS; i++) {
         if (!done_back) {
             d_back += STEP_PX[i];
-            end_back = luma(texture(frame, (start - d_back * along) * texel).rgb) - l_edge;
+            end_back = texture(frame, (start - d_back * along) * texel).a - l_edge;
             done_back = abs(end_back) >= step_threshold;
         }
         if (!done_ahead) {
             d_ahead += STEP_PX[i];
-            end_ahead = luma(texture(frame, (start + d_ahead * along) * texel).rgb) - l_edge;
+            end_ahead = texture(frame, (start + d_ahead * along) * texel).a - l_edge;
             done_ahead = abs(end_ahead) >= step_threshold;
         }
         if (done_back && done_ahead) {
