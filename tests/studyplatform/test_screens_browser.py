@@ -106,6 +106,14 @@ def test_a_laptop_shows_the_whole_clip_and_the_answer_without_scrolling(
     _with_clips(spine, hd_clip, clips_dir)
     goto_trial_page(laptop, live_server, spine, "rate-s1")
     _wait_ready(laptop)
+    # In a loaded parallel run the clip was once measured 40 px lower (y 251, settled
+    # 212). The page shows itself after 10 s with clips still loading, and an error
+    # notice sits above the clips: measure the page settled, every clip loaded and no
+    # notice shown.
+    laptop.wait_for_function(
+        "Array.from(document.querySelectorAll('video.stimulus')).every(v => v.readyState >= 4)"
+        " && document.getElementById('page-error').hidden"
+    )
     clip = laptop.locator("figure.clip").first.bounding_box()  # the clip and its control
     first = laptop.locator("fieldset.question").first.locator("label.choice").last.bounding_box()
     assert clip["y"] + clip["height"] <= 768 and first["y"] + first["height"] <= 768
