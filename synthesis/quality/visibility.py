@@ -1,6 +1,12 @@
 """Measure what a viewer sees of the hands and the face: each hand's size in pixels,
 whether it leaves the frame, and how much of the face a hand hides.
 
+A hand whose skin leaves the frame through its bottom edge alone is *lowered*: the
+signing view is framed from above the head to the waist, the lower edge of the signing
+space (Battison 1978; Klima & Bellugi 1979), so a hand below it rests at the side and
+signs nothing. A hand out through a side or the top, or partly behind the camera, is
+*outside*.
+
 The posed skin is projected through the clip's camera as the renderer sees it
 (:mod:`synthesis.render.framing` tells the parts' vertices by the joint that weighs
 most on them). A face vertex counts as hidden when a hand's skin lies over its pixel
@@ -27,12 +33,14 @@ CELL_PX = 4
 class Visibility:
     """Per frame and hand (sides in *hands*): the hand's box in pixels, the larger of its
     width and height (*hand_px*, (n_frames, n_hands)), whether any of its skin lies
-    outside the frame (*outside*); the share of the face's vertices a hand hides
-    (*face_hidden*, (n_frames,); None without a face)."""
+    outside the frame through a side or the top (*outside*) or through the bottom edge
+    alone (*lowered*); the share of the face's vertices a hand hides (*face_hidden*,
+    (n_frames,); None without a face)."""
 
     hands: tuple[str, ...]
     hand_px: np.ndarray
     outside: np.ndarray
+    lowered: np.ndarray
     face_hidden: np.ndarray | None
 
 
@@ -98,7 +106,7 @@ def measure_visibility(
 ) -> Visibility:
     """Return what the camera shows of *avatar*'s hands and face posed by *pose*."""
     sides = hand_sides(avatar)
-    sizes, outside, hand_points, hand_depths = [], [], [], []
+    sizes, outside, lowered, hand_points, hand_depths = [], [], [], [], []
     for side in sides:
         posed = np.concatenate(
             [v for v, _ in avatar.deform_pose(pose, _masks(avatar, side, sides))], axis=1
@@ -108,12 +116,16 @@ def measure_visibility(
             # An imported avatar whose skin no hand joint owns: nothing to measure.
             sizes.append(np.full(len(posed), np.nan))
             outside.append(np.zeros(len(posed), dtype=bool))
+            lowered.append(np.zeros(len(posed), dtype=bool))
             continue
         extent = np.nanmax(pixels, axis=1) - np.nanmin(pixels, axis=1)
         sizes.append(extent.max(axis=1))
-        outside.append(
-            ((pixels < 0) | (pixels > (width, height)) | np.isnan(pixels)).any(axis=(1, 2))
-        )
+        x, y = pixels[..., 0], pixels[..., 1]
+        below = (y > height).any(axis=1)
+        # Pixels' y runs down the frame: past the height is below its bottom edge.
+        elsewhere = ((x < 0) | (x > width) | (y < 0) | np.isnan(x) | np.isnan(y)).any(axis=1)
+        outside.append(elsewhere)
+        lowered.append(below & ~elsewhere)
         hand_points.append(pixels)
         hand_depths.append(depth)
     face_hidden = None
@@ -128,4 +140,10 @@ def measure_visibility(
             width,
             height,
         )
-    return Visibility(sides, np.stack(sizes, axis=1), np.stack(outside, axis=1), face_hidden)
+    return Visibility(
+        sides,
+        np.stack(sizes, axis=1),
+        np.stack(outside, axis=1),
+        np.stack(lowered, axis=1),
+        face_hidden,
+    )

@@ -163,14 +163,16 @@ def upper_body_front(side: str = "right") -> CameraPreset:
 
 def signing_view(side: str = "right", width: int = 640, height: int = 480) -> CameraPreset:
     """Return the signing view for a frame of *width* × *height*: the upper-body camera
-    at 4:3, and at 16:9 or wider a closer one (the frame's width holds the arms that 4:3
-    needed height for), in which the face is over 120 px tall at 720p and the hands of
-    every demo sentence stay in the frame (bench/bench_framing.py)."""
+    at 4:3, and at 16:9 or wider the signing space framed from above the head to the
+    waist (issue 52), in which the face (brows to chin) is over 130 px tall at 720p and
+    no signing hand of a demo sentence leaves the frame (bench/bench_framing.py)."""
     if width / height < WIDE_ASPECT:
         return upper_body_front(side)
     # Farther and narrower than the 4:3 camera: a hand raised in front of the head is
-    # magnified less, so the frame's height holds the hands' range with the face larger.
-    return CameraPreset("signing view 16:9", (0.0, 1.39, 3.5), (0.0, 1.377, 0.0), 18.0)
+    # magnified less. The frame runs from 1.92 m (the crown is at 1.85 m; LOOKING-BACK's
+    # hand over the shoulder reaches 1.91 m) to 0.98 m (the waist, the signing space's
+    # lower edge: a hand at rest hangs below it, lowered, synthesis.quality.visibility).
+    return CameraPreset("signing view 16:9", (0.0, 1.463, 3.5), (0.0, 1.45, 0.0), 15.4)
 
 
 WIDE_ASPECT = 1.6
