@@ -17,7 +17,8 @@ from synthesis.identity import code_digest
 from synthesis.quality import SPEED_FACTOR, check_request, keyed_reference
 from synthesis.quality.contact import BodySurface
 from synthesis.quality.speed import joint_speeds_deg_s
-from synthesis.quality.visibility import CELL_PX, _hidden_share
+from synthesis.quality.visibility import CELL_PX, _hidden_share, measure_visibility
+from synthesis.render.scene import CameraPreset
 from synthesis.skeleton.kinematics import Pose
 from synthesis.techniques import REGISTRY, ClipRequest, Parameter, Technique
 from synthesis.techniques.registry import MOTION
@@ -89,6 +90,32 @@ def test_the_same_sentence_is_too_small_at_640x480_and_readable_at_720p():
     small = check_request(ClipRequest("sentence", SENTENCE, {}))
     assert [f.check for f in small.findings] == ["size"], small.findings
     assert small.figures["hand_px_p5"] < 56 <= small.figures["hand_px_median"]
+
+
+def test_a_resting_hand_below_the_frame_is_lowered_and_one_out_at_the_side_is_outside():
+    """Issue 52: the 16:9 signing view ends at the waist, so the non-dominant hand hangs
+    below the frame while the other signs: lowered, no finding. The same motion filmed
+    by the camera moved 0.6 m to the signer's left loses the right hand at the side."""
+    request = ClipRequest("sentence", SENTENCE, {}, width=1280, height=720)
+    quality = check_request(request)
+    assert not [f for f in quality.findings if f.check == "frame"], quality.findings
+    assert quality.figures["frames_hand_outside"] == 0
+    assert quality.figures["frames_hand_lowered"] > 0
+
+    from synthesis.techniques import build_motion
+
+    build = build_motion(request)
+    avatar, camera = avatar_and_camera("upper-body", "right", width=1280, height=720)
+    pose = avatar.rig.pose(np.asarray(build.motion))
+    moved = CameraPreset(
+        "moved",
+        tuple(np.add(camera.eye_m, (0.6, 0.0, 0.0))),
+        tuple(np.add(camera.target_m, (0.6, 0.0, 0.0))),
+        camera.yfov_deg,
+    )
+    view = measure_visibility(avatar, moved, pose, 1280, 720)
+    right = view.hands.index("right")
+    assert view.outside[:, right].any() and not view.lowered[:, right].all()
 
 
 def test_a_point_in_the_chest_is_inside_the_body_and_one_in_front_is_not():
