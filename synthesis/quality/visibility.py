@@ -1,11 +1,11 @@
 """Measure what a viewer sees of the hands and the face: each hand's size in pixels,
 whether it leaves the frame, and how much of the face a hand hides.
 
-A hand whose skin leaves the frame through its bottom edge alone is *lowered*: the
-signing view is framed from above the head to the waist, the lower edge of the signing
-space (Battison 1978; Klima & Bellugi 1979), so a hand below it rests at the side and
-signs nothing. A hand out through a side or the top, or partly behind the camera, is
-*outside*.
+A signer's hand whose skin leaves the frame through its bottom edge alone is
+*lowered*: the signing view is framed from above the head to the waist, the lower edge
+of the signing space (Battison 1978; Klima & Bellugi 1979), so a hand below it rests at
+the side and signs nothing. A hand out through a side or the top, or partly behind the
+camera, is *outside*; so is a lone hand (the close-up's) out through any edge.
 
 The posed skin is projected through the clip's camera as the renderer sees it
 (:mod:`synthesis.render.framing` tells the parts' vertices by the joint that weighs
@@ -121,9 +121,12 @@ def measure_visibility(
         extent = np.nanmax(pixels, axis=1) - np.nanmin(pixels, axis=1)
         sizes.append(extent.max(axis=1))
         x, y = pixels[..., 0], pixels[..., 1]
+        # Pixels' y runs down the frame: past the height is below its bottom edge. A lone
+        # hand has no body to rest beside: below the frame is outside it.
         below = (y > height).any(axis=1)
-        # Pixels' y runs down the frame: past the height is below its bottom edge.
         elsewhere = ((x < 0) | (x > width) | (y < 0) | np.isnan(x) | np.isnan(y)).any(axis=1)
+        if not side:
+            elsewhere |= below
         outside.append(elsewhere)
         lowered.append(below & ~elsewhere)
         hand_points.append(pixels)

@@ -117,6 +117,23 @@ def test_a_resting_hand_below_the_frame_is_lowered_and_one_out_at_the_side_is_ou
     right = view.hands.index("right")
     assert view.outside[:, right].any() and not view.lowered[:, right].all()
 
+    # The close-up's lone hand has no body to rest beside: the camera raised until the
+    # hand leaves through the bottom edge loses it (outside), it is not lowered.
+    hand, close_up = avatar_and_camera("hand", "right")
+    still = hand.rig.pose(hand.rig.neutral()[None])
+    raised = [
+        CameraPreset(
+            "raised",
+            tuple(np.add(close_up.eye_m, (0.0, lift_m, 0.0))),
+            tuple(np.add(close_up.target_m, (0.0, lift_m, 0.0))),
+            close_up.yfov_deg,
+        )
+        for lift_m in (0.0, 0.3)
+    ]
+    seen, lost = (measure_visibility(hand, c, still, 640, 480) for c in raised)
+    assert not seen.outside.any() and not seen.lowered.any()
+    assert lost.outside.all() and not lost.lowered.any()
+
 
 def test_a_point_in_the_chest_is_inside_the_body_and_one_in_front_is_not():
     avatar, _ = avatar_and_camera("upper-body", "right")
