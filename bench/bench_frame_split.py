@@ -28,7 +28,7 @@ import machine
 import numpy as np
 
 from synthesis.render.backend import select_platform
-from synthesis.render.renderer import Renderer
+from synthesis.render.renderer import BATCH_FRAMES, Renderer
 from synthesis.render.scene import CameraPath, portrait_lighting
 from synthesis.skeleton.kinematics import Pose
 from synthesis.techniques import ClipRequest, build_motion
@@ -47,10 +47,11 @@ def _shadowless(camera) -> tuple:
     )
 
 
-def _frames(motion, count: int):
+def _frames(motion, start: int, stop: int):
+    """Return frames start … stop − 1 of DOF vectors or a Pose."""
     if isinstance(motion, Pose):
-        return Pose(motion.quaternions[:count], motion.positions_m[:count])
-    return np.asarray(motion)[:count]
+        return Pose(motion.quaternions[start:stop], motion.positions_m[start:stop])
+    return np.asarray(motion)[start:stop]
 
 
 def _ms_per_frame(avatar, camera, motion, count, width, height, **options) -> float:
@@ -66,13 +67,14 @@ def _ms_per_frame(avatar, camera, motion, count, width, height, **options) -> fl
 
 
 def _skinning_ms(avatar, motion, count: int) -> float:
-    frames = _frames(motion, count)
+    """Return the skinning's time per frame, in the renderer's batches of frames."""
     started = time.perf_counter()
-    if isinstance(frames, Pose):
-        avatar.deform_pose(frames)
-    else:
-        for start in range(0, count, 32):
-            avatar.deform(frames[start : start + 32])
+    for start in range(0, count, BATCH_FRAMES):
+        batch = _frames(motion, start, min(start + BATCH_FRAMES, count))
+        if isinstance(batch, Pose):
+            avatar.deform_pose(batch)
+        else:
+            avatar.deform(batch)
     return 1000 * (time.perf_counter() - started) / count
 
 

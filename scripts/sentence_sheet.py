@@ -18,7 +18,6 @@ from PIL import Image, ImageDraw, ImageFont
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from synthesis.render.renderer import Renderer
-from synthesis.skeleton.kinematics import Pose
 from synthesis.techniques import ClipRequest, build_motion
 from synthesis.techniques.request import film
 
@@ -38,14 +37,14 @@ def main() -> int:
     )
     build = build_motion(request)
     avatar, camera = film(request, build)
-    motion = build.made_motion
-    total = motion.quaternions.shape[0] if isinstance(motion, Pose) else len(motion)
+    motion = np.asarray(build.made_motion)  # a sentence's DOF vectors
+    total = len(motion)
     # The first and last tenth are the signer's rest: the sheet shows the signing.
     numbers = np.linspace(0.1 * total, 0.9 * total, TILES).astype(int)
     tiles = []
     with Renderer(avatar, camera, request.width, request.height) as renderer:
         for number in numbers:
-            frame = renderer.frame(np.asarray(motion)[number])
+            frame = renderer.frame(motion[number])
             tile = Image.fromarray(frame).resize(TILE_PX, Image.LANCZOS)
             label = f"{number / request.rate_hz:.2f} s"
             ImageDraw.Draw(tile).text((8, 6), label, fill=(255, 255, 255), font=font)

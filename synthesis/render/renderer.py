@@ -19,8 +19,8 @@ from synthesis.render.scene import (
 from synthesis.skeleton.kinematics import Pose
 
 BACKGROUND_RGB = (0.42, 0.47, 0.53)
-# Each pixel's alpha holds its luma for the anti-aliasing pass (shaders/mesh.frag): the
-# background's too, through the clear colour.
+# Each pixel's alpha holds its luma for the anti-aliasing pass: the skin shader's through
+# its LUMA_WEIGHTS define (Renderer._defines), the background's through the clear colour.
 LUMA_WEIGHTS = (0.299, 0.587, 0.114)
 SHADERS = Path(__file__).with_name("shaders")
 # The key light's shadow map: the hands' shadows on the torso stay sharp at 1024 px (a
@@ -105,7 +105,7 @@ class Renderer:
         # pyrender looks its shaders up by file name in its program cache; pointing the
         # cache at the project's own shaders swaps the PBR model for a much cheaper one
         # (private attributes of the pinned pyrender-maintained 1.0.1).
-        compat.install_program_cache(pyrender, self._renderer, str(SHADERS), self._light_counts)
+        compat.install_program_cache(pyrender, self._renderer, str(SHADERS), self._defines)
 
     def set_camera(self, camera: CameraPreset) -> None:
         """Move the camera (and, unless lights were given, the portrait lights with it)."""
@@ -138,8 +138,9 @@ class Renderer:
             self.scene.add_node(node)
             self._light_nodes.append(node)
 
-    def _light_counts(self) -> dict[str, int]:
-        """Return the scene's number of lights of each kind, as the skin shader's defines.
+    def _defines(self) -> dict[str, int | str]:
+        """Return the skin shader's defines: the scene's number of lights of each kind,
+        and the luma weights it writes into each pixel's alpha (:data:`LUMA_WEIGHTS`).
 
         A constant count lets the shader's light loops unroll: llvmpipe indexed the
         light uniforms in loops bounded by a uniform count slowly, a sixth of the
@@ -149,6 +150,7 @@ class Renderer:
         return {
             "LIGHT_COUNT_DIRECTIONAL": kinds.count("directional"),
             "LIGHT_COUNT_POINT": kinds.count("point"),
+            "LUMA_WEIGHTS": f"vec3({', '.join(str(w) for w in LUMA_WEIGHTS)})",
         }
 
     def _light(self, light: Light):

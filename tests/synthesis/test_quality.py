@@ -7,6 +7,7 @@ hand sizes (fist letters at about 21 × 32 px could not be told apart).
 """
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -92,6 +93,15 @@ def test_the_same_sentence_is_too_small_at_640x480_and_readable_at_720p():
     assert small.figures["hand_px_p5"] < 56 <= small.figures["hand_px_median"]
 
 
+def _shifted(camera: CameraPreset, offset_m) -> CameraPreset:
+    """Return *camera* moved by *offset_m*, looking the same way."""
+    return replace(
+        camera,
+        eye_m=tuple(np.add(camera.eye_m, offset_m)),
+        target_m=tuple(np.add(camera.target_m, offset_m)),
+    )
+
+
 def test_a_resting_hand_below_the_frame_is_lowered_and_one_out_at_the_side_is_outside():
     """Issue 52: the 16:9 signing view ends at the waist, so the non-dominant hand hangs
     below the frame while the other signs: lowered, no finding. The same motion filmed
@@ -107,13 +117,7 @@ def test_a_resting_hand_below_the_frame_is_lowered_and_one_out_at_the_side_is_ou
     build = build_motion(request)
     avatar, camera = avatar_and_camera("upper-body", "right", width=1280, height=720)
     pose = avatar.rig.pose(np.asarray(build.motion))
-    moved = CameraPreset(
-        "moved",
-        tuple(np.add(camera.eye_m, (0.6, 0.0, 0.0))),
-        tuple(np.add(camera.target_m, (0.6, 0.0, 0.0))),
-        camera.yfov_deg,
-    )
-    view = measure_visibility(avatar, moved, pose, 1280, 720)
+    view = measure_visibility(avatar, _shifted(camera, (0.6, 0.0, 0.0)), pose, 1280, 720)
     right = view.hands.index("right")
     assert view.outside[:, right].any() and not view.lowered[:, right].all()
 
@@ -121,16 +125,10 @@ def test_a_resting_hand_below_the_frame_is_lowered_and_one_out_at_the_side_is_ou
     # hand leaves through the bottom edge loses it (outside), it is not lowered.
     hand, close_up = avatar_and_camera("hand", "right")
     still = hand.rig.pose(hand.rig.neutral()[None])
-    raised = [
-        CameraPreset(
-            "raised",
-            tuple(np.add(close_up.eye_m, (0.0, lift_m, 0.0))),
-            tuple(np.add(close_up.target_m, (0.0, lift_m, 0.0))),
-            close_up.yfov_deg,
-        )
+    seen, lost = (
+        measure_visibility(hand, _shifted(close_up, (0.0, lift_m, 0.0)), still, 640, 480)
         for lift_m in (0.0, 0.3)
-    ]
-    seen, lost = (measure_visibility(hand, c, still, 640, 480) for c in raised)
+    )
     assert not seen.outside.any() and not seen.lowered.any()
     assert lost.outside.all() and not lost.lowered.any()
 

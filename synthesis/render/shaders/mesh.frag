@@ -49,9 +49,6 @@ in vec3 across_srgb;
 
 out vec4 frag_color;
 
-// The luma the anti-aliasing pass reads (fxaa.frag), as the renderer's clear colour has.
-const vec3 LUMA_WEIGHTS = vec3(0.299, 0.587, 0.114);
-
 vec3 reflected(vec3 n, vec3 v, vec3 l, vec3 radiance, vec3 albedo)
 {
     float lambert = max(dot(n, l), 0.0);
@@ -124,6 +121,7 @@ void main()
         color += reflected(n, v, normalize(to_light), radiance, albedo);
     }
     vec3 srgb = pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2));
-    // Alpha carries the pixel's luma (Rec. 601 weights) for the anti-aliasing pass.
+    // Alpha carries the pixel's luma for the anti-aliasing pass (fxaa.frag): Rec. 601
+    // weights, the renderer's define, the same as its clear colour's.
     frag_color = vec4(srgb, dot(srgb, LUMA_WEIGHTS));
 }
