@@ -1,6 +1,6 @@
 """Shape the manual alphabet toward real human hands, as MediaPipe sees both (issue 52).
 
-    .venv/bin/python scripts/shape_letters.py [--write]
+    .venv/bin/python scripts/shape_letters.py [--write] [--shape]
 
 Each letter is rendered in the signing view at 1280×720 and read with MediaPipe Hands,
 then compared with the shared reference of 10,508 human samples of the 26 letters
@@ -8,11 +8,16 @@ then compared with the shared reference of 10,508 human samples of the 26 letter
 
 1. Orientation: the forearm and wrist (the letter's five placement DOFs) turn so that
    the palm the camera sees turns toward the human median palm of that letter, by
-   :data:`TURN` of the way (all of it unless the whole turn read worse).
-2. Shape, for :data:`SHAPED` letters: the fingers' flexions and the thumb move toward
-   the human median landmarks (seen in our palm's frame), held near the authored pose
-   by a penalty on every degree moved and with the letter's contacts kept. MediaPipe's
-   landmarks on our render minus our hand's joints are taken as its fixed bias.
+   :data:`TURN` of the way (all of it unless the whole turn read worse). Letters ASL
+   names by where the index points keep it pointing there (:data:`KEPT_INDEX`). The
+   alphabet file holds this step's result (issue 52: 17 of 26 letters read right at
+   1280×720, from 9).
+2. Shape, only with ``--shape``, for :data:`SHAPED` letters: the fingers' flexions and
+   the thumb move toward the human median landmarks (seen in our palm's frame), held
+   near the authored pose by a penalty on every degree moved and with the letter's
+   contacts kept. MediaPipe's landmarks on our render minus our hand's joints are taken
+   as its fixed bias. Not applied: it reads 20 of 26 but moves A, E, M, S and T's
+   thumbs where the fist letters' check says ASL does not put them.
 
 The reference is a target to shape toward, not joint angles to copy: what a letter is
 stays in the alphabet file's descriptions and contacts, and in the fist letters' check
@@ -71,6 +76,13 @@ JOINTS = (
     ),
 )
 PALM = [0, 5, 9, 13, 17]
+INDEX = [5, 8]  # the index's knuckle and tip among the 21
+# The letters ASL names by where the index points (G and H to the signer's left, P and
+# Q down; tests/synthesis/test_alphabet.py): their turns keep it pointing there, held by
+# a weight per unit of direction against the palm's gap per 5 cm. G's human median
+# points the index down and forward: held less firmly, it tipped past the sideways
+# pointing ASL describes.
+KEPT_INDEX = {"G": 5.0, "H": 5.0, "P": 2.0, "Q": 2.0}
 
 
 def normalised(points: np.ndarray) -> np.ndarray:
@@ -106,22 +118,34 @@ class Scene:
         return (positions - positions[0]) @ self.camera.pose()[:3, :3]
 
 
-def turned(scene: Scene, hand: HandModel, dofs: np.ndarray, rotation: Rotation) -> np.ndarray:
+def _index_direction(joints: np.ndarray) -> np.ndarray:
+    """Return the unit direction from the index's knuckle to its tip."""
+    along = joints[INDEX[1]] - joints[INDEX[0]]
+    return along / np.linalg.norm(along)
+
+
+def turned(
+    scene: Scene, hand: HandModel, dofs: np.ndarray, rotation: Rotation, kept_index: float
+) -> np.ndarray:
     """Return *dofs* with the placement DOFs turning the seen palm by *rotation*.
 
     The reference's frame is the camera's mirrored (x, y and z all flipped), so a
-    rotation there is the same rotation in the camera's frame.
+    rotation there is the same rotation in the camera's frame. The index keeps pointing
+    where it points by the weight *kept_index* (0: free).
     """
     free = [hand.dof_names.index(name) for name in PLACEMENT]
     low, high = hand.limits_rad
-    palm = scene.camera_joints(dofs)[PALM[1:]]
-    target = rotation.apply(palm)
+    before = scene.camera_joints(dofs)
+    target = rotation.apply(before[PALM[1:]])
+    pointing = _index_direction(before)
 
     def residuals(values: np.ndarray) -> np.ndarray:
         trial = dofs.copy()
         trial[free] = values
-        gap = (scene.camera_joints(trial)[PALM[1:]] - target).ravel() / 0.05
-        return np.concatenate([gap, 0.05 * (values - dofs[free])])
+        joints = scene.camera_joints(trial)
+        gap = (joints[PALM[1:]] - target).ravel() / 0.05
+        held = (_index_direction(joints) - pointing) * kept_index
+        return np.concatenate([gap, held, 0.05 * (values - dofs[free])])
 
     found = least_squares(residuals, dofs[free], bounds=(low[free], high[free]))
     out = dofs.copy()
@@ -129,7 +153,7 @@ def turned(scene: Scene, hand: HandModel, dofs: np.ndarray, rotation: Rotation) 
     return out
 
 
-def shaped(scene, hand, dofs, seen, target, weights, contacts) -> np.ndarray:
+def shaped_dofs(scene, hand, dofs, seen, target, weights, contacts) -> np.ndarray:
     """Return *dofs* with fingers and thumb moved toward *target* (normalised landmarks)."""
     free = [
         i
@@ -174,7 +198,7 @@ def shaped(scene, hand, dofs, seen, target, weights, contacts) -> np.ndarray:
     return solve_contacts(hand, out, contacts)
 
 
-def shape(scene: Scene, reference: ReferenceHands) -> dict[str, np.ndarray]:
+def shape(scene: Scene, reference: ReferenceHands, shaped: dict) -> dict[str, np.ndarray]:
     """Return every letter's new DOFs (a moving letter's placement unchanged)."""
     hand = HandModel("right")
     medians = {
@@ -188,13 +212,13 @@ def shape(scene: Scene, reference: ReferenceHands) -> dict[str, np.ndarray]:
             seen = scene.seen(dofs)
             rotation, _ = Rotation.align_vectors(medians[k][PALM], seen[PALM])
             turn = Rotation.from_rotvec(rotation.as_rotvec() * TURN.get(k, 1))
-            dofs = turned(scene, hand, dofs, turn)
-        if k in SHAPED:
+            dofs = turned(scene, hand, dofs, turn, KEPT_INDEX.get(k, 0.0))
+        if k in shaped:
             seen = scene.seen(dofs)
             into_ours, _ = Rotation.align_vectors(seen[PALM], medians[k][PALM])
             target = into_ours.apply(medians[k])
             contacts = letter(k, "right").contacts
-            dofs = shaped(scene, hand, dofs, seen, target, SHAPED[k], contacts)
+            dofs = shaped_dofs(scene, hand, dofs, seen, target, shaped[k], contacts)
         out[k] = dofs
     return out
 
@@ -251,18 +275,25 @@ def write(text: str, k: str, lines: dict[str, str]) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="write the alphabet file")
+    parser.add_argument(
+        "--shape", action="store_true", help="shape fingers and thumbs too (step 2)"
+    )
     arguments = parser.parse_args()
+    shaped = SHAPED if arguments.shape else {}
     scene = Scene()
     with scene.hands, scene.renderer:
-        new = shape(scene, ReferenceHands())
+        new = shape(scene, ReferenceHands(), shaped)
     hand = HandModel("right")
     text = ALPHABET.read_text("utf-8")
     for k in LETTERS:
-        if k in MOVING and k not in SHAPED:
+        if k in MOVING and k not in shaped:
             continue
         lines = yaml_lines(hand, new[k])
         if k in MOVING:  # its path keys the placement: only the handshape is written
             lines = {group: lines[group] for group in ("fingers", "thumb")}
+        elif k not in shaped:  # only turned: the authored handshape (its thumb before
+            # the contacts are solved) stays as written
+            lines = {group: lines[group] for group in ("forearm", "wrist")}
         print(f"{k}:\n" + "\n".join(lines.values()))
         text = write(text, k, lines)
     if arguments.write:

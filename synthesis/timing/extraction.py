@@ -19,7 +19,8 @@
 
 Joint angles are the rotation vectors of every joint's rotation relative to its parent,
 after retargeting the recording onto the hand model, so letter poses from the alphabet
-and recorded frames are measured alike.
+and recorded frames are measured alike; the decomposition takes the forearm and wrist
+together as the hand's turn (:func:`shape_angles`).
 """
 
 import itertools
@@ -98,6 +99,22 @@ def joint_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
             rotation = Rotation.from_quat(q[:, parents[j]]).inv() * rotation
         columns.append(rotation.as_rotvec())
     return np.concatenate(columns, axis=1)
+
+
+def shape_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
+    """Return joint angles with the forearm's and wrist's replaced by the hand's own turn.
+
+    The hand's turn is the wrist's rotation relative to the world. A recording of hand
+    landmarks (a .pose file) shows how the hand is turned but not how much of it the
+    forearm does and how much the wrist, so the two enter the match as one turn (issue
+    52: D, turned as human hands hold it, turns 76° by the forearm).
+    """
+    from scipy.spatial.transform import Rotation
+
+    angles = joint_angles(pose, parents)
+    wrist = int(np.flatnonzero(parents == 0)[0])
+    turn = Rotation.from_quat(pose.quaternions[:, wrist]).as_rotvec()
+    return np.concatenate([turn, angles[:, 3 * (wrist + 1) :]], axis=1)
 
 
 def _window(rate_hz: float) -> int:
@@ -246,9 +263,14 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
     raw = joint_angles(pose, parents)
     angles = smooth_angles(raw, rate)
     names = sorted(key_poses)
-    letter_angles = joint_angles(model.pose(np.stack([key_poses[n] for n in names])), parents)
+    letter_angles = shape_angles(model.pose(np.stack([key_poses[n] for n in names])), parents)
+    recorded = smooth_angles(shape_angles(pose, parents), rate)
+    if not recorded[:, :3].any():
+        # Landmarks fitted in the palm's own frame (a .pose file) carry no turn of the
+        # hand: the letters are matched on their handshapes alone.
+        letter_angles[:, :3] = 0.0
     velocity = angular_velocity(pose, rate)
-    weights = decompose(angles, letter_angles)
+    weights = decompose(recorded, letter_angles)
     columns = [names.index(name) for _, _, name in keys]
     key_weights = weights[:, columns].T
     # Favour slow frames: of two frames where a letter is equally formed, the hold is
