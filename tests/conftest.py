@@ -12,6 +12,7 @@ import subprocess
 import tempfile
 import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -214,6 +215,17 @@ def close_context(context) -> None:
     requests = _server_requests()
     context.close()
     requests.settle(quiet_s=0.25, timeout_s=10.0)
+
+
+@contextmanager
+def browser_context(browser, **options):
+    """Open a browser context for the block; close it (:func:`close_context`) however the
+    block ends, so a failed test leaves no page calling the live server into the next."""
+    context = browser.new_context(**options)
+    try:
+        yield context
+    finally:
+        close_context(context)
 
 
 @pytest.fixture

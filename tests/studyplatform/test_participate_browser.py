@@ -14,7 +14,7 @@ from playwright.sync_api import expect
 
 from studyplatform.lib.stimuli import clip_spec, needed_pairs
 from studyplatform.models import MediaEvent, Participant, Response, Stimulus, Trial
-from tests.conftest import close_context
+from tests.conftest import browser_context
 
 SCREENSHOTS = Path(__file__).resolve().parents[2] / "test-results"
 
@@ -215,62 +215,65 @@ def test_spine_study_by_keyboard_on_a_phone(browser, live_server, spine, clips_d
     """Keyboard only, in a phone-sized window, ASL first: the whole study."""
     _with_clips(spine, one_clip, clips_dir)
     played = 0
-    context = browser.new_context(
-        viewport={"width": 390, "height": 844}, is_mobile=True, bypass_csp=True, has_touch=True
-    )
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda error: errors.append(str(error)))
-    page.goto(f"{live_server.url}/s/{spine.slug}/")
-    _tab_to(page, "button.button")
-    page.keyboard.press("Enter")
-    participant = None
-    clicked: dict = {}
-    while True:
-        page.wait_for_selector("#page-form.ready, #completion-code")
-        if page.locator("#completion-code").count():
-            break
-        participant = participant or Participant.objects.get()
-        number, key = _current(page)
-        trial = Trial.objects.get(study=spine, key=key)
-        if trial.kind == "rating":
-            SCREENSHOTS.mkdir(exist_ok=True)
-            page.screenshot(path=SCREENSHOTS / "participant-phone-rating.png", full_page=True)
-        # Nothing is wider than the phone's screen.
-        assert page.evaluate("document.documentElement.scrollWidth") <= 390
-        if trial.item_id and not played:  # the clip controls work from the keyboard
-            _tab_to(page, ".play-button")
-            page.keyboard.press("Enter")
-            page.wait_for_function("document.querySelector('video.stimulus').ended")
-            played += 1
-        for question in trial.questions.order_by("position"):
-            name = f"q-{question.key}"
-            if question.kind == "open":
-                _tab_to(page, f'textarea[name="{name}"]')
-                page.keyboard.type("The shoulders moved.")
-                clicked[(key, question.key)] = "The shoulders moved."
-                continue
-            if question.kind == "number":
-                _tab_to(page, f'input[name="{name}"]')
-                page.keyboard.type("12")
-                clicked[(key, question.key)] = 12.0
-                continue
-            _tab_to(page, f'input[name="{name}"]')
-            page.keyboard.press("Space")  # select the focused (first) option
-            page.keyboard.press("ArrowRight")  # and move one on: selects the second
-            clicked[(key, question.key)] = int(page.evaluate("document.activeElement.value"))
-        _tab_to(page, "#next-button")
-        # Focus is visible: the focused button has an outline.
-        assert page.evaluate("getComputedStyle(document.activeElement).outlineStyle") != "none"
+    with browser_context(
+        browser,
+        viewport={"width": 390, "height": 844},
+        is_mobile=True,
+        bypass_csp=True,
+        has_touch=True,
+    ) as context:
+        page = context.new_page()
+        errors = []
+        page.on("pageerror", lambda error: errors.append(str(error)))
+        page.goto(f"{live_server.url}/s/{spine.slug}/")
+        _tab_to(page, "button.button")
         page.keyboard.press("Enter")
-        page.wait_for_function(
-            f"!document.getElementById('page-form') || "
-            f"Number(document.getElementById('page-form').dataset.page) !== {number}"
-        )
-    assert page.locator("#completion-code").text_content() == "SPINE-DEMO"
-    SCREENSHOTS.mkdir(exist_ok=True)
-    page.screenshot(path=SCREENSHOTS / "participant-phone-done.png", full_page=True)
-    close_context(context)
+        participant = None
+        clicked: dict = {}
+        while True:
+            page.wait_for_selector("#page-form.ready, #completion-code")
+            if page.locator("#completion-code").count():
+                break
+            participant = participant or Participant.objects.get()
+            number, key = _current(page)
+            trial = Trial.objects.get(study=spine, key=key)
+            if trial.kind == "rating":
+                SCREENSHOTS.mkdir(exist_ok=True)
+                page.screenshot(path=SCREENSHOTS / "participant-phone-rating.png", full_page=True)
+            # Nothing is wider than the phone's screen.
+            assert page.evaluate("document.documentElement.scrollWidth") <= 390
+            if trial.item_id and not played:  # the clip controls work from the keyboard
+                _tab_to(page, ".play-button")
+                page.keyboard.press("Enter")
+                page.wait_for_function("document.querySelector('video.stimulus').ended")
+                played += 1
+            for question in trial.questions.order_by("position"):
+                name = f"q-{question.key}"
+                if question.kind == "open":
+                    _tab_to(page, f'textarea[name="{name}"]')
+                    page.keyboard.type("The shoulders moved.")
+                    clicked[(key, question.key)] = "The shoulders moved."
+                    continue
+                if question.kind == "number":
+                    _tab_to(page, f'input[name="{name}"]')
+                    page.keyboard.type("12")
+                    clicked[(key, question.key)] = 12.0
+                    continue
+                _tab_to(page, f'input[name="{name}"]')
+                page.keyboard.press("Space")  # select the focused (first) option
+                page.keyboard.press("ArrowRight")  # and move one on: selects the second
+                clicked[(key, question.key)] = int(page.evaluate("document.activeElement.value"))
+            _tab_to(page, "#next-button")
+            # Focus is visible: the focused button has an outline.
+            assert page.evaluate("getComputedStyle(document.activeElement).outlineStyle") != "none"
+            page.keyboard.press("Enter")
+            page.wait_for_function(
+                f"!document.getElementById('page-form') || "
+                f"Number(document.getElementById('page-form').dataset.page) !== {number}"
+            )
+        assert page.locator("#completion-code").text_content() == "SPINE-DEMO"
+        SCREENSHOTS.mkdir(exist_ok=True)
+        page.screenshot(path=SCREENSHOTS / "participant-phone-done.png", full_page=True)
     assert errors == []
     assert _stored(participant) == clicked
 
@@ -482,41 +485,46 @@ def test_a_slider_is_unanswered_until_touched(
     starting point. Untouched, Next names the question; a keyboard move answers it."""
     from studyplatform.models import AnswerOption, Question
 
-    context = browser.new_context(
-        viewport=viewport, has_touch=viewport["width"] < 500, bypass_csp=True
-    )
-    page = context.new_page()
-    spine.status = "draft"
-    spine.save(update_fields=["status"])
-    slider = Question.objects.create(study=spine, key="natural", kind="slider", text="How natural?")
-    AnswerOption.objects.create(question=slider, value=0, label="Not at all natural", position=0)
-    AnswerOption.objects.create(question=slider, value=100, label="Completely natural", position=1)
-    trial = spine.trials.get(key="rate-s1")
-    trial.questions.set([slider])
-    spine.status = "open"
-    spine.save(update_fields=["status"])
-    _with_clips(spine, one_clip, clips_dir)
-    participant, number = goto_trial_page(page, live_server, spine, "rate-s1")
-    _wait_ready(page)
-    control = page.locator("#slider-natural")
-    assert control.get_attribute("name") is None
-    expect(page.locator("#slider-value-natural")).to_have_text(
-        "Not answered yet: move or tap the slider."
-    )
-    page.locator("#next-button").click()
-    expect(page.locator("#error-natural")).to_have_text("Please answer this question.")
-    assert not Response.objects.filter(participant=participant, question=slider).exists()
-    control.focus()
-    for _ in range(3):
-        page.keyboard.press("ArrowRight")
-    expect(page.locator("#slider-value-natural")).to_have_text("53")
-    expect(page.locator("#save-status")).to_have_text("Answer saved.")
-    assert Response.objects.get(participant=participant, question=slider).rating == 53
-    overflow = page.evaluate("document.documentElement.scrollWidth - window.innerWidth")
-    assert overflow <= 0, overflow
-    _next(page, number)
-    page.go_back()
-    _wait_ready(page)
-    expect(page.locator("#slider-value-natural")).to_have_text("53")
-    assert control.get_attribute("name") == "q-natural" and control.input_value() == "53"
-    close_context(context)
+    with browser_context(
+        browser, viewport=viewport, has_touch=viewport["width"] < 500, bypass_csp=True
+    ) as context:
+        page = context.new_page()
+        spine.status = "draft"
+        spine.save(update_fields=["status"])
+        slider = Question.objects.create(
+            study=spine, key="natural", kind="slider", text="How natural?"
+        )
+        AnswerOption.objects.create(
+            question=slider, value=0, label="Not at all natural", position=0
+        )
+        AnswerOption.objects.create(
+            question=slider, value=100, label="Completely natural", position=1
+        )
+        trial = spine.trials.get(key="rate-s1")
+        trial.questions.set([slider])
+        spine.status = "open"
+        spine.save(update_fields=["status"])
+        _with_clips(spine, one_clip, clips_dir)
+        participant, number = goto_trial_page(page, live_server, spine, "rate-s1")
+        _wait_ready(page)
+        control = page.locator("#slider-natural")
+        assert control.get_attribute("name") is None
+        expect(page.locator("#slider-value-natural")).to_have_text(
+            "Not answered yet: move or tap the slider."
+        )
+        page.locator("#next-button").click()
+        expect(page.locator("#error-natural")).to_have_text("Please answer this question.")
+        assert not Response.objects.filter(participant=participant, question=slider).exists()
+        control.focus()
+        for _ in range(3):
+            page.keyboard.press("ArrowRight")
+        expect(page.locator("#slider-value-natural")).to_have_text("53")
+        expect(page.locator("#save-status")).to_have_text("Answer saved.")
+        assert Response.objects.get(participant=participant, question=slider).rating == 53
+        overflow = page.evaluate("document.documentElement.scrollWidth - window.innerWidth")
+        assert overflow <= 0, overflow
+        _next(page, number)
+        page.go_back()
+        _wait_ready(page)
+        expect(page.locator("#slider-value-natural")).to_have_text("53")
+        assert control.get_attribute("name") == "q-natural" and control.input_value() == "53"

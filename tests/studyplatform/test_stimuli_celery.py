@@ -6,6 +6,7 @@ worker is a separate process sharing the test database (SQLite's test database i
 file here; PostgreSQL's is a server), so the tests commit for real.
 """
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -91,6 +92,7 @@ def _worker(tmp_path: Path, media: Path, private: Path | None = None):
         env=environment,
         stdout=log,
         stderr=subprocess.STDOUT,
+        start_new_session=True,  # its own process group: the pool's child goes with it
     )
     try:
         yield process
@@ -101,6 +103,10 @@ def _worker(tmp_path: Path, media: Path, private: Path | None = None):
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
+        # A child still rendering outlives its killed parent and would write into the
+        # database after the test has flushed it.
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGKILL)
         log.close()
 
 
