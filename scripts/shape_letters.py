@@ -16,8 +16,11 @@ then compared with the shared reference of 10,508 human samples of the 26 letter
    the thumb move toward the human median landmarks (seen in our palm's frame), held
    near the authored pose by a penalty on every degree moved and with the letter's
    contacts kept. MediaPipe's landmarks on our render minus our hand's joints are taken
-   as its fixed bias. Not applied: it reads 20 of 26 but moves A, E, M, S and T's
-   thumbs where the fist letters' check says ASL does not put them.
+   as its fixed bias. A fist letter's penalty doubles until its thumb still makes that
+   letter by the fist letters' check (E never does: it keeps its authored shape). Not
+   applied: it reads 18 of 26 at 1280×720 (20 at 640×480), one more than step 1 alone,
+   and moves the handshapes the finger routes, the capture round trips and seed 000's
+   transition proportions were measured on (10 tests to revisit).
 
 The reference is a target to shape toward, not joint angles to copy: what a letter is
 stays in the alphabet file's descriptions and contacts, and in the fist letters' check
@@ -49,6 +52,11 @@ from synthesis.fingerspelling.alphabet import (  # noqa: E402
     letter,
     solve_contacts,
 )
+from synthesis.fingerspelling.fist_letters import (  # noqa: E402
+    FIST_LETTERS,
+    fist_letter,
+    thumb_place,
+)
 from synthesis.render.renderer import Renderer  # noqa: E402
 from synthesis.render.scene import project_px, signing_view  # noqa: E402
 from synthesis.rigs.hand import HandModel  # noqa: E402
@@ -64,6 +72,8 @@ TURN = {"G": 0.6, "H": 0.5, "I": 0.75, "T": 0.5, "V": 0.75}
 # far (m) a contact may stay from holding for 1 unit of landmark gap (A's thumb, held
 # to the index by its contacts, stayed in front of the fist as T's does).
 SHAPED = {k: (2.0, 0.002) for k in "CENRST"} | {"A": (1.0, 0.01), "M": (1.0, 0.002)}
+# How many times a fist letter's penalty doubles before its authored shape is kept.
+FIST_TRIES = 6
 PLACEMENT = ("forearm_tilt_side", "forearm_tilt_forward", "forearm_twist")
 PLACEMENT += ("wrist_deviation", "wrist_flexion")
 JOINTS = (
@@ -198,6 +208,23 @@ def shaped_dofs(scene, hand, dofs, seen, target, weights, contacts) -> np.ndarra
     return solve_contacts(hand, out, contacts)
 
 
+def held_letter(k, hand, dofs, seen, target, weights, contacts, scene) -> np.ndarray:
+    """Return :func:`shaped_dofs`, its penalty doubled until a fist letter's thumb still
+    makes that letter by the fist letters' check (the authored DOFs if it never does)."""
+    penalty, contact_m = weights
+    for _ in range(FIST_TRIES):
+        out = shaped_dofs(scene, hand, dofs, seen, target, (penalty, contact_m), contacts)
+        if k not in FIST_LETTERS:
+            return out
+        positions = hand.pose(out).positions_m[0]
+        made = fist_letter(thumb_place(dict(zip(hand.skeleton.names, positions, strict=True))))
+        if made == k:
+            return out
+        print(f"  {k}: the shaped thumb makes {made}; penalty {penalty} doubled")
+        penalty *= 2
+    return dofs
+
+
 def shape(scene: Scene, reference: ReferenceHands, shaped: dict) -> dict[str, np.ndarray]:
     """Return every letter's new DOFs (a moving letter's placement unchanged)."""
     hand = HandModel("right")
@@ -218,7 +245,7 @@ def shape(scene: Scene, reference: ReferenceHands, shaped: dict) -> dict[str, np
             into_ours, _ = Rotation.align_vectors(seen[PALM], medians[k][PALM])
             target = into_ours.apply(medians[k])
             contacts = letter(k, "right").contacts
-            dofs = shaped_dofs(scene, hand, dofs, seen, target, shaped[k], contacts)
+            dofs = held_letter(k, hand, dofs, seen, target, shaped[k], contacts, scene)
         out[k] = dofs
     return out
 
