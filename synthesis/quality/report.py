@@ -7,9 +7,9 @@ where it is:
 
 - **speed**: a joint turning faster than :data:`SPEED_FACTOR` × its keyed peak. Issue
   53's fling reached 7.1 ×, and a joint at twice its keyed speed is caught. On the
-  demo studies two built-in techniques cross it (measured): the data-driven Hermite
-  join's elbow on P1 (3.1 ×; the stored human curve overshoots by 18°) and the
-  elbow with the spine off on S4 (1.93 ×).
+  demo studies one built-in technique crosses it (measured): the data-driven Hermite
+  join's elbow on P1 (3.0 ×; the stored human curve overshoots by 18°). The spine off
+  is judged against the keyed motion with the spine off (:mod:`synthesis.quality.clip`).
 - **frame**: any hand skin outside the frame in any frame, through a side or the top. A
   hand out through the bottom edge alone is lowered below the signing space, which the
   signing view's frame ends at (:mod:`synthesis.quality.visibility`): counted, not a

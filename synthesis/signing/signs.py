@@ -48,6 +48,8 @@ class SignError(ValueError):
 
 # Body parts a hand key can be placed on, and the joint whose motion carries it.
 BODY_PARTS = {"head": "head", "chest": "spine_upper"}
+# The fields of a hand key in the library.
+HAND_FIELDS = ("at", "body", "shape", "palm", "fingers", "swivel_deg")
 
 
 @dataclass(frozen=True)
@@ -216,10 +218,27 @@ def _add_sign(library: SignLibrary, gloss: str, entry: dict) -> None:
     library.signs[gloss] = tuple(keys)
 
 
+def _hand_fields(spec, where: str):
+    """Return a sign key's hand entry; SignError names a field a hand key does not have."""
+    unknown = sorted(set(spec) - set(HAND_FIELDS), key=str) if isinstance(spec, dict) else []
+    if unknown:
+        # A misspelt field was read as absent: the left hands of HAVE, SAD and four more
+        # said "on: chest" (YAML reads "on" as true) for "body: chest", and stayed behind
+        # as the spine bent the chest into them (issue 52).
+        field = unknown[0]
+        named = repr(field) if isinstance(field, str) else f"{field} (YAML's on, off, yes or no)"
+        raise SignError(
+            f"{where}: a hand key has no field {named} (its fields: {', '.join(HAND_FIELDS)})."
+        )
+    return spec
+
+
 def _sign_key(library: SignLibrary, key: dict, where: str) -> SignKey:
     """Return one key of a sign: its hands, time, hold and spine and head angles."""
     hands = {
-        side: library.hand(side, key[side], where) for side in ("right", "left") if side in key
+        side: library.hand(side, _hand_fields(key[side], where), where)
+        for side in ("right", "left")
+        if side in key
     }
     for part in ("spine", "head"):
         unknown = set(key.get(part) or {}) - set(KEYED_DOFS)

@@ -37,7 +37,9 @@ class Technique:
     sorts the techniques of a stage. *chooses_content* marks a technique that chooses
     what is signed, by whom or when (a source, a timing, an avatar), not how the motion
     is made between keys: the stimulus check's keyed reference keeps its values and
-    resets the others' (:mod:`synthesis.quality`).
+    resets the others' (:mod:`synthesis.quality`). *reference_keeps* names parameters of
+    a motion technique the reference keeps all the same: those that choose which joints
+    carry the motion (the spine on or off), not how fast.
     """
 
     name: str
@@ -51,6 +53,7 @@ class Technique:
     check: Callable[[Mapping[str, Any]], None] | None = None
     summary: Callable[[Mapping[str, Any]], str] | None = None
     chooses_content: bool = False
+    reference_keeps: tuple[str, ...] = ()
 
     def describe(self, values: Mapping[str, Any]) -> str:
         """Return what this technique does with *values*, in plain words.

@@ -120,4 +120,6 @@ TECHNIQUE = Technique(
     order=30,
     apply=_apply,
     summary=_summary,
+    # Off, the arm reaches alone: judged against arms that reach alone (synthesis.quality).
+    reference_keeps=("spine",),
 )

@@ -24,6 +24,7 @@ from synthesis.skeleton.kinematics import Pose
 from synthesis.techniques import REGISTRY, ClipRequest, Parameter, Technique
 from synthesis.techniques.registry import MOTION
 from synthesis.techniques.request import avatar_and_camera
+from synthesis.techniques.spine import DEFAULTS as SPINE_DEFAULTS
 
 SENTENCE = "BUT SURPRISE MY BROTHER GET NEW"
 
@@ -63,11 +64,15 @@ def test_joint_speed_is_the_local_rotation_angle_per_second():
 
 
 def test_the_keyed_reference_keeps_the_content_and_resets_the_motion_techniques():
+    """The spine's on or off is kept (which joints carry the reach), its tuning reset."""
     request = ClipRequest.from_parameters(
-        "sentence", SENTENCE, {"transition": "hermite", "spine": False, "skin_tone": "dark"}
+        "sentence",
+        SENTENCE,
+        {"transition": "hermite", "spine": False, "spine_bend_deg": 20.0, "skin_tone": "dark"},
     )
     reference = keyed_reference(request).parameters
-    assert reference["transition"] == "keyed" and reference["spine"] is True
+    assert reference["transition"] == "keyed" and reference["spine"] is False
+    assert reference["spine_bend_deg"] == SPINE_DEFAULTS.bend_deg != 20.0
     assert reference["skin_tone"] == "dark"
 
 

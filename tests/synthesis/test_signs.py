@@ -60,6 +60,16 @@ def test_a_left_hand_is_written_as_a_right_hand_and_mirrored():
         ({"X": {"keys": [{"ms": 50}, {"ms": 0}]}}, "X: keys must be in time order"),
         ({"X": {"keys": []}}, "X: a sign needs at least one key"),
         ({"X": {"keys": [{"ms": 0, "spine": {"lean": 4}}]}}, "unknown spine angle 'lean'"),
+        (
+            {"X": {"keys": [{"ms": 0, "left": {"at": "neutral", "bdy": "chest"}}]}},
+            "X key 1: a hand key has no field 'bdy'",
+        ),
+        # YAML reads an unquoted "on: chest" as {True: "chest"} (the library's left hands
+        # of HAVE, SAD and four more signs, read as no body part until issue 52).
+        (
+            {"X": {"keys": [{"ms": 0, "left": {"at": "neutral", True: "chest"}}]}},
+            r"no field True \(YAML's on, off, yes or no\)",
+        ),
     ],
 )
 def test_malformed_libraries_are_clear_errors(signs, message):
