@@ -17,7 +17,7 @@ then compared with the shared reference of 10,508 human samples of the 26 letter
    near the authored pose by a penalty on every degree moved and with the letter's
    contacts kept. MediaPipe's landmarks on our render minus our hand's joints are taken
    as its fixed bias. A fist letter's penalty doubles until its thumb still makes that
-   letter by the fist letters' check (E never does: it keeps its authored shape). Not
+   letter by the fist letters' check (E's held at 8 times its first penalty). Not
    applied: it reads 18 of 26 at 1280×720 (20 at 640×480), one more than step 1 alone,
    and moves the handshapes the finger routes, the capture round trips and seed 000's
    transition proportions were measured on (10 tests to revisit).
