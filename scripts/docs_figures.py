@@ -31,7 +31,9 @@ import docs_registry_tables as registry
 # differences, and numpy's SIMD kernels and OpenBLAS's kernels are chosen per CPU: the
 # same code gave 0.768 cm on an AVX-512 machine and 0.777 cm on an AVX2 one. With the
 # kernels pinned (numpy's baseline, OpenBLAS's Haswell), every x86-64 machine computes
-# the same figures; main() runs the script again, pinned, before it computes.
+# the same figures; main() runs the script again, pinned, before it computes. The disk
+# cache names results by their kernels too (synthesis.diskcache.kernels_digest), so the
+# pinned run never loads what an unpinned test or bench cached.
 PINNED = {
     "NPY_DISABLE_CPU_FEATURES": "X86_V3 X86_V4 AVX512_ICL AVX512_SPR",
     "OPENBLAS_CORETYPE": "Haswell",
@@ -91,28 +93,12 @@ def compute(names) -> dict[str, str]:
     return {name: BLOCKS[name]() for name in names}
 
 
-def _pinned_environment() -> dict[str, str]:
-    """Return :data:`PINNED` with a disk cache of the pinned runs' own.
-
-    The disk cache keys a result by its inputs and code, not by the CPU kernels that
-    computed it: a GPLVM cached by an unpinned run (a test, a bench) on an AVX-512
-    machine put G and Y farthest apart where the pinned run puts G and J.
-    """
-    from synthesis.diskcache import CACHE_ENV, cache_directory
-
-    folder = cache_directory()
-    if folder is None or folder.name == "pinned-kernels":
-        return PINNED
-    return {**PINNED, CACHE_ENV: str(folder / "pinned-kernels")}
-
-
 def _pin_kernels() -> None:
     """Run this script again with :data:`PINNED` set, unless it is (x86-64 only)."""
     if platform.machine() not in ("x86_64", "AMD64"):
         return
-    pinned = _pinned_environment()
-    if any(os.environ.get(name) != value for name, value in pinned.items()):
-        os.execve(sys.executable, [sys.executable, *sys.argv], {**os.environ, **pinned})
+    if any(os.environ.get(name) != value for name, value in PINNED.items()):
+        os.execve(sys.executable, [sys.executable, *sys.argv], {**os.environ, **PINNED})
 
 
 def main() -> int:

@@ -3,9 +3,10 @@
 Built avatars (:mod:`synthesis.avatar.store`) and solved letters of the alphabet
 (:mod:`synthesis.fingerspelling.alphabet`) are deterministic results of the engine's
 files and a few libraries; every render process computed them again. Each is kept in
-one ``.npz`` whose name carries :func:`synthesis.identity.code_digest` and the
-versions of the libraries that compute it, so that any change to either names a new
-file and a stale result is never loaded. The directory is ``$SIGNSTUDY_AVATAR_CACHE``
+one ``.npz`` whose name carries :func:`synthesis.identity.code_digest`, the
+versions of the libraries that compute it and the CPU kernels they run
+(:func:`kernels_digest`), so that any change to these names a new file and a stale
+result is never loaded. The directory is ``$SIGNSTUDY_AVATAR_CACHE``
 (its name from when it held avatars only), else ``$XDG_CACHE_HOME/signstudy/avatars``,
 else ``~/.cache/signstudy/avatars``; ``SIGNSTUDY_AVATAR_CACHE=off`` computes every time.
 An unreadable file is computed again and replaced; a directory that cannot be written
@@ -52,13 +53,35 @@ def libraries_digest(libraries: tuple[str, ...]) -> str:
     return hashlib.sha256(";".join(versions).encode()).hexdigest()[:8]
 
 
+# The environment variables that choose numpy's and OpenBLAS's kernels over the CPU's own.
+KERNEL_ENVIRONMENT = ("NPY_DISABLE_CPU_FEATURES", "NPY_ENABLE_CPU_FEATURES", "OPENBLAS_CORETYPE")
+
+
+@cache
+def kernels_digest() -> str:
+    """Return 8 hex digits naming the CPU kernels numpy and OpenBLAS run here.
+
+    The same code and libraries give results that differ in the last bits on CPUs with
+    other vector units (AVX2 or AVX-512), and an optimiser can follow those bits far: a
+    GPLVM cached by an unpinned run on an AVX-512 machine put G and Y farthest apart
+    where scripts/docs_figures.py's run, pinned to AVX2 kernels, puts G and J. The
+    kernels follow numpy's enabled CPU features and the variables that override them.
+    """
+    from numpy._core._multiarray_umath import __cpu_features__
+
+    enabled = sorted(name for name, on in __cpu_features__.items() if on)
+    chosen = [f"{name}={os.environ.get(name, '')}" for name in KERNEL_ENVIRONMENT]
+    return hashlib.sha256(";".join(enabled + chosen).encode()).hexdigest()[:8]
+
+
 def cache_path(key: str, libraries: tuple[str, ...]) -> Path | None:
     """Return where the result named *key*, computed with *libraries*, is kept (None:
     caching is off)."""
     directory = cache_directory()
     if directory is None:
         return None
-    return directory / f"{key}-{code_digest()}-{libraries_digest(libraries)}.npz"
+    digests = f"{code_digest()}-{libraries_digest(libraries)}-{kernels_digest()}"
+    return directory / f"{key}-{digests}.npz"
 
 
 def load_arrays(path: Path | None) -> dict[str, np.ndarray] | None:

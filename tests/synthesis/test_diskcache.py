@@ -1,10 +1,18 @@
 """Test the engine's disk cache with solved letters: solved once, loaded the same."""
 
+import os
+import platform
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from synthesis.diskcache import CACHE_ENV, cache_path, load_arrays, save_arrays
 from synthesis.fingerspelling import alphabet
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture
@@ -46,3 +54,28 @@ def test_caching_can_be_turned_off(monkeypatch):
     assert cache_path("letter-right-A", ("numpy",)) is None
     assert load_arrays(None) is None
     save_arrays(None, {"x": np.zeros(1)})  # nothing to do, no error
+
+
+def _cache_name(environment: dict[str, str]) -> str:
+    """Return the cache file name a fresh process gives one result under *environment*."""
+    script = "from synthesis.diskcache import cache_path; print(cache_path('x', ('numpy',)).name)"
+    run = subprocess.run(
+        [sys.executable, "-c", script],
+        env={**os.environ, CACHE_ENV: "/tmp/unused", **environment},
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=ROOT,
+    )
+    return run.stdout.strip()
+
+
+def test_other_cpu_kernels_name_another_file():
+    """Issue 52: a GPLVM cached with AVX-512 kernels was loaded by a run pinned to AVX2
+    kernels (scripts/docs_figures.py) and its figure drifted. Results of other kernels
+    are other files; the same kernels find the same file."""
+    plain = _cache_name({})
+    assert _cache_name({}) == plain
+    assert _cache_name({"OPENBLAS_CORETYPE": "Haswell"}) != plain
+    if platform.machine() in ("x86_64", "AMD64"):  # numpy refuses features it does not know
+        assert _cache_name({"NPY_DISABLE_CPU_FEATURES": "X86_V3 X86_V4"}) != plain
