@@ -67,8 +67,10 @@ def kernels_digest() -> str:
     where scripts/docs_figures.py's run, pinned to AVX2 kernels, puts G and J. The
     kernels follow numpy's enabled CPU features and the variables that override them.
     """
-    from numpy._core._multiarray_umath import __cpu_features__
-
+    try:
+        from numpy._core._multiarray_umath import __cpu_features__
+    except ImportError:  # numpy moved its private table: the variables still name a choice
+        __cpu_features__ = {}
     enabled = sorted(name for name, on in __cpu_features__.items() if on)
     chosen = [f"{name}={os.environ.get(name, '')}" for name in KERNEL_ENVIRONMENT]
     return hashlib.sha256(";".join(enabled + chosen).encode()).hexdigest()[:8]

@@ -104,10 +104,10 @@ def joint_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
 def shape_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
     """Return joint angles with the forearm's and wrist's replaced by the hand's own turn.
 
-    The hand's turn is the wrist's rotation relative to the world. A recording of hand
-    landmarks (a .pose file) shows how the hand is turned but not how much of it the
-    forearm does and how much the wrist, so the two enter the match as one turn (issue
-    52: D, turned as human hands hold it, turns 76° by the forearm).
+    The hand's turn is the wrist's rotation relative to the world. How a recording splits
+    it between forearm and wrist is the recording's own, not the alphabet's, so the two
+    enter the match as one turn (issue 52: D, turned as human hands hold it, turns 76°
+    by the forearm and 23° by the wrist).
     """
     from scipy.spatial.transform import Rotation
 
