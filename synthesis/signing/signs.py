@@ -222,9 +222,9 @@ def _hand_fields(spec, where: str):
     """Return a sign key's hand entry; SignError names a field a hand key does not have."""
     unknown = sorted(set(spec) - set(HAND_FIELDS), key=str) if isinstance(spec, dict) else []
     if unknown:
-        # A misspelt field was read as absent: the left hands of HAVE, SAD and four more
-        # said "on: chest" (YAML reads "on" as true) for "body: chest", and stayed behind
-        # as the spine bent the chest into them (issue 52).
+        # A misspelt field was read as absent: six left-hand keys of HAVE, SAD, SURPRISE
+        # and GIVE-ME said "on: chest" or "on: head" (YAML reads "on" as true) for
+        # "body: …", and stayed behind as the spine bent the chest into them (issue 52).
         field = unknown[0]
         named = repr(field) if isinstance(field, str) else f"{field} (YAML's on, off, yes or no)"
         raise SignError(

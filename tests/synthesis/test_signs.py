@@ -64,8 +64,8 @@ def test_a_left_hand_is_written_as_a_right_hand_and_mirrored():
             {"X": {"keys": [{"ms": 0, "left": {"at": "neutral", "bdy": "chest"}}]}},
             "X key 1: a hand key has no field 'bdy'",
         ),
-        # YAML reads an unquoted "on: chest" as {True: "chest"} (the library's left hands
-        # of HAVE, SAD and four more signs, read as no body part until issue 52).
+        # YAML reads an unquoted "on: chest" as {True: "chest"} (six left-hand keys of
+        # HAVE, SAD, SURPRISE and GIVE-ME, read as no body part until issue 52).
         (
             {"X": {"keys": [{"ms": 0, "left": {"at": "neutral", True: "chest"}}]}},
             r"no field True \(YAML's on, off, yes or no\)",
