@@ -11,14 +11,14 @@ then compared with the shared reference of 10,508 human samples of the 26 letter
    :data:`TURN` of the way (all of it unless the whole turn read worse). Letters ASL
    names by where the index points keep it pointing there (:data:`KEPT_INDEX`). The
    alphabet file holds this step's result (issue 52: 17 of 26 letters read right at
-   1280×720, from 9).
+   1280×720, from 9; 18 with K's middle then angled further forward by hand).
 2. Shape, only with ``--shape``, for :data:`SHAPED` letters: the fingers' flexions and
    the thumb move toward the human median landmarks (seen in our palm's frame), held
    near the authored pose by a penalty on every degree moved and with the letter's
    contacts kept. MediaPipe's landmarks on our render minus our hand's joints are taken
    as its fixed bias. A fist letter's penalty doubles until its thumb still makes that
    letter by the fist letters' check (E's held at 8 times its first penalty). Not
-   applied: it reads 18 of 26 at 1280×720 (20 at 640×480), one more than step 1 alone,
+   applied: it read 18 of 26 at 1280×720 (20 at 640×480), one more than step 1 alone,
    and moves the handshapes the finger routes, the capture round trips and seed 000's
    transition proportions were measured on (10 tests to revisit).
 
