@@ -101,19 +101,22 @@ def joint_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
     return np.concatenate(columns, axis=1)
 
 
-def shape_angles(pose: Pose, parents: np.ndarray) -> np.ndarray:
-    """Return joint angles with the forearm's and wrist's replaced by the hand's own turn.
-
-    The hand's turn is the wrist's rotation relative to the world. How a recording splits
-    it between forearm and wrist is the recording's own, not the alphabet's, so the two
-    enter the match as one turn (issue 52: D, turned as human hands hold it, turns 76°
-    by the forearm and 23° by the wrist).
-    """
+def hand_turn(pose: Pose, parents: np.ndarray) -> np.ndarray:
+    """Return the hand's turn per frame (n_frames, 3): the wrist's rotation in the world."""
     from scipy.spatial.transform import Rotation
 
-    angles = joint_angles(pose, parents)
     wrist = int(np.flatnonzero(parents == 0)[0])
-    turn = Rotation.from_quat(pose.quaternions[:, wrist]).as_rotvec()
+    return Rotation.from_quat(pose.quaternions[:, wrist]).as_rotvec()
+
+
+def shape_angles(angles: np.ndarray, turn: np.ndarray, parents: np.ndarray) -> np.ndarray:
+    """Return joint angles with the forearm's and wrist's replaced by the hand's *turn*.
+
+    How a recording splits the hand's turn between forearm and wrist is the recording's
+    own, not the alphabet's, so the two enter the match as one turn (issue 52: D, turned
+    as human hands hold it, turns 76° by the forearm and 23° by the wrist).
+    """
+    wrist = int(np.flatnonzero(parents == 0)[0])
     return np.concatenate([turn, angles[:, 3 * (wrist + 1) :]], axis=1)
 
 
@@ -263,8 +266,12 @@ def extract(motion: Motion, word: str, side: str = "right") -> Extraction:
     raw = joint_angles(pose, parents)
     angles = smooth_angles(raw, rate)
     names = sorted(key_poses)
-    letter_angles = shape_angles(model.pose(np.stack([key_poses[n] for n in names])), parents)
-    recorded = smooth_angles(shape_angles(pose, parents), rate)
+    letter_pose = model.pose(np.stack([key_poses[n] for n in names]))
+    letter_angles = shape_angles(
+        joint_angles(letter_pose, parents), hand_turn(letter_pose, parents), parents
+    )
+    # The smoothing is linear per column: the smoothed angles need only the turn's.
+    recorded = shape_angles(angles, smooth_angles(hand_turn(pose, parents), rate), parents)
     if not recorded[:, :3].any():
         # Landmarks fitted in the palm's own frame (a .pose file) carry no turn of the
         # hand: the letters are matched on their handshapes alone.
